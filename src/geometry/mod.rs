@@ -1,0 +1,13 @@
+//! Pure geometry: shapes and poses, support functions, conics (P1–P7), the pencil of two
+//! conics (P8–P10) and the robust cubic solver behind it.
+//!
+//! Nothing here knows about mass, velocity, time steps, materials or files.
+
+pub mod conic;
+pub mod cubic;
+pub mod mass;
+pub mod pencil;
+pub mod shape;
+pub mod support;
+
+pub use shape::{Pose, Shape, ShapeError, Vec2, Wall};

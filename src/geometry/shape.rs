@@ -1,0 +1,187 @@
+//! Shapes, poses and walls.
+//!
+//! Conventions (see the crate docs): angles in radians, counter-clockwise; a body's angle is that
+//! of its own x axis, which carries an ellipse's semi-axis `a` and a rectangle's width `w`.
+
+use std::fmt;
+
+/// A 2D vector (positions, directions, velocities).
+pub type Vec2 = nalgebra::Vector2<f64>;
+
+/// The outline of a rigid body, in its own frame (centroid at the origin).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    /// A disk of radius `r`.
+    Circle { r: f64 },
+    /// An ellipse with semi-axis `a` along the body's x axis and `b` along its y axis.
+    Ellipse { a: f64, b: f64 },
+    /// A rectangle of full width `w` (along the body's x axis) and full height `h`.
+    Rectangle { w: f64, h: f64 },
+}
+
+/// Why a shape is not usable.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShapeError {
+    /// The offending field (`r`, `a`, `b`, `w` or `h`).
+    pub field: &'static str,
+    /// The value given.
+    pub value: f64,
+}
+
+impl fmt::Display for ShapeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "`{}` must be positive and finite, got {}",
+            self.field, self.value
+        )
+    }
+}
+
+impl std::error::Error for ShapeError {}
+
+impl Shape {
+    /// Checks that every size is positive and finite.
+    pub fn validate(&self) -> Result<(), ShapeError> {
+        let fields: &[(&'static str, f64)] = match *self {
+            Shape::Circle { r } => &[("r", r)],
+            Shape::Ellipse { a, b } => &[("a", a), ("b", b)],
+            Shape::Rectangle { w, h } => &[("w", w), ("h", h)],
+        };
+        for &(field, value) in fields {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(ShapeError { field, value });
+            }
+        }
+        Ok(())
+    }
+
+    /// Radius of the smallest circle about the centroid that contains the shape.
+    #[inline]
+    pub fn bounding_radius(&self) -> f64 {
+        match *self {
+            Shape::Circle { r } => r,
+            Shape::Ellipse { a, b } => a.max(b),
+            Shape::Rectangle { w, h } => 0.5 * w.hypot(h),
+        }
+    }
+
+    /// Radius of the largest circle about the centroid inside the shape.
+    #[inline]
+    pub fn inscribed_radius(&self) -> f64 {
+        match *self {
+            Shape::Circle { r } => r,
+            Shape::Ellipse { a, b } => a.min(b),
+            Shape::Rectangle { w, h } => 0.5 * w.min(h),
+        }
+    }
+
+    /// The shape's type name as written in case files (`circle`, `ellipse`, `rectangle`).
+    pub fn type_name(&self) -> &'static str {
+        match self {
+            Shape::Circle { .. } => "circle",
+            Shape::Ellipse { .. } => "ellipse",
+            Shape::Rectangle { .. } => "rectangle",
+        }
+    }
+}
+
+/// Position of a body's centroid and orientation of its own x axis.
+///
+/// The cosine and sine of the angle are computed once here, so that every contact of the body
+/// reuses them (they are what the geometry needs, never the angle itself).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pose {
+    /// Centroid in world coordinates.
+    pub position: Vec2,
+    angle: f64,
+    cos: f64,
+    sin: f64,
+}
+
+impl Pose {
+    /// A pose at `position` whose x axis is at `angle` (radians, counter-clockwise) from the world x axis.
+    #[inline]
+    pub fn new(position: Vec2, angle: f64) -> Self {
+        let (sin, cos) = angle.sin_cos();
+        Pose {
+            position,
+            angle,
+            cos,
+            sin,
+        }
+    }
+
+    /// The angle (radians, counter-clockwise), as given (not wrapped).
+    #[inline]
+    pub fn angle(&self) -> f64 {
+        self.angle
+    }
+
+    /// `(cos θ, sin θ)` of the body angle θ.
+    #[inline]
+    pub fn cos_sin(&self) -> (f64, f64) {
+        (self.cos, self.sin)
+    }
+
+    /// The body's x axis as a world unit vector.
+    #[inline]
+    pub fn axis_x(&self) -> Vec2 {
+        Vec2::new(self.cos, self.sin)
+    }
+
+    /// The body's y axis as a world unit vector.
+    #[inline]
+    pub fn axis_y(&self) -> Vec2 {
+        Vec2::new(-self.sin, self.cos)
+    }
+
+    /// World components of a vector given in the body frame.
+    #[inline]
+    pub fn to_world_vector(&self, v: Vec2) -> Vec2 {
+        Vec2::new(
+            self.cos * v.x - self.sin * v.y,
+            self.sin * v.x + self.cos * v.y,
+        )
+    }
+
+    /// Body-frame components of a world vector.
+    #[inline]
+    pub fn to_body_vector(&self, v: Vec2) -> Vec2 {
+        Vec2::new(
+            self.cos * v.x + self.sin * v.y,
+            -self.sin * v.x + self.cos * v.y,
+        )
+    }
+}
+
+/// A fixed half-plane. Its solid side is `{x : normal·(x − point) ≤ 0}`; `normal` is a unit
+/// vector pointing into the free side.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Wall {
+    /// A point on the wall's boundary line.
+    pub point: Vec2,
+    /// Unit normal pointing into the free side.
+    pub normal: Vec2,
+}
+
+impl Wall {
+    /// A wall through `point` with free side towards `normal` (normalised here).
+    /// Returns `None` when `normal` is zero or not finite.
+    pub fn new(point: Vec2, normal: Vec2) -> Option<Self> {
+        let len = normal.norm();
+        if !(len.is_finite() && len > 0.0 && point.x.is_finite() && point.y.is_finite()) {
+            return None;
+        }
+        Some(Wall {
+            point,
+            normal: normal / len,
+        })
+    }
+
+    /// Signed distance of `x` from the wall line, positive on the free side.
+    #[inline]
+    pub fn signed_distance(&self, x: Vec2) -> f64 {
+        self.normal.dot(&(x - self.point))
+    }
+}

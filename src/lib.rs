@@ -1,0 +1,21 @@
+//! # dem2d — two-dimensional discrete element method with circles, ellipses and rectangles
+//!
+//! Ellipses are handled as conics, following Kawasaki, Kiyama, Fujimura and Nishimura's
+//! elliptical-element DEM (P in the citations `// P(9)`); contact laws follow the DEM theory
+//! note T (`// T(14)`). Full references are in the README.
+//!
+//! # Pipeline
+//! `scene JSON → World → broad phase → narrow phase (ContactGeometry) → contact law → forces and
+//! moments → integrator → quiescence check → output`.
+//!
+//! # Conventions
+//! - Units are the case's own (the paper's cases use cm, s, g); bodies have unit thickness.
+//! - Angles in radians, counter-clockwise; a body's angle is that of its own x axis.
+//! - For a contact between i and j the unit normal points from i to j; the overlap `δ > 0` when
+//!   penetrating; the force on j is `+F` and on i `−F`.
+//! - Pair geometry is computed in a frame centred on a body, never in world coordinates.
+
+pub mod geometry;
+pub mod narrow_phase;
+pub mod output;
+pub mod scene;

@@ -1,0 +1,294 @@
+//! Narrow phase: for a pair of objects, whether they touch and, if so, the contact record of the
+//! chord definition. One file per pair kind; [`contact`] dispatches.
+//!
+//! # Conventions (for every pair kind)
+//! - The unit `normal` points from i towards j. For a wall as i it is the wall's normal; for a
+//!   wall as j it is minus the wall's normal.
+//! - `chord = (p1, p2)`: the two points where the boundaries cross; `point` is its midpoint and
+//!   `normal` is perpendicular to it.
+//! - `depth` `δ = h_i(n) + h_j(−n)` with `h` the support function: the overlap measured along the
+//!   normal, positive when penetrating. (`δ = h_i(n) − n·p1 + h_j(−n) + n·p1`: the `n·p1` cancel.)
+//!   The sign of `n` is the one with the smaller depth (for bodies: `n·(c_j − c_i) ≥ 0`).
+//! - Every pair is computed in a frame centred on a body (never in world coordinates), so the
+//!   relative accuracy does not depend on where the pair sits.
+//! - Swapping i and j flips the normal and keeps everything else.
+//!
+//! Overlaps whose boundaries cross four times, or where one body contains the other, have no
+//! single chord. They are never dropped: they get a defined fallback geometry and the state
+//! [`ContactState::Deep`] or [`ContactState::Contained`], which later stages count and report.
+
+use crate::geometry::{Pose, Shape, Vec2, Wall};
+
+pub mod circle_circle;
+pub mod circle_ellipse;
+pub mod circle_wall;
+pub mod ellipse_ellipse;
+pub mod ellipse_wall;
+pub mod rectangle_conic;
+pub mod rectangle_rectangle;
+pub mod rectangle_wall;
+
+/// How two objects relate.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ContactState {
+    /// No common point.
+    Separated,
+    /// Boundaries touch at one point (within rounding); depth ≈ 0.
+    Touching,
+    /// Boundaries cross at two points: the chord definition applies exactly.
+    Overlap,
+    /// Boundaries cross four (or more) times: fallback geometry, flagged.
+    Deep,
+    /// One solid lies inside the other (boundaries do not cross): fallback geometry, flagged.
+    Contained,
+}
+
+impl ContactState {
+    /// The name used in the JSON output.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            ContactState::Separated => "separated",
+            ContactState::Touching => "touching",
+            ContactState::Overlap => "overlap",
+            ContactState::Deep => "deep",
+            ContactState::Contained => "contained",
+        }
+    }
+
+    /// True for the fallback geometries ([`Deep`](Self::Deep), [`Contained`](Self::Contained)).
+    pub fn is_deep(&self) -> bool {
+        matches!(self, ContactState::Deep | ContactState::Contained)
+    }
+}
+
+/// The one contact record every pair kind produces (world coordinates).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactGeometry {
+    /// Chord midpoint (contact point).
+    pub point: Vec2,
+    /// Unit normal from i towards j, perpendicular to the chord.
+    pub normal: Vec2,
+    /// Overlap along `normal` (positive when penetrating).
+    pub depth: f64,
+    /// The two boundary crossings (equal for touching and for the fallbacks' degenerate chords).
+    pub chord: (Vec2, Vec2),
+}
+
+/// Result of a narrow-phase query.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Contact {
+    /// Relation of the pair.
+    pub state: ContactState,
+    /// Contact record; `None` exactly when `state` is `Separated`.
+    pub geometry: Option<ContactGeometry>,
+}
+
+impl Contact {
+    /// The separated result.
+    pub const SEPARATED: Contact = Contact {
+        state: ContactState::Separated,
+        geometry: None,
+    };
+
+    /// The same contact seen from the other body (i ↔ j): normal flipped, all else kept.
+    #[inline]
+    pub fn swapped(mut self) -> Contact {
+        if let Some(g) = &mut self.geometry {
+            g.normal = -g.normal;
+        }
+        self
+    }
+}
+
+/// One side of a pair: a placed body or a wall.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Object {
+    Body { shape: Shape, pose: Pose },
+    Wall(Wall),
+}
+
+/// Contact between two objects (at least one a body); `None` for two walls.
+pub fn contact(i: &Object, j: &Object) -> Option<Contact> {
+    match (i, j) {
+        (
+            Object::Body {
+                shape: si,
+                pose: pi,
+            },
+            Object::Body {
+                shape: sj,
+                pose: pj,
+            },
+        ) => Some(contact_bodies(si, pi, sj, pj)),
+        (Object::Wall(w), Object::Body { shape, pose }) => Some(contact_wall_body(w, shape, pose)),
+        (Object::Body { shape, pose }, Object::Wall(w)) => {
+            Some(contact_wall_body(w, shape, pose).swapped())
+        }
+        (Object::Wall(_), Object::Wall(_)) => None,
+    }
+}
+
+/// Contact between two bodies, dispatched on the pair of shapes (closed forms where they exist:
+/// a circle pair never touches the conic machinery).
+#[inline]
+pub fn contact_bodies(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose) -> Contact {
+    use Shape::*;
+    match (*si, *sj) {
+        (Circle { r: ri }, Circle { r: rj }) => {
+            circle_circle::contact_circle_circle(ri, pi, rj, pj)
+        }
+        (Circle { r }, Ellipse { a, b }) => circle_ellipse::contact_circle_ellipse(r, pi, a, b, pj),
+        (Ellipse { a, b }, Circle { r }) => {
+            circle_ellipse::contact_circle_ellipse(r, pj, a, b, pi).swapped()
+        }
+        (Ellipse { a: ai, b: bi }, Ellipse { a: aj, b: bj }) => {
+            ellipse_ellipse::contact_ellipse_ellipse(ai, bi, pi, aj, bj, pj)
+        }
+        (Rectangle { w, h }, Circle { .. } | Ellipse { .. }) => {
+            rectangle_conic::contact_rectangle_conic(w, h, pi, sj, pj)
+        }
+        (Circle { .. } | Ellipse { .. }, Rectangle { w, h }) => {
+            rectangle_conic::contact_rectangle_conic(w, h, pj, si, pi).swapped()
+        }
+        (Rectangle { w: wi, h: hi }, Rectangle { w: wj, h: hj }) => {
+            rectangle_rectangle::contact_rectangle_rectangle(wi, hi, pi, wj, hj, pj)
+        }
+    }
+}
+
+/// Contact between a wall (as i) and a body (as j): the normal is the wall's normal.
+#[inline]
+pub fn contact_wall_body(wall: &Wall, shape: &Shape, pose: &Pose) -> Contact {
+    match *shape {
+        Shape::Circle { r } => circle_wall::contact_wall_circle(wall, r, pose),
+        Shape::Ellipse { a, b } => ellipse_wall::contact_wall_ellipse(wall, a, b, pose),
+        Shape::Rectangle { w, h } => rectangle_wall::contact_wall_rectangle(wall, w, h, pose),
+    }
+}
+
+/// Relative tolerance (of the pair's size) below which a depth counts as touching.
+pub const TOUCH_TOL: f64 = 1e-14;
+
+/// A frame centred on a body: `origin` in world coordinates, local x axis at `(cos, sin)`,
+/// lengths divided by `scale` (an exact power of two, so rescaling adds no rounding).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LocalFrame {
+    pub origin: Vec2,
+    pub cos: f64,
+    pub sin: f64,
+    pub scale: f64,
+}
+
+impl LocalFrame {
+    #[inline]
+    pub fn vector(&self, v: [f64; 2]) -> Vec2 {
+        Vec2::new(
+            self.cos * v[0] - self.sin * v[1],
+            self.sin * v[0] + self.cos * v[1],
+        )
+    }
+
+    #[inline]
+    pub fn point(&self, p: [f64; 2]) -> Vec2 {
+        self.origin + self.vector(p) * self.scale
+    }
+
+    /// A contact record from local quantities (lengths in units of `scale`).
+    #[inline]
+    pub fn geometry(
+        &self,
+        p1: [f64; 2],
+        p2: [f64; 2],
+        mid: [f64; 2],
+        n: [f64; 2],
+        depth: f64,
+    ) -> ContactGeometry {
+        ContactGeometry {
+            point: self.point(mid),
+            normal: self.vector(n),
+            depth: depth * self.scale,
+            chord: (self.point(p1), self.point(p2)),
+        }
+    }
+}
+
+/// The largest power of two not above `x` (1 for zero, subnormal or non-finite `x`).
+#[inline]
+pub(crate) fn pow2_floor(x: f64) -> f64 {
+    let p = f64::from_bits(x.to_bits() & 0x7FF0_0000_0000_0000);
+    if p.is_normal() { p } else { 1.0 }
+}
+
+/// Orders up to eight points counter-clockwise about their mean (for the fallback chords).
+pub(crate) fn sort_ccw(points: &mut [[f64; 2]]) {
+    let n = points.len() as f64;
+    let cx = points.iter().map(|p| p[0]).sum::<f64>() / n;
+    let cy = points.iter().map(|p| p[1]).sum::<f64>() / n;
+    points.sort_by(|p, q| {
+        let ap = (p[1] - cy).atan2(p[0] - cx);
+        let aq = (q[1] - cy).atan2(q[0] - cx);
+        ap.total_cmp(&aq)
+    });
+}
+
+/// Unit normal of the chord `p1 p2`, oriented so that `depth(n)` is the smaller of the two
+/// orientations, with that depth. `depth(n)` must be the penetration along `n` (i → j).
+#[inline]
+pub(crate) fn chord_normal(
+    p1: [f64; 2],
+    p2: [f64; 2],
+    depth: impl Fn([f64; 2]) -> f64,
+) -> ([f64; 2], f64) {
+    let (dx, dy) = (p2[0] - p1[0], p2[1] - p1[1]);
+    let len = (dx * dx + dy * dy).sqrt();
+    let n = [-dy / len, dx / len];
+    orient(n, depth)
+}
+
+/// [`orient`] for two centrally symmetric shapes, whose supports add up to `supports` along
+/// both `n` and `−n`: the depth is `supports ∓ n·d` with `n_dot_d = n·(c_j − c_i)`.
+#[inline]
+pub(crate) fn orient_symmetric(n: [f64; 2], supports: f64, n_dot_d: f64) -> ([f64; 2], f64) {
+    if n_dot_d >= 0.0 {
+        (n, supports - n_dot_d)
+    } else {
+        ([-n[0], -n[1]], supports + n_dot_d)
+    }
+}
+
+/// Of `n` and `−n`, the orientation with the smaller penetration depth, and that depth.
+#[inline]
+pub(crate) fn orient(n: [f64; 2], depth: impl Fn([f64; 2]) -> f64) -> ([f64; 2], f64) {
+    let dp = depth(n);
+    let m = [-n[0], -n[1]];
+    let dm = depth(m);
+    if dm < dp { (m, dm) } else { (n, dp) }
+}
+
+/// The fallback for four or more crossings: of the chords joining consecutive crossings (taken
+/// counter-clockwise), the one whose normal gives the least penetration, like the minimum
+/// translation direction of a separating-axis test. Returns `(p1, p2, n, depth)`.
+pub(crate) fn deep_fallback(
+    points: &mut [[f64; 2]],
+    depth: impl Fn([f64; 2]) -> f64,
+) -> ([f64; 2], [f64; 2], [f64; 2], f64) {
+    sort_ccw(points);
+    let k = points.len();
+    let mut best = (points[0], points[1 % k], [1.0, 0.0], f64::INFINITY);
+    for idx in 0..k {
+        let (p, q) = (points[idx], points[(idx + 1) % k]);
+        if p == q {
+            continue;
+        }
+        let (n, dpt) = chord_normal(p, q, &depth);
+        if dpt < best.3 {
+            best = (p, q, n, dpt);
+        }
+    }
+    best
+}
+
+#[inline]
+pub(crate) fn midpoint(p: [f64; 2], q: [f64; 2]) -> [f64; 2] {
+    [0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])]
+}

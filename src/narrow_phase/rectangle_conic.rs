@@ -1,0 +1,229 @@
+//! Rectangle–circle and rectangle–ellipse contact: the rectangle's four edges ∩ the conic, in
+//! the conic's own frame (`x²/a² + y²/b² = 1`; a circle is `a = b = r`).
+
+use super::rectangle_wall::corners;
+use super::{Contact, ContactState, LocalFrame, TOUCH_TOL, deep_fallback, orient, pow2_floor};
+use crate::geometry::support::support_local;
+use crate::geometry::{Pose, Shape};
+
+/// Contact between rectangle i (`w × h`) and circle or ellipse j.
+///
+/// # Panics
+/// If `conic` is a rectangle (the dispatcher never passes one).
+#[inline]
+pub fn contact_rectangle_conic(w: f64, h: f64, pi: &Pose, conic: &Shape, pj: &Pose) -> Contact {
+    let (a, b) = match *conic {
+        Shape::Circle { r } => (r, r),
+        Shape::Ellipse { a, b } => (a, b),
+        Shape::Rectangle { .. } => unreachable!("rectangle pairs go to rectangle_rectangle"),
+    };
+    let dv = pi.position - pj.position; // rectangle centre relative to the conic
+    let d = dv.norm();
+    let rr = 0.5 * w.hypot(h);
+    if d > rr + a.max(b) {
+        return Contact::SEPARATED;
+    }
+    let scale = pow2_floor(rr.max(a).max(b));
+    let inv = 1.0 / scale;
+    let (a, b, w, h) = (a * inv, b * inv, w * inv, h * inv);
+    // Everything in the conic's frame: rectangle centre and axes.
+    let c = pj.to_body_vector(dv) * inv;
+    let (ci, si) = pi.cos_sin();
+    let (cj, sj) = pj.cos_sin();
+    let (cr, sr) = (ci * cj + si * sj, si * cj - ci * sj); // rectangle axis in conic frame
+    let rect_support = |ux: f64, uy: f64| {
+        support_local(
+            &Shape::Rectangle { w, h },
+            cr * ux + sr * uy,
+            -sr * ux + cr * uy,
+        )
+    };
+    let ell_support = |ux: f64, uy: f64| ((a * ux) * (a * ux) + (b * uy) * (b * uy)).sqrt();
+    // Penetration along n (rectangle i → conic j): s_i(n) + s_j(n) − n·(c_j − c_i).
+    let depth =
+        |n: [f64; 2]| rect_support(n[0], n[1]) + ell_support(n[0], n[1]) + n[0] * c.x + n[1] * c.y;
+    if d > 0.0 && depth([-c.x / d * scale, -c.y / d * scale]) < 0.0 {
+        return Contact::SEPARATED; // separating axis along the line of centres
+    }
+    let q = corners(w, h).map(|p| [c.x + cr * p[0] - sr * p[1], c.y + sr * p[0] + cr * p[1]]);
+    let (ia2, ib2) = (1.0 / (a * a), 1.0 / (b * b));
+    let quad = |p: [f64; 2]| p[0] * p[0] * ia2 + p[1] * p[1] * ib2;
+    // Implicit value Q(c) − 1 of each corner, shared by its two edges.
+    let gamma = q.map(|p| quad(p) - 1.0);
+    let mut cross = [Crossing::default(); 8];
+    let mut n = 0;
+    let mut tangent: Option<([f64; 2], [f64; 2])> = None;
+    for k in 0..4 {
+        let k1 = (k + 1) % 4;
+        let (p0, p1) = (q[k], q[k1]);
+        let e = [p1[0] - p0[0], p1[1] - p0[1]];
+        let alpha = quad(e);
+        let beta = p0[0] * e[0] * ia2 + p0[1] * e[1] * ib2;
+        let disc = beta * beta - alpha * gamma[k];
+        let err = 16.0 * f64::EPSILON * (beta * beta + alpha * (gamma[k].abs() + 2.0));
+        if disc > err {
+            let qq = -(beta + disc.sqrt().copysign(beta));
+            for s in [qq / alpha, gamma[k] / qq] {
+                if (0.0..1.0).contains(&s) {
+                    cross[n] = crossing_on_edge(k, s, &q, &gamma, e, alpha, [ia2, ib2]);
+                    n += 1;
+                }
+            }
+        } else if disc >= -err {
+            let s = -beta / alpha;
+            if (0.0..=1.0).contains(&s) {
+                // Outward normal of this edge (corners run counter-clockwise).
+                let len = e[0].hypot(e[1]);
+                tangent = Some((
+                    [p0[0] + s * e[0], p0[1] + s * e[1]],
+                    [e[1] / len, -e[0] / len],
+                ));
+            }
+        }
+    }
+    let frame = LocalFrame {
+        origin: pj.position,
+        cos: cj,
+        sin: sj,
+        scale,
+    };
+    match n {
+        2 => {
+            let (p, qv) = (cross[0].point(), cross[1].point());
+            let (nrm, dpt) = orient(chord_direction_normal(&cross[0], &cross[1]), depth);
+            let mid = super::midpoint(p, qv);
+            Contact {
+                state: ContactState::Overlap,
+                geometry: Some(frame.geometry(p, qv, mid, nrm, dpt)),
+            }
+        }
+        n if n >= 3 => {
+            let mut pts = [[0.0f64; 2]; 8];
+            for (dst, c) in pts.iter_mut().zip(&cross[..n]) {
+                *dst = c.point();
+            }
+            let (p, qv, nrm, dpt) = deep_fallback(&mut pts[..n], depth);
+            let mid = super::midpoint(p, qv);
+            Contact {
+                state: ContactState::Deep,
+                geometry: Some(frame.geometry(p, qv, mid, nrm, dpt)),
+            }
+        }
+        _ => {
+            if let Some((t, face)) = tangent {
+                // An edge within rounding of tangency: the half-chord cannot tell a tiny overlap
+                // from a tiny gap where the conic is sharply curved, the depth through that face
+                // can (exact, from the support functions).
+                let (nrm, dpt) = orient(face, depth);
+                if dpt >= -TOUCH_TOL {
+                    let state = if dpt <= TOUCH_TOL {
+                        ContactState::Touching
+                    } else {
+                        ContactState::Overlap
+                    };
+                    return Contact {
+                        state,
+                        geometry: Some(frame.geometry(t, t, t, nrm, dpt)),
+                    };
+                }
+            }
+            // Nested or apart: one corner inside the conic, or the conic's vertex inside the rectangle.
+            let corner_in = q[0][0] * q[0][0] * ia2 + q[0][1] * q[0][1] * ib2 < 1.0;
+            let (vx, vy) = (a - c.x, -c.y);
+            let (lx, ly) = (cr * vx + sr * vy, -sr * vx + cr * vy);
+            let vertex_in = lx.abs() < 0.5 * w && ly.abs() < 0.5 * h;
+            if !(corner_in || vertex_in) {
+                return Contact::SEPARATED;
+            }
+            let toward = if d > 0.0 {
+                [-c.x * scale / d, -c.y * scale / d]
+            } else {
+                [1.0, 0.0]
+            };
+            let (nrm, dpt) = orient(toward, depth);
+            let inner = if corner_in { [c.x, c.y] } else { [0.0, 0.0] };
+            Contact {
+                state: ContactState::Contained,
+                geometry: Some(frame.geometry(inner, inner, inner, nrm, dpt)),
+            }
+        }
+    }
+}
+
+/// A boundary crossing on a rectangle edge, stored relative to the nearer corner of that edge so
+/// that two crossings next to one corner keep their small offsets exact (the corner's own
+/// rounding is common to both and cancels from the chord's direction).
+#[derive(Clone, Copy, Debug, Default)]
+struct Crossing {
+    corner: [f64; 2],
+    offset: [f64; 2],
+    corner_index: usize,
+    edge: usize,
+    edge_dir: [f64; 2],
+}
+
+impl Crossing {
+    fn point(&self) -> [f64; 2] {
+        [
+            self.corner[0] + self.offset[0],
+            self.corner[1] + self.offset[1],
+        ]
+    }
+}
+
+/// The crossing at parameter `s` of edge `k` (from corner k to corner k+1), re-solved from the
+/// nearer corner: the roots of the quadratic about that corner are accurate relative to the
+/// corner's implicit value `γ`, where `s` itself would lose it against 1.
+fn crossing_on_edge(
+    k: usize,
+    s: f64,
+    q: &[[f64; 2]; 4],
+    gamma: &[f64; 4],
+    e: [f64; 2],
+    alpha: f64,
+    inv2: [f64; 2],
+) -> Crossing {
+    let (ci, dir, t_est) = if s <= 0.5 {
+        (k, e, s)
+    } else {
+        ((k + 1) % 4, [-e[0], -e[1]], 1.0 - s)
+    };
+    let c = q[ci];
+    // α t² + 2β t + γ = 0 along c + t·dir.
+    let beta = c[0] * dir[0] * inv2[0] + c[1] * dir[1] * inv2[1];
+    let disc = (beta * beta - alpha * gamma[ci]).max(0.0);
+    let qq = -(beta + disc.sqrt().copysign(beta));
+    let t = if qq != 0.0 {
+        let (r1, r2) = (qq / alpha, gamma[ci] / qq);
+        if (r1 - t_est).abs() < (r2 - t_est).abs() {
+            r1
+        } else {
+            r2
+        }
+    } else {
+        t_est
+    };
+    Crossing {
+        corner: c,
+        offset: [t * dir[0], t * dir[1]],
+        corner_index: ci,
+        edge: k,
+        edge_dir: e,
+    }
+}
+
+/// Unit normal of the chord between two crossings, from the best-conditioned data: the edge's
+/// own direction when both lie on one edge, the corner-relative offsets when they flank one
+/// corner, the points otherwise.
+fn chord_direction_normal(a: &Crossing, b: &Crossing) -> [f64; 2] {
+    let d = if a.edge == b.edge {
+        a.edge_dir
+    } else if a.corner_index == b.corner_index {
+        [b.offset[0] - a.offset[0], b.offset[1] - a.offset[1]]
+    } else {
+        let (p, q) = (a.point(), b.point());
+        [q[0] - p[0], q[1] - p[1]]
+    };
+    let len = d[0].hypot(d[1]);
+    [-d[1] / len, d[0] / len]
+}

@@ -1,0 +1,109 @@
+//! The BODY and wall forms:
+//! `{"shape": {"type": "ellipse", "a": 1.5, "b": 1.0}, "position": [x, y], "angle": θ}`
+//! (types `circle` with `r`, `ellipse` with `a`, `b`, `rectangle` with `w`, `h`) and
+//! `{"wall": {"point": [x, y], "normal": [nx, ny]}}`.
+
+use super::fields::{FieldError, Obj, index, number, positive, type_of, vec2};
+use crate::geometry::{Pose, Shape, Vec2, Wall};
+use crate::narrow_phase::Object;
+use serde_json::Value;
+
+/// A shape object `{"type": …, sizes…}`.
+pub fn parse_shape(v: &Value, path: &str) -> Result<Shape, FieldError> {
+    let mut o = Obj::new(v, path)?;
+    let ty = o.req_with("type", |v, p| {
+        v.as_str()
+            .map(str::to_string)
+            .ok_or_else(|| FieldError::new(p, format!("must be a string, got {}", type_of(v))))
+    })?;
+    let shape = match ty.as_str() {
+        "circle" => Shape::Circle {
+            r: o.req_with("r", positive)?,
+        },
+        "ellipse" => Shape::Ellipse {
+            a: o.req_with("a", positive)?,
+            b: o.req_with("b", positive)?,
+        },
+        "rectangle" => Shape::Rectangle {
+            w: o.req_with("w", positive)?,
+            h: o.req_with("h", positive)?,
+        },
+        other => {
+            return Err(FieldError::new(
+                o.field_path("type"),
+                format!(
+                    "unknown shape type `{other}` (expected `circle`, `ellipse` or `rectangle`)"
+                ),
+            ));
+        }
+    };
+    o.finish()?;
+    Ok(shape)
+}
+
+/// A wall's inner object `{"point": [x, y], "normal": [nx, ny]}` (the normal need not be unit;
+/// it points into the free side). `extra` reads any further fields (case files add contact
+/// parameters) before unknown ones are rejected.
+pub fn parse_wall_with<T>(
+    v: &Value,
+    path: &str,
+    extra: impl FnOnce(&mut Obj) -> Result<T, FieldError>,
+) -> Result<(Wall, T), FieldError> {
+    let mut o = Obj::new(v, path)?;
+    let point = o.req_with("point", vec2)?;
+    let normal = o.req_with("normal", vec2)?;
+    let wall = Wall::new(Vec2::from(point), Vec2::from(normal))
+        .ok_or_else(|| FieldError::new(o.field_path("normal"), "must be a non-zero vector"))?;
+    let t = extra(&mut o)?;
+    o.finish()?;
+    Ok((wall, t))
+}
+
+/// A placed body `{"shape": …, "position": [x, y], "angle": θ}` (`angle` defaults to 0), with
+/// `extra` reading any further fields before unknown ones are rejected.
+pub fn parse_body_with<T>(
+    o: &mut Obj,
+    extra: impl FnOnce(&mut Obj) -> Result<T, FieldError>,
+) -> Result<(Shape, Pose, T), FieldError> {
+    let shape = o.req_with("shape", parse_shape)?;
+    let position = o.req_with("position", vec2)?;
+    let angle = o.opt_with("angle", number)?.unwrap_or(0.0);
+    let t = extra(o)?;
+    Ok((shape, Pose::new(Vec2::from(position), angle), t))
+}
+
+/// A BODY or a wall.
+pub fn parse_object(v: &Value, path: &str) -> Result<Object, FieldError> {
+    let mut o = Obj::new(v, path)?;
+    if o.has("wall") {
+        let (wall, ()) = o.req_with("wall", |v, p| parse_wall_with(v, p, |_| Ok(())))?;
+        o.finish()?;
+        return Ok(Object::Wall(wall));
+    }
+    let (shape, pose, ()) = parse_body_with(&mut o, |_| Ok(()))?;
+    o.finish()?;
+    Ok(Object::Body { shape, pose })
+}
+
+/// The `dem2d contact` input: an array of `{"i": BODY, "j": BODY}` (at most one of them a wall).
+pub fn parse_pairs(v: &Value) -> Result<Vec<(Object, Object)>, FieldError> {
+    let Some(items) = v.as_array() else {
+        return Err(FieldError::new(
+            "",
+            format!("expected an array of pairs, got {}", type_of(v)),
+        ));
+    };
+    let mut pairs = Vec::with_capacity(items.len());
+    for (k, item) in items.iter().enumerate() {
+        let path = index("pairs", k);
+        let mut o = Obj::new(item, &path)?;
+        let i = o.req_with("i", parse_object)?;
+        let j = o.req_with("j", parse_object)?;
+        o.finish()?;
+        if matches!((i, j), (Object::Wall(_), Object::Wall(_))) {
+            return Err(FieldError::new(path, "a pair of two walls has no contact"));
+        }
+        pairs.push((i, j));
+    }
+    Ok(pairs)
+}

@@ -1,0 +1,207 @@
+//! A small reader over `serde_json::Value` objects that knows its path, so that every error says
+//! which field is wrong, and that rejects fields it was not asked for.
+
+use serde_json::{Map, Value};
+use std::fmt;
+
+/// An input error located at a field.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FieldError {
+    /// Where: a path like `pairs[3].i.shape.a` (empty for the whole document).
+    pub path: String,
+    /// What is wrong with it.
+    pub message: String,
+}
+
+impl FieldError {
+    pub fn new(path: impl Into<String>, message: impl Into<String>) -> Self {
+        FieldError {
+            path: path.into(),
+            message: message.into(),
+        }
+    }
+}
+
+impl fmt::Display for FieldError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.path.is_empty() {
+            write!(f, "{}", self.message)
+        } else {
+            write!(f, "field `{}`: {}", self.path, self.message)
+        }
+    }
+}
+
+impl std::error::Error for FieldError {}
+
+/// `parent.key`, or `key` at the top.
+pub fn join(parent: &str, key: &str) -> String {
+    if parent.is_empty() {
+        key.to_string()
+    } else {
+        format!("{parent}.{key}")
+    }
+}
+
+/// `parent[index]`.
+pub fn index(parent: &str, i: usize) -> String {
+    format!("{parent}[{i}]")
+}
+
+/// A short description of a JSON value's type, for messages.
+pub fn type_of(v: &Value) -> &'static str {
+    match v {
+        Value::Null => "null",
+        Value::Bool(_) => "a boolean",
+        Value::Number(_) => "a number",
+        Value::String(_) => "a string",
+        Value::Array(_) => "an array",
+        Value::Object(_) => "an object",
+    }
+}
+
+/// A finite number.
+pub fn number(v: &Value, path: &str) -> Result<f64, FieldError> {
+    match v.as_f64() {
+        Some(x) if x.is_finite() => Ok(x),
+        Some(_) => Err(FieldError::new(path, "must be a finite number")),
+        None => Err(FieldError::new(
+            path,
+            format!("must be a number, got {}", type_of(v)),
+        )),
+    }
+}
+
+/// A positive, finite number.
+pub fn positive(v: &Value, path: &str) -> Result<f64, FieldError> {
+    let x = number(v, path)?;
+    if x > 0.0 {
+        Ok(x)
+    } else {
+        Err(FieldError::new(path, format!("must be positive, got {x}")))
+    }
+}
+
+/// A non-negative, finite number.
+pub fn non_negative(v: &Value, path: &str) -> Result<f64, FieldError> {
+    let x = number(v, path)?;
+    if x >= 0.0 {
+        Ok(x)
+    } else {
+        Err(FieldError::new(
+            path,
+            format!("must be zero or positive, got {x}"),
+        ))
+    }
+}
+
+/// A pair `[x, y]` of finite numbers.
+pub fn vec2(v: &Value, path: &str) -> Result<[f64; 2], FieldError> {
+    match v.as_array() {
+        Some(a) if a.len() == 2 => Ok([
+            number(&a[0], &index(path, 0))?,
+            number(&a[1], &index(path, 1))?,
+        ]),
+        _ => Err(FieldError::new(
+            path,
+            format!(
+                "must be an array of two numbers [x, y], got {}",
+                describe(v)
+            ),
+        )),
+    }
+}
+
+fn describe(v: &Value) -> String {
+    match v {
+        Value::Array(a) => format!("an array of {} elements", a.len()),
+        other => type_of(other).to_string(),
+    }
+}
+
+/// An object being read: fields are taken one by one, and [`Obj::finish`] rejects the rest.
+pub struct Obj<'a> {
+    map: &'a Map<String, Value>,
+    path: String,
+    taken: Vec<&'a str>,
+}
+
+impl<'a> Obj<'a> {
+    /// The object at `path`, or an error if `v` is not an object.
+    pub fn new(v: &'a Value, path: &str) -> Result<Self, FieldError> {
+        match v.as_object() {
+            Some(map) => Ok(Obj {
+                map,
+                path: path.to_string(),
+                taken: Vec::new(),
+            }),
+            None => Err(FieldError::new(
+                path,
+                format!("must be an object, got {}", type_of(v)),
+            )),
+        }
+    }
+
+    /// This object's path.
+    pub fn path(&self) -> &str {
+        &self.path
+    }
+
+    /// The path of one of its fields.
+    pub fn field_path(&self, key: &str) -> String {
+        join(&self.path, key)
+    }
+
+    /// True if the field is present.
+    pub fn has(&self, key: &str) -> bool {
+        self.map.contains_key(key)
+    }
+
+    /// An optional field (marked as read).
+    pub fn get(&mut self, key: &str) -> Option<&'a Value> {
+        let (k, v) = self.map.get_key_value(key)?;
+        self.taken.push(k.as_str());
+        Some(v)
+    }
+
+    /// A required field.
+    pub fn req(&mut self, key: &str) -> Result<&'a Value, FieldError> {
+        let path = self.field_path(key);
+        self.get(key)
+            .ok_or_else(|| FieldError::new(path, "is missing"))
+    }
+
+    /// Applies `f` to a required field with its path.
+    pub fn req_with<T>(
+        &mut self,
+        key: &str,
+        f: impl FnOnce(&Value, &str) -> Result<T, FieldError>,
+    ) -> Result<T, FieldError> {
+        let v = self.req(key)?;
+        f(v, &self.field_path(key))
+    }
+
+    /// Applies `f` to an optional field with its path.
+    pub fn opt_with<T>(
+        &mut self,
+        key: &str,
+        f: impl FnOnce(&Value, &str) -> Result<T, FieldError>,
+    ) -> Result<Option<T>, FieldError> {
+        match self.get(key) {
+            Some(v) => f(v, &self.field_path(key)).map(Some),
+            None => Ok(None),
+        }
+    }
+
+    /// Errors on the first field that was never read (unknown fields are mistakes, not comments).
+    pub fn finish(self) -> Result<(), FieldError> {
+        let mut keys: Vec<&String> = self.map.keys().collect();
+        keys.sort();
+        for k in keys {
+            if !self.taken.contains(&k.as_str()) {
+                return Err(FieldError::new(join(&self.path, k), "unknown field"));
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,8 @@
+//! The one place that reads JSON: the body and wall forms shared by `dem2d contact` inputs and
+//! case files. Every error names the field it is about, as a path such as `pairs[3].i.shape.a`.
+
+pub mod body;
+pub mod fields;
+
+pub use body::{parse_object, parse_pairs, parse_shape};
+pub use fields::FieldError;

@@ -1,0 +1,178 @@
+//! `dem2d contact`: the demo file runs and agrees with closed forms; every kind of bad input is
+//! refused with exit code 2, a message naming the pair and the field, and no output on stdout.
+
+use serde_json::Value;
+use std::io::Write;
+use std::process::{Command, Stdio};
+
+fn dem2d(args: &[&str], stdin: &str) -> (i32, String, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_dem2d"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run dem2d");
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(stdin.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8(out.stdout).unwrap(),
+        String::from_utf8(out.stderr).unwrap(),
+    )
+}
+
+#[test]
+fn demo_file_covers_every_pair_kind() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cases/contacts_demo.json");
+    let (code, out, err) = dem2d(&["contact", path], "");
+    assert_eq!(code, 0, "{err}");
+    let input: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let lines: Vec<Value> = out
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), input.as_array().unwrap().len());
+    let kind = |o: &Value| -> String {
+        if o.get("wall").is_some() {
+            "wall".into()
+        } else {
+            o["shape"]["type"].as_str().unwrap().to_string()
+        }
+    };
+    let mut kinds = std::collections::BTreeSet::new();
+    for (pair, res) in input.as_array().unwrap().iter().zip(&lines) {
+        let mut k = [kind(&pair["i"]), kind(&pair["j"])];
+        k.sort();
+        kinds.insert(k.join("-"));
+        let state = res["state"].as_str().unwrap();
+        assert!(["separated", "touching", "overlap", "deep", "contained"].contains(&state));
+        if state == "separated" {
+            for f in ["depth", "normal", "point", "chord"] {
+                assert!(res[f].is_null());
+            }
+        } else {
+            let n = &res["normal"];
+            let (nx, ny) = (n[0].as_f64().unwrap(), n[1].as_f64().unwrap());
+            assert!((nx.hypot(ny) - 1.0).abs() < 1e-15);
+        }
+    }
+    for expected in [
+        "circle-circle",
+        "circle-ellipse",
+        "ellipse-ellipse",
+        "circle-wall",
+        "ellipse-wall",
+        "rectangle-wall",
+        "circle-rectangle",
+        "ellipse-rectangle",
+        "rectangle-rectangle",
+    ] {
+        assert!(kinds.contains(expected), "demo lacks {expected}: {kinds:?}");
+    }
+    // First pair: circles r = 1 at the origin and r = 0.5 at (1.4, 0.2): δ = 1.5 − d exactly as
+    // the closed form, normal along the line of centres.
+    let d = 1.4f64.hypot(0.2);
+    assert!((lines[0]["depth"].as_f64().unwrap() - (1.5 - d)).abs() < 1e-15);
+    assert!((lines[0]["normal"][0].as_f64().unwrap() - 1.4 / d).abs() < 1e-15);
+}
+
+#[test]
+fn numbers_round_trip() {
+    let input = r#"[{"i": {"shape": {"type": "ellipse", "a": 1.5, "b": 1.0}, "position": [0, 0], "angle": 0.3},
+                     "j": {"shape": {"type": "ellipse", "a": 1.5, "b": 1.0}, "position": [2.2, 1.1], "angle": -0.8}}]"#;
+    let (code, out, _) = dem2d(&["contact", "-"], input);
+    assert_eq!(code, 0);
+    // The printed depth reads back to the very double the library computed.
+    let v: Value = serde_json::from_str(out.trim()).unwrap();
+    let printed = v["depth"].as_f64().unwrap();
+    use dem2d::geometry::{Pose, Shape, Vec2};
+    let e = Shape::Ellipse { a: 1.5, b: 1.0 };
+    let c = dem2d::narrow_phase::contact_bodies(
+        &e,
+        &Pose::new(Vec2::new(0.0, 0.0), 0.3),
+        &e,
+        &Pose::new(Vec2::new(2.2, 1.1), -0.8),
+    );
+    assert_eq!(printed.to_bits(), c.geometry.unwrap().depth.to_bits());
+}
+
+#[test]
+fn bad_input_is_refused_with_the_field_named() {
+    let body = r#"{"shape": {"type": "circle", "r": 1}, "position": [0, 0]}"#;
+    let wall = r#"{"wall": {"point": [0, 0], "normal": [0, 1]}}"#;
+    let cases: Vec<(String, &str)> = vec![
+        ("[{\"i\": ".to_string(), "malformed JSON"),
+        (r#"{"i": 1}"#.to_string(), "expected an array of pairs"),
+        (
+            format!(
+                r#"[{{"i": {body}, "j": {body}}}, {{"i": {{"shape": {{"type": "hexagon", "r": 1}}, "position": [0, 0]}}, "j": {body}}}]"#
+            ),
+            "pairs[1].i.shape.type",
+        ),
+        (
+            format!(
+                r#"[{{"i": {{"shape": {{"type": "ellipse", "a": -1, "b": 1}}, "position": [0, 0]}}, "j": {body}}}]"#
+            ),
+            "pairs[0].i.shape.a",
+        ),
+        (
+            format!(
+                r#"[{{"i": {{"shape": {{"type": "ellipse", "a": 1, "b": 0}}, "position": [0, 0]}}, "j": {body}}}]"#
+            ),
+            "pairs[0].i.shape.b",
+        ),
+        (
+            format!(
+                r#"[{{"i": {{"shape": {{"type": "rectangle", "w": 1}}, "position": [0, 0]}}, "j": {body}}}]"#
+            ),
+            "pairs[0].i.shape.h",
+        ),
+        (
+            format!(r#"[{{"i": {body}, "j": {{"wall": {{"point": [0, 0], "normal": [0, 0]}}}}}}]"#),
+            "pairs[0].j.wall.normal",
+        ),
+        (
+            format!(
+                r#"[{{"i": {body}, "j": {{"shape": {{"type": "circle", "r": 1}}, "position": [0]}}}}]"#
+            ),
+            "pairs[0].j.position",
+        ),
+        (
+            format!(
+                r#"[{{"i": {body}, "j": {{"shape": {{"type": "circle", "r": 1}}, "position": [0, 0], "colour": 3}}}}]"#
+            ),
+            "pairs[0].j.colour",
+        ),
+        (format!(r#"[{{"i": {body}}}]"#), "pairs[0].j"),
+        (format!(r#"[{{"i": {wall}, "j": {wall}}}]"#), "pairs[0]"),
+        (
+            format!(
+                r#"[{{"i": {{"shape": {{"type": "circle", "r": 1e999}}, "position": [0, 0]}}, "j": {body}}}]"#
+            ),
+            "malformed JSON",
+        ),
+    ];
+    for (input, expected) in cases {
+        let (code, out, err) = dem2d(&["contact", "-"], &input);
+        assert_eq!(code, 2, "input {input}: stderr {err}");
+        assert!(out.is_empty(), "no partial output for {input}: {out}");
+        assert!(
+            err.contains(expected),
+            "message for {input} should name {expected}: {err}"
+        );
+        assert!(err.contains("<stdin>"), "message names the input: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+    let (code, out, err) = dem2d(&["contact", "/nonexistent/pairs.json"], "");
+    assert_eq!(code, 2);
+    assert!(
+        out.is_empty() && err.contains("/nonexistent/pairs.json"),
+        "{err}"
+    );
+}
