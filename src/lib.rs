@@ -15,7 +15,10 @@
 //!   penetrating; the force on j is `+F` and on i `−F`.
 //! - Pair geometry is computed in a frame centred on a body, never in world coordinates.
 
+pub mod contact_law;
+pub mod dynamics;
 pub mod geometry;
 pub mod narrow_phase;
 pub mod output;
+pub mod runner;
 pub mod scene;

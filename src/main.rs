@@ -4,8 +4,11 @@
 use clap::{Parser, Subcommand};
 use dem2d::narrow_phase::contact;
 use dem2d::output::contacts::contact_json;
-use dem2d::scene::parse_pairs;
+use dem2d::runner::{RunOptions, run_case};
+use dem2d::scene::fields::parse_lenient;
+use dem2d::scene::{Case, parse_pairs};
 use std::io::{Read, Write};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -26,6 +29,20 @@ enum Command {
     Contact {
         /// Input file, or `-` for standard input.
         file: String,
+    },
+    /// Run a case file: writes trajectory.csv, increments.csv, case.json and summary.json.
+    Run {
+        /// The case file (JSON, "version": 1).
+        case: PathBuf,
+        /// Output directory (default: runs/<case name>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Stop after this many steps (for quick checks; the summary says how far it got).
+        #[arg(long)]
+        max_steps: Option<u64>,
+        /// No progress line on stderr.
+        #[arg(long)]
+        quiet: bool,
     },
 }
 
@@ -57,8 +74,8 @@ fn read_input(file: &str) -> Result<String, Failure> {
 fn run_contact(file: &str) -> Result<(), Failure> {
     let name = if file == "-" { "<stdin>" } else { file };
     let text = read_input(file)?;
-    let value: serde_json::Value = serde_json::from_str(&text)
-        .map_err(|e| Failure::input(format!("{name}: malformed JSON: {e}")))?;
+    let value =
+        parse_lenient(&text).map_err(|e| Failure::input(format!("{name}: malformed JSON: {e}")))?;
     let pairs = parse_pairs(&value).map_err(|e| Failure::input(format!("{name}: {e}")))?;
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
     for (i, j) in &pairs {
@@ -74,10 +91,68 @@ fn run_contact(file: &str) -> Result<(), Failure> {
     })
 }
 
+fn run(
+    case_path: &PathBuf,
+    out: Option<PathBuf>,
+    max_steps: Option<u64>,
+    quiet: bool,
+) -> Result<(), Failure> {
+    let name = case_path.display().to_string();
+    let text = std::fs::read_to_string(case_path)
+        .map_err(|e| Failure::input(format!("{name}: cannot read: {e}")))?;
+    let case = Case::from_json(&text).map_err(|e| Failure::input(format!("{name}: {e}")))?;
+    let out_dir = out.unwrap_or_else(|| PathBuf::from("runs").join(&case.name));
+    let opts = RunOptions {
+        out_dir: out_dir.clone(),
+        progress: !quiet,
+        max_steps,
+    };
+    let outcome = run_case(&case, &text, &opts).map_err(|e| Failure {
+        code: 1,
+        message: format!("{}: cannot write output: {e}", out_dir.display()),
+    })?;
+    let s = &outcome.summary;
+    for w in &s.warnings {
+        eprintln!("dem2d: warning: {w}");
+    }
+    if let Some(b) = outcome.blowup {
+        return Err(Failure {
+            code: 1,
+            message: format!("{name}: {b}; output so far kept in {}", out_dir.display()),
+        });
+    }
+    let rest = match s.quiescent_step {
+        Some(q) => format!(
+            "at rest at step {q} (quiescence {:e})",
+            case.quiescence.unwrap_or(0.0)
+        ),
+        None if case.quiescence.is_some() => "not at rest".to_string(),
+        None => String::new(),
+    };
+    println!(
+        "{}: {} steps, t = {} s, {} in {:.2} s; dt = {:e}, dt_critical = {:.3e}; output in {}",
+        s.name,
+        s.steps,
+        s.time,
+        rest,
+        s.wall_seconds,
+        s.dt,
+        s.dt_critical,
+        out_dir.display()
+    );
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Contact { file } => run_contact(file),
+        Command::Run {
+            case,
+            out,
+            max_steps,
+            quiet,
+        } => run(case, out.clone(), *max_steps, *quiet),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

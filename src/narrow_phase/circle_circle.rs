@@ -30,6 +30,7 @@ pub fn contact_circle_circle(ri: f64, pi: &Pose, rj: f64, pj: &Pose) -> Contact 
                 normal: n,
                 depth,
                 chord: (inner, inner),
+                flat: None,
             }),
         };
     }
@@ -50,6 +51,7 @@ pub fn contact_circle_circle(ri: f64, pi: &Pose, rj: f64, pj: &Pose) -> Contact 
             normal: n,
             depth,
             chord: (point - t, point + t),
+            flat: None,
         }),
     }
 }

@@ -21,6 +21,7 @@ pub fn contact_wall_circle(wall: &Wall, r: f64, pose: &Pose) -> Contact {
                 normal: n,
                 depth,
                 chord: (point, point),
+                flat: None,
             }),
         };
     }
@@ -38,6 +39,7 @@ pub fn contact_wall_circle(wall: &Wall, r: f64, pose: &Pose) -> Contact {
             normal: n,
             depth,
             chord: (point - t, point + t),
+            flat: None,
         }),
     }
 }

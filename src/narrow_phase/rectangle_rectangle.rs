@@ -215,9 +215,11 @@ pub fn contact_rectangle_rectangle(
             };
             let (n, dpt) = orient(nrm, depth);
             let mid = super::midpoint(a.point, b.point);
+            let mut g = frame.geometry(a.point, b.point, mid, n, dpt);
+            g.flat = Some(frame.flat(poly));
             Contact {
                 state: ContactState::Overlap,
-                geometry: Some(frame.geometry(a.point, b.point, mid, n, dpt)),
+                geometry: Some(g),
             }
         }
         _ => {

@@ -39,14 +39,23 @@ pub fn contact_wall_rectangle(wall: &Wall, w: f64, h: f64, pose: &Pose) -> Conta
     };
     let mut cross = [[0.0f64; 2]; 4];
     let mut n = 0;
+    // The part of the rectangle beyond the wall line, as a polygon (for its area).
+    let mut under = [[0.0f64; 2]; 6];
+    let mut nu = 0;
     for k in 0..4 {
         let (a, b) = (k, (k + 1) % 4);
+        if s[a] < 0.0 {
+            under[nu] = q[a];
+            nu += 1;
+        }
         if (s[a] < 0.0) != (s[b] < 0.0) {
             let t = s[a] / (s[a] - s[b]);
             cross[n] = [
                 q[a][0] + t * (q[b][0] - q[a][0]),
                 q[a][1] + t * (q[b][1] - q[a][1]),
             ];
+            under[nu] = cross[n];
+            nu += 1;
             n += 1;
         }
     }
@@ -72,6 +81,7 @@ pub fn contact_wall_rectangle(wall: &Wall, w: f64, h: f64, pose: &Pose) -> Conta
     let mid = super::midpoint(p1, p2);
     let mut g = frame.geometry(p1, p2, mid, normal_local, depth);
     g.normal = wall.normal;
+    g.flat = Some(frame.flat(&under[..nu]));
     Contact {
         state,
         geometry: Some(g),

@@ -60,8 +60,65 @@ pub fn type_of(v: &Value) -> &'static str {
     }
 }
 
+/// Marks a non-finite literal (`NaN`, `Infinity`) that [`parse_lenient`] turned into a string.
+const NON_FINITE: &str = "\u{1}non-finite:";
+
+/// Parses JSON, accepting the non-JSON literals `NaN`, `Infinity` and `-Infinity` outside strings
+/// (as some writers emit them) so that they can be refused with the field they stand in
+/// (`must be a finite number, got NaN`) rather than as a syntax error at a column.
+pub fn parse_lenient(text: &str) -> Result<Value, serde_json::Error> {
+    let mut out = String::with_capacity(text.len());
+    let mut in_string = false;
+    let mut escaped = false;
+    let mut rest = text;
+    while let Some(c) = rest.chars().next() {
+        if in_string {
+            out.push(c);
+            if escaped {
+                escaped = false;
+            } else if c == '\\' {
+                escaped = true;
+            } else if c == '"' {
+                in_string = false;
+            }
+            rest = &rest[c.len_utf8()..];
+            continue;
+        }
+        let literal = ["-Infinity", "+Infinity", "Infinity", "NaN"]
+            .into_iter()
+            .find(|l| rest.starts_with(l));
+        match (c, literal) {
+            ('"', _) => {
+                in_string = true;
+                out.push(c);
+                rest = &rest[1..];
+            }
+            (_, Some(l)) => {
+                out.push('"');
+                out.push_str(NON_FINITE);
+                out.push_str(l);
+                out.push('"');
+                rest = &rest[l.len()..];
+            }
+            _ => {
+                out.push(c);
+                rest = &rest[c.len_utf8()..];
+            }
+        }
+    }
+    serde_json::from_str(&out)
+}
+
 /// A finite number.
 pub fn number(v: &Value, path: &str) -> Result<f64, FieldError> {
+    if let Value::String(s) = v
+        && let Some(literal) = s.strip_prefix(NON_FINITE)
+    {
+        return Err(FieldError::new(
+            path,
+            format!("must be a finite number, got {literal}"),
+        ));
+    }
     match v.as_f64() {
         Some(x) if x.is_finite() => Ok(x),
         Some(_) => Err(FieldError::new(path, "must be a finite number")),

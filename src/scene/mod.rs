@@ -2,7 +2,9 @@
 //! case files. Every error names the field it is about, as a path such as `pairs[3].i.shape.a`.
 
 pub mod body;
+pub mod case;
 pub mod fields;
 
 pub use body::{parse_object, parse_pairs, parse_shape};
+pub use case::Case;
 pub use fields::FieldError;

@@ -1,0 +1,129 @@
+//! Contact laws: the force between two bodies from the contact record, the relative velocity at
+//! the contact point, the pair's effective mass and radius, and the contact's history.
+//! A law never sees a shape.
+//!
+//! Conventions: `n` points from i to j; `t = (−n_y, n_x)` (n turned a quarter counter-clockwise);
+//! the relative velocity is that of j's material point minus i's, at the contact point, with
+//! components `v_n` (negative when approaching) and `v_t`. The force on j is `F_n n + F_t t`, on
+//! i its opposite; `F_n ≥ 0` always (a contact pushes, never pulls).
+//!
+//! T writes the Voigt element for the force on i with `n_ij` pointing from j to i and the overlap
+//! negative (T6–T9); with our n (i → j) and δ > 0 the same law reads `F_n = k_n δ − η_n v_n` for
+//! the force on j.
+
+pub mod hertz_mindlin;
+pub mod linear;
+pub mod spec;
+
+pub use hertz_mindlin::HertzMindlin;
+pub use linear::Linear;
+pub use spec::{ContactSpec, LinearDamping, Scaled};
+
+/// What a law needs to know about one contact at one instant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Kinematics {
+    /// Overlap δ along the normal (> 0 when penetrating).
+    pub depth: f64,
+    /// Normal relative velocity `(v_j − v_i)·n` at the contact point (negative: approaching).
+    pub vn: f64,
+    /// Tangential relative velocity `(v_j − v_i)·t` at the contact point.
+    pub vt: f64,
+    /// Effective mass `m* = (1/m_i + 1/m_j)⁻¹` (T13; a wall has infinite mass).
+    pub m_eff: f64,
+    /// Effective radius of curvature `R* = (1/R_i + 1/R_j)⁻¹` (T11; a wall has R = ∞).
+    pub r_eff: f64,
+    /// Time step (the shear displacement is integrated over it, T16).
+    pub dt: f64,
+}
+
+/// The per-contact state carried from step to step while the contact lasts (T16): the shear
+/// spring's elongation along the current tangent `t`. In 2D the tangent plane is a line, so a
+/// scalar along `t` is the displacement "kept in the current tangent direction as the contact
+/// rotates". Dropped when the contact ends.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct History {
+    /// Shear spring elongation δ_t along `t` (T16).
+    pub shear: f64,
+}
+
+/// Force on j (components along n and t), the elastic energy stored in the contact and its
+/// instantaneous stiffness and damping (for the time-step estimate).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContactForce {
+    /// Normal force on j along n, `≥ 0`.
+    pub normal: f64,
+    /// Tangential force on j along t.
+    pub tangential: f64,
+    /// Energy stored in the normal and shear springs.
+    pub elastic_energy: f64,
+    /// Normal stiffness `dF_n/dδ` and dashpot now.
+    pub kn: f64,
+    pub eta_n: f64,
+    /// Shear stiffness and dashpot now.
+    pub kt: f64,
+    pub eta_t: f64,
+    /// True when the Coulomb slider slipped this step (T20).
+    pub sliding: bool,
+    /// Energy taken out of the relative motion over the step: normal dashpot and clamp,
+    /// `−(F_n − k_nδ) v_n Δt` (the clamp withholds spring force while the contact opens); shear,
+    /// the work `−F_t v_t Δt` less the change of the shear spring's energy (which also counts a
+    /// spring reset by the slider as dissipated).
+    pub dissipated: f64,
+    /// Energy now stored in the shear spring (lost when the contact opens).
+    pub shear_energy: f64,
+}
+
+/// A contact law with its parameters resolved for one pair.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Law {
+    Linear(Linear),
+    HertzMindlin(HertzMindlin),
+}
+
+impl Law {
+    /// The force for these kinematics, updating the shear history.
+    #[inline]
+    pub fn force(&self, k: &Kinematics, history: &mut History) -> ContactForce {
+        match self {
+            Law::Linear(l) => l.force(k, history),
+            Law::HertzMindlin(h) => h.force(k, history),
+        }
+    }
+
+    /// Coulomb friction coefficient μ.
+    pub fn friction(&self) -> f64 {
+        match self {
+            Law::Linear(l) => l.friction,
+            Law::HertzMindlin(h) => h.friction,
+        }
+    }
+}
+
+/// α of T12: the damping ratio that gives restitution `e` for a linear spring–dashpot,
+/// `α = −ln e / √(ln²e + π²)` (`η_n = 2α√(m* k_n)`).
+pub fn damping_ratio_linear(e: f64) -> f64 {
+    let l = e.ln();
+    -l / (l * l + std::f64::consts::PI.powi(2)).sqrt() // T(12)
+}
+
+/// β of T14 for the Hertz spring: `β = −ln e · √(5/(ln²e + π²))` (`η_n = β√(m* k_n)`).
+pub fn damping_factor_hertz(e: f64) -> f64 {
+    let l = e.ln();
+    -l * (5.0 / (l * l + std::f64::consts::PI.powi(2))).sqrt() // T(14)
+}
+
+/// The Coulomb slider (T20, T21) on a trial shear force: when `|F_t| > μ F_n` the force is
+/// `μ F_n` with the trial's sign and the spring is reset to hold exactly that (`δ_t = −F_t/k_t`);
+/// the dashpot then carries nothing. In 2D the direction `v_t/|v_t|` of T21 is a sign, and the
+/// trial force's sign equals −sign(v_t) in steady sliding; using the trial's keeps the force
+/// continuous when `v_t` passes through zero. Returns the force and whether it slipped.
+#[inline]
+pub(crate) fn coulomb(trial: f64, limit: f64, kt: f64, history: &mut History) -> (f64, bool) {
+    if trial.abs() > limit {
+        let f = limit.copysign(trial); // T(20)
+        history.shear = if kt > 0.0 { -f / kt } else { 0.0 };
+        (f, true)
+    } else {
+        (trial, false)
+    }
+}

@@ -1,0 +1,116 @@
+//! Contact parameters as a case gives them, and their resolution into a [`Law`] for one pair.
+//!
+//! Stiffness and damping may be absolute (per unit thickness) or normalised by ρg, as P gives
+//! them (`K_n/ρg` in cm): then they are multiplied by the pair's density (the mean of the two
+//! bodies', the body's against a wall) and |g|, and in a scene of one density ρ cancels from
+//! every equation of motion.
+
+use super::{HertzMindlin, Law, Linear, damping_factor_hertz, damping_ratio_linear};
+
+/// A value given absolutely or divided by ρg.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Scaled {
+    Absolute(f64),
+    OverRhoG(f64),
+}
+
+impl Scaled {
+    /// The absolute value for density `rho` and gravity magnitude `g`.
+    #[inline]
+    pub fn value(&self, rho: f64, g: f64) -> f64 {
+        match *self {
+            Scaled::Absolute(v) => v,
+            Scaled::OverRhoG(v) => v * rho * g,
+        }
+    }
+}
+
+/// How a linear contact is damped.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LinearDamping {
+    /// Given dashpots.
+    Dashpots { eta_n: Scaled, eta_s: Scaled },
+    /// From a coefficient of restitution: `η_n = 2α√(m* k_n)` (T12), `η_s = η_n`.
+    Restitution(f64),
+}
+
+/// The law and its parameters, as given.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ContactSpec {
+    Linear {
+        kn: Scaled,
+        ks: Scaled,
+        damping: LinearDamping,
+        friction: f64,
+    },
+    HertzMindlin {
+        young: f64,
+        poisson: f64,
+        restitution: f64,
+        friction: f64,
+    },
+}
+
+impl ContactSpec {
+    /// Coulomb friction coefficient.
+    pub fn friction(&self) -> f64 {
+        match *self {
+            ContactSpec::Linear { friction, .. } | ContactSpec::HertzMindlin { friction, .. } => {
+                friction
+            }
+        }
+    }
+
+    /// The law for a pair: `self` is the spec that governs the pair (a wall's own, when it
+    /// overrides), `other_material` the spec of the other side's material (Hertz–Mindlin mixes
+    /// the two materials, T11, T19); `rho` the pair's density, `g` = |gravity|, `m_eff` = m*.
+    pub fn resolve(&self, other_material: &ContactSpec, rho: f64, g: f64, m_eff: f64) -> Law {
+        match *self {
+            ContactSpec::Linear {
+                kn,
+                ks,
+                damping,
+                friction,
+            } => {
+                let kn = kn.value(rho, g);
+                let (eta_n, eta_s) = match damping {
+                    LinearDamping::Dashpots { eta_n, eta_s } => {
+                        (eta_n.value(rho, g), eta_s.value(rho, g))
+                    }
+                    LinearDamping::Restitution(e) => {
+                        let eta = 2.0 * damping_ratio_linear(e) * (m_eff * kn).sqrt(); // T(12)
+                        (eta, eta)
+                    }
+                };
+                Law::Linear(Linear {
+                    kn,
+                    ks: ks.value(rho, g),
+                    eta_n,
+                    eta_s,
+                    friction,
+                })
+            }
+            ContactSpec::HertzMindlin {
+                young,
+                poisson,
+                restitution,
+                friction,
+            } => {
+                let (e2, nu2) = match *other_material {
+                    ContactSpec::HertzMindlin { young, poisson, .. } => (young, poisson),
+                    ContactSpec::Linear { .. } => (young, poisson),
+                };
+                let e_star = 1.0 / ((1.0 - poisson * poisson) / young + (1.0 - nu2 * nu2) / e2); // T(11)
+                let g_star = 1.0
+                    / (2.0 * (2.0 - poisson) * (1.0 + poisson) / young
+                        + 2.0 * (2.0 - nu2) * (1.0 + nu2) / e2); // T(19)
+                Law::HertzMindlin(HertzMindlin {
+                    e_star,
+                    g_star,
+                    beta: damping_factor_hertz(restitution),
+                    friction,
+                })
+            }
+        }
+    }
+}

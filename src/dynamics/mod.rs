@@ -1,0 +1,13 @@
+//! Rigid-body dynamics: bodies, the world, the step function, the quiescence criterion and the
+//! critical time step. Reads no files and writes none.
+
+pub mod body;
+pub mod broad_phase;
+pub mod contacts;
+pub mod step;
+pub mod timestep;
+pub mod world;
+
+pub use body::{Bodies, BodyInit};
+pub use step::{Blowup, StepReport};
+pub use world::{WallSpec, World};

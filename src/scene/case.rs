@@ -1,0 +1,373 @@
+//! Case files: one JSON file describes one scene completely (`"version": 1`).
+//!
+//! ```json
+//! { "version": 1, "name": "settle3", "description": "…",
+//!   "gravity": [0, -980], "dt": 1e-5, "duration": 0.5,
+//!   "quiescence": 1e-10, "output_every": 100,
+//!   "contact": { "model": "linear", "kn_over_rho_g": 36400, "ks_over_rho_g": 36400,
+//!                "eta_n_over_rho_g": 25.925, "eta_s_over_rho_g": 25.925, "friction": 0.5 },
+//!   "walls": [ { "point": [0, 0], "normal": [0, 1], "friction": 0.3 } ],
+//!   "bodies": [ { "shape": {"type": "ellipse", "a": 1.5, "b": 1.0}, "position": [0, 5],
+//!                 "angle": 0.5, "velocity": [20, 0], "omega": 0, "density": 1.0 } ] }
+//! ```
+//! Unknown fields are errors. `contact.model` is `linear` (stiffness `kn` or `kn_over_rho_g`;
+//! `ks`/`ks_over_rho_g`, default equal to the normal one as in P; damping `eta_n`/
+//! `eta_n_over_rho_g` with `eta_s`/`eta_s_over_rho_g` defaulting to it (T: η_t = η_n), or
+//! `restitution` instead (T12); `friction`) or `hertz_mindlin` (`young`, `poisson`,
+//! `restitution`, `friction`; T10–T20). A wall may override any contact parameter.
+
+use super::body::{parse_body_with, parse_wall_with};
+use super::fields::{FieldError, Obj, index, join, non_negative, number, positive, type_of, vec2};
+use crate::contact_law::{ContactSpec, LinearDamping, Scaled};
+use crate::dynamics::{BodyInit, WallSpec};
+use crate::geometry::Vec2;
+use serde_json::{Map, Value};
+
+/// A scene as a case file describes it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Case {
+    pub name: String,
+    pub description: String,
+    pub gravity: Vec2,
+    pub dt: f64,
+    pub duration: f64,
+    /// P's quiescence threshold on the mean displacement increments per step (stop at rest).
+    pub quiescence: Option<f64>,
+    pub output_every: u64,
+    pub contact: ContactSpec,
+    pub walls: Vec<WallSpec>,
+    pub bodies: Vec<BodyInit>,
+}
+
+const CONTACT_KEYS: [&str; 13] = [
+    "model",
+    "kn",
+    "kn_over_rho_g",
+    "ks",
+    "ks_over_rho_g",
+    "eta_n",
+    "eta_n_over_rho_g",
+    "eta_s",
+    "eta_s_over_rho_g",
+    "restitution",
+    "friction",
+    "young",
+    "poisson",
+];
+
+/// Keys that replace each other when a wall overrides one of them.
+const GROUPS: [&[&str]; 3] = [
+    &["kn", "kn_over_rho_g"],
+    &["ks", "ks_over_rho_g"],
+    &[
+        "eta_n",
+        "eta_n_over_rho_g",
+        "eta_s",
+        "eta_s_over_rho_g",
+        "restitution",
+    ],
+];
+
+impl Case {
+    /// Reads a case from its JSON text. Errors name the field (`bodies[2].shape.a`, …).
+    pub fn from_json(text: &str) -> Result<Case, FieldError> {
+        let v = super::fields::parse_lenient(text)
+            .map_err(|e| FieldError::new("", format!("malformed JSON: {e}")))?;
+        Case::from_value(&v)
+    }
+
+    /// Reads a case from a parsed JSON value.
+    pub fn from_value(v: &Value) -> Result<Case, FieldError> {
+        let mut o = Obj::new(v, "")?;
+        let version = o.req_with("version", number)?;
+        if version != 1.0 {
+            return Err(FieldError::new(
+                "version",
+                format!("unsupported version {version} (this dem2d reads version 1)"),
+            ));
+        }
+        let name = o.req_with("name", string)?;
+        let description = o.opt_with("description", string)?.unwrap_or_default();
+        let gravity = Vec2::from(o.req_with("gravity", vec2)?);
+        let dt = o.req_with("dt", positive)?;
+        let duration = o.req_with("duration", positive)?;
+        let quiescence = o.opt_with("quiescence", positive)?;
+        let output_every = o.opt_with("output_every", count)?.unwrap_or(100);
+        let contact_value = o.req("contact")?;
+        let contact_map = contact_value
+            .as_object()
+            .ok_or_else(|| {
+                FieldError::new(
+                    "contact",
+                    format!("must be an object, got {}", type_of(contact_value)),
+                )
+            })?
+            .clone();
+        let contact = parse_contact(&contact_map, "contact", "contact")?;
+        let mut walls = Vec::new();
+        if let Some(list) = o.get("walls") {
+            let items = list.as_array().ok_or_else(|| {
+                FieldError::new("walls", format!("must be an array, got {}", type_of(list)))
+            })?;
+            for (k, item) in items.iter().enumerate() {
+                let path = index("walls", k);
+                let (wall, spec) =
+                    parse_wall_with(item, &path, |w| wall_overrides(w, &contact_map))?;
+                walls.push(WallSpec {
+                    wall,
+                    spec: spec.unwrap_or(contact),
+                });
+            }
+        }
+        let list = o.req("bodies")?;
+        let items = list.as_array().ok_or_else(|| {
+            FieldError::new("bodies", format!("must be an array, got {}", type_of(list)))
+        })?;
+        if items.is_empty() {
+            return Err(FieldError::new("bodies", "must list at least one body"));
+        }
+        let mut bodies = Vec::with_capacity(items.len());
+        for (k, item) in items.iter().enumerate() {
+            let path = index("bodies", k);
+            let mut b = Obj::new(item, &path)?;
+            let (shape, pose, (velocity, omega, density)) = parse_body_with(&mut b, |b| {
+                let velocity = b.opt_with("velocity", vec2)?.unwrap_or([0.0, 0.0]);
+                let omega = b.opt_with("omega", number)?.unwrap_or(0.0);
+                let density = b.opt_with("density", positive)?.unwrap_or(1.0);
+                Ok((velocity, omega, density))
+            })?;
+            b.finish()?;
+            bodies.push(BodyInit {
+                shape,
+                position: pose.position,
+                angle: pose.angle(),
+                velocity: Vec2::from(velocity),
+                omega,
+                density,
+            });
+        }
+        o.finish()?;
+        Ok(Case {
+            name,
+            description,
+            gravity,
+            dt,
+            duration,
+            quiescence,
+            output_every,
+            contact,
+            walls,
+            bodies,
+        })
+    }
+
+    /// Number of steps the duration takes (rounded to the nearest step).
+    pub fn steps(&self) -> u64 {
+        (self.duration / self.dt).round().max(1.0) as u64
+    }
+}
+
+fn string(v: &Value, path: &str) -> Result<String, FieldError> {
+    v.as_str()
+        .map(str::to_string)
+        .ok_or_else(|| FieldError::new(path, format!("must be a string, got {}", type_of(v))))
+}
+
+fn count(v: &Value, path: &str) -> Result<u64, FieldError> {
+    match v.as_u64() {
+        Some(n) if n >= 1 => Ok(n),
+        _ => Err(FieldError::new(
+            path,
+            format!("must be a whole number ≥ 1, got {v}"),
+        )),
+    }
+}
+
+/// A wall's contact overrides: every known contact key given on the wall replaces the scene's
+/// (with the keys of its group); `None` when the wall overrides nothing.
+fn wall_overrides(
+    w: &mut Obj,
+    defaults: &Map<String, Value>,
+) -> Result<Option<ContactSpec>, FieldError> {
+    let mut merged = defaults.clone();
+    let mut any = false;
+    let mut given: Vec<String> = Vec::new();
+    for key in CONTACT_KEYS.iter() {
+        if let Some(v) = w.get(key) {
+            any = true;
+            if *key == "model" {
+                merged.clear();
+            }
+            for group in GROUPS {
+                if group.contains(key) && !given.iter().any(|g| group.contains(&g.as_str())) {
+                    for k in group.iter() {
+                        merged.remove(*k);
+                    }
+                }
+            }
+            merged.insert(key.to_string(), v.clone());
+            given.push(key.to_string());
+        }
+    }
+    if !any {
+        return Ok(None);
+    }
+    let path = w.path().to_string();
+    parse_contact(&merged, &path, &path).map(Some)
+}
+
+/// The contact object. `path` prefixes field paths; `missing_at` is where a missing field is
+/// reported.
+fn parse_contact(
+    map: &Map<String, Value>,
+    path: &str,
+    missing_at: &str,
+) -> Result<ContactSpec, FieldError> {
+    let field = |k: &str| join(path, k);
+    let get = |k: &str| map.get(k);
+    for k in map.keys() {
+        if !CONTACT_KEYS.contains(&k.as_str()) {
+            return Err(FieldError::new(field(k), "unknown field"));
+        }
+    }
+    let model = match get("model") {
+        Some(v) => string(v, &field("model"))?,
+        None => return Err(FieldError::new(join(missing_at, "model"), "is missing")),
+    };
+    let friction = match get("friction") {
+        Some(v) => non_negative(v, &field("friction"))?,
+        None => return Err(FieldError::new(join(missing_at, "friction"), "is missing")),
+    };
+    let scaled = |abs: &str, rel: &str| -> Result<Option<Scaled>, FieldError> {
+        match (get(abs), get(rel)) {
+            (Some(_), Some(_)) => Err(FieldError::new(
+                field(rel),
+                format!("give `{abs}` or `{rel}`, not both"),
+            )),
+            (Some(v), None) => Ok(Some(Scaled::Absolute(non_negative(v, &field(abs))?))),
+            (None, Some(v)) => Ok(Some(Scaled::OverRhoG(non_negative(v, &field(rel))?))),
+            (None, None) => Ok(None),
+        }
+    };
+    let restitution = |required: bool| -> Result<Option<f64>, FieldError> {
+        match get("restitution") {
+            Some(v) => {
+                let e = positive(v, &field("restitution"))?;
+                if e > 1.0 {
+                    return Err(FieldError::new(
+                        field("restitution"),
+                        format!("must be in (0, 1], got {e}"),
+                    ));
+                }
+                Ok(Some(e))
+            }
+            None if required => Err(FieldError::new(
+                join(missing_at, "restitution"),
+                "is missing",
+            )),
+            None => Ok(None),
+        }
+    };
+    let refuse = |keys: &[&str], model: &str| -> Result<(), FieldError> {
+        for k in keys {
+            if get(k).is_some() {
+                return Err(FieldError::new(
+                    field(k),
+                    format!("is not a parameter of the `{model}` model"),
+                ));
+            }
+        }
+        Ok(())
+    };
+    match model.as_str() {
+        "linear" => {
+            refuse(&["young", "poisson"], "linear")?;
+            let kn = scaled("kn", "kn_over_rho_g")?.ok_or_else(|| {
+                FieldError::new(
+                    join(missing_at, "kn_over_rho_g"),
+                    "is missing (or give `kn`)",
+                )
+            })?;
+            let ks = scaled("ks", "ks_over_rho_g")?.unwrap_or(kn);
+            let eta_n = scaled("eta_n", "eta_n_over_rho_g")?;
+            let eta_s = scaled("eta_s", "eta_s_over_rho_g")?;
+            let e = restitution(false)?;
+            let damping = match (eta_n, e) {
+                (Some(_), Some(_)) => {
+                    return Err(FieldError::new(
+                        field("restitution"),
+                        "give dashpots (`eta_n…`) or `restitution`, not both",
+                    ));
+                }
+                (Some(eta_n), None) => LinearDamping::Dashpots {
+                    eta_n,
+                    eta_s: eta_s.unwrap_or(eta_n),
+                },
+                (None, Some(e)) => {
+                    if eta_s.is_some() {
+                        return Err(FieldError::new(
+                            field("eta_s"),
+                            "with `restitution`, η_s = η_n (T); do not give `eta_s`",
+                        ));
+                    }
+                    LinearDamping::Restitution(e)
+                }
+                (None, None) => {
+                    return Err(FieldError::new(
+                        join(missing_at, "eta_n_over_rho_g"),
+                        "is missing (or give `eta_n` or `restitution`)",
+                    ));
+                }
+            };
+            Ok(ContactSpec::Linear {
+                kn,
+                ks,
+                damping,
+                friction,
+            })
+        }
+        "hertz_mindlin" => {
+            refuse(
+                &[
+                    "kn",
+                    "kn_over_rho_g",
+                    "ks",
+                    "ks_over_rho_g",
+                    "eta_n",
+                    "eta_n_over_rho_g",
+                    "eta_s",
+                    "eta_s_over_rho_g",
+                ],
+                "hertz_mindlin",
+            )?;
+            let young = match get("young") {
+                Some(v) => positive(v, &field("young"))?,
+                None => return Err(FieldError::new(join(missing_at, "young"), "is missing")),
+            };
+            let poisson = match get("poisson") {
+                Some(v) => {
+                    let nu = number(v, &field("poisson"))?;
+                    if !(-1.0..0.5).contains(&nu) {
+                        return Err(FieldError::new(
+                            field("poisson"),
+                            format!("must be in [-1, 0.5), got {nu}"),
+                        ));
+                    }
+                    nu
+                }
+                None => return Err(FieldError::new(join(missing_at, "poisson"), "is missing")),
+            };
+            let restitution = restitution(true)?.expect("required");
+            Ok(ContactSpec::HertzMindlin {
+                young,
+                poisson,
+                restitution,
+                friction,
+            })
+        }
+        other => Err(FieldError::new(
+            field("model"),
+            format!("unknown contact model `{other}` (expected `linear` or `hertz_mindlin`)"),
+        )),
+    }
+}
