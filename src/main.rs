@@ -130,7 +130,7 @@ fn run(
         None => String::new(),
     };
     println!(
-        "{}: {} steps, t = {} s, {} in {:.2} s; dt = {:e}, dt_critical = {:.3e}; output in {}",
+        "{}: {} steps, t = {:.6} s, {} in {:.2} s; dt = {:e}, dt_critical = {:.3e}; output in {}",
         s.name,
         s.steps,
         s.time,

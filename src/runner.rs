@@ -66,6 +66,7 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<R
     let start = Instant::now();
     let mut last_progress = start;
     let mut quiescent_step = None;
+    let mut streak = 0u64;
     let mut first_contact_step = None;
     let mut blowup = None;
     let mut last_report = Default::default();
@@ -89,14 +90,20 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<R
             traj.write(&world)?;
         }
         last_report = report;
-        if let Some(q) = case.quiescence
-            && report.increments.iter().all(|&d| d <= q)
-        {
-            quiescent_step = Some(s);
-            if s % thin != 0 {
-                incs.write(&world, &report)?;
+        if let Some(q) = case.quiescence {
+            if report.increments.iter().all(|&d| d <= q) {
+                streak += 1;
+            } else {
+                streak = 0;
             }
-            break;
+            if streak >= case.quiescence_window {
+                // At rest since the first step of the streak (P's count for a window of one).
+                quiescent_step = Some(s + 1 - streak);
+                if s % thin != 0 {
+                    incs.write(&world, &report)?;
+                }
+                break;
+            }
         }
         if opts.progress
             && last_progress.elapsed().as_secs_f64() >= 1.0

@@ -35,8 +35,8 @@ impl HertzMindlin {
         // dF_n/dδ = (3/2) k_n for the time-step estimate.
         let mut out = ContactForce {
             normal: fn_,
-            dissipated: -(fn_ - spring) * k.vn * k.dt,
-            elastic_energy: 0.4 * kn * k.depth * k.depth,
+            normal_non_elastic: fn_ - spring,
+            elastic_energy: 0.4 * kn * k.depth * k.energy_depth,
             kn: 1.5 * kn,
             eta_n,
             ..Default::default()
@@ -50,7 +50,7 @@ impl HertzMindlin {
             out.tangential = ft;
             out.sliding = sliding;
             out.shear_energy = 0.5 * kt * h.shear * h.shear;
-            out.dissipated += -ft * k.vt * k.dt - (out.shear_energy - before);
+            out.shear_energy_change = out.shear_energy - before;
             out.elastic_energy += out.shear_energy;
             out.kt = kt;
             out.eta_t = eta_n;

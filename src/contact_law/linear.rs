@@ -21,15 +21,15 @@ pub struct Linear {
 impl Linear {
     /// `F_n = max(0, k_n δ − η_n v_n)` (T6, clamped so that the contact never pulls);
     /// `F_t = −k_s δ_t − η_s v_t` (T15) with `δ_t += v_t Δt` (T16), limited by `μ F_n` (T20).
-    /// Elastic energy `½k_n δ² + ½k_s δ_t²`.
+    /// Elastic energy `½k_n δ² + ½k_s δ_t²` (with `δ²` → `δ·energy_depth`).
     #[inline]
     pub fn force(&self, k: &Kinematics, h: &mut History) -> ContactForce {
         let spring = self.kn * k.depth;
         let fn_ = (spring - self.eta_n * k.vn).max(0.0); // T(6)
         let mut out = ContactForce {
             normal: fn_,
-            dissipated: -(fn_ - spring) * k.vn * k.dt,
-            elastic_energy: 0.5 * self.kn * k.depth * k.depth,
+            normal_non_elastic: fn_ - spring,
+            elastic_energy: 0.5 * self.kn * k.depth * k.energy_depth,
             kn: self.kn,
             eta_n: self.eta_n,
             ..Default::default()
@@ -42,7 +42,7 @@ impl Linear {
             out.tangential = ft;
             out.sliding = sliding;
             out.shear_energy = 0.5 * self.ks * h.shear * h.shear;
-            out.dissipated += -ft * k.vt * k.dt - (out.shear_energy - before);
+            out.shear_energy_change = out.shear_energy - before;
             out.elastic_energy += out.shear_energy;
             out.kt = self.ks;
             out.eta_t = self.eta_s;

@@ -22,8 +22,12 @@ pub use spec::{ContactSpec, LinearDamping, Scaled};
 /// What a law needs to know about one contact at one instant.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Kinematics {
-    /// Overlap δ along the normal (> 0 when penetrating).
+    /// Overlap δ along the normal (> 0 when penetrating): the spring acts on it.
     pub depth: f64,
+    /// The overlap whose product with `depth` gives twice the spring's energy over `k_n`: equal
+    /// to `depth` for a contact of smooth bodies; for a flat-on-flat contact (a Winkler
+    /// foundation, energy `k′ A ȳ`) twice the overlap centroid's distance from the chord.
+    pub energy_depth: f64,
     /// Normal relative velocity `(v_j − v_i)·n` at the contact point (negative: approaching).
     pub vn: f64,
     /// Tangential relative velocity `(v_j − v_i)·t` at the contact point.
@@ -64,13 +68,14 @@ pub struct ContactForce {
     pub eta_t: f64,
     /// True when the Coulomb slider slipped this step (T20).
     pub sliding: bool,
-    /// Energy taken out of the relative motion over the step: normal dashpot and clamp,
-    /// `−(F_n − k_nδ) v_n Δt` (the clamp withholds spring force while the contact opens); shear,
-    /// the work `−F_t v_t Δt` less the change of the shear spring's energy (which also counts a
-    /// spring reset by the slider as dissipated).
-    pub dissipated: f64,
+    /// The part of `normal` that is not the spring's: the dashpot's, or what the clamp
+    /// `F_n ≥ 0` withholds. Its work, and the shear force's work less the change of the shear
+    /// spring's energy, is what the contact dissipates.
+    pub normal_non_elastic: f64,
     /// Energy now stored in the shear spring (lost when the contact opens).
     pub shear_energy: f64,
+    /// Change of the shear spring's energy over this step (including a reset by the slider).
+    pub shear_energy_change: f64,
 }
 
 /// A contact law with its parameters resolved for one pair.

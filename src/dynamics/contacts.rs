@@ -32,6 +32,11 @@ pub struct Contact {
     pub elastic_energy: f64,
     /// The part stored in the shear spring.
     pub shear_energy: f64,
+    /// For the energy account: the non-elastic part of the normal force, the shear force, and
+    /// the change of the shear spring's energy this step.
+    pub normal_non_elastic: f64,
+    pub tangential: f64,
+    pub shear_energy_change: f64,
 }
 
 impl Contact {

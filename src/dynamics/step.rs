@@ -128,6 +128,7 @@ impl World {
                 unbalanced.1 += b.torque[k].abs();
             }
         }
+        self.account_dissipation(dt);
         self.step = next_step;
         self.time = next_time;
         self.energies.kinetic = self.kinetic_energy();
@@ -169,7 +170,7 @@ impl World {
         self.candidates.sort_unstable();
         self.contacts.begin_step();
         let g = self.gravity.norm();
-        let (mut sum_f, mut sum_m, mut elastic, mut dissipated) = (0.0, 0.0, 0.0, 0.0);
+        let (mut sum_f, mut sum_m, mut elastic) = (0.0, 0.0, 0.0);
         let mut dt_obs = self.diagnostics.dt_critical_observed;
         for idx in 0..self.candidates.len() {
             let (i, j) = self.candidates[idx];
@@ -194,15 +195,21 @@ impl World {
                 ContactState::Contained => self.diagnostics.contained_contacts += 1,
                 _ => {}
             }
-            // Flat on flat: a Winkler foundation — the spring on the mean penetration over the
-            // chord, acting at the overlap's centroid (see `FlatOverlap`); elsewhere on the depth,
-            // at the chord midpoint.
-            let chord_len = (geo.chord.1 - geo.chord.0).norm();
-            let (spring_depth, point) = match geo.flat {
-                Some(f) if chord_len > 0.0 && c.state == ContactState::Overlap => {
-                    (f.area / chord_len, f.centroid)
+            // Flat on flat: a Winkler foundation (see `FlatOverlap`) — resultant k′A with
+            // k′ = k_n/ℓ, ℓ the pair's face length, at the overlap centroid; energy k′Aȳ. The
+            // spring then acts on δ_s = A/ℓ with energy ½k_n δ_s (2ȳ). Elsewhere: the depth, at the
+            // chord midpoint.
+            let (spring_depth, energy_depth, point) = match geo.flat {
+                Some(f) if c.state == ContactState::Overlap => {
+                    let ell = if wall {
+                        face_length(&b.shape[iu])
+                    } else {
+                        0.5 * (face_length(&b.shape[iu]) + face_length(&b.shape[ju]))
+                    };
+                    let ybar = (f.centroid - geo.chord.0).dot(&geo.normal).abs();
+                    (f.area / ell, 2.0 * ybar, f.centroid)
                 }
-                _ => (geo.depth, geo.point),
+                _ => (geo.depth, geo.depth, geo.point),
             };
             let n_ = geo.normal;
             let t_ = Vec2::new(-n_.y, n_.x);
@@ -226,6 +233,7 @@ impl World {
             }
             let kin = Kinematics {
                 depth: spring_depth,
+                energy_depth,
                 vn: v_rel.dot(&n_),
                 vt: v_rel.dot(&t_),
                 m_eff: 1.0 / inv_m, // T(13)
@@ -249,7 +257,6 @@ impl World {
                 b.force[k] -= f;
                 b.torque[k] -= cross(r, f);
             }
-            dissipated += cf.dissipated;
             elastic += cf.elastic_energy;
             sum_f += f.norm();
             sum_m += f.norm() * b.bound[recv];
@@ -272,14 +279,55 @@ impl World {
                 force: f,
                 elastic_energy: cf.elastic_energy,
                 shear_energy: cf.shear_energy,
+                normal_non_elastic: cf.normal_non_elastic,
+                tangential: cf.tangential,
+                shear_energy_change: cf.shear_energy_change,
             });
         }
         // A contact that opened took its shear spring's energy with it.
-        self.energies.dissipated += dissipated + self.contacts.opened_shear_energy();
+        if dt > 0.0 {
+            self.energies.dissipated += self.contacts.opened_shear_energy();
+        }
         self.energies.elastic = elastic;
         self.diagnostics.dt_critical_observed = dt_obs;
         let nc = self.contacts.current.len().max(1) as f64;
         (sum_f / nc, sum_m / nc)
+    }
+}
+
+impl World {
+    /// Adds the energy the contacts took out during this step. Verlet applies the forces of time
+    /// level n+1 over the interval centred on it, so their work is taken with the velocities at
+    /// n+1 (after the second kick): the non-elastic normal part's and the shear force's, less the
+    /// change of the shear spring's energy.
+    fn account_dissipation(&mut self, dt: f64) {
+        let b = &self.bodies;
+        let mut d = 0.0;
+        for c in &self.contacts.current {
+            let (iu, ju) = (c.i as usize, c.j as usize);
+            let (recv, give) = if c.is_wall() {
+                (iu, None)
+            } else {
+                (ju, Some(iu))
+            };
+            let mut v = b.point_velocity(recv, c.point - b.pose[recv].position);
+            if let Some(k) = give {
+                v -= b.point_velocity(k, c.point - b.pose[k].position);
+            }
+            let t = Vec2::new(-c.normal.y, c.normal.x);
+            d += -(c.normal_non_elastic * v.dot(&c.normal) + c.tangential * v.dot(&t)) * dt
+                - c.shear_energy_change;
+        }
+        self.energies.dissipated += d;
+    }
+}
+
+/// The face length ℓ of a flat-sided shape for the Winkler contact: the mean side, `(w + h)/2`,
+/// so that a square pressed flat by δ feels exactly `k_n δ`.
+fn face_length(shape: &crate::geometry::Shape) -> f64 {
+    match *shape {
+        crate::geometry::Shape::Rectangle { w, h } => 0.5 * (w + h),
+        _ => shape.bounding_radius(),
     }
 }
 

@@ -78,13 +78,13 @@ pub struct ContactGeometry {
 }
 
 /// The overlap of two flat-sided objects (a polygon), for a contact that acts like a Winkler
-/// foundation: pressure proportional to the local penetration, so a resultant proportional to
-/// the mean penetration over the chord, `area/|p1p2|`, acting at the overlap's centroid (the
-/// centre of pressure), along the chord normal — the classical polygon DEM contact (Tillemans
-/// & Herrmann). With one contact point, a spring on `depth` (the deepest corner's penetration)
-/// acting at the chord midpoint is not the gradient of any potential when a face lies on a face:
-/// a rectangle resting on a floor then rocks forever, fed by its own contact (measured: kinetic
-/// energy held at ~1e-1 erg against damping); at the centroid it comes to rest.
+/// foundation: pressure `k′ × local penetration`, so a resultant `k′ A` at the overlap's
+/// centroid (the centre of pressure) along the chord normal, and stored energy `k′ A ȳ` with ȳ
+/// the centroid's distance from the chord — the area-based polygon contact of Tillemans &
+/// Herrmann. Against a flat line this is exactly the gradient of that energy. With one contact
+/// point, a spring on `depth` (the deepest corner's penetration) at the chord midpoint is not
+/// the gradient of any potential when a face lies on a face: a rectangle resting on a floor then
+/// rocks forever, fed by its own contact.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FlatOverlap {
     /// Area of the overlap polygon.

@@ -3,7 +3,7 @@
 //! ```json
 //! { "version": 1, "name": "settle3", "description": "…",
 //!   "gravity": [0, -980], "dt": 1e-5, "duration": 0.5,
-//!   "quiescence": 1e-10, "output_every": 100,
+//!   "quiescence": 1e-10, "quiescence_window": 1, "output_every": 100,
 //!   "contact": { "model": "linear", "kn_over_rho_g": 36400, "ks_over_rho_g": 36400,
 //!                "eta_n_over_rho_g": 25.925, "eta_s_over_rho_g": 25.925, "friction": 0.5 },
 //!   "walls": [ { "point": [0, 0], "normal": [0, 1], "friction": 0.3 } ],
@@ -33,6 +33,10 @@ pub struct Case {
     pub duration: f64,
     /// P's quiescence threshold on the mean displacement increments per step (stop at rest).
     pub quiescence: Option<f64>,
+    /// Consecutive steps the quiescence criterion must hold (1: P's criterion, one step). A body
+    /// rocking or bouncing passes through zero velocity at its turning points, where one step
+    /// can satisfy the criterion; a window of a few hundred steps tells that from rest.
+    pub quiescence_window: u64,
     pub output_every: u64,
     pub contact: ContactSpec,
     pub walls: Vec<WallSpec>,
@@ -92,6 +96,7 @@ impl Case {
         let dt = o.req_with("dt", positive)?;
         let duration = o.req_with("duration", positive)?;
         let quiescence = o.opt_with("quiescence", positive)?;
+        let quiescence_window = o.opt_with("quiescence_window", count)?.unwrap_or(1);
         let output_every = o.opt_with("output_every", count)?.unwrap_or(100);
         let contact_value = o.req("contact")?;
         let contact_map = contact_value
@@ -154,6 +159,7 @@ impl Case {
             dt,
             duration,
             quiescence,
+            quiescence_window,
             output_every,
             contact,
             walls,

@@ -94,8 +94,8 @@ pub fn parse_lenient(text: &str) -> Result<Value, serde_json::Error> {
                 rest = &rest[1..];
             }
             (_, Some(l)) => {
-                out.push('"');
-                out.push_str(NON_FINITE);
+                // The marker's control character must be escaped inside a JSON string.
+                out.push_str("\"\\u0001non-finite:");
                 out.push_str(l);
                 out.push('"');
                 rest = &rest[l.len()..];

@@ -1,0 +1,246 @@
+//! The case files: every `cases/*.json` runs; every `cases/bad/*.json` is refused with the error
+//! recorded beside it in `cases/bad/expected_errors.json`; a blow-up stops with the step and the
+//! body and keeps what it wrote; and the paper's observations hold.
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn dem2d(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_dem2d"))
+        .args(args)
+        .output()
+        .expect("run dem2d");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8(out.stdout).unwrap(),
+        String::from_utf8(out.stderr).unwrap(),
+    )
+}
+
+fn cases_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("cases")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("cases")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+fn summary(dir: &Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+}
+
+#[test]
+fn every_case_runs() {
+    let mut ran = 0;
+    for entry in std::fs::read_dir(cases_dir()).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "json") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        let v: Value = serde_json::from_str(&text).unwrap();
+        let p = path.to_str().unwrap();
+        if v.is_array() {
+            // A pairs file for `dem2d contact`.
+            let (code, out, err) = dem2d(&["contact", p]);
+            assert_eq!(code, 0, "{p}: {err}");
+            assert_eq!(out.lines().count(), v.as_array().unwrap().len());
+            continue;
+        }
+        let dir = scratch(path.file_stem().unwrap().to_str().unwrap());
+        let (code, _, err) = dem2d(&[
+            "run",
+            p,
+            "--out",
+            dir.to_str().unwrap(),
+            "--max-steps",
+            "3000",
+            "--quiet",
+        ]);
+        assert_eq!(code, 0, "{p}: {err}");
+        let s = summary(&dir);
+        assert!(s["error"].is_null(), "{p}: {}", s["error"]);
+        assert!(s["steps"].as_u64().unwrap() >= 1);
+        for field in [
+            "time",
+            "dt",
+            "dt_critical",
+            "max_depth_ratio",
+            "wall_seconds",
+            "particle_steps_per_second",
+        ] {
+            assert!(s[field].as_f64().unwrap().is_finite(), "{p}: {field}");
+        }
+        let traj = std::fs::read_to_string(dir.join("trajectory.csv")).unwrap();
+        let mut lines = traj.lines();
+        assert_eq!(lines.next(), Some("step,t,body,x,y,angle,vx,vy,omega"));
+        let bodies = v["bodies"].as_array().unwrap().len();
+        assert!(lines.count() >= 2 * bodies, "{p}: initial and final rows");
+        ran += 1;
+    }
+    assert!(ran >= 7, "only {ran} cases");
+}
+
+#[test]
+fn every_bad_case_is_refused_with_its_error() {
+    let bad = cases_dir().join("bad");
+    let expected: Value =
+        serde_json::from_str(&std::fs::read_to_string(bad.join("expected_errors.json")).unwrap())
+            .unwrap();
+    let expected = expected.as_object().unwrap();
+    let mut seen = 0;
+    for entry in std::fs::read_dir(&bad).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_str().unwrap().to_string();
+        if name == "expected_errors.json" {
+            continue;
+        }
+        let want = expected
+            .get(&name)
+            .unwrap_or_else(|| panic!("{name} has no expected error"))
+            .as_str()
+            .unwrap();
+        let dir = scratch(&format!("bad-{name}"));
+        let (code, out, err) = dem2d(&[
+            "run",
+            path.to_str().unwrap(),
+            "--out",
+            dir.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 2, "{name}: {err}");
+        assert!(
+            err.contains(path.to_str().unwrap()),
+            "{name}: the message names the file: {err}"
+        );
+        assert!(err.contains(want), "{name}: expected «{want}», got «{err}»");
+        assert!(!err.contains("panicked"), "{name}: {err}");
+        assert!(out.is_empty(), "{name}: {out}");
+        assert!(
+            !dir.exists(),
+            "{name}: nothing is written for a refused case"
+        );
+        seen += 1;
+    }
+    assert_eq!(seen, expected.len(), "every expected error has its file");
+}
+
+#[test]
+fn a_blow_up_stops_with_step_and_body_and_keeps_its_output() {
+    // Two stiff, undamped disks squeezed between two walls with Δt far above the critical step
+    // (ωΔt ≈ 25): every step multiplies the oscillation until the state overflows.
+    let case = r#"{"version": 1, "name": "blowup", "gravity": [0, 0], "dt": 1e-3, "duration": 10.0,
+      "output_every": 1,
+      "contact": {"model": "linear", "kn": 1e9, "eta_n": 0, "friction": 0},
+      "walls": [{"point": [0, 0], "normal": [1, 0]}, {"point": [3.99, 0], "normal": [-1, 0]}],
+      "bodies": [{"shape": {"type": "circle", "r": 1}, "position": [1, 0]},
+                 {"shape": {"type": "circle", "r": 1}, "position": [3, 0]}]}"#;
+    let dir = scratch("blowup");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("blowup.json");
+    std::fs::write(&file, case).unwrap();
+    let out = dir.join("out");
+    let (code, _, err) = dem2d(&[
+        "run",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("non-finite") && err.contains("body") && err.contains("step"),
+        "{err}"
+    );
+    assert!(
+        err.contains("warning: dt = 0.001 exceeds the critical time step"),
+        "{err}"
+    );
+    let s = summary(&out);
+    assert!(
+        s["error"].as_str().unwrap().contains("step"),
+        "{}",
+        s["error"]
+    );
+    let rows = std::fs::read_to_string(out.join("trajectory.csv"))
+        .unwrap()
+        .lines()
+        .count();
+    assert!(
+        rows > 3,
+        "the trajectory up to the blow-up is kept ({rows} lines)"
+    );
+}
+
+#[test]
+fn paper_settling_case_rests_at_1e_5_and_never_at_1e_4() {
+    // P Fig. 4: rest at Δt = 1e-5 (P: 881 steps); at Δt = 1e-4 no rest within 0.5 s, |Δθ| keeps
+    // fluctuating, and the Δt warning fires.
+    let fine = scratch("settle3_fine");
+    let (code, _, err) = dem2d(&[
+        "run",
+        cases_dir().join("settle3_dt1e-5.json").to_str().unwrap(),
+        "--out",
+        fine.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let s = summary(&fine);
+    assert_eq!(s["quiescent"], true, "no rest at Δt = 1e-5");
+    assert!(s["warnings"].as_array().unwrap().is_empty());
+    let coarse = scratch("settle3_coarse");
+    let (code, _, err) = dem2d(&[
+        "run",
+        cases_dir().join("settle3_dt1e-4.json").to_str().unwrap(),
+        "--out",
+        coarse.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("warning: dt = 0.0001 exceeds the critical time step"),
+        "{err}"
+    );
+    let s = summary(&coarse);
+    assert_eq!(s["quiescent"], false);
+    assert!((s["time"].as_f64().unwrap() - 0.5).abs() < 1e-9);
+    // The rotation increments over the last tenth of the run: still well above the threshold.
+    let incs = std::fs::read_to_string(coarse.join("increments.csv")).unwrap();
+    let dtheta: Vec<f64> = incs
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(4).unwrap().parse().unwrap())
+        .collect();
+    let tail = &dtheta[dtheta.len() * 9 / 10..];
+    let min_tail = tail.iter().copied().fold(f64::INFINITY, f64::min);
+    assert!(min_tail > 1e-9, "|Δθ| settled to {min_tail:e}");
+}
+
+#[test]
+fn paper_drop_differs_visibly_with_floor_friction() {
+    // P Fig. 2: the two frictions give visibly different motions (centimetres apart).
+    let mut finals = Vec::new();
+    for tag in ["mu01", "mu05"] {
+        let dir = scratch(&format!("drop_{tag}"));
+        let case = cases_dir().join(format!("drop_rebound_{tag}.json"));
+        let (code, _, err) = dem2d(&[
+            "run",
+            case.to_str().unwrap(),
+            "--out",
+            dir.to_str().unwrap(),
+            "--quiet",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let f = &summary(&dir)["final"][0];
+        finals.push((f["x"].as_f64().unwrap(), f["angle"].as_f64().unwrap()));
+    }
+    let dx = (finals[0].0 - finals[1].0).abs();
+    assert!(
+        dx > 1.0,
+        "final positions differ by only {dx} cm: {finals:?}"
+    );
+}
