@@ -22,3 +22,4 @@ pub mod narrow_phase;
 pub mod output;
 pub mod runner;
 pub mod scene;
+pub mod validation;

@@ -1,5 +1,5 @@
 //! The robust cubic solver (`dem2d::geometry::cubic::solve_cubic`) against roots computed in
-//! double-double by critical-point bracketing (`tests/support/reference.rs`), on the cases that
+//! double-double by critical-point bracketing (`dem2d::validation::reference`), on the cases that
 //! break a bare Cardano solver: double and near-double roots, a tiny leading coefficient,
 //! coefficients spanning sixteen decades, and the characteristic cubics of real ellipse pairs.
 //!
@@ -8,11 +8,9 @@
 //! backward-stable evaluation. Roots of a double pair closer than `√ε` may be reported as one
 //! double root; they must then be within `4√(ε κ₂)` of both.
 
-mod support;
-
 use dem2d::geometry::cubic::{one_real_root, solve_cubic};
-use support::dd::DD;
-use support::reference::cubic_real_roots;
+use dem2d::validation::dd::DD;
+use dem2d::validation::reference::cubic_real_roots;
 
 struct Rng(u64);
 impl Rng {

@@ -1,12 +1,10 @@
 //! Self-tests of the double-double type and of the reference contact geometry
-//! (`tests/support`) against closed forms. Closed forms are evaluated in DD from
+//! (`dem2d::validation`) against closed forms. Closed forms are evaluated in DD from
 //! the same exact `f64` inputs, so most comparisons are at the level of the final
 //! rounding to `f64`.
 
-mod support;
-
-use support::dd::DD;
-use support::reference::{
+use dem2d::validation::dd::DD;
+use dem2d::validation::reference::{
     RContact, RObj, RShape, RState, cubic_real_roots, depth_along, poly_real_roots,
     reference_contact,
 };

@@ -1,0 +1,852 @@
+//! The hard-case families of the contact kernel, checked against the independent reference
+//! ([`super::reference`]: double-double, parametric boundary ∩ implicit form solved as a quartic,
+//! no pencil, no cubic).
+//!
+//! Bars (from the kernel issue): |depth error| ≤ 1e-12·a_max; normal angle error ≤ 1e-8 rad;
+//! contact point error ≤ 1e-9·a_max plus two ulps of the coordinates (far from the origin);
+//! classification right whenever the true gap or depth is at least 1e-12·a_max; the same results
+//! after a rigid motion of the pair and after swapping i and j. `tests/geometry_hard_cases.rs`
+//! asserts them; `dem2d figures` tabulates the worst errors with the kernel's time per pair.
+
+use super::reference::{RContact, RObj, RShape, RState, depth_along, reference_contact};
+use crate::geometry::support::support_local;
+use crate::geometry::{Pose, Shape, Vec2, Wall};
+use crate::narrow_phase::{Contact, ContactState, Object, contact};
+
+const DEPTH_BAR: f64 = 1e-12;
+const ANGLE_BAR: f64 = 1e-8;
+const POINT_BAR: f64 = 1e-9;
+const CLASS_BAR: f64 = 1e-12;
+
+/// Deterministic generator (xorshift*).
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn range(&mut self, a: f64, b: f64) -> f64 {
+        a + (b - a) * self.next()
+    }
+    fn angle(&mut self) -> f64 {
+        self.range(-std::f64::consts::PI, std::f64::consts::PI)
+    }
+}
+
+/// One side of a test pair, convertible to both the kernel's and the reference's types.
+#[derive(Clone, Copy, Debug)]
+enum Spec {
+    Body(Shape, [f64; 2], f64),
+    Wall([f64; 2], [f64; 2]),
+}
+
+impl Spec {
+    fn object(&self) -> Object {
+        match *self {
+            Spec::Body(shape, p, th) => Object::Body {
+                shape,
+                pose: Pose::new(Vec2::from(p), th),
+            },
+            Spec::Wall(p, n) => Object::Wall(Wall::new(Vec2::from(p), Vec2::from(n)).unwrap()),
+        }
+    }
+    fn reference(&self) -> RObj {
+        match *self {
+            Spec::Body(shape, pos, angle) => RObj::Body {
+                shape: match shape {
+                    Shape::Circle { r } => RShape::Circle { r },
+                    Shape::Ellipse { a, b } => RShape::Ellipse { a, b },
+                    Shape::Rectangle { w, h } => RShape::Rectangle { w, h },
+                },
+                pos,
+                angle,
+            },
+            Spec::Wall(point, normal) => RObj::Wall { point, normal },
+        }
+    }
+    fn size(&self) -> f64 {
+        match self {
+            Spec::Body(s, ..) => s.bounding_radius(),
+            Spec::Wall(..) => 0.0,
+        }
+    }
+    /// The same object after rotating the plane by ψ about the origin and translating by t.
+    fn moved(&self, psi: f64, t: [f64; 2]) -> Spec {
+        let (s, c) = psi.sin_cos();
+        let rot = |p: [f64; 2]| [c * p[0] - s * p[1], s * p[0] + c * p[1]];
+        match *self {
+            Spec::Body(shape, p, th) => {
+                let q = rot(p);
+                Spec::Body(shape, [q[0] + t[0], q[1] + t[1]], th + psi)
+            }
+            Spec::Wall(p, n) => {
+                let q = rot(p);
+                Spec::Wall([q[0] + t[0], q[1] + t[1]], rot(n))
+            }
+        }
+    }
+}
+
+/// A pair with the direction it was built along (for the true gap along it).
+struct Case {
+    i: Spec,
+    j: Spec,
+    along: [f64; 2],
+}
+
+fn support(shape: &Shape, angle: f64, n: [f64; 2]) -> f64 {
+    let (s, c) = angle.sin_cos();
+    support_local(shape, c * n[0] + s * n[1], -s * n[0] + c * n[1])
+}
+
+/// The point of `shape` (centred at the origin, at `angle`) farthest along the unit direction `n`.
+fn support_point(shape: &Shape, angle: f64, n: [f64; 2]) -> [f64; 2] {
+    let (s, c) = angle.sin_cos();
+    let (ux, uy) = (c * n[0] + s * n[1], -s * n[0] + c * n[1]);
+    let (px, py) = match *shape {
+        Shape::Circle { r } => (r * ux, r * uy),
+        Shape::Ellipse { a, b } => {
+            let h = ((a * ux) * (a * ux) + (b * uy) * (b * uy)).sqrt();
+            (a * a * ux / h, b * b * uy / h)
+        }
+        Shape::Rectangle { w, h } => (0.5 * w * ux.signum(), 0.5 * h * uy.signum()),
+    };
+    [c * px - s * py, s * px + c * py]
+}
+
+/// Body j of `sj` at angle `tj` placed against body i so that j's extreme point along −n sits on
+/// i's extreme point along n (external tangency, common normal n), then moved by `nu` towards i
+/// (`nu > 0` overlaps by ν along n, `nu < 0` leaves a gap |ν| along the separating axis n).
+/// `origin` is i's position.
+fn place(si: Shape, ti: f64, sj: Shape, tj: f64, n: [f64; 2], nu: f64, origin: [f64; 2]) -> Case {
+    let pi = support_point(&si, ti, n);
+    let pj = support_point(&sj, tj, [-n[0], -n[1]]);
+    let c = [pi[0] - pj[0] - nu * n[0], pi[1] - pj[1] - nu * n[1]];
+    Case {
+        i: Spec::Body(si, origin, ti),
+        j: Spec::Body(sj, [origin[0] + c[0], origin[1] + c[1]], tj),
+        along: n,
+    }
+}
+
+/// A wall (as i) under body j with overlap `nu` along the wall normal `n`.
+fn place_wall(sj: Shape, tj: f64, n: [f64; 2], nu: f64, pos: [f64; 2]) -> Case {
+    let h = support(&sj, tj, n) - nu;
+    Case {
+        i: Spec::Wall([pos[0] - h * n[0], pos[1] - h * n[1]], n),
+        j: Spec::Body(sj, pos, tj),
+        along: n,
+    }
+}
+
+/// What one family measured: worst errors (depth and point in units of a_max, normal in
+/// radians; rigid motion and swap in units of the bars), misclassifications, the first
+/// failures, and the pairs themselves (for timing).
+#[derive(Clone, Debug, Default)]
+pub struct FamilyReport {
+    pub name: String,
+    pub cases: usize,
+    pub depth: f64,
+    pub angle: f64,
+    pub point: f64,
+    pub class_errors: usize,
+    pub class_checked: usize,
+    pub motion: f64,
+    pub swap: f64,
+    pub failures: Vec<String>,
+    pub pairs: Vec<(Object, Object)>,
+}
+
+fn ulp(x: f64) -> f64 {
+    let x = x.abs().max(f64::MIN_POSITIVE);
+    f64::from_bits(x.to_bits() + 1) - x
+}
+
+fn angle_between(a: Vec2, b: [f64; 2]) -> f64 {
+    (a.x * b[1] - a.y * b[0])
+        .atan2(a.x * b[0] + a.y * b[1])
+        .abs()
+}
+
+fn same_state(k: ContactState, r: RState) -> bool {
+    matches!(
+        (k, r),
+        (ContactState::Separated, RState::Separated)
+            | (ContactState::Touching, RState::Touching)
+            | (ContactState::Overlap, RState::Overlap)
+            | (ContactState::Deep, RState::Deep(_))
+            | (ContactState::Contained, RState::Contained)
+    )
+}
+
+/// Differences between two kernel results of the same pair (for swap and rigid motion):
+/// the largest of depth difference / a_max, point distance / a_max (beyond rounding), and
+/// normal angle; `map` carries the second result's vectors back to the first's frame.
+fn result_difference(
+    a: &Contact,
+    b: &Contact,
+    scale: f64,
+    flip: bool,
+    map: impl Fn(Vec2) -> Vec2,
+    round: f64,
+    angle_bar: f64,
+) -> f64 {
+    if a.state != b.state {
+        return f64::INFINITY;
+    }
+    let (Some(ga), Some(gb)) = (a.geometry, b.geometry) else {
+        return 0.0;
+    };
+    let nb = if flip {
+        -map(gb.normal)
+    } else {
+        map(gb.normal)
+    };
+    let pb = map(gb.point);
+    let dd = (ga.depth - gb.depth).abs() / scale / DEPTH_BAR;
+    let dn = angle_between(ga.normal, [nb.x, nb.y]) / angle_bar;
+    let dp = ((ga.point - pb).norm() - round).max(0.0) / scale / POINT_BAR;
+    dd.max(dn).max(dp)
+}
+
+/// Checks one case; returns nothing, records worst errors (in units of the bars for
+/// motion/swap, absolute relative errors otherwise).
+fn check(case: &Case, rng: &mut Rng, st: &mut FamilyReport, label: &str, conditioned_normal: bool) {
+    let (oi, oj) = (case.i.object(), case.j.object());
+    let (ri, rj) = (case.i.reference(), case.j.reference());
+    let scale = case.i.size().max(case.j.size());
+    let k = contact(&oi, &oj).unwrap();
+    let r: RContact = reference_contact(&ri, &rj);
+    st.cases += 1;
+    if std::env::var("DEM2D_DEBUG_FAMILY").is_ok_and(|f| label.contains(&f)) {
+        eprintln!(
+            "{label}: kernel {:?} depth {:?}; reference {:?} depth {:?}",
+            k.state,
+            k.geometry.map(|g| g.depth),
+            r.state,
+            r.depth
+        );
+    }
+    // True penetration along the construction direction (DD), for the classification rule.
+    let along = depth_along(&ri, &rj, case.along);
+    let ref_depth = r.depth;
+    let decisive = match r.state {
+        RState::Overlap => ref_depth.unwrap() >= CLASS_BAR * scale,
+        RState::Separated => along <= -CLASS_BAR * scale,
+        RState::Deep(_) | RState::Contained => true,
+        RState::Touching => false,
+    };
+    if decisive {
+        st.class_checked += 1;
+        if !same_state(k.state, r.state) {
+            st.class_errors += 1;
+            st.failures.push(format!(
+                "{label}: state {:?} vs reference {:?} ({case_i:?} / {case_j:?})",
+                k.state,
+                r.state,
+                case_i = case.i,
+                case_j = case.j
+            ));
+            return;
+        }
+    }
+    // The normal bar: 1e-8 rad, or for corner-to-corner rectangle contacts the conditioning of a
+    // chord through two line intersections whose corners carry ε·L rounding: 32ε·L/|chord|.
+    let chord_len = if r.crossings.len() == 2 {
+        (r.crossings[1][0] - r.crossings[0][0]).hypot(r.crossings[1][1] - r.crossings[0][1])
+    } else {
+        0.0
+    };
+    // Each crossing is the intersection of an edge of i with an edge of j, which meet at an
+    // angle θ with sin θ ≥ min(|sin φ|, |cos φ|) (φ the relative rotation of the rectangles), so
+    // an error e in the position of an edge moves a crossing by e/sin θ.
+    let sin_theta = match (case.i, case.j) {
+        (Spec::Body(_, _, ti), Spec::Body(_, _, tj)) => {
+            (tj - ti).sin().abs().min((tj - ti).cos().abs())
+        }
+        _ => 1.0,
+    };
+    let conditioned = |edge_error: f64| {
+        if conditioned_normal && chord_len > 0.0 {
+            ANGLE_BAR.max(2.0 * edge_error / (chord_len * sin_theta))
+        } else {
+            ANGLE_BAR
+        }
+    };
+    let angle_bar = conditioned(16.0 * f64::EPSILON * scale);
+    // Geometry against the reference where the chord definition applies.
+    if let (Some(g), Some(rd), Some(rn), Some(rp)) = (k.geometry, ref_depth, r.normal, r.point_rel)
+    {
+        if matches!(k.state, ContactState::Overlap | ContactState::Touching) {
+            let de = (g.depth - rd).abs() / scale;
+            let ae = angle_between(g.normal, rn);
+            let origin = Vec2::from(r.origin);
+            let round = 2.0 * ulp(g.point.x).max(ulp(g.point.y));
+            let pe = (((g.point - origin) - Vec2::from(rp)).norm() - round).max(0.0) / scale;
+            // A touching result's point and normal are only meaningful to the order of the
+            // crossings' own spread (they merge at tangency): compare depth only then.
+            let touching = k.state == ContactState::Touching || r.state == RState::Touching;
+            st.depth = st.depth.max(de);
+            if !touching {
+                st.angle = st.angle.max(ae);
+                st.point = st.point.max(pe);
+            }
+            if de > DEPTH_BAR || (!touching && (ae > angle_bar || pe > POINT_BAR)) {
+                st.failures.push(format!(
+                    "{label}: depth err {de:.2e}, angle err {ae:.2e}, point err {pe:.2e} ({:?} / {:?})",
+                    case.i, case.j
+                ));
+            }
+        }
+    }
+    if matches!(k.state, ContactState::Deep | ContactState::Contained) {
+        // The fallback's depth is the penetration along its own normal: check that against the
+        // reference's depth along the same direction.
+        let g = k.geometry.unwrap();
+        let rd = depth_along(&ri, &rj, [g.normal.x, g.normal.y]);
+        let de = (g.depth - rd).abs() / scale;
+        st.depth = st.depth.max(de);
+        if de > DEPTH_BAR {
+            st.failures.push(format!(
+                "{label}: fallback depth err {de:.2e} ({:?} / {:?})",
+                case.i, case.j
+            ));
+        }
+    }
+    // Swap symmetry.
+    let ks = contact(&oj, &oi).unwrap();
+    // A touching result's normal is arbitrary where both boundaries have corners.
+    let sw =
+        if !decisive && (k.state == ContactState::Touching || ks.state == ContactState::Touching) {
+            0.0
+        } else {
+            result_difference(&k, &ks, scale, true, |v| v, 0.0, angle_bar)
+        };
+    st.swap = st.swap.max(sw);
+    if sw > 1.0 {
+        st.failures.push(format!(
+            "{label}: swap differs by {sw:.2e} bars ({:?} / {:?})",
+            case.i, case.j
+        ));
+    }
+    // Rigid motion of the pair (rotation about the origin plus a translation).
+    let psi = rng.angle();
+    let t = [rng.range(-50.0, 50.0), rng.range(-50.0, 50.0)];
+    let (mi, mj) = (case.i.moved(psi, t), case.j.moved(psi, t));
+    let km = contact(&mi.object(), &mj.object()).unwrap();
+    let (s, c) = psi.sin_cos();
+    // Carry the moved result back: rotate by −ψ after removing the translation.
+    let back = |v: Vec2, is_point: bool| {
+        let w = if is_point { v - Vec2::from(t) } else { v };
+        Vec2::new(c * w.x + s * w.y, -s * w.x + c * w.y)
+    };
+    let coord = |s: &Spec| match *s {
+        Spec::Body(_, p, _) | Spec::Wall(p, _) => p[0].abs().max(p[1].abs()),
+    };
+    // Moving the inputs rounds each coordinate by half an ulp of its size: the true geometry of
+    // the moved pair differs from the exact motion of the original by up to about that much.
+    let far = coord(&case.i)
+        .max(coord(&case.j))
+        .max(coord(&mi))
+        .max(coord(&mj));
+    let round = 4.0 * ulp(far);
+    let margin = match r.state {
+        RState::Overlap => ref_depth.unwrap(),
+        RState::Separated => -along,
+        RState::Deep(_) | RState::Contained => f64::INFINITY,
+        RState::Touching => 0.0,
+    };
+    if margin >= CLASS_BAR * scale + 4.0 * round {
+        if k.state != km.state {
+            st.failures.push(format!(
+                "{label}: rigid motion changes the state {:?} → {:?} ({:?} / {:?})",
+                k.state, km.state, case.i, case.j
+            ));
+            return;
+        }
+        // The contained fallback's normal follows the line of centres, which rounding of the
+        // moved inputs turns by (rounding)/(distance of centres): compare its state only.
+        if k.state == ContactState::Contained {
+            return;
+        }
+        let mut kmb = km;
+        if let Some(g) = &mut kmb.geometry {
+            g.point = back(g.point, true);
+            g.normal = back(g.normal, false);
+        }
+        // The moved inputs carry their own rounding: for a conditioned normal that adds
+        // (rounding)/(chord·sin θ).
+        let motion_bar = conditioned(16.0 * f64::EPSILON * scale + 2.0 * round);
+        let mv = result_difference(&k, &kmb, scale, false, |v| v, 2.0 * round, motion_bar);
+        // Depth moves with the inputs' rounding too: allow that on top of the bar.
+        let mv = (mv - 2.0 * round / scale / DEPTH_BAR).max(0.0);
+        st.motion = st.motion.max(mv);
+        if mv > 1.0 {
+            st.failures.push(format!(
+                "{label}: rigid motion changes the result by {mv:.2e} bars ({:?} / {:?})",
+                case.i, case.j
+            ));
+        }
+    }
+}
+
+/// Runs a family and records its report.
+fn family(
+    name: &str,
+    reports: &mut Vec<FamilyReport>,
+    mut make: impl FnMut(&mut Rng, usize) -> Option<Case>,
+    n: usize,
+) {
+    family_with(name, reports, &mut make, n, false)
+}
+
+fn family_with(
+    name: &str,
+    reports: &mut Vec<FamilyReport>,
+    make: &mut dyn FnMut(&mut Rng, usize) -> Option<Case>,
+    n: usize,
+    conditioned_normal: bool,
+) {
+    let mut rng = Rng(0xD1B5_4A32_D192_ED03 ^ (name.len() as u64).wrapping_mul(0x9E37_79B9));
+    let mut st = FamilyReport {
+        name: name.to_string(),
+        ..Default::default()
+    };
+    for k in 0..n {
+        if let Some(case) = make(&mut rng, k) {
+            st.pairs.push((case.i.object(), case.j.object()));
+            check(&case, &mut rng, &mut st, name, conditioned_normal);
+        }
+    }
+    reports.push(st);
+}
+
+/// The Markdown table of the reports; with `ns_per_pair`, a column of the kernel's median time.
+pub fn markdown_table(reports: &[FamilyReport], ns_per_pair: Option<&[f64]>) -> String {
+    let mut t = String::from(
+        "| family | cases | worst depth err / a_max | worst normal err (rad) | worst point err / a_max | misclassified / checked | rigid motion (bars) | swap (bars) |",
+    );
+    t.push_str(if ns_per_pair.is_some() {
+        " ns/pair |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n"
+    } else {
+        "\n|---|---:|---:|---:|---:|---:|---:|---:|\n"
+    });
+    for (k, r) in reports.iter().enumerate() {
+        t.push_str(&format!(
+            "| {} | {} | {:.1e} | {:.1e} | {:.1e} | {}/{} | {:.2} | {:.2} |",
+            r.name,
+            r.cases,
+            r.depth,
+            r.angle,
+            r.point,
+            r.class_errors,
+            r.class_checked,
+            r.motion,
+            r.swap
+        ));
+        if let Some(ns) = ns_per_pair {
+            t.push_str(&format!(" {:.0} |", ns[k]));
+        }
+        t.push('\n');
+    }
+    t
+}
+
+const DEPTHS: [f64; 9] = [1e-12, 1e-11, 1e-10, 1e-8, 1e-6, 1e-4, 1e-2, 0.1, 0.3];
+const ASPECTS: [f64; 5] = [1.0, 1.0 + 1e-9, 1.5, 10.0, 100.0];
+
+fn unit(t: f64) -> [f64; 2] {
+    [t.cos(), t.sin()]
+}
+
+/// Every family of hard cases, each checked against the reference.
+pub fn run_families() -> Vec<FamilyReport> {
+    let mut reports = Vec::new();
+
+    // Ellipse pairs: every aspect ratio × every overlap depth, random orientations and sizes.
+    for &aspect in &ASPECTS {
+        let name = format!("ellipse–ellipse, a/b = {aspect}, overlap 1e-12…0.3 b");
+        family(
+            &name,
+            &mut reports,
+            |rng, k| {
+                let a_i = 1.0;
+                let a_j = rng.range(0.5, 2.0);
+                let si = Shape::Ellipse {
+                    a: a_i,
+                    b: a_i / aspect,
+                };
+                let sj = Shape::Ellipse {
+                    a: a_j,
+                    b: a_j / aspect,
+                };
+                let b = (a_i / aspect).min(a_j / aspect);
+                let nu = DEPTHS[k % DEPTHS.len()] * b;
+                Some(place(
+                    si,
+                    rng.angle(),
+                    sj,
+                    rng.angle(),
+                    unit(rng.angle()),
+                    nu,
+                    [0.0, 0.0],
+                ))
+            },
+            9 * 40,
+        );
+    }
+    family(
+        "ellipse–ellipse separated by 1e-12…0.3 b",
+        &mut reports,
+        |rng, k| {
+            let aspect = ASPECTS[k % ASPECTS.len()];
+            let si = Shape::Ellipse {
+                a: 1.0,
+                b: 1.0 / aspect,
+            };
+            let sj = Shape::Ellipse {
+                a: 1.3,
+                b: 1.3 / aspect,
+            };
+            let nu = -DEPTHS[(k / 5) % DEPTHS.len()] / aspect;
+            Some(place(
+                si,
+                rng.angle(),
+                sj,
+                rng.angle(),
+                unit(rng.angle()),
+                nu,
+                [0.0, 0.0],
+            ))
+        },
+        450,
+    );
+    family(
+        "identical shapes, identical orientation",
+        &mut reports,
+        |rng, k| {
+            let aspect = ASPECTS[k % ASPECTS.len()];
+            let s = Shape::Ellipse {
+                a: 1.5,
+                b: 1.5 / aspect,
+            };
+            let th = rng.angle();
+            let nu =
+                DEPTHS[(k / 5) % DEPTHS.len()] * 1.5 / aspect * if k % 2 == 0 { 1.0 } else { -1.0 };
+            Some(place(s, th, s, th, unit(rng.angle()), nu, [0.0, 0.0]))
+        },
+        450,
+    );
+    family(
+        "circle–ellipse",
+        &mut reports,
+        |rng, k| {
+            let aspect = ASPECTS[(k / 9) % ASPECTS.len()];
+            let sc = Shape::Circle {
+                r: rng.range(0.3, 2.0),
+            };
+            let se = Shape::Ellipse {
+                a: 1.0,
+                b: 1.0 / aspect,
+            };
+            let nu = DEPTHS[k % DEPTHS.len()] / aspect;
+            let c = place(sc, 0.0, se, rng.angle(), unit(rng.angle()), nu, [0.0, 0.0]);
+            Some(if k % 2 == 0 {
+                c
+            } else {
+                Case {
+                    i: c.j,
+                    j: c.i,
+                    along: [-c.along[0], -c.along[1]],
+                }
+            })
+        },
+        450,
+    );
+    family(
+        "circle–circle",
+        &mut reports,
+        |rng, k| {
+            let si = Shape::Circle {
+                r: rng.range(0.3, 2.0),
+            };
+            let sj = Shape::Circle {
+                r: rng.range(0.3, 2.0),
+            };
+            let nu = DEPTHS[k % DEPTHS.len()] * if k % 2 == 0 { 0.3 } else { -0.3 };
+            Some(place(si, 0.0, sj, 0.0, unit(rng.angle()), nu, [0.0, 0.0]))
+        },
+        360,
+    );
+    family(
+        "ellipse pairs 1e6 from the origin",
+        &mut reports,
+        |rng, k| {
+            let aspect = ASPECTS[k % ASPECTS.len()];
+            let si = Shape::Ellipse {
+                a: 1.0,
+                b: 1.0 / aspect,
+            };
+            let sj = Shape::Ellipse {
+                a: 0.8,
+                b: 0.8 / aspect,
+            };
+            let nu = DEPTHS[(k / 5) % DEPTHS.len()] * 0.8 / aspect;
+            let o = unit(rng.angle());
+            let r = rng.range(1e5, 1e6);
+            Some(place(
+                si,
+                rng.angle(),
+                sj,
+                rng.angle(),
+                unit(rng.angle()),
+                nu,
+                [r * o[0], r * o[1]],
+            ))
+        },
+        450,
+    );
+    family(
+        "exact tangency (ν = 0)",
+        &mut reports,
+        |rng, k| {
+            let aspect = ASPECTS[k % ASPECTS.len()];
+            let si = Shape::Ellipse {
+                a: 1.0,
+                b: 1.0 / aspect,
+            };
+            let sj = if k % 3 == 0 {
+                Shape::Circle { r: 0.7 }
+            } else {
+                Shape::Ellipse {
+                    a: 0.7,
+                    b: 0.7 / aspect,
+                }
+            };
+            Some(place(
+                si,
+                rng.angle(),
+                sj,
+                rng.angle(),
+                unit(rng.angle()),
+                0.0,
+                [0.0, 0.0],
+            ))
+        },
+        300,
+    );
+    family(
+        "four crossings (crossed ellipses)",
+        &mut reports,
+        |rng, _| {
+            let aspect = rng.range(2.0, 20.0);
+            let si = Shape::Ellipse {
+                a: 1.0,
+                b: 1.0 / aspect,
+            };
+            let sj = Shape::Ellipse {
+                a: rng.range(0.8, 1.2),
+                b: 1.0 / aspect,
+            };
+            let ti = rng.angle();
+            let tj = ti + std::f64::consts::FRAC_PI_2 + rng.range(-0.6, 0.6);
+            let off = rng.range(0.0, 0.3);
+            let dir = unit(rng.angle());
+            Some(Case {
+                i: Spec::Body(si, [0.0, 0.0], ti),
+                j: Spec::Body(sj, [off * dir[0], off * dir[1]], tj),
+                along: dir,
+            })
+        },
+        300,
+    );
+    family(
+        "containment",
+        &mut reports,
+        |rng, k| {
+            let aspect = ASPECTS[k % ASPECTS.len()].min(10.0);
+            let si = Shape::Ellipse {
+                a: 2.0,
+                b: 2.0 / aspect,
+            };
+            let small = 0.2 / aspect;
+            let sj = if k % 2 == 0 {
+                Shape::Circle { r: small }
+            } else {
+                Shape::Ellipse {
+                    a: small,
+                    b: small * 0.6,
+                }
+            };
+            let ti = rng.angle();
+            let dir = unit(rng.angle());
+            let off = rng.range(0.0, 0.5) / aspect;
+            let c = Case {
+                i: Spec::Body(si, [0.0, 0.0], ti),
+                j: Spec::Body(sj, [off * dir[0], off * dir[1]], rng.angle()),
+                along: dir,
+            };
+            Some(if k % 4 == 1 {
+                Case {
+                    i: c.j,
+                    j: c.i,
+                    along: dir,
+                }
+            } else {
+                c
+            })
+        },
+        200,
+    );
+    // Walls and rectangles.
+    family(
+        "wall–ellipse/circle (incl. 1e6)",
+        &mut reports,
+        |rng, k| {
+            let aspect = ASPECTS[k % ASPECTS.len()];
+            let s = if k % 4 == 0 {
+                Shape::Circle { r: 1.0 }
+            } else {
+                Shape::Ellipse {
+                    a: 1.0,
+                    b: 1.0 / aspect,
+                }
+            };
+            let nu = DEPTHS[(k / 5) % DEPTHS.len()] / aspect * if k % 2 == 0 { 1.0 } else { -1.0 };
+            let far = if k % 3 == 0 { 1e6 } else { 0.0 };
+            let c = place_wall(s, rng.angle(), unit(rng.angle()), nu, [far, -far]);
+            Some(if k % 5 == 2 {
+                Case {
+                    i: c.j,
+                    j: c.i,
+                    along: [-c.along[0], -c.along[1]],
+                }
+            } else {
+                c
+            })
+        },
+        450,
+    );
+    family(
+        "wall–rectangle",
+        &mut reports,
+        |rng, k| {
+            let s = Shape::Rectangle {
+                w: 1.0,
+                h: rng.range(0.1, 1.0),
+            };
+            let nu = DEPTHS[k % DEPTHS.len()] * 0.1 * if k % 2 == 0 { 1.0 } else { -1.0 };
+            let th = if k % 7 == 0 { 0.0 } else { rng.angle() };
+            Some(place_wall(s, th, unit(rng.angle()), nu, [0.0, 0.0]))
+        },
+        360,
+    );
+    family(
+        "rectangle–ellipse/circle",
+        &mut reports,
+        |rng, k| {
+            let sr = Shape::Rectangle {
+                w: 1.0,
+                h: rng.range(0.2, 1.0),
+            };
+            let aspect = ASPECTS[k % ASPECTS.len()].min(10.0);
+            let se = if k % 3 == 0 {
+                Shape::Circle {
+                    r: rng.range(0.2, 1.0),
+                }
+            } else {
+                Shape::Ellipse {
+                    a: 0.8,
+                    b: 0.8 / aspect,
+                }
+            };
+            let nu = DEPTHS[(k / 5) % DEPTHS.len()] * 0.08 * if k % 2 == 0 { 1.0 } else { -1.0 };
+            let c = place(
+                sr,
+                rng.angle(),
+                se,
+                rng.angle(),
+                unit(rng.angle()),
+                nu,
+                [0.0, 0.0],
+            );
+            Some(if k % 4 == 3 {
+                Case {
+                    i: c.j,
+                    j: c.i,
+                    along: [-c.along[0], -c.along[1]],
+                }
+            } else {
+                c
+            })
+        },
+        450,
+    );
+    family(
+        "rectangle–rectangle, corner or edge against a face",
+        &mut reports,
+        |rng, k| {
+            let si = Shape::Rectangle {
+                w: 1.0,
+                h: rng.range(0.2, 1.0),
+            };
+            let sj = Shape::Rectangle {
+                w: rng.range(0.3, 1.5),
+                h: rng.range(0.2, 1.0),
+            };
+            let nu = DEPTHS[k % DEPTHS.len()] * 0.1 * if k % 2 == 0 { 1.0 } else { -1.0 };
+            let ti = rng.angle();
+            // Along a face normal of i: i's support there is a face, j's a corner (or an edge
+            // when j is aligned, every fifth case: stacked boxes with collinear sides).
+            let face = (k / 2 % 4) as f64 * std::f64::consts::FRAC_PI_2;
+            let dir = unit(ti + face);
+            let tj = if k % 5 == 0 { ti } else { rng.angle() };
+            let mut c = place(si, ti, sj, tj, dir, nu, [0.0, 0.0]);
+            if let Spec::Body(s, p, t) = c.j {
+                // Slide j along the face so that aligned boxes are offset (not corner on corner).
+                let slide = rng.range(-0.3, 0.3);
+                c.j = Spec::Body(s, [p[0] - slide * dir[1], p[1] + slide * dir[0]], t);
+            }
+            Some(if k % 3 == 1 {
+                Case {
+                    i: c.j,
+                    j: c.i,
+                    along: [-dir[0], -dir[1]],
+                }
+            } else {
+                c
+            })
+        },
+        450,
+    );
+    family_with(
+        "rectangle–rectangle, corner on corner",
+        &mut reports,
+        &mut |rng, k| {
+            let si = Shape::Rectangle {
+                w: 1.0,
+                h: rng.range(0.2, 1.0),
+            };
+            let sj = Shape::Rectangle {
+                w: rng.range(0.3, 1.5),
+                h: rng.range(0.2, 1.0),
+            };
+            let nu = DEPTHS[k % DEPTHS.len()] * 0.1 * if k % 2 == 0 { 1.0 } else { -1.0 };
+            Some(place(
+                si,
+                rng.angle(),
+                sj,
+                rng.angle(),
+                unit(rng.angle()),
+                nu,
+                [0.0, 0.0],
+            ))
+        },
+        450,
+        true,
+    );
+
+    reports
+}

@@ -1,0 +1,12 @@
+//! Validation: an independent high-precision reference for the contact geometry and the families
+//! of hard cases it is compared on. Never used by a simulation; the tests and `dem2d figures`
+//! use it.
+//!
+//! The reference computes in double-double arithmetic (≈ 106 bits) from the exact double inputs,
+//! by methods deliberately different from the kernel's: the boundary of one body in parametric
+//! form substituted into the other's implicit form (a quartic in tan(t/2)) instead of the pencil
+//! of conics, segment intersections for rectangles.
+
+pub mod dd;
+pub mod families;
+pub mod reference;
