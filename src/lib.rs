@@ -20,6 +20,7 @@ pub mod dynamics;
 pub mod geometry;
 pub mod narrow_phase;
 pub mod output;
+pub mod report;
 pub mod runner;
 pub mod scene;
 pub mod validation;

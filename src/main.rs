@@ -44,6 +44,44 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Draw a run (a directory written by `dem2d run`) as an SVG.
+    Plot {
+        /// The run directory.
+        run_dir: PathBuf,
+        /// Output file (default: RUN_DIR/<kind>.svg).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// What to draw: the scene (outlines along the paths), the time series (height and angle
+        /// against time) or P's quiescence measures against the step.
+        #[arg(long, value_enum, default_value = "scene")]
+        kind: PlotKind,
+    },
+    /// Regenerate every figure and table of the README into figures/ (runs the paper's cases,
+    /// the time-step sweeps and the contact-kernel report; about 5 s).
+    Figures {
+        /// Output directory for SVG, CSV and Markdown.
+        #[arg(long, default_value = "figures")]
+        out: PathBuf,
+        /// Case directory.
+        #[arg(long, default_value = "cases")]
+        cases: PathBuf,
+        /// Where the runs go.
+        #[arg(long, default_value = "target/figure-runs")]
+        work: PathBuf,
+        /// README whose marked tables are refreshed ("" to leave it alone).
+        #[arg(long, default_value = "README.md")]
+        readme: String,
+        /// Fewer sweep points and repetitions (a quick look, not the README's numbers).
+        #[arg(long)]
+        quick: bool,
+    },
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum PlotKind {
+    Scene,
+    Series,
+    Quiescence,
 }
 
 /// An error for the user, with its exit code.
@@ -130,7 +168,7 @@ fn run(
         None => String::new(),
     };
     println!(
-        "{}: {} steps, t = {:.6} s, {} in {:.2} s; dt = {:e}, dt_critical = {:.3e}; output in {}",
+        "{}: {} steps, t = {:.6} s, {}; wall time {:.2} s; dt = {:e}, dt_critical = {:.3e} (a priori), {} (contact network); output in {}",
         s.name,
         s.steps,
         s.time,
@@ -138,8 +176,81 @@ fn run(
         s.wall_seconds,
         s.dt,
         s.dt_critical,
+        s.dt_critical_observed
+            .map_or("none".to_string(), |v| format!("{v:.3e}")),
         out_dir.display()
     );
+    Ok(())
+}
+
+fn plot(run_dir: &std::path::Path, out: Option<PathBuf>, kind: PlotKind) -> Result<(), Failure> {
+    use dem2d::output::panels;
+    use dem2d::output::plot::{self, SceneOptions, ScenePanel};
+    let run = dem2d::output::run_data::RunData::load(run_dir)
+        .map_err(|e| Failure::input(e.to_string()))?;
+    let name = match kind {
+        PlotKind::Scene => "scene",
+        PlotKind::Series => "series",
+        PlotKind::Quiescence => "quiescence",
+    };
+    let out = out.unwrap_or_else(|| run_dir.join(format!("{name}.svg")));
+    let title = format!(
+        "{} ({} steps, t = {:.4} s)",
+        run.case.name,
+        run.summary["steps"],
+        run.summary["time"].as_f64().unwrap_or(f64::NAN)
+    );
+    let result = match kind {
+        PlotKind::Scene => plot::scene(
+            &out,
+            &[ScenePanel {
+                title,
+                runs: vec![(&run, String::new())],
+            }],
+            &SceneOptions::default(),
+        ),
+        PlotKind::Series => plot::line_panels(
+            &out,
+            (1000, 700),
+            (2, 1),
+            &panels::time_series(&[(&run, "")], &title),
+        ),
+        PlotKind::Quiescence => plot::line_panels(
+            &out,
+            (1000, 500),
+            (1, 1),
+            &[panels::quiescence(&run, &title, None)],
+        ),
+    };
+    result.map_err(|e| Failure {
+        code: 1,
+        message: format!("{}: {e}", out.display()),
+    })?;
+    println!("{}", out.display());
+    Ok(())
+}
+
+fn figures(
+    out: PathBuf,
+    cases: PathBuf,
+    work: PathBuf,
+    readme: String,
+    quick: bool,
+) -> Result<(), Failure> {
+    let opts = dem2d::report::FigureOptions {
+        cases,
+        out,
+        work,
+        readme: (!readme.is_empty()).then(|| PathBuf::from(readme)),
+        quick,
+    };
+    let written = dem2d::report::figures(&opts).map_err(|e| Failure {
+        code: 1,
+        message: e.to_string(),
+    })?;
+    for f in written {
+        println!("{}", f.display());
+    }
     Ok(())
 }
 
@@ -153,6 +264,20 @@ fn main() -> ExitCode {
             max_steps,
             quiet,
         } => run(case, out.clone(), *max_steps, *quiet),
+        Command::Plot { run_dir, out, kind } => plot(run_dir, out.clone(), *kind),
+        Command::Figures {
+            out,
+            cases,
+            work,
+            readme,
+            quick,
+        } => figures(
+            out.clone(),
+            cases.clone(),
+            work.clone(),
+            readme.clone(),
+            *quick,
+        ),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

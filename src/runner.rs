@@ -52,7 +52,7 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<R
     let mut warnings = Vec::new();
     if case.dt > dt_critical {
         warnings.push(format!(
-            "dt = {} exceeds the critical time step estimated from the stiffest possible contact, {:.3e} \
+            "dt = {:e} exceeds the critical time step estimated from the stiffest possible contact, {:.3e} \
              (damping, rotational inertia and lever arms included): the explicit scheme may oscillate or blow up",
             case.dt, dt_critical
         ));
@@ -88,6 +88,7 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<R
         }
         if s % case.output_every == 0 {
             traj.write(&world)?;
+            world.network_critical_dt();
         }
         last_report = report;
         if let Some(q) = case.quiescence {
@@ -122,6 +123,16 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<R
         }
     }
     let wall_seconds = start.elapsed().as_secs_f64();
+    world.network_critical_dt();
+    let observed = world.diagnostics.dt_critical_observed;
+    if case.dt > observed && observed.is_finite() {
+        warnings.push(format!(
+            "dt = {:e} exceeds the critical time step of the contact network observed during the run, \
+             {observed:.3e} (its stiffest mode, sampled every output interval): the explicit scheme may \
+             oscillate or blow up",
+            case.dt
+        ));
+    }
     if opts.progress && wall_seconds >= 2.0 {
         eprintln!();
     }

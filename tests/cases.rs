@@ -157,7 +157,7 @@ fn a_blow_up_stops_with_step_and_body_and_keeps_its_output() {
         "{err}"
     );
     assert!(
-        err.contains("warning: dt = 0.001 exceeds the critical time step"),
+        err.contains("warning: dt = 1e-3 exceeds the critical time step"),
         "{err}"
     );
     let s = summary(&out);
@@ -202,7 +202,7 @@ fn paper_settling_case_rests_at_1e_5_and_never_at_1e_4() {
     ]);
     assert_eq!(code, 0, "{err}");
     assert!(
-        err.contains("warning: dt = 0.0001 exceeds the critical time step"),
+        err.contains("warning: dt = 1e-4 exceeds the critical time step"),
         "{err}"
     );
     let s = summary(&coarse);

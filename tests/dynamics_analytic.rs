@@ -509,3 +509,57 @@ fn hertz_impact_matches_closed_form_and_an_independent_integration() {
         }
     }
 }
+
+#[test]
+fn network_critical_step_matches_the_modes_of_closed_form_systems() {
+    use dem2d::dynamics::timestep::critical_dt;
+    let m = std::f64::consts::PI; // disks of radius 1, density 1
+    let k: f64 = 1e6;
+    // Two disks squeezed between two walls, frictionless: a chain wall–m–m–wall of three equal
+    // springs, eigenvalues (k/m)(2 ∓ 1): the stiffest ω² = 3k/m. Undamped: Δt = 2/ω.
+    let spec = linear(k, k, 0.0, 0.0);
+    let walls = vec![
+        WallSpec {
+            wall: Wall::new(Vec2::new(0.0, 0.0), Vec2::x()).unwrap(),
+            spec,
+        },
+        WallSpec {
+            wall: Wall::new(Vec2::new(3.97, 0.0), -Vec2::x()).unwrap(),
+            spec,
+        },
+    ];
+    let disks = [
+        body(Shape::Circle { r: 1.0 }, 0.99, 0.0, 0.0, Vec2::zeros(), 0.0),
+        body(Shape::Circle { r: 1.0 }, 2.98, 0.0, 0.0, Vec2::zeros(), 0.0),
+    ];
+    let mut w = World::new(&disks, walls, Vec2::zeros(), spec, 1e-6);
+    assert_eq!(w.contacts.current.len(), 3);
+    assert_relative_eq!(
+        w.network_critical_dt(),
+        2.0 / (3.0 * k / m).sqrt(),
+        max_relative = 1e-5
+    );
+    // A disk resting on a floor with friction and dashpots: the normal mode has ω² = k_n/m; the
+    // shear spring at the contact point drives slip and roll through the lever h (the centre's
+    // height above the floor), w = 1/m + h²/I = (1 + 2h²)/m ≈ 3/m, ω² = k_s w, damping ratio
+    // ζ = ηw/(2ω): Δt = 2(√(1+ζ²) − ζ)/ω of the stiffer of the two.
+    let eta = 100.0;
+    let spec = linear(k, k, eta, 0.5);
+    let mut w = World::new(
+        &[body(
+            Shape::Circle { r: 1.0 },
+            0.0,
+            1.0 - 1e-4,
+            0.0,
+            Vec2::zeros(),
+            0.0,
+        )],
+        vec![floor(spec)],
+        Vec2::new(0.0, -980.0),
+        spec,
+        1e-6,
+    );
+    let h = 1.0 - 1e-4;
+    let expected = critical_dt(k, eta, (1.0 + 2.0 * h * h) / m).min(critical_dt(k, eta, 1.0 / m));
+    assert_relative_eq!(w.network_critical_dt(), expected, max_relative = 1e-5);
+}

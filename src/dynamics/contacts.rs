@@ -37,6 +37,11 @@ pub struct Contact {
     pub normal_non_elastic: f64,
     pub tangential: f64,
     pub shear_energy_change: f64,
+    /// Stiffness and damping now, normal and shear (for the critical time step).
+    pub kn: f64,
+    pub eta_n: f64,
+    pub kt: f64,
+    pub eta_t: f64,
 }
 
 impl Contact {

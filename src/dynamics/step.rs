@@ -19,7 +19,6 @@
 //! (see [`super::timestep`]).
 
 use super::contacts::{Contact, WALL_BASE};
-use super::timestep::critical_dt;
 use super::world::World;
 use crate::contact_law::Kinematics;
 use crate::geometry::{Pose, Vec2};
@@ -171,7 +170,6 @@ impl World {
         self.contacts.begin_step();
         let g = self.gravity.norm();
         let (mut sum_f, mut sum_m, mut elastic) = (0.0, 0.0, 0.0);
-        let mut dt_obs = self.diagnostics.dt_critical_observed;
         for idx in 0..self.candidates.len() {
             let (i, j) = self.candidates[idx];
             let (iu, ju) = (i as usize, j as usize);
@@ -217,16 +215,12 @@ impl World {
             let (recv, give) = if wall { (iu, None) } else { (ju, Some(iu)) };
             let r_recv = point - b.pose[recv].position;
             let mut v_rel = b.point_velocity(recv, r_recv);
-            let mut w_n = b.inv_mass[recv] + cross(r_recv, n_).powi(2) * b.inv_inertia[recv];
-            let mut w_t = b.inv_mass[recv] + cross(r_recv, t_).powi(2) * b.inv_inertia[recv];
             let mut inv_m = b.inv_mass[recv];
             let mut inv_r = 1.0 / b.curvature_radius(recv, -n_);
             let mut rho = b.density[recv];
             let r_give = give.map(|k| point - b.pose[k].position);
             if let (Some(k), Some(r)) = (give, r_give) {
                 v_rel -= b.point_velocity(k, r);
-                w_n += b.inv_mass[k] + cross(r, n_).powi(2) * b.inv_inertia[k];
-                w_t += b.inv_mass[k] + cross(r, t_).powi(2) * b.inv_inertia[k];
                 inv_m += b.inv_mass[k];
                 inv_r += 1.0 / b.curvature_radius(k, n_);
                 rho = 0.5 * (rho + b.density[k]);
@@ -265,9 +259,6 @@ impl World {
                 .min(give.map_or(f64::INFINITY, |k| b.shape[k].inscribed_radius()));
             self.diagnostics.max_depth_ratio =
                 self.diagnostics.max_depth_ratio.max(geo.depth / scale);
-            dt_obs = dt_obs
-                .min(critical_dt(cf.kn, cf.eta_n, w_n))
-                .min(critical_dt(cf.kt, cf.eta_t, w_t));
             self.contacts.current.push(Contact {
                 i,
                 j,
@@ -282,6 +273,10 @@ impl World {
                 normal_non_elastic: cf.normal_non_elastic,
                 tangential: cf.tangential,
                 shear_energy_change: cf.shear_energy_change,
+                kn: cf.kn,
+                eta_n: cf.eta_n,
+                kt: cf.kt,
+                eta_t: cf.eta_t,
             });
         }
         // A contact that opened took its shear spring's energy with it.
@@ -289,7 +284,6 @@ impl World {
             self.energies.dissipated += self.contacts.opened_shear_energy();
         }
         self.energies.elastic = elastic;
-        self.diagnostics.dt_critical_observed = dt_obs;
         let nc = self.contacts.current.len().max(1) as f64;
         (sum_f / nc, sum_m / nc)
     }

@@ -43,7 +43,8 @@ pub struct Diagnostics {
     pub deep_contacts: u64,
     /// Contact-steps in the `contained` fallback.
     pub contained_contacts: u64,
-    /// Smallest critical time step over the actual contacts seen (∞ before any contact).
+    /// Smallest critical time step of the contact network sampled so far (∞ before any contact;
+    /// see [`World::network_critical_dt`]).
     pub dt_critical_observed: f64,
 }
 

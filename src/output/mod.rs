@@ -1,5 +1,8 @@
 //! Output formats. Readers of results only: nothing here changes the world.
 
 pub mod contacts;
+pub mod panels;
+pub mod plot;
+pub mod run_data;
 pub mod summary;
 pub mod trace;

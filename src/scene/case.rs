@@ -1,7 +1,7 @@
 //! Case files: one JSON file describes one scene completely (`"version": 1`).
 //!
 //! ```json
-//! { "version": 1, "name": "settle3", "description": "…",
+//! { "version": 1, "name": "settle3", "description": "…", "units": "cm",
 //!   "gravity": [0, -980], "dt": 1e-5, "duration": 0.5,
 //!   "quiescence": 1e-10, "quiescence_window": 1, "output_every": 100,
 //!   "contact": { "model": "linear", "kn_over_rho_g": 36400, "ks_over_rho_g": 36400,
@@ -28,6 +28,8 @@ use serde_json::{Map, Value};
 pub struct Case {
     pub name: String,
     pub description: String,
+    /// The length unit, for labels only (`"cm"` in the paper's cases; default empty).
+    pub units: String,
     pub gravity: Vec2,
     pub dt: f64,
     pub duration: f64,
@@ -92,6 +94,7 @@ impl Case {
         }
         let name = o.req_with("name", string)?;
         let description = o.opt_with("description", string)?.unwrap_or_default();
+        let units = o.opt_with("units", string)?.unwrap_or_default();
         let gravity = Vec2::from(o.req_with("gravity", vec2)?);
         let dt = o.req_with("dt", positive)?;
         let duration = o.req_with("duration", positive)?;
@@ -155,6 +158,7 @@ impl Case {
         Ok(Case {
             name,
             description,
+            units,
             gravity,
             dt,
             duration,

@@ -1,0 +1,110 @@
+//! Standard panels drawn from a run read back from its directory: height and angle against time,
+//! and P's quiescence measures against the step. Used by `dem2d plot` and `dem2d figures`.
+
+use crate::output::plot::{LinePanel, Series};
+use crate::output::run_data::{Increments, RunData};
+
+/// `axis (units)`, or `axis` when the case gives no units.
+fn with_units(axis: &str, units: &str) -> String {
+    if units.is_empty() {
+        axis.to_string()
+    } else {
+        format!("{axis} ({units})")
+    }
+}
+
+/// Height and angle of every body against time, one colour per (run, body); `runs` pairs each
+/// run with its legend label ("" for none).
+pub fn time_series(runs: &[(&RunData, &str)], title: &str) -> Vec<LinePanel> {
+    let units = runs
+        .first()
+        .map(|r| r.0.case.units.clone())
+        .unwrap_or_default();
+    let mut height = LinePanel {
+        title: title.into(),
+        x_label: "t (s)".into(),
+        y_label: with_units("centroid height y", &units),
+        ..Default::default()
+    };
+    let mut angle = LinePanel {
+        x_label: "t (s)".into(),
+        y_label: "angle θ (rad)".into(),
+        ..Default::default()
+    };
+    let mut c = 0;
+    for (run, label) in runs {
+        let n = run.case.bodies.len();
+        for k in 0..n {
+            let name = match (label.is_empty(), n > 1) {
+                (false, true) => format!("{label}, body {k}"),
+                (false, false) => label.to_string(),
+                (true, true) => format!("body {k}"),
+                (true, false) => String::new(),
+            };
+            height.series.push(Series {
+                label: name.clone(),
+                points: run.frames.iter().map(|f| (f.t, f.bodies[k].y)).collect(),
+                color: c,
+                line: true,
+                ..Default::default()
+            });
+            angle.series.push(Series {
+                label: name,
+                points: run
+                    .frames
+                    .iter()
+                    .map(|f| (f.t, f.bodies[k].angle))
+                    .collect(),
+                color: c,
+                line: true,
+                ..Default::default()
+            });
+            c += 1;
+        }
+    }
+    vec![height, angle]
+}
+
+/// P's quiescence measures (mean |Δx|, |Δy|, |Δθ| per step) against the step on a log scale,
+/// with the case's threshold when it has one. Steps with a zero increment cannot be drawn on a
+/// log axis and are left out. `y_range` fixes the axis (to compare panels side by side).
+pub fn quiescence(run: &RunData, title: &str, y_range: Option<(f64, f64)>) -> LinePanel {
+    let units = with_units("mean increment per step", &run.case.units);
+    let pick = |f: fn(&Increments) -> f64| {
+        run.increments
+            .iter()
+            .map(|i| (i.step as f64, f(i)))
+            .filter(|p| p.1 > 0.0)
+            .collect::<Vec<_>>()
+    };
+    let series = [
+        ("mean |Δx|", pick(|i| i.mean_dx)),
+        ("mean |Δy|", pick(|i| i.mean_dy)),
+        ("mean |Δθ| (rad)", pick(|i| i.mean_dtheta)),
+    ]
+    .into_iter()
+    .enumerate()
+    .map(|(c, (label, points))| Series {
+        label: label.into(),
+        points,
+        color: c,
+        line: true,
+        ..Default::default()
+    })
+    .collect();
+    LinePanel {
+        title: title.into(),
+        x_label: "step".into(),
+        y_label: units,
+        log_y: true,
+        series,
+        hlines: run
+            .case
+            .quiescence
+            .map(|q| (q, format!("threshold {q:e}")))
+            .into_iter()
+            .collect(),
+        y_range,
+        ..Default::default()
+    }
+}

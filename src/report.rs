@@ -1,0 +1,923 @@
+//! `dem2d figures`: every figure and table of the README, regenerated from the code.
+//!
+//! Runs the paper's cases (into a work directory), draws their figures, sweeps the time step for
+//! the speed-vs-error and stability reports, tabulates the contact kernel's accuracy against the
+//! independent reference with its time per pair, and writes SVG, CSV and Markdown into the
+//! output directory. README sections between `<!-- figures:NAME -->` and `<!-- /figures:NAME -->`
+//! are replaced by the Markdown of the same name, so the README's tables are never edited by
+//! hand either.
+
+use crate::dynamics::World;
+use crate::dynamics::timestep::estimate_critical_dt;
+use crate::narrow_phase::contact;
+use crate::output::panels;
+use crate::output::plot::{self, LinePanel, SceneOptions, ScenePanel, Series};
+use crate::output::run_data::RunData;
+use crate::runner::{RunOptions, run_case};
+use crate::scene::Case;
+use crate::validation::families::{markdown_table, run_families};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// An error of the figures command, as text (the file and what went wrong).
+#[derive(Debug)]
+pub struct ReportError(pub String);
+
+impl std::fmt::Display for ReportError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for ReportError {}
+
+fn e<E: std::fmt::Display>(what: &str) -> impl Fn(E) -> ReportError + '_ {
+    move |err| ReportError(format!("{what}: {err}"))
+}
+
+/// Where the figures command reads and writes.
+pub struct FigureOptions {
+    /// The case files (`cases/`).
+    pub cases: PathBuf,
+    /// Where figures and tables go (`figures/`).
+    pub out: PathBuf,
+    /// Where the runs go (their trajectories are not figures).
+    pub work: PathBuf,
+    /// The README whose marked sections are refreshed (None: leave it alone).
+    pub readme: Option<PathBuf>,
+    /// Fewer repetitions and sweep points (for a quick look; the README's numbers use the full set).
+    pub quick: bool,
+}
+
+fn load_case(path: &Path) -> Result<(Case, String), ReportError> {
+    let text = std::fs::read_to_string(path).map_err(e(&path.display().to_string()))?;
+    let case = Case::from_json(&text).map_err(e(&path.display().to_string()))?;
+    Ok((case, text))
+}
+
+fn run(opts: &FigureOptions, name: &str) -> Result<RunData, ReportError> {
+    let (case, text) = load_case(&opts.cases.join(format!("{name}.json")))?;
+    let dir = opts.work.join(name);
+    let ro = RunOptions {
+        out_dir: dir.clone(),
+        progress: false,
+        max_steps: None,
+    };
+    run_case(&case, &text, &ro).map_err(e(name))?;
+    RunData::load(&dir).map_err(e(name))
+}
+
+/// Regenerates everything; returns the files written.
+pub fn figures(opts: &FigureOptions) -> Result<Vec<PathBuf>, ReportError> {
+    std::fs::create_dir_all(&opts.out).map_err(e(&opts.out.display().to_string()))?;
+    let mut written = Vec::new();
+    let mut tables: Vec<(&str, String)> = Vec::new();
+    let out = |f: &str| opts.out.join(f);
+
+    // The paper's cases.
+    let names = [
+        "drop_rebound_mu01",
+        "drop_rebound_mu05",
+        "throw_circle",
+        "throw_ellipse",
+        "throw_square",
+        "settle3_dt1e-5",
+        "settle3_dt1e-4",
+    ];
+    let mut runs = Vec::new();
+    for n in names {
+        eprintln!("figures: running {n}");
+        runs.push(run(opts, n)?);
+    }
+    let by = |n: &str| &runs[names.iter().position(|m| *m == n).expect("known case")];
+    tables.push(("paper_cases", paper_cases_table(&runs)));
+
+    // P Fig. 2: the drop at two frictions.
+    let (d1, d5) = (by("drop_rebound_mu01"), by("drop_rebound_mu05"));
+    let f = out("fig2_drop_rebound.svg");
+    plot::scene(
+        &f,
+        &[
+            ScenePanel {
+                title: "P Fig. 2 (a): ellipse a/b = 1.5 dropped tilted, floor friction μ = 0.1"
+                    .into(),
+                runs: vec![(d1, String::new())],
+            },
+            ScenePanel {
+                title: "P Fig. 2 (b): the same, floor friction μ = 0.5".into(),
+                runs: vec![(d5, String::new())],
+            },
+        ],
+        &SceneOptions {
+            t_max: Some(0.6),
+            outlines: 25,
+            ..Default::default()
+        },
+    )
+    .map_err(e("fig2"))?;
+    written.push(f);
+    let f = out("fig2_drop_rebound_series.svg");
+    plot::line_panels(
+        &f,
+        (1000, 700),
+        (2, 1),
+        &panels::time_series(
+            &[(d1, "μ = 0.1"), (d5, "μ = 0.5")],
+            "P Fig. 2: centroid height and angle",
+        ),
+    )
+    .map_err(e("fig2 series"))?;
+    written.push(f);
+
+    // P Fig. 3: circle, ellipse, square overlaid.
+    let (tc, te, ts) = (by("throw_circle"), by("throw_ellipse"), by("throw_square"));
+    let f = out("fig3_throw_comparison.svg");
+    plot::scene(
+        &f,
+        &[ScenePanel {
+            title: "P Fig. 3: equal-area circle, ellipse (a/b = 1.5) and square thrown sideways, first 0.8 s".into(),
+            runs: vec![(tc, "circle".into()), (te, "ellipse".into()), (ts, "square".into())],
+        }],
+        &SceneOptions { t_max: Some(0.8), outlines: 14, color_by_body: false, ..Default::default() },
+    )
+    .map_err(e("fig3"))?;
+    written.push(f);
+    let f = out("fig3_throw_series.svg");
+    plot::line_panels(
+        &f,
+        (1000, 700),
+        (2, 1),
+        &panels::time_series(
+            &[(tc, "circle"), (te, "ellipse"), (ts, "square")],
+            "P Fig. 3: centroid height and angle",
+        ),
+    )
+    .map_err(e("fig3 series"))?;
+    written.push(f);
+    tables.push((
+        "fig3_comparison",
+        comparison_table(&[(tc, "circle"), (te, "ellipse"), (ts, "square")]),
+    ));
+
+    // P Fig. 4: the three ellipses at both time steps, and the quiescence measures.
+    let (s5, s4) = (by("settle3_dt1e-5"), by("settle3_dt1e-4"));
+    let f = out("fig4_settle3.svg");
+    plot::scene(
+        &f,
+        &[
+            ScenePanel {
+                title: format!(
+                    "P Fig. 4: three ellipses from first contact, Δt = 1e-5 s: at rest at step {}",
+                    s5.summary["quiescent_step"]
+                ),
+                runs: vec![(s5, String::new())],
+            },
+            ScenePanel {
+                title: "the same at Δt = 1e-4 s: never at rest (0.5 s shown)".into(),
+                runs: vec![(s4, String::new())],
+            },
+        ],
+        &SceneOptions {
+            outlines: 12,
+            width: 800,
+            ..Default::default()
+        },
+    )
+    .map_err(e("fig4"))?;
+    written.push(f);
+    let f = out("fig4_quiescence.svg");
+    plot::line_panels(
+        &f,
+        (1200, 500),
+        (1, 2),
+        &[
+            panels::quiescence(
+                s5,
+                "P's quiescence measures, Δt = 1e-5 s",
+                Some((1e-14, 1e-3)),
+            ),
+            panels::quiescence(
+                s4,
+                "P's quiescence measures, Δt = 1e-4 s",
+                Some((1e-14, 1e-3)),
+            ),
+        ],
+    )
+    .map_err(e("fig4 quiescence"))?;
+    written.push(f);
+
+    // Speed vs error, and stability.
+    let (sve_md, sve_csv, sve_panels) = speed_vs_error(opts)?;
+    std::fs::write(out("speed_vs_error.csv"), sve_csv).map_err(e("speed_vs_error.csv"))?;
+    written.push(out("speed_vs_error.csv"));
+    let f = out("speed_vs_error.svg");
+    plot::line_panels(&f, (1200, 520), (1, 2), &sve_panels).map_err(e("speed vs error"))?;
+    written.push(f);
+    tables.push(("speed_vs_error", sve_md));
+    let (st_md, st_csv, st_panel) = stability(opts)?;
+    std::fs::write(out("stability.csv"), st_csv).map_err(e("stability.csv"))?;
+    written.push(out("stability.csv"));
+    let f = out("stability.svg");
+    plot::line_panels(&f, (900, 560), (1, 1), &[st_panel]).map_err(e("stability"))?;
+    written.push(f);
+    tables.push(("stability", st_md));
+
+    // The contact kernel: accuracy against the reference and time per pair.
+    eprintln!("figures: contact kernel families");
+    tables.push(("kernel_report", kernel_report(opts.quick)));
+
+    for (name, md) in &tables {
+        let f = out(&format!("{name}.md"));
+        std::fs::write(&f, md).map_err(e(&f.display().to_string()))?;
+        written.push(f);
+    }
+    if let Some(readme) = &opts.readme {
+        update_readme(readme, &tables)?;
+    }
+    Ok(written)
+}
+
+fn paper_cases_table(runs: &[RunData]) -> String {
+    let mut t = String::from(
+        "| case | steps | at rest at step | first contact at step | dt | dt_critical (a priori) | max δ / inscribed radius | wall time (s) |\n|---|---:|---:|---:|---:|---:|---:|---:|\n",
+    );
+    for r in runs {
+        let s = &r.summary;
+        let q = s["quiescent_step"]
+            .as_u64()
+            .map_or("never".to_string(), |v| v.to_string());
+        let fc = s["first_contact_step"]
+            .as_u64()
+            .map_or("–".to_string(), |v| v.to_string());
+        writeln!(
+            t,
+            "| `{}` | {} | {q} | {fc} | {:e} | {:.3e} | {:.4} | {:.3} |",
+            r.case.name,
+            s["steps"],
+            s["dt"].as_f64().unwrap_or(f64::NAN),
+            s["dt_critical"].as_f64().unwrap_or(f64::NAN),
+            s["max_depth_ratio"].as_f64().unwrap_or(f64::NAN),
+            s["wall_seconds"].as_f64().unwrap_or(f64::NAN)
+        )
+        .expect("string");
+    }
+    t
+}
+
+/// Rebound heights, impacts, distance travelled at 1 s, final rotation and time to rest.
+fn comparison_table(runs: &[(&RunData, &str)]) -> String {
+    let mut t = String::from(
+        "| shape | first rebound apex (cm) | apex above lowest resting height (cm) | impacts | x at t = 1 s (cm) | x over the last 1 s of the run (cm) | final rotation (rad) | time to rest (s) |\n|---|---:|---:|---:|---:|---:|---:|---:|\n",
+    );
+    for (run, label) in runs {
+        // Contact onsets from the per-step contact counts.
+        let incs = &run.increments;
+        let mut onsets = Vec::new();
+        let mut ends = Vec::new();
+        let mut prev = 0;
+        for i in incs {
+            if prev == 0 && i.contacts > 0 {
+                onsets.push(i.t);
+            }
+            if prev > 0 && i.contacts == 0 {
+                ends.push(i.t);
+            }
+            prev = i.contacts;
+        }
+        let apex = match (ends.first(), onsets.get(1)) {
+            (Some(&t0), next) => {
+                let t1 = next.copied().unwrap_or(f64::INFINITY);
+                run.frames
+                    .iter()
+                    .filter(|f| f.t > t0 && f.t < t1)
+                    .map(|f| f.bodies[0].y)
+                    .fold(f64::NEG_INFINITY, f64::max)
+            }
+            _ => f64::NAN,
+        };
+        let x1 = run
+            .frames
+            .iter()
+            .min_by(|a, b| (a.t - 1.0).abs().total_cmp(&(b.t - 1.0).abs()))
+            .map_or(f64::NAN, |f| f.bodies[0].x);
+        let last = run.frames.last().expect("frames");
+        // A rocking body's x at one instant is a phase of the rocking: give the range too.
+        let (xl, xh) = run
+            .frames
+            .iter()
+            .filter(|f| f.t >= last.t - 1.0)
+            .map(|f| f.bodies[0].x)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+                (l.min(x), h.max(x))
+            });
+        let range = if run.summary["quiescent"].as_bool() == Some(true) {
+            format!("{:.2} (at rest)", last.bodies[0].x)
+        } else {
+            format!("{xl:.2} – {xh:.2}")
+        };
+        let rest = run.summary["quiescent_step"]
+            .as_u64()
+            .map_or("never (in 3 s)".to_string(), |s| {
+                format!("{:.3}", s as f64 * run.case.dt)
+            });
+        // The centroid of a body lying on its flattest side is its inscribed radius above the
+        // floor: the apex above that height compares rebounds of shapes of unequal heights.
+        let (apex_s, above_s) = if apex.is_finite() {
+            let rest_h = run.case.bodies[0].shape.inscribed_radius();
+            (format!("{apex:.3}"), format!("{:.3}", apex - rest_h))
+        } else {
+            ("no rebound".into(), String::new())
+        };
+        writeln!(
+            t,
+            "| {label} | {apex_s} | {above_s} | {} | {x1:.2} | {range} | {:.3} | {rest} |",
+            onsets.len(),
+            last.bodies[0].angle
+        )
+        .expect("string");
+    }
+    t
+}
+
+/// State of a single-body drop run: apex of the first rebound and the state at the end.
+struct DropResult {
+    wall: f64,
+    apex: f64,
+    x: f64,
+    y: f64,
+    angle: f64,
+}
+
+fn drop_run(case: &Case, dt: f64, t_end: f64) -> DropResult {
+    let mut w = World::new(
+        &case.bodies,
+        case.walls.clone(),
+        case.gravity,
+        case.contact,
+        dt,
+    );
+    let steps = (t_end / dt).round() as u64;
+    let start = Instant::now();
+    let (mut phase, mut apex) = (0u8, f64::NEG_INFINITY);
+    for _ in 0..steps {
+        w.step().expect("stable below the critical step");
+        let touching = !w.contacts.current.is_empty();
+        let y = w.bodies.pose[0].position.y;
+        phase = match (phase, touching) {
+            (0, true) => 1,
+            (1, false) => 2,
+            (2, true) => 3,
+            (p, _) => p,
+        };
+        if phase == 2 {
+            apex = apex.max(y);
+        }
+    }
+    let wall = start.elapsed().as_secs_f64();
+    let p = w.bodies.pose[0];
+    DropResult {
+        wall,
+        apex,
+        x: p.position.x,
+        y: p.position.y,
+        angle: p.angle(),
+    }
+}
+
+/// Errors of a drop at one Δt, each the mean over release heights (see [`drop_sweep`]).
+struct DropErrors {
+    dt: f64,
+    /// Median wall time of one run (s).
+    wall: f64,
+    apex: f64,
+    position: f64,
+    /// a·|Δθ| (cm).
+    angle: f64,
+}
+
+/// Number of release heights the drop errors are averaged over.
+const RELEASE_HEIGHTS: usize = 8;
+
+/// Time-step sweep of a single-body drop. The impact falls at a different phase within a step for
+/// every Δt, which scatters the error of a single run by an order of magnitude; each error is
+/// therefore the mean over [`RELEASE_HEIGHTS`] release heights (shifted by 0.0137 cm apart, several
+/// step lengths of the impact speed at the largest Δt), each against its own reference run at
+/// `dt_ref`.
+fn drop_sweep(
+    case: &Case,
+    dts: &[f64],
+    dt_ref: f64,
+    t_end: f64,
+    reps: usize,
+    a: f64,
+) -> Vec<DropErrors> {
+    let variants: Vec<Case> = (0..RELEASE_HEIGHTS)
+        .map(|k| {
+            let mut c = case.clone();
+            c.bodies[0].position.y += 0.0137 * k as f64;
+            c
+        })
+        .collect();
+    let refs: Vec<DropResult> = variants
+        .iter()
+        .map(|c| drop_run(c, dt_ref, t_end))
+        .collect();
+    dts.iter()
+        .map(|&dt| {
+            let (mut apex, mut position, mut angle) = (0.0, 0.0, 0.0);
+            let mut walls = Vec::new();
+            for (c, r) in variants.iter().zip(&refs) {
+                let s = drop_run(c, dt, t_end);
+                walls.push(s.wall);
+                apex += (s.apex - r.apex).abs();
+                position += (s.x - r.x).hypot(s.y - r.y);
+                angle += a * (s.angle - r.angle).abs();
+            }
+            // Extra repetitions of the first height for the timing only.
+            for _ in 1..reps {
+                walls.push(drop_run(&variants[0], dt, t_end).wall);
+            }
+            let n = RELEASE_HEIGHTS as f64;
+            DropErrors {
+                dt,
+                wall: median(walls),
+                apex: apex / n,
+                position: position / n,
+                angle: angle / n,
+            }
+        })
+        .collect()
+}
+
+/// Steps to rest (P's criterion, one step; `to_rest`) or the state at `t_max` (not `to_rest`).
+struct SettleResult {
+    dt: f64,
+    wall: f64,
+    rest_step: Option<u64>,
+    state: Vec<(f64, f64, f64)>,
+    /// Smallest critical step of the contact network, sampled every 100 steps.
+    dt_network: f64,
+}
+
+fn settle_run(case: &Case, dt: f64, t_max: f64, to_rest: bool) -> SettleResult {
+    let mut w = World::new(
+        &case.bodies,
+        case.walls.clone(),
+        case.gravity,
+        case.contact,
+        dt,
+    );
+    let q = case.quiescence.unwrap_or(1e-10);
+    let steps = (t_max / dt).round() as u64;
+    let start = Instant::now();
+    let mut rest_step = None;
+    for s in 1..=steps {
+        if s % 100 == 0 {
+            w.network_critical_dt();
+        }
+        match w.step() {
+            Ok(r) if r.increments.iter().all(|&d| d <= q) => {
+                if rest_step.is_none() {
+                    rest_step = Some(s);
+                }
+                if to_rest {
+                    break;
+                }
+            }
+            Ok(_) => {}
+            Err(_) => break,
+        }
+    }
+    let wall = start.elapsed().as_secs_f64();
+    let state = w
+        .bodies
+        .pose
+        .iter()
+        .map(|p| (p.position.x, p.position.y, p.angle()))
+        .collect();
+    w.network_critical_dt();
+    SettleResult {
+        dt,
+        wall,
+        rest_step,
+        state,
+        dt_network: w.diagnostics.dt_critical_observed,
+    }
+}
+
+/// Median wall time of `n` runs (the machines are shared; medians, in one run of the command).
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Least-squares slope of log(err) against log(dt): the observed order.
+fn order(points: &[(f64, f64)]) -> f64 {
+    let pts: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|p| p.1 > 0.0 && p.1.is_finite())
+        .map(|p| (p.0.ln(), p.1.ln()))
+        .collect();
+    let n = pts.len() as f64;
+    if n < 2.0 {
+        return f64::NAN;
+    }
+    let (sx, sy) = (
+        pts.iter().map(|p| p.0).sum::<f64>(),
+        pts.iter().map(|p| p.1).sum::<f64>(),
+    );
+    let (sxx, sxy) = (
+        pts.iter().map(|p| p.0 * p.0).sum::<f64>(),
+        pts.iter().map(|p| p.0 * p.1).sum::<f64>(),
+    );
+    (n * sxy - sx * sy) / (n * sxx - sx * sx)
+}
+
+fn speed_vs_error(opts: &FigureOptions) -> Result<(String, String, Vec<LinePanel>), ReportError> {
+    eprintln!("figures: speed vs error sweeps");
+    let reps = if opts.quick { 1 } else { 3 };
+    let a = 1.5; // the ellipse's semi-axis: angle errors are shown as a·|Δθ| (cm)
+    // Drop and rebound: apex of the first rebound and the state at t = 0.4 s; the paper's damped
+    // case and the same drop elastic and frictionless (no dashpot: the force does not jump at
+    // impact).
+    let (drop, _) = load_case(&opts.cases.join("drop_rebound_mu05.json"))?;
+    let mut elastic = drop.clone();
+    elastic.contact = crate::contact_law::ContactSpec::Linear {
+        kn: crate::contact_law::Scaled::OverRhoG(36400.0),
+        ks: crate::contact_law::Scaled::OverRhoG(36400.0),
+        damping: crate::contact_law::LinearDamping::Restitution(1.0),
+        friction: 0.0,
+    };
+    for w in &mut elastic.walls {
+        w.spec = elastic.contact;
+    }
+    let drop_dts: Vec<f64> = if opts.quick {
+        vec![2e-6, 1e-5, 5e-5]
+    } else {
+        vec![5e-7, 1e-6, 2e-6, 5e-6, 1e-5, 2e-5, 5e-5, 1e-4, 2e-4]
+    };
+    let dt_crit_drop = estimate_critical_dt(
+        &crate::dynamics::Bodies::new(&drop.bodies),
+        &drop.contact,
+        &drop.walls,
+        drop.gravity.norm(),
+    );
+    // Just after the first impact (it ends near 0.10 s): later states add the amplification of
+    // repeated impacts to the error of each.
+    let t_end = 0.12;
+    let drop_rows = drop_sweep(&drop, &drop_dts, drop_dts[0] / 4.0, t_end, reps, a);
+    let elastic_rows = drop_sweep(&elastic, &drop_dts, drop_dts[0] / 4.0, t_end, 1, a);
+    // Settling: the state at t = 0.15 s, after the scene has settled. (The state at P's rest is
+    // not comparable across Δt: P's criterion |Δx| ≤ 1e-10 per step is |v| ≤ 1e-10/Δt, so a smaller
+    // step declares rest earlier, while the scene still creeps.)
+    let (settle, _) = load_case(&opts.cases.join("settle3_dt1e-5.json"))?;
+    let settle_dts: Vec<f64> = if opts.quick {
+        vec![2e-6, 1e-5, 4e-5]
+    } else {
+        vec![1e-6, 2e-6, 5e-6, 1e-5, 2e-5, 4e-5]
+    };
+    let t_settled = 0.15;
+    let sref = settle_run(&settle, settle_dts[0] / 4.0, t_settled, false);
+    let mut settle_rows = Vec::new();
+    for &dt in &settle_dts {
+        let mut r = settle_run(&settle, dt, t_settled, false);
+        r.wall = median(
+            (0..reps)
+                .map(|_| settle_run(&settle, dt, t_settled, false).wall)
+                .chain([r.wall])
+                .collect(),
+        );
+        settle_rows.push(r);
+    }
+    let state_err = |s: &[(f64, f64, f64)], r: &[(f64, f64, f64)]| {
+        s.iter()
+            .zip(r)
+            .map(|(p, q)| (p.0 - q.0).hypot(p.1 - q.1) + a * (p.2 - q.2).abs())
+            .fold(0.0, f64::max)
+    };
+    let mut csv = String::from(
+        "case,dt,wall_seconds,apex_error_cm,final_position_error_cm,final_angle_error_times_a_cm,rest_step,settled_state_error_cm\n",
+    );
+    let mut apex_pts = Vec::new();
+    let mut pos_pts = Vec::new();
+    let mut ang_pts = Vec::new();
+    for r in &drop_rows {
+        writeln!(
+            csv,
+            "drop_rebound_mu05,{:e},{:e},{:e},{:e},{:e},,",
+            r.dt, r.wall, r.apex, r.position, r.angle
+        )
+        .expect("string");
+        apex_pts.push((r.dt, r.apex, r.wall));
+        pos_pts.push((r.dt, r.position, r.wall));
+        ang_pts.push((r.dt, r.angle, r.wall));
+    }
+    let mut el_pts = Vec::new();
+    for r in &elastic_rows {
+        writeln!(
+            csv,
+            "drop_elastic_frictionless,{:e},{:e},{:e},{:e},{:e},,",
+            r.dt, r.wall, r.apex, r.position, r.angle
+        )
+        .expect("string");
+        el_pts.push((r.dt, r.position, r.wall));
+    }
+    let mut rest_pts = Vec::new();
+    for r in &settle_rows {
+        let er = state_err(&r.state, &sref.state);
+        writeln!(
+            csv,
+            "settle3,{:e},{:e},,,,{},{:e}",
+            r.dt,
+            r.wall,
+            r.rest_step.map_or(String::new(), |s| s.to_string()),
+            er
+        )
+        .expect("string");
+        rest_pts.push((r.dt, er, r.wall));
+    }
+    // Observed orders over the smaller steps (the asymptotic range, Δt ≤ 1e-5).
+    let small = |v: &[(f64, f64, f64)]| {
+        v.iter()
+            .filter(|p| p.0 <= 1e-5 + 1e-18)
+            .map(|p| (p.0, p.1))
+            .collect::<Vec<_>>()
+    };
+    let (o_apex, o_pos, o_ang, o_rest) = (
+        order(&small(&apex_pts)),
+        order(&small(&pos_pts)),
+        order(&small(&ang_pts)),
+        order(&small(&rest_pts)),
+    );
+    let o_el = order(&small(&el_pts));
+    let mut md = format!(
+        "Reference: the same run at Δt/4 of the smallest step shown (drop: Δt = {:e} s, state at t = {t_end} s, just after the first rebound; settling: Δt = {:e} s, state at t = {t_settled} s, after rest). \
+         Drop errors are means over {RELEASE_HEIGHTS} release heights 0.0137 cm apart (the phase of the impact within a step scatters single runs by an order of magnitude). \
+         Errors of angles are shown as a·|Δθ| with a = 1.5 cm. Observed order (least-squares slope of log error against log Δt for Δt ≤ 1e-5 s): \
+         paper drop (damped, friction): apex {o_apex:.2}, final position {o_pos:.2}, final angle {o_ang:.2}; the same drop elastic and frictionless: final position {o_el:.2}; \
+         settled state {o_rest:.2}. A-priori critical step: drop {:.2e} s, settling {:.2e} s.\n\n",
+        drop_dts[0] / 4.0,
+        settle_dts[0] / 4.0,
+        dt_crit_drop,
+        estimate_critical_dt(
+            &crate::dynamics::Bodies::new(&settle.bodies),
+            &settle.contact,
+            &settle.walls,
+            settle.gravity.norm()
+        )
+    );
+    md.push_str("| case | Δt (s) | wall time (s, median) | apex error (cm) | final position error (cm) | final a·angle error (cm) | rest step (P) | settled-state error (cm) |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (r, ((a_, p_), t_)) in drop_rows
+        .iter()
+        .zip(apex_pts.iter().zip(&pos_pts).zip(&ang_pts))
+    {
+        writeln!(
+            md,
+            "| drop, μ = 0.5 | {:e} | {:.4} | {:.2e} | {:.2e} | {:.2e} | | |",
+            r.dt, r.wall, a_.1, p_.1, t_.1
+        )
+        .expect("string");
+    }
+    for (r, p) in elastic_rows.iter().zip(&el_pts) {
+        writeln!(
+            md,
+            "| drop, elastic, frictionless | {:e} | {:.4} | | {:.2e} | | | |",
+            r.dt, r.wall, p.1
+        )
+        .expect("string");
+    }
+    for (r, p) in settle_rows.iter().zip(&rest_pts) {
+        let rest = r.rest_step.map_or("never".to_string(), |s| s.to_string());
+        writeln!(
+            md,
+            "| settle3 | {:e} | {:.4} | | | | {rest} | {:.2e} |",
+            r.dt, r.wall, p.1
+        )
+        .expect("string");
+    }
+    let as_series = |pts: &[(f64, f64, f64)], label: &str, color: usize, by_wall: bool| Series {
+        label: label.into(),
+        points: pts
+            .iter()
+            .map(|p| (if by_wall { p.2 } else { p.0 }, p.1))
+            .collect(),
+        color,
+        line: true,
+        markers: true,
+        hollow: false,
+    };
+    // Two decades of headroom above the data for the legends.
+    let all = apex_pts
+        .iter()
+        .chain(&pos_pts)
+        .chain(&ang_pts)
+        .chain(&el_pts)
+        .chain(&rest_pts);
+    let (lo, hi) = all
+        .map(|p| p.1)
+        .filter(|v| *v > 0.0)
+        .fold((f64::INFINITY, 0.0f64), |(l, h), v| (l.min(v), h.max(v)));
+    let y_range = (
+        10f64.powf(lo.log10().floor()),
+        10f64.powf(hi.log10().ceil() + 2.0),
+    );
+    let panels = vec![
+        LinePanel {
+            title: "error against wall time (velocity Verlet)".into(),
+            x_label: "wall time per run (s)".into(),
+            y_label: "error (cm)".into(),
+            log_x: true,
+            log_y: true,
+            y_range: Some(y_range),
+            series: vec![
+                as_series(&apex_pts, "drop: apex of first rebound", 0, true),
+                as_series(&pos_pts, "drop: position at 0.12 s", 1, true),
+                as_series(&ang_pts, "drop: a·angle at 0.12 s", 2, true),
+                as_series(&el_pts, "drop, elastic frictionless: position", 4, true),
+                as_series(&rest_pts, "settle3: state at 0.15 s", 3, true),
+            ],
+            ..Default::default()
+        },
+        LinePanel {
+            title: format!(
+                "error against Δt; order {o_pos:.1} damped, {o_el:.1} elastic, {o_rest:.1} settling"
+            ),
+            x_label: "Δt (s)".into(),
+            y_label: "error (cm)".into(),
+            log_x: true,
+            log_y: true,
+            y_range: Some(y_range),
+            series: vec![
+                as_series(&apex_pts, "drop: apex", 0, false),
+                as_series(&pos_pts, "drop: position", 1, false),
+                as_series(&ang_pts, "drop: a·angle", 2, false),
+                as_series(&el_pts, "drop, elastic: position", 4, false),
+                as_series(&rest_pts, "settle3: state at 0.15 s", 3, false),
+            ],
+            vlines: vec![(dt_crit_drop, "drop: a-priori critical Δt".into())],
+            ..Default::default()
+        },
+    ];
+    Ok((md, csv, panels))
+}
+
+fn stability(opts: &FigureOptions) -> Result<(String, String, LinePanel), ReportError> {
+    eprintln!("figures: stability sweep");
+    let (settle, _) = load_case(&opts.cases.join("settle3_dt1e-5.json"))?;
+    let bodies = crate::dynamics::Bodies::new(&settle.bodies);
+    let dt_crit = estimate_critical_dt(
+        &bodies,
+        &settle.contact,
+        &settle.walls,
+        settle.gravity.norm(),
+    );
+    let dts: Vec<f64> = if opts.quick {
+        vec![1e-6, 1e-5, 4e-5, 6e-5, 1e-4]
+    } else {
+        vec![
+            1e-6, 2e-6, 5e-6, 1e-5, 2e-5, 3e-5, 4e-5, 4.5e-5, 5e-5, 5.5e-5, 6e-5, 7e-5, 8e-5, 9e-5,
+            1e-4, 1.5e-4, 2e-4,
+        ]
+    };
+    let runs: Vec<SettleResult> = dts
+        .iter()
+        .map(|&dt| settle_run(&settle, dt, 0.5, true))
+        .collect();
+    // The network's stiffest mode, sampled through the best-resolved run.
+    let dt_net = runs[0].dt_network;
+    let mut csv = String::from("dt,rest_step,time_to_rest_s,wall_seconds\n");
+    let mut md = format!(
+        "Critical time step of the scene: a priori, from the stiffest single contact it can have (damping and lever arms included), {dt_crit:.3e} s; \
+         from the stiffest mode of the actual contact network (sampled through the Δt = {:e} s run), {dt_net:.3e} s. Runs of at most 0.5 s.\n\n\
+         | Δt (s) | Δt / Δt_crit (single contact) | Δt / Δt_crit (network) | steps to rest | time to rest (s) |\n|---:|---:|---:|---:|---:|\n",
+        dts[0]
+    );
+    let (mut rest, mut never) = (Vec::new(), Vec::new());
+    let (mut last_rest, mut first_failure) = (None, None);
+    for r in &runs {
+        let dt = r.dt;
+        match r.rest_step {
+            Some(s) => {
+                rest.push((dt, s as f64));
+                last_rest = Some(dt);
+                writeln!(
+                    md,
+                    "| {dt:e} | {:.2} | {:.2} | {s} | {:.4} |",
+                    dt / dt_crit,
+                    dt / dt_net,
+                    s as f64 * dt
+                )
+                .expect("string");
+            }
+            None => {
+                never.push((dt, 0.5 / dt));
+                first_failure.get_or_insert(dt);
+                writeln!(
+                    md,
+                    "| {dt:e} | {:.2} | {:.2} | never | never |",
+                    dt / dt_crit,
+                    dt / dt_net
+                )
+                .expect("string");
+            }
+        }
+        let rest_s = r.rest_step.map_or(String::new(), |s| s.to_string());
+        let time_s = r
+            .rest_step
+            .map_or(String::new(), |s| format!("{:e}", s as f64 * dt));
+        writeln!(csv, "{dt:e},{rest_s},{time_s},{:e}", r.wall).expect("string");
+    }
+    if let Some(d) = first_failure {
+        writeln!(md, "\nSmallest Δt that never reached rest: {d:e} s = {:.2} × the network estimate = {:.2} × the single-contact estimate.", d / dt_net, d / dt_crit).expect("string");
+    }
+    if let Some(d) = last_rest {
+        writeln!(md, "Largest Δt that reached rest: {d:e} s (near the limit the outcome is not monotone in Δt: a weakly unstable mode may or may not lock into a sustained oscillation before the scene settles).").expect("string");
+    }
+    let panel = LinePanel {
+        title: "P Fig. 4 scene: steps to rest against Δt".into(),
+        x_label: "Δt (s)".into(),
+        y_label: "steps to rest".into(),
+        log_x: true,
+        log_y: true,
+        series: vec![
+            Series {
+                label: "at rest (P's criterion)".into(),
+                points: rest,
+                color: 0,
+                line: true,
+                markers: true,
+                hollow: false,
+            },
+            Series {
+                label: "never at rest in 0.5 s (steps run)".into(),
+                points: never,
+                color: 1,
+                line: false,
+                markers: true,
+                hollow: true,
+            },
+        ],
+        vlines: vec![
+            (dt_net, format!("network critical Δt = {dt_net:.2e} s")),
+            (
+                dt_crit,
+                format!("single-contact critical Δt = {dt_crit:.2e} s"),
+            ),
+        ],
+        ..Default::default()
+    };
+    Ok((md, csv, panel))
+}
+
+/// The hard-case families with their worst errors and the kernel's median time per pair.
+fn kernel_report(quick: bool) -> String {
+    let reports = run_families();
+    let reps = if quick { 3 } else { 15 };
+    let ns: Vec<f64> = reports
+        .iter()
+        .map(|r| {
+            let passes = (20_000 / r.pairs.len().max(1)).max(1);
+            let times: Vec<f64> = (0..reps)
+                .map(|_| {
+                    let start = Instant::now();
+                    let mut acc = 0.0;
+                    for _ in 0..passes {
+                        for (i, j) in &r.pairs {
+                            if let Some(g) =
+                                contact(std::hint::black_box(i), std::hint::black_box(j))
+                                    .and_then(|c| c.geometry)
+                            {
+                                acc += g.depth;
+                            }
+                        }
+                    }
+                    std::hint::black_box(acc);
+                    start.elapsed().as_secs_f64() * 1e9 / (passes * r.pairs.len()) as f64
+                })
+                .collect();
+            median(times)
+        })
+        .collect();
+    let failures: usize = reports.iter().map(|r| r.failures.len()).sum();
+    format!(
+        "{}\nBars: depth 1e-12·a_max, normal 1e-8 rad (corner-on-corner rectangles: the conditioning of their chord), point 1e-9·a_max; rigid motion and swap in units of those bars. Failures: {failures}. ns/pair: median of {reps} timings of the family's own pairs (mixed states: overlapping, separated, deep, contained).\n",
+        markdown_table(&reports, Some(&ns))
+    )
+}
+
+/// Replaces the README's marked sections by the tables of the same names.
+fn update_readme(readme: &Path, tables: &[(&str, String)]) -> Result<(), ReportError> {
+    let mut text = std::fs::read_to_string(readme).map_err(e(&readme.display().to_string()))?;
+    for (name, md) in tables {
+        let (open, close) = (
+            format!("<!-- figures:{name} -->"),
+            format!("<!-- /figures:{name} -->"),
+        );
+        if let (Some(i), Some(j)) = (text.find(&open), text.find(&close)) {
+            let start = i + open.len();
+            text.replace_range(start..j, &format!("\n{}\n", md.trim_end()));
+        }
+    }
+    std::fs::write(readme, text).map_err(e(&readme.display().to_string()))
+}

@@ -1,0 +1,174 @@
+//! `dem2d plot` and `dem2d figures`: every kind of plot is written as a well-formed SVG carrying
+//! its title, axis labels with units and legend; a directory that is not a run is refused with
+//! the file named; and `figures --quick` writes every figure and table the README shows.
+//! (Whether the pictures read well is checked by eye on PNGs: `bash .ci/figures`.)
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn dem2d(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_dem2d"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("run dem2d");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8(out.stdout).unwrap(),
+        String::from_utf8(out.stderr).unwrap(),
+    )
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("plots")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// The SVG's texts, unescaped (`&lt;` etc. are not used in our labels).
+fn texts(svg: &str) -> Vec<String> {
+    svg.split("<text")
+        .skip(1)
+        .filter_map(|t| {
+            let start = t.find('>')? + 1;
+            let end = t.find("</text>")?;
+            Some(t[start..end].to_string())
+        })
+        .collect()
+}
+
+#[test]
+fn every_plot_kind_writes_an_svg_with_title_axes_and_units() {
+    let dir = scratch("settle3");
+    let (code, _, err) = dem2d(&[
+        "run",
+        "cases/settle3_dt1e-5.json",
+        "--out",
+        dir.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let expect: [(&str, &[&str]); 3] = [
+        ("scene", &["settle3", "x (cm)", "y (cm)"]),
+        (
+            "series",
+            &[
+                "settle3",
+                "t (s)",
+                "centroid height y (cm)",
+                "angle θ (rad)",
+                "body 2",
+            ],
+        ),
+        (
+            "quiescence",
+            &[
+                "settle3",
+                "step",
+                "mean increment per step (cm)",
+                "threshold 1e-10",
+                "mean |Δθ| (rad)",
+            ],
+        ),
+    ];
+    for (kind, wanted) in expect {
+        let out = dir.join(format!("{kind}-plot.svg"));
+        let (code, stdout, err) = dem2d(&[
+            "plot",
+            dir.to_str().unwrap(),
+            "--kind",
+            kind,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{kind}: {err}");
+        assert!(stdout.contains(out.to_str().unwrap()));
+        let svg = std::fs::read_to_string(&out).unwrap();
+        assert!(
+            svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"),
+            "{kind}: not a whole SVG"
+        );
+        let t = texts(&svg);
+        for w in wanted {
+            assert!(
+                t.iter().any(|s| s.contains(w)),
+                "{kind}: no text {w:?} in {t:?}"
+            );
+        }
+        // Something is drawn besides the axes: outlines or series as paths/polylines.
+        assert!(
+            svg.matches("<polyline").count() + svg.matches("<path").count() >= 3,
+            "{kind}: nothing drawn"
+        );
+    }
+}
+
+#[test]
+fn plotting_a_directory_that_is_not_a_run_names_the_missing_file() {
+    let dir = scratch("not_a_run");
+    let (code, _, err) = dem2d(&["plot", dir.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("case.json") || err.contains("trajectory.csv"),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+    // A truncated trajectory is refused with the file and line.
+    let run = scratch("truncated");
+    let (code, _, err) = dem2d(&[
+        "run",
+        "cases/settle3_dt1e-5.json",
+        "--out",
+        run.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let traj = run.join("trajectory.csv");
+    let text = std::fs::read_to_string(&traj).unwrap();
+    std::fs::write(&traj, format!("{text}1,2,x\n")).unwrap();
+    let (code, _, err) = dem2d(&["plot", run.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("trajectory.csv") && err.contains("line"),
+        "{err}"
+    );
+}
+
+#[test]
+fn figures_quick_writes_every_figure_and_table_of_the_readme() {
+    let out = scratch("figures");
+    let work = scratch("figure_runs");
+    let (code, stdout, err) = dem2d(&[
+        "figures",
+        "--quick",
+        "--readme",
+        "",
+        "--out",
+        out.to_str().unwrap(),
+        "--work",
+        work.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    // Every figure the README embeds and every table it includes.
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
+    let mut wanted = Vec::new();
+    for part in readme.split("](figures/").skip(1) {
+        wanted.push(part.split(')').next().unwrap().to_string());
+    }
+    for part in readme.split("<!-- figures:").skip(1) {
+        wanted.push(format!("{}.md", part.split(" -->").next().unwrap()));
+    }
+    assert!(wanted.len() >= 12, "{wanted:?}");
+    for f in &wanted {
+        let p = out.join(f);
+        assert!(p.exists(), "figures did not write {f}; it wrote:\n{stdout}");
+        assert!(
+            std::fs::metadata(&p).unwrap().len() > 100,
+            "{f} is almost empty"
+        );
+    }
+}
