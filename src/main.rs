@@ -10,6 +10,44 @@ use dem2d::scene::{Case, parse_pairs};
 use std::io::{Read, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// The system allocator, counting the bytes currently allocated (for `dem2d bench`'s bytes per
+/// body: the world's real heap footprint, not an estimate).
+struct CountingAllocator;
+
+static ALLOCATED: AtomicUsize = AtomicUsize::new(0);
+/// Number of allocations (and reallocations) so far: `dem2d bench` checks the step allocates
+/// nothing.
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+// SAFETY: every call is forwarded unchanged to the system allocator; the counter is only
+// bookkeeping.
+unsafe impl std::alloc::GlobalAlloc for CountingAllocator {
+    unsafe fn alloc(&self, layout: std::alloc::Layout) -> *mut u8 {
+        ALLOCATED.fetch_add(layout.size(), Ordering::Relaxed);
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: same contract as the caller's.
+        unsafe { std::alloc::System.alloc(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: std::alloc::Layout) {
+        ALLOCATED.fetch_sub(layout.size(), Ordering::Relaxed);
+        // SAFETY: same contract as the caller's.
+        unsafe { std::alloc::System.dealloc(ptr, layout) }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: std::alloc::Layout, new_size: usize) -> *mut u8 {
+        ALLOCATED.fetch_add(new_size, Ordering::Relaxed);
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        ALLOCATED.fetch_sub(layout.size(), Ordering::Relaxed);
+        // SAFETY: same contract as the caller's.
+        unsafe { std::alloc::System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: CountingAllocator = CountingAllocator;
 
 #[derive(Parser)]
 #[command(
@@ -56,6 +94,57 @@ enum Command {
         #[arg(long, value_enum, default_value = "scene")]
         kind: PlotKind,
     },
+    /// Generate a pile of disks or ellipses on a jittered lattice in a box, as a case file
+    /// (`cases/settle_disks_10k.json` is `--shape disks --n 10000 --seed 1`).
+    Generate {
+        /// The grains: disks, or ellipses a/b = 1.5 of the same areas.
+        #[arg(long, value_enum)]
+        shape: PileShapeArg,
+        /// Number of bodies (the box width grows with √n: 500 cm at 10 000).
+        #[arg(long, default_value_t = 10_000)]
+        n: usize,
+        /// Seed of the random radii, jitter, orientations and velocities.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Output file (default: standard output).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Throughput of settled piles of disks and ellipses: particle-steps/s, ns per contact and
+    /// heap bytes per body, at each size and thread count, and whether every thread count gives
+    /// the bit-identical trajectory. Settled piles are cached in --cache.
+    Bench {
+        /// Piles to run.
+        #[arg(
+            long,
+            value_enum,
+            value_delimiter = ',',
+            default_value = "disks,ellipses"
+        )]
+        shapes: Vec<PileShapeArg>,
+        /// Numbers of bodies (multiples of 10 000 above 10 000: tiles of the 10⁴ pile).
+        #[arg(long, value_delimiter = ',', default_value = "1000,10000,100000")]
+        sizes: Vec<usize>,
+        /// Timed steps per repetition.
+        #[arg(long, default_value_t = 500)]
+        steps: u64,
+        /// Repetitions (the median is reported).
+        #[arg(long, default_value_t = 3)]
+        reps: usize,
+        /// Thread counts (default: 1 and all cores).
+        #[arg(long, value_delimiter = ',')]
+        threads: Vec<usize>,
+        /// Cache of settled piles.
+        #[arg(long, default_value = "target/bench-piles")]
+        cache: PathBuf,
+        /// Write the Markdown table here too (and refresh the README section `bench` when
+        /// --readme is given).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// README whose `<!-- figures:bench -->` section is refreshed.
+        #[arg(long)]
+        readme: Option<PathBuf>,
+    },
     /// Regenerate every figure and table of the README into figures/ (runs the paper's cases,
     /// the time-step sweeps and the contact-kernel report; about 5 s).
     Figures {
@@ -75,6 +164,12 @@ enum Command {
         #[arg(long)]
         quick: bool,
     },
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum PileShapeArg {
+    Disks,
+    Ellipses,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -230,6 +325,107 @@ fn plot(run_dir: &std::path::Path, out: Option<PathBuf>, kind: PlotKind) -> Resu
     Ok(())
 }
 
+fn generate(
+    shape: PileShapeArg,
+    n: usize,
+    seed: u64,
+    out: Option<&std::path::Path>,
+) -> Result<(), Failure> {
+    use dem2d::scene::generate::{PileShape, PileSpec};
+    if n == 0 {
+        return Err(Failure::input("--n: must be at least 1".into()));
+    }
+    let spec = PileSpec {
+        shape: match shape {
+            PileShapeArg::Disks => PileShape::Disks,
+            PileShapeArg::Ellipses => PileShape::Ellipses,
+        },
+        n,
+        seed,
+    };
+    let text = spec.case_json();
+    match out {
+        Some(path) => std::fs::write(path, text).map_err(|e| Failure {
+            code: 1,
+            message: format!("{}: cannot write: {e}", path.display()),
+        }),
+        None => std::io::stdout()
+            .write_all(text.as_bytes())
+            .map_err(|e| Failure {
+                code: 1,
+                message: format!("standard output: {e}"),
+            }),
+    }
+}
+
+#[allow(clippy::too_many_arguments)] // one argument per command-line option
+fn bench(
+    shapes: &[PileShapeArg],
+    sizes: &[usize],
+    steps: u64,
+    reps: usize,
+    threads: &[usize],
+    cache: &std::path::Path,
+    out: Option<&std::path::Path>,
+    readme: Option<&std::path::Path>,
+) -> Result<(), Failure> {
+    use dem2d::scene::generate::PileShape;
+    if let Some(&n) = sizes
+        .iter()
+        .find(|&&n| n == 0 || (n > 10_000 && n % 10_000 != 0))
+    {
+        return Err(Failure::input(format!(
+            "--sizes: {n} is not a pile size (1…10000, or a multiple of 10000)"
+        )));
+    }
+    if threads.contains(&0) {
+        return Err(Failure::input("--threads: must be at least 1".into()));
+    }
+    let all = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let threads = if threads.is_empty() {
+        if all > 1 { vec![1, all] } else { vec![1] }
+    } else {
+        threads.to_vec()
+    };
+    let opts = dem2d::bench::BenchOptions {
+        shapes: shapes
+            .iter()
+            .map(|s| match s {
+                PileShapeArg::Disks => PileShape::Disks,
+                PileShapeArg::Ellipses => PileShape::Ellipses,
+            })
+            .collect(),
+        sizes: sizes.to_vec(),
+        steps,
+        reps,
+        threads,
+        cache: Some(cache.to_path_buf()),
+        progress: true,
+    };
+    let rows = dem2d::bench::run(&opts, &|| ALLOCATED.load(Ordering::Relaxed), &|| {
+        ALLOCATIONS.load(Ordering::Relaxed)
+    })
+    .map_err(|e| Failure {
+        code: 1,
+        message: e.to_string(),
+    })?;
+    let md = dem2d::bench::markdown(&rows);
+    print!("{md}");
+    if let Some(path) = out {
+        std::fs::write(path, &md).map_err(|e| Failure {
+            code: 1,
+            message: format!("{}: cannot write: {e}", path.display()),
+        })?;
+    }
+    if let Some(readme) = readme {
+        dem2d::report::update_readme(readme, &[("bench", md)]).map_err(|e| Failure {
+            code: 1,
+            message: e.to_string(),
+        })?;
+    }
+    Ok(())
+}
+
 fn figures(
     out: PathBuf,
     cases: PathBuf,
@@ -265,6 +461,31 @@ fn main() -> ExitCode {
             quiet,
         } => run(case, out.clone(), *max_steps, *quiet),
         Command::Plot { run_dir, out, kind } => plot(run_dir, out.clone(), *kind),
+        Command::Generate {
+            shape,
+            n,
+            seed,
+            out,
+        } => generate(*shape, *n, *seed, out.as_deref()),
+        Command::Bench {
+            shapes,
+            sizes,
+            steps,
+            reps,
+            threads,
+            cache,
+            out,
+            readme,
+        } => bench(
+            shapes,
+            sizes,
+            *steps,
+            *reps,
+            threads,
+            cache,
+            out.as_deref(),
+            readme.as_deref(),
+        ),
         Command::Figures {
             out,
             cases,

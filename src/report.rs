@@ -362,8 +362,8 @@ fn drop_run(case: &Case, dt: f64, t_end: f64) -> DropResult {
     let (mut phase, mut apex) = (0u8, f64::NEG_INFINITY);
     for _ in 0..steps {
         w.step().expect("stable below the critical step");
-        let touching = !w.contacts.current.is_empty();
-        let y = w.bodies.pose[0].position.y;
+        let touching = !w.contacts.is_empty();
+        let y = w.bodies.state[0].pose.position.y;
         phase = match (phase, touching) {
             (0, true) => 1,
             (1, false) => 2,
@@ -375,7 +375,7 @@ fn drop_run(case: &Case, dt: f64, t_end: f64) -> DropResult {
         }
     }
     let wall = start.elapsed().as_secs_f64();
-    let p = w.bodies.pose[0];
+    let p = w.bodies.state[0].pose;
     DropResult {
         wall,
         apex,
@@ -494,9 +494,9 @@ fn settle_run(case: &Case, dt: f64, t_max: f64, to_rest: bool) -> SettleResult {
     let wall = start.elapsed().as_secs_f64();
     let state = w
         .bodies
-        .pose
+        .state
         .iter()
-        .map(|p| (p.position.x, p.position.y, p.angle()))
+        .map(|s| (s.pose.position.x, s.pose.position.y, s.pose.angle()))
         .collect();
     w.network_critical_dt();
     SettleResult {
@@ -921,7 +921,9 @@ fn kernel_report(quick: bool) -> String {
 }
 
 /// Replaces the README's marked sections by the tables of the same names.
-fn update_readme(readme: &Path, tables: &[(&str, String)]) -> Result<(), ReportError> {
+/// Replaces the README sections between `<!-- figures:NAME -->` and `<!-- /figures:NAME -->` with
+/// the Markdown of the same name (sections not in the README are left out).
+pub fn update_readme(readme: &Path, tables: &[(&str, String)]) -> Result<(), ReportError> {
     let mut text = std::fs::read_to_string(readme).map_err(e(&readme.display().to_string()))?;
     for (name, md) in tables {
         let (open, close) = (

@@ -69,7 +69,6 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<R
     let mut streak = 0u64;
     let mut first_contact_step = None;
     let mut blowup = None;
-    let mut last_report = Default::default();
     let mut contact_sum = 0u64;
     for s in 1..=steps {
         let report = match world.step() {
@@ -90,7 +89,6 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<R
             traj.write(&world)?;
             world.network_critical_dt();
         }
-        last_report = report;
         if let Some(q) = case.quiescence {
             if report.increments.iter().all(|&d| d <= q) {
                 streak += 1;
@@ -142,16 +140,17 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<R
     let b = &world.bodies;
     let final_state = (0..b.len())
         .map(|k| FinalBody {
-            x: b.pose[k].position.x,
-            y: b.pose[k].position.y,
-            angle: b.pose[k].angle(),
-            vx: b.vel[k].x,
-            vy: b.vel[k].y,
-            omega: b.omega[k],
+            x: b.state[k].pose.position.x,
+            y: b.state[k].pose.position.y,
+            angle: b.state[k].pose.angle(),
+            vx: b.state[k].vel.x,
+            vy: b.state[k].vel.y,
+            omega: b.state[k].omega,
         })
         .collect();
     let e = world.energies;
     let done = world.step.max(1);
+    let unbalanced = world.unbalanced_ratios();
     let summary = Summary {
         name: case.name.clone(),
         steps: world.step,
@@ -173,8 +172,8 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<R
             initial_total,
             final_total: e.total(),
         },
-        unbalanced_force_ratio: last_report.unbalanced_force_ratio,
-        unbalanced_moment_ratio: last_report.unbalanced_moment_ratio,
+        unbalanced_force_ratio: unbalanced.0,
+        unbalanced_moment_ratio: unbalanced.1,
         dt: case.dt,
         dt_critical,
         dt_critical_observed: Some(world.diagnostics.dt_critical_observed)

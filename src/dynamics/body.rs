@@ -15,6 +15,18 @@ pub struct BodyInit {
     pub density: f64,
 }
 
+/// What changes every step of one body, in one cache line: the contact pass reads it for the
+/// two bodies of every pair, in no particular order.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(64))]
+pub struct BodyState {
+    /// Position and orientation (with the orientation's cosine and sine).
+    pub pose: Pose,
+    /// Velocity of the centroid and angular velocity.
+    pub vel: Vec2,
+    pub omega: f64,
+}
+
 /// All bodies. Index `k` of every vector is body `k`.
 #[derive(Clone, Debug, Default)]
 pub struct Bodies {
@@ -28,10 +40,11 @@ pub struct Bodies {
     pub inv_inertia: Vec<f64>,
     /// Radius of the bounding circle about the centroid.
     pub bound: Vec<f64>,
-    /// Position and orientation (with the orientation's cosine and sine).
-    pub pose: Vec<Pose>,
-    pub vel: Vec<Vec2>,
-    pub omega: Vec<f64>,
+    /// Pose and velocities.
+    pub state: Vec<BodyState>,
+    /// The body is a circle (its orientation enters no contact; the drift reads this rather
+    /// than the whole shape).
+    pub is_circle: Vec<bool>,
     /// Force and moment of the last evaluation (contacts and gravity).
     pub force: Vec<Vec2>,
     pub torque: Vec<f64>,
@@ -40,7 +53,20 @@ pub struct Bodies {
 impl Bodies {
     /// Bodies from their descriptions.
     pub fn new(inits: &[BodyInit]) -> Self {
-        let mut b = Bodies::default();
+        let n = inits.len();
+        let mut b = Bodies {
+            shape: Vec::with_capacity(n),
+            density: Vec::with_capacity(n),
+            mass: Vec::with_capacity(n),
+            inv_mass: Vec::with_capacity(n),
+            inertia: Vec::with_capacity(n),
+            inv_inertia: Vec::with_capacity(n),
+            bound: Vec::with_capacity(n),
+            state: Vec::with_capacity(n),
+            is_circle: Vec::with_capacity(n),
+            force: Vec::with_capacity(n),
+            torque: Vec::with_capacity(n),
+        };
         for init in inits {
             let m = init.density * area(&init.shape);
             let i = m * inertia_per_mass(&init.shape);
@@ -51,9 +77,12 @@ impl Bodies {
             b.inertia.push(i);
             b.inv_inertia.push(1.0 / i);
             b.bound.push(init.shape.bounding_radius());
-            b.pose.push(Pose::new(init.position, init.angle));
-            b.vel.push(init.velocity);
-            b.omega.push(init.omega);
+            b.is_circle.push(matches!(init.shape, Shape::Circle { .. }));
+            b.state.push(BodyState {
+                pose: Pose::new(init.position, init.angle),
+                vel: init.velocity,
+                omega: init.omega,
+            });
             b.force.push(Vec2::zeros());
             b.torque.push(0.0);
         }
@@ -73,7 +102,7 @@ impl Bodies {
     /// Velocity of body `k`'s material point at offset `r` from its centroid: `v + ω × r`.
     #[inline]
     pub fn point_velocity(&self, k: usize, r: Vec2) -> Vec2 {
-        self.vel[k] + Vec2::new(-r.y, r.x) * self.omega[k]
+        self.state[k].vel + Vec2::new(-r.y, r.x) * self.state[k].omega
     }
 
     /// Radius of curvature of body `k`'s boundary where its outward normal is `n` (world), for
@@ -84,7 +113,7 @@ impl Bodies {
         match self.shape[k] {
             Shape::Circle { r } => r,
             Shape::Ellipse { a, b } => {
-                let u = self.pose[k].to_body_vector(n);
+                let u = self.state[k].pose.to_body_vector(n);
                 let h = ((a * u.x).powi(2) + (b * u.y).powi(2)).sqrt();
                 (a * a * b * b) / (h * h * h)
             }

@@ -1,102 +1,300 @@
-//! The list of contacts, carried from step to step with each contact's history.
+//! Contacts, carried from step to step in a neighbour (Verlet) list.
 //!
-//! A contact is keyed by `(i, j)`: two body indices `i < j`, or a body `i` and wall `w` as
-//! `j = WALL_BASE + w`. The list is kept sorted by key, so the previous step's history is found
-//! by a merge, and both lists' buffers are reused (no allocation once warmed up).
+//! The list holds one **slot** per candidate pair: two bodies whose bounding circles were within
+//! `skin` of each other, or a body within `skin` of a wall, when the list was last built. Each
+//! step computes every slot's contact in place (independently, so in parallel and in a fixed
+//! order); a slot whose pair overlaps is *active* and carries its history (T16) to the next
+//! step; one that does not has its history dropped. The list is rebuilt when the bodies have
+//! moved far enough that a pair outside it could have come into contact (the two largest
+//! displacements since the last build add up to more than the skin), so no contact is ever
+//! missed; between rebuilds nothing is allocated.
+//!
+//! A pair is keyed by `(i, j)`: two body indices `i < j`, or a body `i` and wall `w` as
+//! `j = WALL_BASE + w`. Slots are sorted by key, which fixes the order of every sum over
+//! contacts: results do not depend on the number of threads. For each body the list also keeps
+//! its slots in key order (`adjacency`), so that forces are gathered per body, in parallel,
+//! without two threads writing to the same body.
 
 use crate::contact_law::History;
 use crate::geometry::Vec2;
 use crate::narrow_phase::ContactState;
+use crate::narrow_phase::ellipse_ellipse::Warm;
+
+/// Makes room for `needed` elements with 1/8 headroom instead of doubling: the lists are the bulk
+/// of the memory, and they grow slowly, so that few builds reallocate.
+pub(crate) fn reserve_for<T>(v: &mut Vec<T>, needed: usize) {
+    if v.capacity() < needed {
+        v.reserve_exact(needed + needed / 8 - v.len());
+    }
+}
 
 /// Wall `w` is keyed as `WALL_BASE + w`.
 pub const WALL_BASE: u32 = u32::MAX / 2;
 
-/// One contact of the current step.
+/// One slot of the neighbour list: a candidate pair and what is carried from step to step.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Contact {
+pub struct Slot {
     /// First body.
     pub i: u32,
     /// Second body, or `WALL_BASE + w` for wall `w`.
     pub j: u32,
-    /// Shear history (T16), dropped when the contact ends.
-    pub history: History,
+    /// The pair overlaps this step (its [`ContactData`] describes the contact).
+    pub active: bool,
     /// Geometry state (overlap, deep, contained, …).
     pub state: ContactState,
-    /// Contact point, normal (from the wall or from i towards j) and depth.
+    /// Shear history (T16), dropped when the contact ends.
+    pub history: History,
+    /// Energy stored in the shear spring (lost when the contact opens).
+    pub shear_energy: f64,
+    /// A conic pair's warm start for the narrow phase ([`Warm`]: last step's chord crossings,
+    /// or a separating axis as `[cos, sin, NaN, NaN]`), in single precision: a starting point
+    /// needs no more. All NaN when there is none.
+    pub warm: [f32; 4],
+}
+
+impl Slot {
+    /// An inactive slot for pair `(i, j)`.
+    pub fn new(i: u32, j: u32) -> Self {
+        Slot {
+            i,
+            j,
+            active: false,
+            state: ContactState::Separated,
+            history: History::default(),
+            shear_energy: 0.0,
+            warm: [f32::NAN; 4],
+        }
+    }
+
+    /// The warm start, if any.
+    #[inline]
+    pub fn warm(&self) -> Option<Warm> {
+        let w = self.warm.map(f64::from);
+        match (w[0].is_nan(), w[2].is_nan()) {
+            (true, _) => None,
+            (false, true) => Some(Warm::Axis([w[0], w[1]])),
+            (false, false) => Some(Warm::Crossings([[w[0], w[1]], [w[2], w[3]]])),
+        }
+    }
+
+    /// Keeps `warm` (or none) for the next step.
+    #[inline]
+    pub fn set_warm(&mut self, warm: Option<Warm>) {
+        self.warm = match warm {
+            Some(Warm::Crossings([p, q])) => [p[0] as f32, p[1] as f32, q[0] as f32, q[1] as f32],
+            Some(Warm::Axis(a)) => [a[0] as f32, a[1] as f32, f32::NAN, f32::NAN],
+            None => [f32::NAN; 4],
+        };
+    }
+
+    /// True for a body–wall pair.
+    #[inline]
+    pub fn is_wall(&self) -> bool {
+        self.j >= WALL_BASE
+    }
+
+    /// The pair's key.
+    #[inline]
+    pub fn key(&self) -> (u32, u32) {
+        (self.i, self.j)
+    }
+}
+
+/// A slot's contact this step, as the force gather reads it (recomputed every step, all zero
+/// while the slot is inactive). Kept to what the gather needs: at 10⁵ bodies the step is bound
+/// by memory traffic, and this is written every step.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContactData {
+    /// Contact point.
     pub point: Vec2,
+    /// Force on j (the body, for a wall contact), world components.
+    pub force: Vec2,
+    /// For the energy account: the part of `force` that does not derive from the springs'
+    /// energy — the normal force's non-elastic part (dashpot, or what the clamp `F_n ≥ 0`
+    /// withholds) plus the whole shear force (whose spring's energy is accounted apart).
+    pub force_non_elastic: Vec2,
+}
+
+/// The rest of a slot's contact, read only for reports (the depth) and the critical time step
+/// (stiffness and damping, in single precision: an estimate needs no more). Filled on demand by
+/// [`crate::dynamics::World::refresh_contact_extras`], not by the step.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContactExtra {
+    /// Unit normal, from the wall or from i towards j, and depth.
     pub normal: Vec2,
     pub depth: f64,
-    /// Force on j (the body, for a wall contact) this step, world components.
-    pub force: Vec2,
-    /// Energy stored in the springs.
-    pub elastic_energy: f64,
-    /// The part stored in the shear spring.
-    pub shear_energy: f64,
-    /// For the energy account: the non-elastic part of the normal force, the shear force, and
-    /// the change of the shear spring's energy this step.
-    pub normal_non_elastic: f64,
-    pub tangential: f64,
-    pub shear_energy_change: f64,
-    /// Stiffness and damping now, normal and shear (for the critical time step).
-    pub kn: f64,
-    pub eta_n: f64,
-    pub kt: f64,
-    pub eta_t: f64,
+    pub kn: f32,
+    pub eta_n: f32,
+    pub kt: f32,
+    pub eta_t: f32,
+}
+
+/// A contact of this step: its slot and its data (a copy, for reading).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Contact {
+    pub slot: Slot,
+    pub data: ContactData,
+    /// As of the last [`crate::dynamics::World::refresh_contact_extras`].
+    pub extra: ContactExtra,
 }
 
 impl Contact {
     /// True for a body–wall contact.
     #[inline]
     pub fn is_wall(&self) -> bool {
-        self.j >= WALL_BASE
+        self.slot.is_wall()
     }
 }
 
-/// This step's contacts and the previous step's (for their histories).
+/// One entry of a body's adjacency: a slot and whether the body receives `+F` (it is the slot's
+/// `j`, or the body of a wall contact) or `−F` (it is the slot's `i` in a body pair).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Adjacent {
+    /// Slot index, with the top bit set when the body receives `−F`.
+    packed: u32,
+}
+
+impl Adjacent {
+    const GIVES: u32 = 1 << 31;
+
+    /// The slot index.
+    #[inline]
+    pub fn slot(self) -> usize {
+        (self.packed & !Self::GIVES) as usize
+    }
+
+    /// +1 when the body receives the slot's force, −1 when it receives its opposite.
+    #[inline]
+    pub fn sign(self) -> f64 {
+        if self.packed & Self::GIVES != 0 {
+            -1.0
+        } else {
+            1.0
+        }
+    }
+}
+
+/// The neighbour list: slots sorted by key, each body's slots, and what the list was built from.
 #[derive(Clone, Debug, Default)]
 pub struct ContactList {
-    pub current: Vec<Contact>,
-    previous: Vec<Contact>,
-    cursor: usize,
+    /// The slots, sorted by key.
+    pub slots: Vec<Slot>,
+    /// Each slot's contact this step (same index), and the rest of it.
+    pub data: Vec<ContactData>,
+    pub extra: Vec<ContactExtra>,
+    /// Body k's slots are `adjacency[adjacency_start[k]..adjacency_start[k + 1]]`, in key order.
+    pub(crate) adjacency_start: Vec<u32>,
+    pub(crate) adjacency: Vec<Adjacent>,
+    /// Body positions when the list was built.
+    pub(crate) built_at: Vec<Vec2>,
+    /// Margin added to the bounding circles at the build.
+    pub skin: f64,
+    /// Number of builds so far.
+    pub builds: u64,
+    /// Scratch of the build (kept to avoid allocating at every build).
+    pub(crate) keys: Vec<(u32, u32)>,
+    pub(crate) rebuilt: Vec<Slot>,
+    pub(crate) adjacency_fill: Vec<u32>,
 }
 
 impl ContactList {
-    /// Starts a new step: the current list becomes the previous one.
-    pub fn begin_step(&mut self) {
-        std::mem::swap(&mut self.current, &mut self.previous);
-        self.current.clear();
-        self.cursor = 0;
+    /// The contacts of this step (the active slots), in key order.
+    pub fn active(&self) -> impl Iterator<Item = Contact> + '_ {
+        self.slots
+            .iter()
+            .zip(&self.data)
+            .zip(&self.extra)
+            .filter(|((s, _), _)| s.active)
+            .map(|((s, d), e)| Contact {
+                slot: *s,
+                data: *d,
+                extra: *e,
+            })
     }
 
-    /// Shear-spring energy of the previous step's contacts that did not continue into this one
-    /// (call once this step's contacts are all pushed).
-    pub fn opened_shear_energy(&self) -> f64 {
-        let mut b = 0;
+    /// Number of contacts this step.
+    pub fn len(&self) -> usize {
+        self.slots.iter().filter(|c| c.active).count()
+    }
+
+    /// True when no pair is in contact.
+    pub fn is_empty(&self) -> bool {
+        !self.slots.iter().any(|c| c.active)
+    }
+
+    /// Replaces the slots by `keys` (sorted, unique), carrying every continuing slot with its
+    /// history; rebuilds each body's adjacency for `n` bodies. Returns the shear-spring energy
+    /// of contacts that were active but are no longer candidates (lost, as when a contact opens).
+    pub(crate) fn rebuild_from_keys(&mut self, n: usize) -> f64 {
         let mut lost = 0.0;
-        for p in &self.previous {
-            while b < self.current.len() && (self.current[b].i, self.current[b].j) < (p.i, p.j) {
-                b += 1;
+        self.rebuilt.clear();
+        reserve_for(&mut self.rebuilt, self.keys.len());
+        let mut old = 0;
+        for &(i, j) in &self.keys {
+            while old < self.slots.len() && self.slots[old].key() < (i, j) {
+                if self.slots[old].active {
+                    lost += self.slots[old].shear_energy;
+                }
+                old += 1;
             }
-            let continues =
-                b < self.current.len() && (self.current[b].i, self.current[b].j) == (p.i, p.j);
-            if !continues {
-                lost += p.shear_energy;
+            if old < self.slots.len() && self.slots[old].key() == (i, j) {
+                self.rebuilt.push(self.slots[old]);
+                old += 1;
+            } else {
+                self.rebuilt.push(Slot::new(i, j));
             }
         }
+        for s in &self.slots[old..] {
+            if s.active {
+                lost += s.shear_energy;
+            }
+        }
+        std::mem::swap(&mut self.slots, &mut self.rebuilt);
+        // The data are recomputed from the slots every step: only their number changes.
+        reserve_for(&mut self.data, self.slots.len());
+        self.data.resize(self.slots.len(), ContactData::default());
+        reserve_for(&mut self.extra, self.slots.len());
+        self.extra.resize(self.slots.len(), ContactExtra::default());
+        // Adjacency (counting sort by body; each body's entries stay in slot order).
+        self.adjacency_start.clear();
+        reserve_for(&mut self.adjacency_start, n + 1);
+        self.adjacency_start.resize(n + 1, 0);
+        for s in &self.slots {
+            self.adjacency_start[s.i as usize + 1] += 1;
+            if !s.is_wall() {
+                self.adjacency_start[s.j as usize + 1] += 1;
+            }
+        }
+        for k in 0..n {
+            self.adjacency_start[k + 1] += self.adjacency_start[k];
+        }
+        self.adjacency.clear();
+        reserve_for(&mut self.adjacency, self.adjacency_start[n] as usize);
+        self.adjacency
+            .resize(self.adjacency_start[n] as usize, Adjacent { packed: 0 });
+        // A cursor per body, from the starts.
+        let mut fill: Vec<u32> = std::mem::take(&mut self.adjacency_fill);
+        fill.clear();
+        reserve_for(&mut fill, n);
+        fill.extend_from_slice(&self.adjacency_start[..n]);
+        for (idx, s) in self.slots.iter().enumerate() {
+            let idx = idx as u32;
+            if s.is_wall() {
+                let k = s.i as usize;
+                self.adjacency[fill[k] as usize] = Adjacent { packed: idx };
+                fill[k] += 1;
+            } else {
+                let (i, j) = (s.i as usize, s.j as usize);
+                self.adjacency[fill[i] as usize] = Adjacent {
+                    packed: idx | Adjacent::GIVES,
+                };
+                fill[i] += 1;
+                self.adjacency[fill[j] as usize] = Adjacent { packed: idx };
+                fill[j] += 1;
+            }
+        }
+        self.adjacency_fill = fill;
+        self.builds += 1;
         lost
-    }
-
-    /// The history of contact `(i, j)` if it existed last step. Keys must be asked for in
-    /// increasing order within a step (a merge walk).
-    pub fn carried(&mut self, i: u32, j: u32) -> Option<History> {
-        while self.cursor < self.previous.len() {
-            let c = &self.previous[self.cursor];
-            match (c.i, c.j).cmp(&(i, j)) {
-                std::cmp::Ordering::Less => self.cursor += 1,
-                std::cmp::Ordering::Equal => return Some(c.history),
-                std::cmp::Ordering::Greater => return None,
-            }
-        }
-        None
     }
 }

@@ -8,6 +8,6 @@ pub mod step;
 pub mod timestep;
 pub mod world;
 
-pub use body::{Bodies, BodyInit};
+pub use body::{Bodies, BodyInit, BodyState};
 pub use step::{Blowup, StepReport};
 pub use world::{WallSpec, World};

@@ -17,13 +17,39 @@
 //! For an undamped linear oscillator this scheme is stable for `ωΔt < 2`; with a dashpot of
 //! damping ratio ζ evaluated at the half step, for `ωΔt < 2(√(1+ζ²) − ζ)`
 //! (see [`super::timestep`]).
+//!
+//! # Many bodies, many threads
+//! The pairs come from a neighbour list ([`super::contacts`]) rebuilt only when bodies have
+//! moved far enough to matter. Each step is four parallel passes (rayon), each over fixed-size
+//! chunks of bodies or slots: kick and drift (bodies); every slot's contact (slots, each
+//! written by one thread only); gathering each body's forces from its own slots, in key order,
+//! then the second kick (bodies); and the sums. Every sum (increments, energies, counters) is
+//! formed per chunk and then over the chunks in order. Nothing depends on how chunks are
+//! scheduled, so a run gives the same bits on one thread or many. Circle pairs skip the chord
+//! (nothing reads it) and circles skip their sine and cosine; conic pairs start from the last
+//! step's crossings or separating axis (see [`crate::narrow_phase::ellipse_ellipse`]).
 
-use super::contacts::{Contact, WALL_BASE};
-use super::world::World;
-use crate::contact_law::Kinematics;
+use super::body::Bodies;
+use super::contacts::{ContactData, ContactExtra, Slot, WALL_BASE, reserve_for};
+use super::world::{WallSpec, World};
+use crate::contact_law::{ContactSpec, Kinematics};
+use crate::geometry::Shape;
 use crate::geometry::{Pose, Vec2};
-use crate::narrow_phase::{ContactState, contact_bodies, contact_wall_body};
+use crate::narrow_phase::circle_circle::overlap_circle_circle;
+use crate::narrow_phase::circle_wall::overlap_wall_circle;
+use crate::narrow_phase::{ContactState, contact_bodies_warm, contact_wall_body};
+use rayon::prelude::*;
 use std::fmt;
+
+/// Bodies per parallel chunk, and neighbour-list slots per parallel chunk. Fixed sizes: every
+/// sum is formed chunk by chunk and then over the chunks in order, so that results are the same
+/// bit for bit whatever the number of threads.
+pub(crate) const BODY_CHUNK: usize = 512;
+pub(crate) const SLOT_CHUNK: usize = 512;
+
+/// The skin of the neighbour list as a fraction of the largest bounding radius: larger means
+/// fewer rebuilds and more candidate pairs to test each step.
+pub const SKIN_FRACTION: f64 = 0.1;
 
 /// A non-finite state: the step and the body where it was found.
 #[derive(Clone, Debug, PartialEq)]
@@ -51,13 +77,49 @@ impl std::error::Error for Blowup {}
 pub struct StepReport {
     /// Mean over bodies of |Δx|, |Δy|, |Δθ| during the step (P's quiescence measure).
     pub increments: [f64; 3],
-    /// Mean |net force| over bodies divided by mean |contact force| over contacts (the
-    /// unbalanced-force ratio of PFC and Yade; 0 without contacts).
-    pub unbalanced_force_ratio: f64,
-    /// Mean |net moment| over bodies divided by mean |contact force × bounding radius|.
-    pub unbalanced_moment_ratio: f64,
     /// Number of contacts after the step.
     pub contacts: usize,
+}
+
+/// Per-chunk results of the body passes.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct BodyPartial {
+    /// Σ|Δx|, Σ|Δy|, Σ|Δθ| (drift).
+    inc: [f64; 3],
+    /// The two largest displacements since the neighbour list was built (drift).
+    disp: [f64; 2],
+    /// First body with a non-finite state.
+    bad: Option<usize>,
+    /// Kinetic and potential energy, and the power of the contacts' non-elastic forces
+    /// `F_ne·v + M_ne ω` at the new velocities (second kick).
+    non_elastic_power: f64,
+    kinetic: f64,
+    potential: f64,
+}
+
+/// Per-chunk results of the slot passes.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct SlotPartial {
+    contacts: usize,
+    elastic: f64,
+    /// Shear-spring energy of contacts that opened this step.
+    lost_shear: f64,
+    deep: u64,
+    contained: u64,
+    max_depth_ratio: f64,
+    /// Σ of the change of the shear springs' energy.
+    shear_energy_change: f64,
+}
+
+/// Keeps the two largest of the values pushed.
+#[inline]
+fn top_two(t: &mut [f64; 2], d: f64) {
+    if d > t[0] {
+        t[1] = t[0];
+        t[0] = d;
+    } else if d > t[1] {
+        t[1] = d;
+    }
 }
 
 impl World {
@@ -68,37 +130,71 @@ impl World {
         let n = self.bodies.len();
         let next_step = self.step + 1;
         let next_time = next_step as f64 * dt;
-        // 1. Kick to the half step.
+        self.size_partials();
+        // 1.–2. Kick to the half step and drift, chunk by chunk.
         {
-            let b = &mut self.bodies;
-            for k in 0..n {
-                b.vel[k] += b.force[k] * (h * b.inv_mass[k]);
-                b.omega[k] += b.torque[k] * h * b.inv_inertia[k];
-            }
+            let Bodies {
+                is_circle,
+                state,
+                force,
+                torque,
+                inv_mass,
+                inv_inertia,
+                ..
+            } = &mut self.bodies;
+            let built_at = &self.contacts.built_at;
+            let fresh = built_at.len() == n;
+            state
+                .par_chunks_mut(BODY_CHUNK)
+                .zip(self.body_partials.par_iter_mut())
+                .enumerate()
+                .for_each(|(c, (state, part))| {
+                    let base = c * BODY_CHUNK;
+                    let mut p = BodyPartial::default();
+                    for (k, s) in state.iter_mut().enumerate() {
+                        let g = base + k;
+                        s.vel += force[g] * (h * inv_mass[g]);
+                        s.omega += torque[g] * h * inv_inertia[g];
+                        let d = s.vel * dt;
+                        let dth = s.omega * dt;
+                        let pos = s.pose.position + d;
+                        let angle = s.pose.angle() + dth;
+                        if !(pos.x.is_finite() && pos.y.is_finite() && angle.is_finite()) {
+                            p.bad.get_or_insert(g);
+                            continue;
+                        }
+                        s.pose = if is_circle[g] {
+                            // A circle's orientation enters no contact: skip its sine and cosine.
+                            s.pose.moved(pos, angle)
+                        } else {
+                            Pose::new(pos, angle)
+                        };
+                        p.inc[0] += d.x.abs();
+                        p.inc[1] += d.y.abs();
+                        p.inc[2] += dth.abs();
+                        if fresh {
+                            top_two(&mut p.disp, (pos - built_at[g]).norm());
+                        }
+                    }
+                    *part = p;
+                });
         }
-        // 2. Drift.
         let mut inc = [0.0f64; 3];
-        {
-            let b = &mut self.bodies;
-            for k in 0..n {
-                let d = b.vel[k] * dt;
-                let dth = b.omega[k] * dt;
-                let p = b.pose[k];
-                let pos = p.position + d;
-                let angle = p.angle() + dth;
-                if !(pos.x.is_finite() && pos.y.is_finite() && angle.is_finite()) {
-                    return Err(Blowup {
-                        step: next_step,
-                        time: next_time,
-                        body: k,
-                        what: "position",
-                    });
-                }
-                b.pose[k] = Pose::new(pos, angle);
-                inc[0] += d.x.abs();
-                inc[1] += d.y.abs();
-                inc[2] += dth.abs();
+        let mut disp = [0.0f64; 2];
+        for p in &self.body_partials {
+            if let Some(body) = p.bad {
+                return Err(Blowup {
+                    step: next_step,
+                    time: next_time,
+                    body,
+                    what: "position",
+                });
             }
+            for (total, part) in inc.iter_mut().zip(p.inc) {
+                *total += part;
+            }
+            top_two(&mut disp, p.disp[0]);
+            top_two(&mut disp, p.disp[1]);
         }
         if n > 0 {
             for v in &mut inc {
@@ -106,213 +202,488 @@ impl World {
             }
         }
         self.last_increments = inc;
-        // 3. Forces at the new positions.
-        let (mean_contact_force, mean_contact_moment) = self.evaluate_forces_over(dt);
-        // 4. Kick to the full step.
-        let mut unbalanced = (0.0, 0.0);
-        {
-            let b = &mut self.bodies;
-            for k in 0..n {
-                b.vel[k] += b.force[k] * (h * b.inv_mass[k]);
-                b.omega[k] += b.torque[k] * h * b.inv_inertia[k];
-                if !(b.vel[k].x.is_finite() && b.vel[k].y.is_finite() && b.omega[k].is_finite()) {
-                    return Err(Blowup {
-                        step: next_step,
-                        time: next_time,
-                        body: k,
-                        what: "velocity",
-                    });
-                }
-                unbalanced.0 += b.force[k].norm();
-                unbalanced.1 += b.torque[k].abs();
-            }
+        // 3. Forces at the new positions (the neighbour list first, if a pair outside it could
+        // now touch: two bodies approach by at most the sum of their displacements).
+        if self.contacts.built_at.len() != n || disp[0] + disp[1] > self.contacts.skin {
+            self.rebuild_neighbours();
         }
-        self.account_dissipation(dt);
+        let slots = self.compute_slots(dt);
+        // 4. Kick to the full step, gathering each body's forces.
+        let bodies_sum = self.gather_forces(Some(h));
+        if let Some(body) = bodies_sum.bad {
+            return Err(Blowup {
+                step: next_step,
+                time: next_time,
+                body,
+                what: "velocity",
+            });
+        }
+        // Energy the contacts took out during this step. Verlet applies the forces of time level
+        // n+1 over the interval centred on it, so their work is taken with the velocities at n+1
+        // (after the second kick): the non-elastic forces' power, summed body by body
+        // (Σ_c f·v_rel = Σ_k F_k·v_k + M_k ω_k), less the change of the shear springs' energy.
+        self.energies.dissipated -= bodies_sum.non_elastic_power * dt + slots.shear_energy_change;
         self.step = next_step;
         self.time = next_time;
-        self.energies.kinetic = self.kinetic_energy();
-        self.energies.potential = self.potential_energy();
-        let ratio = |num: f64, den: f64| if den > 0.0 { num / n as f64 / den } else { 0.0 };
+        self.energies.kinetic = bodies_sum.kinetic;
+        self.energies.potential = bodies_sum.potential;
         Ok(StepReport {
             increments: inc,
-            unbalanced_force_ratio: ratio(unbalanced.0, mean_contact_force),
-            unbalanced_moment_ratio: ratio(unbalanced.1, mean_contact_moment),
-            contacts: self.contacts.current.len(),
+            contacts: slots.contacts,
         })
     }
 
     /// Evaluates the forces of the current configuration without advancing (used at t = 0).
     pub(crate) fn evaluate_forces(&mut self) {
-        self.evaluate_forces_over(0.0);
+        self.size_partials();
+        self.rebuild_neighbours();
+        self.compute_slots(0.0);
+        self.gather_forces(None);
     }
 
-    /// Contact forces and gravity for the current positions and velocities; `dt` is the step
-    /// just drifted over (0 at the start), over which the shear displacement is integrated (T16)
-    /// and the dissipated energy is accounted. Returns the mean contact force magnitude and the
-    /// mean contact moment scale (for the unbalanced ratios).
-    fn evaluate_forces_over(&mut self, dt: f64) -> (f64, f64) {
+    /// One partial result per chunk of bodies and of slots.
+    fn size_partials(&mut self) {
+        let nb = self.bodies.len().div_ceil(BODY_CHUNK);
+        if self.body_partials.len() != nb {
+            self.body_partials.resize(nb, BodyPartial::default());
+        }
+        let ns = self.contacts.slots.len().div_ceil(SLOT_CHUNK);
+        if self.slot_partials.len() != ns {
+            self.slot_partials.resize(ns, SlotPartial::default());
+        }
+    }
+
+    /// Rebuilds the neighbour list from the current positions (body pairs from the grid, then
+    /// each body's walls after its body partners: key order), carrying histories over.
+    pub(crate) fn rebuild_neighbours(&mut self) {
         let n = self.bodies.len();
-        for k in 0..n {
-            self.bodies.force[k] = self.gravity * self.bodies.mass[k]; // T(3): body force
-            self.bodies.torque[k] = 0.0;
-        }
-        // Candidate pairs: bodies from the grid, then every body against every wall; sorted, so
-        // that histories are carried by a merge.
-        self.grid.pairs(&self.bodies, &mut self.candidates);
-        for (w, ws) in self.walls.iter().enumerate() {
-            for k in 0..n {
-                if ws.wall.signed_distance(self.bodies.pose[k].position) <= self.bodies.bound[k] {
-                    self.candidates.push((k as u32, WALL_BASE + w as u32));
+        let max_bound = self.bodies.bound.iter().copied().fold(0.0f64, f64::max);
+        let skin = SKIN_FRACTION * max_bound;
+        let d0 = self.bodies.density.first().copied();
+        self.uniform_density = d0.filter(|&d| self.bodies.density.iter().all(|&x| x == d));
+        let list = &mut self.contacts;
+        list.skin = skin;
+        self.grid.pairs(&self.bodies, skin, &mut self.pair_scratch);
+        list.keys.clear();
+        reserve_for(&mut list.keys, self.pair_scratch.len() + n);
+        let mut next = 0;
+        for i in 0..n {
+            while next < self.pair_scratch.len() && self.pair_scratch[next].0 as usize == i {
+                list.keys.push(self.pair_scratch[next]);
+                next += 1;
+            }
+            let (x, r) = (self.bodies.state[i].pose.position, self.bodies.bound[i]);
+            for (w, ws) in self.walls.iter().enumerate() {
+                if ws.wall.signed_distance(x) <= r + skin {
+                    list.keys.push((i as u32, WALL_BASE + w as u32));
                 }
             }
         }
-        self.candidates.sort_unstable();
-        self.contacts.begin_step();
+        let lost = list.rebuild_from_keys(n);
+        self.energies.dissipated += lost;
+        list.built_at.clear();
+        reserve_for(&mut list.built_at, n);
+        list.built_at
+            .extend(self.bodies.state.iter().map(|s| s.pose.position));
+        self.size_partials();
+    }
+
+    /// Every slot's contact for the current positions and velocities, in parallel; `dt` is the
+    /// step just drifted over (0 at the start), over which the shear displacement is integrated
+    /// (T16). Adds the shear energy of contacts that opened to the dissipated energy and sets the
+    /// elastic energy and the diagnostics; returns the sums.
+    fn compute_slots(&mut self, dt: f64) -> SlotPartial {
         let g = self.gravity.norm();
-        let (mut sum_f, mut sum_m, mut elastic) = (0.0, 0.0, 0.0);
-        for idx in 0..self.candidates.len() {
-            let (i, j) = self.candidates[idx];
-            let (iu, ju) = (i as usize, j as usize);
-            let b = &self.bodies;
-            let wall = j >= WALL_BASE;
-            let c = if wall {
-                contact_wall_body(
-                    &self.walls[(j - WALL_BASE) as usize].wall,
-                    &b.shape[iu],
-                    &b.pose[iu],
-                )
-            } else {
-                contact_bodies(&b.shape[iu], &b.pose[iu], &b.shape[ju], &b.pose[ju])
-            };
-            let Some(geo) = c.geometry else { continue };
-            if geo.depth <= 0.0 {
-                continue; // touching without overlap: no force, no history
-            }
-            match c.state {
-                ContactState::Deep => self.diagnostics.deep_contacts += 1,
-                ContactState::Contained => self.diagnostics.contained_contacts += 1,
-                _ => {}
-            }
-            // Flat on flat: a Winkler foundation (see `FlatOverlap`) — resultant k′A with
-            // k′ = k_n/ℓ, ℓ the pair's face length, at the overlap centroid; energy k′Aȳ. The
-            // spring then acts on δ_s = A/ℓ with energy ½k_n δ_s (2ȳ). Elsewhere: the depth, at the
-            // chord midpoint.
-            let (spring_depth, energy_depth, point) = match geo.flat {
-                Some(f) if c.state == ContactState::Overlap => {
-                    let ell = if wall {
-                        face_length(&b.shape[iu])
-                    } else {
-                        0.5 * (face_length(&b.shape[iu]) + face_length(&b.shape[ju]))
-                    };
-                    let ybar = (f.centroid - geo.chord.0).dot(&geo.normal).abs();
-                    (f.area / ell, 2.0 * ybar, f.centroid)
+        self.resolve_uniform_laws(g);
+        let laws = if self.law_cache.is_empty() {
+            None
+        } else {
+            Some(&self.law_cache[..])
+        };
+        let bodies = &self.bodies;
+        let walls = &self.walls[..];
+        let spec = &self.spec;
+        let list = &mut self.contacts;
+        list.slots
+            .par_chunks_mut(SLOT_CHUNK)
+            .zip(list.data.par_chunks_mut(SLOT_CHUNK))
+            .zip(self.slot_partials.par_iter_mut())
+            .for_each(|((slots, data), part)| {
+                let mut p = SlotPartial::default();
+                for (slot, data) in slots.iter_mut().zip(data) {
+                    update_slot(slot, data, None, bodies, walls, spec, laws, g, dt, &mut p);
                 }
-                _ => (geo.depth, geo.depth, geo.point),
-            };
-            let n_ = geo.normal;
-            let t_ = Vec2::new(-n_.y, n_.x);
-            // The body that receives +F ("j" of the law) and the one that receives −F.
-            let (recv, give) = if wall { (iu, None) } else { (ju, Some(iu)) };
-            let r_recv = point - b.pose[recv].position;
-            let mut v_rel = b.point_velocity(recv, r_recv);
-            let mut inv_m = b.inv_mass[recv];
-            let mut inv_r = 1.0 / b.curvature_radius(recv, -n_);
-            let mut rho = b.density[recv];
-            let r_give = give.map(|k| point - b.pose[k].position);
-            if let (Some(k), Some(r)) = (give, r_give) {
-                v_rel -= b.point_velocity(k, r);
-                inv_m += b.inv_mass[k];
-                inv_r += 1.0 / b.curvature_radius(k, n_);
-                rho = 0.5 * (rho + b.density[k]);
-            }
-            let kin = Kinematics {
-                depth: spring_depth,
-                energy_depth,
-                vn: v_rel.dot(&n_),
-                vt: v_rel.dot(&t_),
-                m_eff: 1.0 / inv_m, // T(13)
-                r_eff: 1.0 / inv_r, // T(11)
-                dt,
-            };
-            let law = if wall {
-                self.walls[(j - WALL_BASE) as usize]
-                    .spec
-                    .resolve(&self.spec, rho, g, kin.m_eff)
-            } else {
-                self.spec.resolve(&self.spec, rho, g, kin.m_eff)
-            };
-            let mut history = self.contacts.carried(i, j).unwrap_or_default();
-            let cf = law.force(&kin, &mut history);
-            let f = n_ * cf.normal + t_ * cf.tangential; // T(5): on the receiving body
-            let b = &mut self.bodies;
-            b.force[recv] += f;
-            b.torque[recv] += cross(r_recv, f); // T(22), r from the centroid to the contact point
-            if let (Some(k), Some(r)) = (give, r_give) {
-                b.force[k] -= f;
-                b.torque[k] -= cross(r, f);
-            }
-            elastic += cf.elastic_energy;
-            sum_f += f.norm();
-            sum_m += f.norm() * b.bound[recv];
-            let scale = b.shape[recv]
-                .inscribed_radius()
-                .min(give.map_or(f64::INFINITY, |k| b.shape[k].inscribed_radius()));
-            self.diagnostics.max_depth_ratio =
-                self.diagnostics.max_depth_ratio.max(geo.depth / scale);
-            self.contacts.current.push(Contact {
-                i,
-                j,
-                history,
-                state: c.state,
-                point,
-                normal: n_,
-                depth: geo.depth,
-                force: f,
-                elastic_energy: cf.elastic_energy,
-                shear_energy: cf.shear_energy,
-                normal_non_elastic: cf.normal_non_elastic,
-                tangential: cf.tangential,
-                shear_energy_change: cf.shear_energy_change,
-                kn: cf.kn,
-                eta_n: cf.eta_n,
-                kt: cf.kt,
-                eta_t: cf.eta_t,
+                *part = p;
             });
+        let mut sum = SlotPartial::default();
+        for p in &self.slot_partials {
+            sum.contacts += p.contacts;
+            sum.elastic += p.elastic;
+            sum.lost_shear += p.lost_shear;
+            sum.deep += p.deep;
+            sum.contained += p.contained;
+            sum.max_depth_ratio = sum.max_depth_ratio.max(p.max_depth_ratio);
+            sum.shear_energy_change += p.shear_energy_change;
         }
         // A contact that opened took its shear spring's energy with it.
-        if dt > 0.0 {
-            self.energies.dissipated += self.contacts.opened_shear_energy();
+        self.energies.dissipated += sum.lost_shear;
+        self.energies.elastic = sum.elastic;
+        self.diagnostics.deep_contacts += sum.deep;
+        self.diagnostics.contained_contacts += sum.contained;
+        self.diagnostics.max_depth_ratio =
+            self.diagnostics.max_depth_ratio.max(sum.max_depth_ratio);
+        sum
+    }
+
+    /// Fills each active slot's [`ContactExtra`] (depth, stiffness, damping) for the current
+    /// state. The step does not store them (it would stream them to memory every step for a
+    /// report made every output interval): this evaluates every slot again on a copy — its
+    /// history untouched, no time elapsing (Δt = 0) — and keeps only the extras.
+    pub fn refresh_contact_extras(&mut self) {
+        let g = self.gravity.norm();
+        self.resolve_uniform_laws(g);
+        let laws = if self.law_cache.is_empty() {
+            None
+        } else {
+            Some(&self.law_cache[..])
+        };
+        let (bodies, walls, spec) = (&self.bodies, &self.walls[..], &self.spec);
+        let list = &mut self.contacts;
+        list.slots
+            .par_chunks(SLOT_CHUNK)
+            .zip(list.extra.par_chunks_mut(SLOT_CHUNK))
+            .for_each(|(slots, extra)| {
+                let mut p = SlotPartial::default();
+                for (slot, extra) in slots.iter().zip(extra) {
+                    let (mut copy, mut data) = (*slot, ContactData::default());
+                    if slot.active {
+                        update_slot(
+                            &mut copy,
+                            &mut data,
+                            Some(extra),
+                            bodies,
+                            walls,
+                            spec,
+                            laws,
+                            g,
+                            0.0,
+                            &mut p,
+                        );
+                    } else {
+                        *extra = ContactExtra::default();
+                    }
+                }
+            });
+    }
+
+    /// The unbalanced-force ratio of PFC and Yade — mean |net force| over bodies divided by
+    /// mean |contact force| over contacts — and the same for moments (contact force × the
+    /// receiving body's bounding radius); 0 without contacts. Computed on demand from the last
+    /// evaluation (it costs a square root per contact and per body).
+    pub fn unbalanced_ratios(&self) -> (f64, f64) {
+        let b = &self.bodies;
+        let (mut sum_f, mut sum_m, mut count) = (0.0, 0.0, 0usize);
+        for c in self.contacts.active() {
+            let f = c.data.force.norm();
+            let recv = if c.is_wall() { c.slot.i } else { c.slot.j } as usize;
+            sum_f += f;
+            sum_m += f * b.bound[recv];
+            count += 1;
         }
-        self.energies.elastic = elastic;
-        let nc = self.contacts.current.len().max(1) as f64;
-        (sum_f / nc, sum_m / nc)
+        if count == 0 || b.is_empty() {
+            return (0.0, 0.0);
+        }
+        let n = b.len() as f64;
+        let net_f = b.force.iter().map(|f| f.norm()).sum::<f64>() / n;
+        let net_m = b.torque.iter().map(|m| m.abs()).sum::<f64>() / n;
+        let (mean_f, mean_m) = (sum_f / count as f64, sum_m / count as f64);
+        (
+            if mean_f > 0.0 { net_f / mean_f } else { 0.0 },
+            if mean_m > 0.0 { net_m / mean_m } else { 0.0 },
+        )
+    }
+
+    /// When every pair of a kind has the same law — one density for all bodies, and no law that
+    /// depends on the pair's mass (restitution-tuned dashpots) — resolves the body–body law and
+    /// each wall's once (`law_cache[0]`, `law_cache[1 + w]`) instead of at every contact.
+    fn resolve_uniform_laws(&mut self, g: f64) {
+        self.law_cache.clear();
+        let per_pair = |s: &ContactSpec| {
+            matches!(
+                s,
+                ContactSpec::Linear {
+                    damping: crate::contact_law::LinearDamping::Restitution(_),
+                    ..
+                }
+            )
+        };
+        let Some(rho) = self.uniform_density else {
+            return;
+        };
+        if per_pair(&self.spec) || self.walls.iter().any(|w| per_pair(&w.spec)) {
+            return;
+        }
+        self.law_cache
+            .push(self.spec.resolve(&self.spec, rho, g, f64::NAN));
+        for w in &self.walls {
+            self.law_cache
+                .push(w.spec.resolve(&self.spec, rho, g, f64::NAN));
+        }
+    }
+
+    /// Each body's force and moment: gravity (T3) and its contacts' (T4, T22), gathered in key
+    /// order. With `kick = Some(h)`, then `v += h F/m`, `ω += h M/I` (the second half-kick) and
+    /// the sums of the body pass (net force and moment, energies, first non-finite body).
+    fn gather_forces(&mut self, kick: Option<f64>) -> BodyPartial {
+        let gravity = self.gravity;
+        let list = &self.contacts;
+        let (data, start, adjacency) = (
+            &list.data[..],
+            &list.adjacency_start[..],
+            &list.adjacency[..],
+        );
+        let Bodies {
+            state,
+            force,
+            torque,
+            mass,
+            inertia,
+            inv_mass,
+            inv_inertia,
+            ..
+        } = &mut self.bodies;
+        force
+            .par_chunks_mut(BODY_CHUNK)
+            .zip(torque.par_chunks_mut(BODY_CHUNK))
+            .zip(state.par_chunks_mut(BODY_CHUNK))
+            .zip(self.body_partials.par_iter_mut())
+            .enumerate()
+            .for_each(|(c, (((force, torque), state), part))| {
+                let base = c * BODY_CHUNK;
+                let mut p = BodyPartial::default();
+                for k in 0..force.len() {
+                    let g = base + k;
+                    let s = &mut state[k];
+                    let x = s.pose.position;
+                    let mut f = gravity * mass[g]; // T(3): body force
+                    let mut m = 0.0;
+                    let (mut f_ne, mut m_ne) = (Vec2::zeros(), 0.0);
+                    // An inactive slot's data hold zero forces: no test needed.
+                    for a in &adjacency[start[g] as usize..start[g + 1] as usize] {
+                        let d = &data[a.slot()];
+                        let (sign, r) = (a.sign(), d.point - x);
+                        let fs = d.force * sign;
+                        f += fs; // T(4)
+                        m += cross(r, fs); // T(22): r from the centroid to the contact point
+                        let fe = d.force_non_elastic * sign;
+                        f_ne += fe;
+                        m_ne += cross(r, fe);
+                    }
+                    force[k] = f;
+                    torque[k] = m;
+                    if let Some(h) = kick {
+                        s.vel += f * (h * inv_mass[g]);
+                        s.omega += m * h * inv_inertia[g];
+                        if !(s.vel.x.is_finite() && s.vel.y.is_finite() && s.omega.is_finite()) {
+                            p.bad.get_or_insert(g);
+                        }
+                        p.non_elastic_power += f_ne.dot(&s.vel) + m_ne * s.omega;
+                        p.kinetic += 0.5 * mass[g] * s.vel.norm_squared()
+                            + 0.5 * inertia[g] * s.omega * s.omega;
+                        p.potential -= mass[g] * gravity.dot(&x);
+                    }
+                }
+                *part = p;
+            });
+        let mut sum = BodyPartial::default();
+        for p in &self.body_partials {
+            if sum.bad.is_none() {
+                sum.bad = p.bad;
+            }
+            sum.kinetic += p.kinetic;
+            sum.potential += p.potential;
+            sum.non_elastic_power += p.non_elastic_power;
+        }
+        sum
     }
 }
 
-impl World {
-    /// Adds the energy the contacts took out during this step. Verlet applies the forces of time
-    /// level n+1 over the interval centred on it, so their work is taken with the velocities at
-    /// n+1 (after the second kick): the non-elastic normal part's and the shear force's, less the
-    /// change of the shear spring's energy.
-    fn account_dissipation(&mut self, dt: f64) {
-        let b = &self.bodies;
-        let mut d = 0.0;
-        for c in &self.contacts.current {
-            let (iu, ju) = (c.i as usize, c.j as usize);
-            let (recv, give) = if c.is_wall() {
-                (iu, None)
-            } else {
-                (ju, Some(iu))
-            };
-            let mut v = b.point_velocity(recv, c.point - b.pose[recv].position);
-            if let Some(k) = give {
-                v -= b.point_velocity(k, c.point - b.pose[k].position);
-            }
-            let t = Vec2::new(-c.normal.y, c.normal.x);
-            d += -(c.normal_non_elastic * v.dot(&c.normal) + c.tangential * v.dot(&t)) * dt
-                - c.shear_energy_change;
+/// One slot's contact: geometry (narrow phase), kinematics at the contact point, the law, and
+/// the history; an inactive slot drops its history.
+#[inline]
+#[allow(clippy::too_many_arguments)] // the slot, its data, and what it is computed from
+fn update_slot(
+    slot: &mut Slot,
+    data: &mut ContactData,
+    extra: Option<&mut ContactExtra>,
+    b: &Bodies,
+    walls: &[WallSpec],
+    spec: &ContactSpec,
+    laws: Option<&[crate::contact_law::Law]>,
+    g: f64,
+    dt: f64,
+    p: &mut SlotPartial,
+) {
+    let (iu, ju) = (slot.i as usize, slot.j as usize);
+    let wall = slot.is_wall();
+    let mut warm = None;
+    // Circles take the lean path (no chord: nothing below reads it); every other pair the
+    // chord contact. Either way: state, point, normal, depth, and a flat overlap's spring.
+    let lean = match (wall, b.shape[iu], b.shape.get(ju)) {
+        (true, Shape::Circle { r }, _) => {
+            overlap_wall_circle(&walls[ju - WALL_BASE as usize].wall, r, &b.state[iu].pose)
+                .map(|(s, pt, n, d)| (s, pt, n, d, None))
         }
-        self.energies.dissipated += d;
+        (false, Shape::Circle { r: ri }, Some(&Shape::Circle { r: rj })) => {
+            overlap_circle_circle(ri, &b.state[iu].pose, rj, &b.state[ju].pose)
+                .map(|(s, pt, n, d)| (s, pt, n, d, None))
+        }
+        _ => {
+            let c = if wall {
+                contact_wall_body(
+                    &walls[ju - WALL_BASE as usize].wall,
+                    &b.shape[iu],
+                    &b.state[iu].pose,
+                )
+            } else {
+                // Conic pairs start from last step's crossings (if the contact lasts).
+                // (Only a separating axis survives a separated step.)
+                let guess = slot.warm();
+                let (c, next) = contact_bodies_warm(
+                    &b.shape[iu],
+                    &b.state[iu].pose,
+                    &b.shape[ju],
+                    &b.state[ju].pose,
+                    guess,
+                );
+                warm = next;
+                c
+            };
+            c.geometry.map(|g| {
+                // Flat on flat: a Winkler foundation (see `FlatOverlap`) — resultant k′A with
+                // k′ = k_n/ℓ, ℓ the pair's face length, at the overlap centroid; energy k′Aȳ.
+                // The spring then acts on δ_s = A/ℓ with energy ½k_n δ_s (2ȳ).
+                let flat = match g.flat {
+                    Some(f) if c.state == ContactState::Overlap => {
+                        let ell = if wall {
+                            face_length(&b.shape[iu])
+                        } else {
+                            0.5 * (face_length(&b.shape[iu]) + face_length(&b.shape[ju]))
+                        };
+                        let ybar = (f.centroid - g.chord.0).dot(&g.normal).abs();
+                        Some((f.area / ell, 2.0 * ybar, f.centroid))
+                    }
+                    _ => None,
+                };
+                (c.state, g.point, g.normal, g.depth, flat)
+            })
+        }
+    };
+    let (state, geo_point, n_, depth, flat) = match lean {
+        Some(l) if l.3 > 0.0 => l,
+        // Separated, or touching without overlap: no force, no history.
+        _ => {
+            if slot.active {
+                p.lost_shear += slot.shear_energy;
+            }
+            *slot = Slot::new(slot.i, slot.j);
+            slot.set_warm(warm); // a separating axis, for the next step
+            *data = ContactData::default(); // zero forces: the gather adds them unconditionally
+            if let Some(e) = extra {
+                *e = ContactExtra::default();
+            }
+            return;
+        }
+    };
+    match state {
+        ContactState::Deep => p.deep += 1,
+        ContactState::Contained => p.contained += 1,
+        _ => {}
+    }
+    // Elsewhere than flat on flat: the depth, at the chord midpoint.
+    let (spring_depth, energy_depth, point) = flat.unwrap_or((depth, depth, geo_point));
+    let t_ = Vec2::new(-n_.y, n_.x);
+    // The body that receives +F ("j" of the law) and the one that receives −F.
+    let (recv, give) = if wall { (iu, None) } else { (ju, Some(iu)) };
+    let r_recv = point - b.state[recv].pose.position;
+    let mut v_rel = b.point_velocity(recv, r_recv);
+    let mut inv_m = b.inv_mass[recv];
+    let mut rho = b.density[recv];
+    if let Some(k) = give {
+        v_rel -= b.point_velocity(k, point - b.state[k].pose.position);
+        inv_m += b.inv_mass[k];
+        rho = 0.5 * (rho + b.density[k]);
+    }
+    let governing = if wall {
+        &walls[ju - WALL_BASE as usize].spec
+    } else {
+        spec
+    };
+    // R* only matters to Hertz–Mindlin (T11): a linear scene does not pay for curvatures.
+    let r_eff = match governing {
+        ContactSpec::HertzMindlin { .. } => {
+            let mut inv_r = 1.0 / b.curvature_radius(recv, -n_);
+            if let Some(k) = give {
+                inv_r += 1.0 / b.curvature_radius(k, n_);
+            }
+            1.0 / inv_r // T(11)
+        }
+        ContactSpec::Linear { .. } => f64::NAN,
+    };
+    let kin = Kinematics {
+        depth: spring_depth,
+        energy_depth,
+        vn: v_rel.dot(&n_),
+        vt: v_rel.dot(&t_),
+        m_eff: 1.0 / inv_m, // T(13)
+        r_eff,
+        dt,
+    };
+    let law = match laws {
+        Some(l) => l[if wall { 1 + ju - WALL_BASE as usize } else { 0 }],
+        None => governing.resolve(spec, rho, g, kin.m_eff),
+    };
+    let mut history = if slot.active {
+        slot.history
+    } else {
+        Default::default()
+    };
+    let cf = law.force(&kin, &mut history);
+    let f = n_ * cf.normal + t_ * cf.tangential; // T(5): on the receiving body
+    let f_ne = n_ * cf.normal_non_elastic + t_ * cf.tangential;
+    p.contacts += 1;
+    p.elastic += cf.elastic_energy;
+    p.shear_energy_change += cf.shear_energy_change;
+    let scale = b.shape[recv]
+        .inscribed_radius()
+        .min(give.map_or(f64::INFINITY, |k| b.shape[k].inscribed_radius()));
+    if depth > p.max_depth_ratio * scale {
+        p.max_depth_ratio = depth / scale; // divide only when the maximum grows
+    }
+    *slot = Slot {
+        i: slot.i,
+        j: slot.j,
+        active: true,
+        state,
+        history,
+        shear_energy: cf.shear_energy,
+        warm: slot.warm,
+    };
+    slot.set_warm(warm);
+    *data = ContactData {
+        point,
+        force: f,
+        force_non_elastic: f_ne,
+    };
+    if let Some(e) = extra {
+        *e = ContactExtra {
+            normal: n_,
+            depth,
+            kn: cf.kn as f32,
+            eta_n: cf.eta_n as f32,
+            kt: cf.kt as f32,
+            eta_t: cf.eta_t as f32,
+        };
     }
 }
 

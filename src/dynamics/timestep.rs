@@ -10,6 +10,7 @@
 //! lowers the limit: for ζ ≫ 1 it tends to `2/(η w)`, set by the dashpot alone.
 
 use super::body::Bodies;
+use super::contacts::Contact;
 use super::world::{WallSpec, World};
 use crate::contact_law::{ContactSpec, Law};
 use crate::geometry::Shape;
@@ -130,7 +131,9 @@ impl World {
     /// stiffer than any one of them, which the single-contact a-priori estimate cannot see.
     /// Also records the smallest value in [`Diagnostics::dt_critical_observed`](super::world::Diagnostics).
     pub fn network_critical_dt(&mut self) -> f64 {
-        let dt = network_dt(&self.bodies, &self.contacts.current);
+        self.refresh_contact_extras();
+        let contacts: Vec<Contact> = self.contacts.active().collect();
+        let dt = network_dt(&self.bodies, &contacts);
         self.diagnostics.dt_critical_observed = self.diagnostics.dt_critical_observed.min(dt);
         dt
     }
@@ -140,7 +143,7 @@ impl World {
 /// two bodies, and whether the second side is a body (not a wall).
 type JacobianRow = (f64, f64, [(usize, [f64; 3]); 2], bool);
 
-fn network_dt(b: &Bodies, contacts: &[super::contacts::Contact]) -> f64 {
+fn network_dt(b: &Bodies, contacts: &[Contact]) -> f64 {
     use crate::geometry::Vec2;
     if contacts.is_empty() {
         return f64::INFINITY;
@@ -156,19 +159,23 @@ fn network_dt(b: &Bodies, contacts: &[super::contacts::Contact]) -> f64 {
     let cross = |a: Vec2, c: Vec2| a.x * c.y - a.y * c.x;
     let mut rows: Vec<JacobianRow> = Vec::with_capacity(2 * contacts.len());
     for c in contacts {
-        let (iu, ju) = (c.i as usize, c.j as usize);
+        let (iu, ju) = (c.slot.i as usize, c.slot.j as usize);
         let (recv, give) = if c.is_wall() {
             (iu, None)
         } else {
             (ju, Some(iu))
         };
-        let t = Vec2::new(-c.normal.y, c.normal.x);
-        for (u, k, eta) in [(c.normal, c.kn, c.eta_n), (t, c.kt, c.eta_t)] {
+        let (d, e) = (&c.data, &c.extra);
+        let t = Vec2::new(-e.normal.y, e.normal.x);
+        for (u, k, eta) in [
+            (e.normal, e.kn as f64, e.eta_n as f64),
+            (t, e.kt as f64, e.eta_t as f64),
+        ] {
             if k <= 0.0 {
                 continue;
             }
             let side = |body: usize, sign: f64| {
-                let r = c.point - b.pose[body].position;
+                let r = d.point - b.state[body].pose.position;
                 let s = scale[body];
                 (
                     body,

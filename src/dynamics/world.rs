@@ -65,7 +65,15 @@ pub struct World {
     /// Mean |Δx|, |Δy|, |Δθ| over bodies during the last step (P's quiescence measure).
     pub last_increments: [f64; 3],
     pub(crate) grid: Grid,
-    pub(crate) candidates: Vec<(u32, u32)>,
+    /// Scratch of the neighbour-list build (the grid's body pairs).
+    pub(crate) pair_scratch: Vec<(u32, u32)>,
+    /// Per-chunk partial results of the parallel passes (see `step`).
+    pub(crate) body_partials: Vec<super::step::BodyPartial>,
+    pub(crate) slot_partials: Vec<super::step::SlotPartial>,
+    /// The density of every body when they all have the same (checked at each list build).
+    pub(crate) uniform_density: Option<f64>,
+    /// Laws resolved once per step when every pair of a kind has the same (see `step`).
+    pub(crate) law_cache: Vec<crate::contact_law::Law>,
 }
 
 impl World {
@@ -94,7 +102,11 @@ impl World {
             },
             last_increments: [0.0; 3],
             grid: Grid::default(),
-            candidates: Vec::new(),
+            pair_scratch: Vec::new(),
+            body_partials: Vec::new(),
+            slot_partials: Vec::new(),
+            uniform_density: None,
+            law_cache: Vec::new(),
         };
         w.evaluate_forces();
         w.energies.kinetic = w.kinetic_energy();
@@ -107,8 +119,8 @@ impl World {
         let b = &self.bodies;
         (0..b.len())
             .map(|k| {
-                0.5 * b.mass[k] * b.vel[k].norm_squared()
-                    + 0.5 * b.inertia[k] * b.omega[k] * b.omega[k]
+                0.5 * b.mass[k] * b.state[k].vel.norm_squared()
+                    + 0.5 * b.inertia[k] * b.state[k].omega * b.state[k].omega
             })
             .sum()
     }
@@ -117,14 +129,14 @@ impl World {
     pub fn potential_energy(&self) -> f64 {
         let b = &self.bodies;
         (0..b.len())
-            .map(|k| -b.mass[k] * self.gravity.dot(&b.pose[k].position))
+            .map(|k| -b.mass[k] * self.gravity.dot(&b.state[k].pose.position))
             .sum()
     }
 
     /// Total linear momentum `Σ m v`.
     pub fn momentum(&self) -> Vec2 {
         let b = &self.bodies;
-        (0..b.len()).map(|k| b.vel[k] * b.mass[k]).sum()
+        (0..b.len()).map(|k| b.state[k].vel * b.mass[k]).sum()
     }
 
     /// Total angular momentum about the origin, `Σ (I ω + m x × v)`.
@@ -132,9 +144,50 @@ impl World {
         let b = &self.bodies;
         (0..b.len())
             .map(|k| {
-                let (x, v) = (b.pose[k].position, b.vel[k]);
-                b.inertia[k] * b.omega[k] + b.mass[k] * (x.x * v.y - x.y * v.x)
+                let (x, v) = (b.state[k].pose.position, b.state[k].vel);
+                b.inertia[k] * b.state[k].omega + b.mass[k] * (x.x * v.y - x.y * v.x)
             })
             .sum()
+    }
+}
+
+/// Heap bytes held by a vector (its capacity, not its length).
+fn held<T>(v: &Vec<T>) -> usize {
+    v.capacity() * std::mem::size_of::<T>()
+}
+
+impl World {
+    /// Heap bytes the world holds, by part (capacities): bodies, neighbour-list slots and their
+    /// contact data, the per-body adjacency, the grid and the build's scratch.
+    pub fn heap_breakdown(&self) -> [(&'static str, usize); 5] {
+        let b = &self.bodies;
+        let c = &self.contacts;
+        let bodies = held(&b.shape)
+            + held(&b.density)
+            + held(&b.mass)
+            + held(&b.inv_mass)
+            + held(&b.inertia)
+            + held(&b.inv_inertia)
+            + held(&b.bound)
+            + held(&b.state)
+            + held(&b.is_circle)
+            + held(&b.force)
+            + held(&b.torque);
+        [
+            ("bodies", bodies),
+            (
+                "slots and contact data",
+                held(&c.slots) + held(&c.data) + held(&c.extra),
+            ),
+            (
+                "adjacency",
+                held(&c.adjacency) + held(&c.adjacency_start) + held(&c.adjacency_fill),
+            ),
+            ("grid", self.grid.heap_bytes()),
+            (
+                "build scratch",
+                held(&c.keys) + held(&c.rebuilt) + held(&c.built_at) + held(&self.pair_scratch),
+            ),
+        ]
     }
 }

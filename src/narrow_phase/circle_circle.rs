@@ -7,42 +7,55 @@
 use super::{Contact, ContactGeometry, ContactState, TOUCH_TOL};
 use crate::geometry::{Pose, Vec2};
 
-/// Contact between circle i (radius `ri`) and circle j (radius `rj`).
+/// What the dynamics needs of a circle pair — state, contact point, normal, depth — without
+/// the chord (whose half-length costs a square root nobody then reads). `None` when separated.
+/// [`contact_circle_circle`] is this plus the chord.
 #[inline]
-pub fn contact_circle_circle(ri: f64, pi: &Pose, rj: f64, pj: &Pose) -> Contact {
+pub fn overlap_circle_circle(
+    ri: f64,
+    pi: &Pose,
+    rj: f64,
+    pj: &Pose,
+) -> Option<(ContactState, Vec2, Vec2, f64)> {
     let dv = pj.position - pi.position;
     let d2 = dv.norm_squared();
     let sum = ri + rj;
     if d2 > sum * sum {
-        return Contact::SEPARATED;
+        return None;
     }
     let d = d2.sqrt();
     let depth = sum - d;
-    let tol = TOUCH_TOL * ri.max(rj);
     if d <= (ri - rj).abs() {
         // One circle inside the other (or concentric): normal along the line of centres.
         let n = if d > 0.0 { dv / d } else { Vec2::x() };
         let inner = if ri >= rj { pj.position } else { pi.position };
-        return Contact {
-            state: ContactState::Contained,
-            geometry: Some(ContactGeometry {
-                point: inner,
-                normal: n,
-                depth,
-                chord: (inner, inner),
-                flat: None,
-            }),
-        };
+        return Some((ContactState::Contained, inner, n, depth));
     }
-    let n = dv / d;
-    let x = 0.5 * (d + (ri - rj) * (ri + rj) / d);
-    let half = ((ri - x) * (ri + x)).max(0.0).sqrt();
-    let point = pi.position + n * x;
-    let t = Vec2::new(-n.y, n.x) * half;
-    let state = if depth <= tol {
+    let inv_d = 1.0 / d;
+    let n = dv * inv_d;
+    // The radical line (the chord's line) is at x from c_i; its midpoint is the contact point.
+    let x = 0.5 * (d + (ri - rj) * (ri + rj) * inv_d);
+    let state = if depth <= TOUCH_TOL * ri.max(rj) {
         ContactState::Touching
     } else {
         ContactState::Overlap
+    };
+    Some((state, pi.position + n * x, n, depth))
+}
+
+/// Contact between circle i (radius `ri`) and circle j (radius `rj`).
+#[inline]
+pub fn contact_circle_circle(ri: f64, pi: &Pose, rj: f64, pj: &Pose) -> Contact {
+    let Some((state, point, n, depth)) = overlap_circle_circle(ri, pi, rj, pj) else {
+        return Contact::SEPARATED;
+    };
+    let chord = if state == ContactState::Contained {
+        (point, point)
+    } else {
+        let x = (point - pi.position).dot(&n);
+        let half = ((ri - x) * (ri + x)).max(0.0).sqrt();
+        let t = Vec2::new(-n.y, n.x) * half;
+        (point - t, point + t)
     };
     Contact {
         state,
@@ -50,7 +63,7 @@ pub fn contact_circle_circle(ri: f64, pi: &Pose, rj: f64, pj: &Pose) -> Contact 
             point,
             normal: n,
             depth,
-            chord: (point - t, point + t),
+            chord,
             flat: None,
         }),
     }

@@ -19,6 +19,19 @@
 //! all four points. At tangency two roots merge (a double root, a point-ellipse member).
 //! Equal shapes with equal orientation give the root λ = −1 exactly, whose member is one finite
 //! line (the chord) plus the line at infinity.
+//!
+//! # Warm start (the dynamics' path)
+//! A contact that lasts moves little from one step to the next. Given last step's two crossings
+//! ([`Warm`]), [`conic_pair_warm`] first refines them by Newton's method on the two boundary
+//! equations `Q_i(p) = 1`, `Q_j(p) = 1` — a few flops per iteration, two iterations from a
+//! guess of the last step — and applies the chord definition to them. It accepts the result
+//! only when it is certain to be the one the pencil would give, to rounding: Newton converged
+//! to two distinct points, the boundaries cross there at an angle (|sin| ≥ [`WARM_MIN_SINE`],
+//! so the points are well conditioned; grazing contacts go to the pencil, which gets the chord
+//! line without computing the points first), and the overlap is shallow (δ ≤
+//! [`WARM_MAX_DEPTH`] × the smaller semi-axis, far from the depths at which four crossings are
+//! possible). Anything else — a first contact, a deep or grazing one, no convergence — takes
+//! the pencil.
 
 use super::{
     Contact, ContactState, LocalFrame, TOUCH_TOL, deep_fallback, orient_symmetric, pow2_floor,
@@ -35,6 +48,26 @@ use crate::geometry::pencil::{
 /// λ and of the splitting (measured up to ~1e-14 at a/b = 100), which `half_sq_err` does not
 /// include; a generous band costs nothing, since the depth decides.
 const NEAR_TANGENT: f64 = 1e-10;
+
+/// Smallest |sin| of the angle between the boundaries at a crossing for the warm path: the
+/// crossings' error is then at most ~ε/|sin| of the size, and the chord normal's at most that
+/// over the chord's length (≲ 1e-10 rad).
+pub const WARM_MIN_SINE: f64 = 1e-3;
+
+/// Deepest overlap, as a fraction of the pair's smaller semi-axis, taken by the warm path (two
+/// ellipses overlapping this little cross at exactly two points).
+pub const WARM_MAX_DEPTH: f64 = 0.05;
+
+/// What a pair carries from one step to the next to start from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Warm {
+    /// A lasting contact's two crossings, relative to body i's centroid in body i's own frame
+    /// (so that they move with the pair).
+    Crossings([[f64; 2]; 2]),
+    /// A separated pair's separating axis, as `(cos ψ, sin ψ)` of its angle ψ from the line of
+    /// centres (so that it turns with the pair).
+    Axis([f64; 2]),
+}
 
 /// Contact between ellipse i (semi-axes `ai` along its x axis, `bi`) and ellipse j.
 #[inline]
@@ -60,11 +93,165 @@ fn support(a: f64, b: f64, cos: f64, sin: f64, ux: f64, uy: f64) -> f64 {
 /// The pencil computation shared by ellipse–ellipse and circle–ellipse (a circle is the conic
 /// with `a = b = r`).
 pub(crate) fn conic_pair(ai: f64, bi: f64, pi: &Pose, aj: f64, bj: f64, pj: &Pose) -> Contact {
+    conic_pair_warm(ai, bi, pi, aj, bj, pj, None).0
+}
+
+/// Refines two crossings of the boundaries `Q_i(p) = 1` (i centred at the origin) and
+/// `Q_j(p − (d, 0)) = 1` by Newton's method. `None` unless both converge to distinct, well
+/// conditioned points (see the module documentation).
+fn newton_crossings(
+    fi: &EllipseForm,
+    fj: &EllipseForm,
+    d: f64,
+    guess: [[f64; 2]; 2],
+) -> Option<[[f64; 2]; 2]> {
+    let grad = |f: &EllipseForm, x: f64, y: f64| {
+        [
+            2.0 * (f.a_coef * x + f.b_coef * y),
+            2.0 * (f.b_coef * x + f.c_coef * y),
+        ]
+    };
+    let mut out = guess;
+    for p in &mut out {
+        let mut converged = false;
+        for _ in 0..6 {
+            let (x, y) = (p[0], p[1]);
+            let (f1, f2) = (fi.quad(x, y) - 1.0, fj.quad(x - d, y) - 1.0);
+            let (g1, g2) = (grad(fi, x, y), grad(fj, x - d, y));
+            let det = g1[0] * g2[1] - g1[1] * g2[0];
+            let norms = (g1[0] * g1[0] + g1[1] * g1[1]) * (g2[0] * g2[0] + g2[1] * g2[1]);
+            if !det.is_finite() || det * det < WARM_MIN_SINE * WARM_MIN_SINE * norms {
+                return None; // grazing (or not finite): ill-conditioned crossing
+            }
+            let inv_det = 1.0 / det;
+            let dx = (g1[1] * f2 - g2[1] * f1) * inv_det;
+            let dy = (g2[0] * f1 - g1[0] * f2) * inv_det;
+            p[0] += dx;
+            p[1] += dy;
+            // Quadratic convergence: after a step this small the error is below rounding.
+            if dx * dx + dy * dy <= 1e-18 * (1.0 + x * x + y * y) {
+                converged = true;
+                break;
+            }
+        }
+        if !converged {
+            return None;
+        }
+    }
+    // Lengths here are of order one (the frame is scaled): no over- or underflow to guard
+    // against, so squares rather than `hypot`.
+    let (ex, ey) = (out[1][0] - out[0][0], out[1][1] - out[0][1]);
+    let chord2 = ex * ex + ey * ey;
+    // The same crossing twice, or a wild jump: not the chord we are tracking.
+    let moved2 = |k: usize| {
+        let (mx, my) = (out[k][0] - guess[k][0], out[k][1] - guess[k][1]);
+        mx * mx + my * my
+    };
+    if chord2.is_nan() || chord2 <= 1e-12 || moved2(0) > 0.25 * chord2 || moved2(1) > 0.25 * chord2
+    {
+        return None;
+    }
+    Some(out)
+}
+
+/// A separating axis of the two ellipses, if a few steps find one: the gap along the unit
+/// vector at angle φ from the line of centres, `g(φ) = d cos φ − S(φ)` (S the sum of the
+/// centred supports), is maximised by Newton's method on `g′ = 0` from `start`, stopping as
+/// soon as `g > tol` — a proof of separation (the supports are exact to rounding). `None` when
+/// none is found (overlapping, touching, or too close to tell): the pencil then decides.
+/// `(ai, bi, cti, sti)` and `(aj, bj, ctj, stj)` are the ellipses as in [`support`].
+#[allow(clippy::too_many_arguments)] // two ellipses and where to start
+fn separating_axis(
+    (ai, bi, cti, sti): (f64, f64, f64, f64),
+    (aj, bj, ctj, stj): (f64, f64, f64, f64),
+    d: f64,
+    start: [f64; 2],
+    tol: f64,
+) -> Option<[f64; 2]> {
+    // Support, its first and second derivatives in φ: with p = (a u·e_a, b u·e_b),
+    // s = |p|, s′ = p_a p_b (b/a − a/b)/s, s″ = ((a/b)² p_b² + (b/a)² p_a² − s² − s′²)/s.
+    let derivs = |a: f64, b: f64, c: f64, sn: f64, ux: f64, uy: f64| {
+        let (pa, pb) = (a * (c * ux + sn * uy), b * (c * uy - sn * ux));
+        let s = (pa * pa + pb * pb).sqrt();
+        let (ab, ba) = (a / b, b / a);
+        let s1 = pa * pb * (ba - ab) / s;
+        let s2 = (ab * ab * pb * pb + ba * ba * pa * pa - s * s - s1 * s1) / s;
+        (s, s1, s2)
+    };
+    let (mut c, mut sn) = (start[0], start[1]);
+    for _ in 0..8 {
+        let (si, si1, si2) = derivs(ai, bi, cti, sti, c, sn);
+        let (sj, sj1, sj2) = derivs(aj, bj, ctj, stj, c, sn);
+        let g = d * c - si - sj;
+        if g > tol {
+            return Some([c, sn]);
+        }
+        let g1 = -d * sn - si1 - sj1;
+        let g2 = -d * c - si2 - sj2;
+        // Newton where g is concave; otherwise a bounded step uphill.
+        let step = if g2 < 0.0 {
+            (-g1 / g2).clamp(-0.5, 0.5)
+        } else {
+            0.25f64.copysign(g1)
+        };
+        if !step.is_finite() || step.abs() < 1e-12 {
+            return None;
+        }
+        let (cs, ss) = (step.cos(), step.sin());
+        (c, sn) = (c * cs - sn * ss, sn * cs + c * ss);
+    }
+    None
+}
+
+/// [`conic_pair`] with a warm start: `guess` is last step's [`Warm`] crossings (None for a new
+/// contact). Returns the contact and, for a two-crossing overlap, its crossings for the next
+/// step.
+pub fn conic_pair_warm(
+    ai: f64,
+    bi: f64,
+    pi: &Pose,
+    aj: f64,
+    bj: f64,
+    pj: &Pose,
+    guess: Option<Warm>,
+) -> (Contact, Option<Warm>) {
+    let (c, w, _) = conic_pair_traced(ai, bi, pi, aj, bj, pj, guess);
+    (c, w)
+}
+
+/// [`conic_pair_warm`], also telling whether the result came from the warm start (the refined
+/// crossings, or the carried separating axis) rather than from the pencil — for the tests that
+/// hold the warm path to the same bars as the pencil.
+pub fn conic_pair_traced(
+    ai: f64,
+    bi: f64,
+    pi: &Pose,
+    aj: f64,
+    bj: f64,
+    pj: &Pose,
+    guess: Option<Warm>,
+) -> (Contact, Option<Warm>, bool) {
+    let mut used_warm = false;
+    let (c, w) = conic_pair_inner(ai, bi, pi, aj, bj, pj, guess, &mut used_warm);
+    (c, w, used_warm)
+}
+
+#[allow(clippy::too_many_arguments)] // the two ellipses, the guess, and what was used
+fn conic_pair_inner(
+    ai: f64,
+    bi: f64,
+    pi: &Pose,
+    aj: f64,
+    bj: f64,
+    pj: &Pose,
+    guess: Option<Warm>,
+    used_warm: &mut bool,
+) -> (Contact, Option<Warm>) {
     let dv = pj.position - pi.position;
     let d = dv.norm();
     let (ri, rj) = (ai.max(bi), aj.max(bj));
     if d > ri + rj {
-        return Contact::SEPARATED; // bounding circles
+        return (Contact::SEPARATED, None); // bounding circles
     }
     // P's local frame: x axis from O_i through O_j (α of Fig. 1); any axis when concentric.
     let (ca, sa) = if d > 0.0 {
@@ -77,9 +264,11 @@ pub(crate) fn conic_pair(ai: f64, bi: f64, pi: &Pose, aj: f64, bj: f64, pj: &Pos
     // θ_n = (body angle) − α, by the angle-difference formulas.
     let (cti, sti) = (ci * ca + si * sa, si * ca - ci * sa);
     let (ctj, stj) = (cj * ca + sj * sa, sj * ca - cj * sa);
-    // Separating axis along the line of centres.
-    if support(ai, bi, cti, sti, 1.0, 0.0) + support(aj, bj, ctj, stj, 1.0, 0.0) < d {
-        return Contact::SEPARATED;
+    // Separating axis along the line of centres (not for a lasting contact: it overlapped a
+    // step ago, so this test would almost surely fail).
+    let lasting = matches!(guess, Some(Warm::Crossings(_)));
+    if !lasting && support(ai, bi, cti, sti, 1.0, 0.0) + support(aj, bj, ctj, stj, 1.0, 0.0) < d {
+        return (Contact::SEPARATED, None);
     }
     let scale = pow2_floor(ri.max(rj));
     let inv = 1.0 / scale;
@@ -95,9 +284,64 @@ pub(crate) fn conic_pair(ai: f64, bi: f64, pi: &Pose, aj: f64, bj: f64, pj: &Pos
     let (cphi, sphi) = (cj * ci + sj * si, sj * ci - cj * si);
     let inv_i = [1.0 / (ai * ai), 1.0 / (bi * bi)];
     let inv_j = [1.0 / (aj * aj), 1.0 / (bj * bj)];
+    let form_i = EllipseForm::from_inverse_squares(inv_i[0], inv_i[1], cti, sti); // P(5), P(7)
+    let form_j = EllipseForm::from_inverse_squares(inv_j[0], inv_j[1], ctj, stj); // P(6), P(7)
+    // Sum of the centred supports along n (both ellipses are symmetric, so the same along −n);
+    // the depth along n (i → j) is that minus n·d.
+    let supports =
+        |n: [f64; 2]| support(ai, bi, cti, sti, n[0], n[1]) + support(aj, bj, ctj, stj, n[0], n[1]);
+    let depth = |n: [f64; 2]| supports(n) - n[0] * d;
+    let oriented = |n: [f64; 2]| orient_symmetric(n, supports(n), n[0] * d);
+    // Body i's frame ↔ this frame: a rotation by θ_i − α (cos `cti`, sin `sti`) and the scale.
+    let to_warm = |p: [f64; 2]| -> [f64; 2] {
+        [
+            (cti * p[0] + sti * p[1]) * scale,
+            (-sti * p[0] + cti * p[1]) * scale,
+        ]
+    };
+    let tol = TOUCH_TOL;
+
+    // The warm paths (see the module documentation): a lasting contact's crossings refined; a
+    // separated pair's separating axis confirmed or turned until it separates.
+    if let Some(Warm::Crossings(g)) = guess {
+        let from_warm = |q: [f64; 2]| {
+            [
+                (cti * q[0] - sti * q[1]) * inv,
+                (sti * q[0] + cti * q[1]) * inv,
+            ]
+        };
+        if let Some([p, q]) =
+            newton_crossings(&form_i, &form_j, d, [from_warm(g[0]), from_warm(g[1])])
+        {
+            let (ex, ey) = (q[0] - p[0], q[1] - p[1]);
+            let inv_len = 1.0 / (ex * ex + ey * ey).sqrt(); // order one: no `hypot` needed
+            let (n, dpt) = oriented([-ey * inv_len, ex * inv_len]);
+            if dpt > tol && dpt <= WARM_MAX_DEPTH * bi.min(bj) {
+                let mid = super::midpoint(p, q);
+                *used_warm = true;
+                return (
+                    Contact {
+                        state: ContactState::Overlap,
+                        geometry: Some(frame.geometry(p, q, mid, n, dpt)),
+                    },
+                    Some(Warm::Crossings([to_warm(p), to_warm(q)])),
+                );
+            }
+        }
+    } else {
+        let start = match guess {
+            Some(Warm::Axis(a)) => a,
+            _ => [1.0, 0.0], // the line of centres (already tested above)
+        };
+        if let Some(axis) = separating_axis((ai, bi, cti, sti), (aj, bj, ctj, stj), d, start, tol) {
+            *used_warm = matches!(guess, Some(Warm::Axis(_)));
+            return (Contact::SEPARATED, Some(Warm::Axis(axis)));
+        }
+    }
+
     let pencil = Pencil {
-        i: EllipseForm::from_inverse_squares(inv_i[0], inv_i[1], cti, sti), // P(5), P(7)
-        j: EllipseForm::from_inverse_squares(inv_j[0], inv_j[1], ctj, stj), // P(6), P(7)
+        i: form_i,
+        j: form_j,
         d,
         x_mixed: mixed_invariant_from_inverse_squares(inv_i, inv_j, cphi, sphi),
     };
@@ -114,13 +358,6 @@ pub(crate) fn conic_pair(ai: f64, bi: f64, pi: &Pose, aj: f64, bj: f64, pj: &Pos
             all.as_slice()
         }
     };
-
-    // Sum of the centred supports along n (both ellipses are symmetric, so the same along −n);
-    // the depth along n (i → j) is that minus n·d.
-    let supports =
-        |n: [f64; 2]| support(ai, bi, cti, sti, n[0], n[1]) + support(aj, bj, ctj, stj, n[0], n[1]);
-    let depth = |n: [f64; 2]| supports(n) - n[0] * d;
-    let oriented = |n: [f64; 2]| orient_symmetric(n, supports(n), n[0] * d);
 
     let reach = ri * inv * (1.0 + 1e-9);
     let mut crossings = [[0.0f64; 2]; 4];
@@ -171,17 +408,19 @@ pub(crate) fn conic_pair(ai: f64, bi: f64, pi: &Pose, aj: f64, bj: f64, pj: &Pos
     // The depth along a direction is exact to rounding (support functions), while a chord line
     // carries the rounding of λ and of the splitting: the depth's sign has the last word. A
     // negative depth along any direction proves separation (a separating axis).
-    let tol = TOUCH_TOL;
     let candidate = match (n_cross, chord) {
         (2, Some(cut)) => Some(cut),
         (4, _) => {
             let (p, q, n, dpt) = deep_fallback(&mut crossings, depth);
             if dpt > tol {
                 let mid = super::midpoint(p, q);
-                return Contact {
-                    state: ContactState::Deep,
-                    geometry: Some(frame.geometry(p, q, mid, n, dpt)),
-                };
+                return (
+                    Contact {
+                        state: ContactState::Deep,
+                        geometry: Some(frame.geometry(p, q, mid, n, dpt)),
+                    },
+                    None,
+                );
             }
             None
         }
@@ -196,12 +435,17 @@ pub(crate) fn conic_pair(ai: f64, bi: f64, pi: &Pose, aj: f64, bj: f64, pj: &Pos
             } else {
                 ContactState::Overlap
             };
-            return Contact {
-                state,
-                geometry: Some(frame.geometry(p, q, cut.mid, n, dpt)),
-            };
+            let warm = (state == ContactState::Overlap && n_cross == 2)
+                .then(|| Warm::Crossings([to_warm(p), to_warm(q)]));
+            return (
+                Contact {
+                    state,
+                    geometry: Some(frame.geometry(p, q, cut.mid, n, dpt)),
+                },
+                warm,
+            );
         }
-        return Contact::SEPARATED;
+        return (Contact::SEPARATED, None);
     }
     // No crossing: nested or apart. Test one boundary point of each against the other.
     let j_point = [d + aj * ctj, aj * stj];
@@ -209,12 +453,15 @@ pub(crate) fn conic_pair(ai: f64, bi: f64, pi: &Pose, aj: f64, bj: f64, pj: &Pos
     let j_in_i = coincident || pencil.i.quad(j_point[0], j_point[1]) < 1.0;
     let i_in_j = pencil.j.quad(i_point[0] - d, i_point[1]) < 1.0;
     if !(j_in_i || i_in_j) {
-        return Contact::SEPARATED;
+        return (Contact::SEPARATED, None);
     }
     let (n, dpt) = oriented([1.0, 0.0]);
     let inner = if j_in_i { [d, 0.0] } else { [0.0, 0.0] };
-    Contact {
-        state: ContactState::Contained,
-        geometry: Some(frame.geometry(inner, inner, inner, n, dpt)),
-    }
+    (
+        Contact {
+            state: ContactState::Contained,
+            geometry: Some(frame.geometry(inner, inner, inner, n, dpt)),
+        },
+        None,
+    )
 }

@@ -175,6 +175,47 @@ pub fn contact_bodies(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose) -> Contact {
     }
 }
 
+/// [`contact_bodies`] with a warm start for the pairs that take the pencil (circle–ellipse and
+/// ellipse–ellipse; see [`ellipse_ellipse`]): `guess` is what the last step returned for this
+/// pair (None for a new contact); the returned [`ellipse_ellipse::Warm`] is the guess for the
+/// next step. Other pairs ignore the guess and return none.
+#[inline]
+pub fn contact_bodies_warm(
+    si: &Shape,
+    pi: &Pose,
+    sj: &Shape,
+    pj: &Pose,
+    guess: Option<ellipse_ellipse::Warm>,
+) -> (Contact, Option<ellipse_ellipse::Warm>) {
+    let (c, warm, _) = contact_bodies_traced(si, pi, sj, pj, guess);
+    (c, warm)
+}
+
+/// [`contact_bodies_warm`], also telling whether the warm start gave the result (see
+/// [`ellipse_ellipse::conic_pair_traced`]); for the tests of the warm path.
+#[inline]
+pub fn contact_bodies_traced(
+    si: &Shape,
+    pi: &Pose,
+    sj: &Shape,
+    pj: &Pose,
+    guess: Option<ellipse_ellipse::Warm>,
+) -> (Contact, Option<ellipse_ellipse::Warm>, bool) {
+    use Shape::*;
+    use ellipse_ellipse::conic_pair_traced;
+    match (*si, *sj) {
+        (Circle { r }, Ellipse { a, b }) => conic_pair_traced(r, r, pi, a, b, pj, guess),
+        (Ellipse { a, b }, Circle { r }) => {
+            let (c, warm, used) = conic_pair_traced(r, r, pj, a, b, pi, guess);
+            (c.swapped(), warm, used)
+        }
+        (Ellipse { a: ai, b: bi }, Ellipse { a: aj, b: bj }) => {
+            conic_pair_traced(ai, bi, pi, aj, bj, pj, guess)
+        }
+        _ => (contact_bodies(si, pi, sj, pj), None, false),
+    }
+}
+
 /// Contact between a wall (as i) and a body (as j): the normal is the wall's normal.
 #[inline]
 pub fn contact_wall_body(wall: &Wall, shape: &Shape, pose: &Pose) -> Contact {

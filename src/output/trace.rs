@@ -31,7 +31,7 @@ impl TrajectoryWriter {
         self.last_step = Some(world.step);
         let b = &world.bodies;
         for k in 0..b.len() {
-            let p = &b.pose[k];
+            let p = &b.state[k].pose;
             writeln!(
                 self.out,
                 "{},{},{},{},{},{},{},{},{}",
@@ -41,9 +41,9 @@ impl TrajectoryWriter {
                 p.position.x,
                 p.position.y,
                 p.angle(),
-                b.vel[k].x,
-                b.vel[k].y,
-                b.omega[k]
+                b.state[k].vel.x,
+                b.state[k].vel.y,
+                b.state[k].omega
             )?;
         }
         Ok(())
@@ -79,7 +79,7 @@ impl IncrementsWriter {
             r.increments[0],
             r.increments[1],
             r.increments[2],
-            r.unbalanced_force_ratio,
+            world.unbalanced_ratios().0,
             r.contacts
         )
     }

@@ -11,7 +11,8 @@
 use super::reference::{RContact, RObj, RShape, RState, depth_along, reference_contact};
 use crate::geometry::support::support_local;
 use crate::geometry::{Pose, Shape, Vec2, Wall};
-use crate::narrow_phase::{Contact, ContactState, Object, contact};
+use crate::narrow_phase::ellipse_ellipse::Warm;
+use crate::narrow_phase::{Contact, ContactState, Object, contact, contact_bodies_traced};
 
 const DEPTH_BAR: f64 = 1e-12;
 const ANGLE_BAR: f64 = 1e-8;
@@ -155,6 +156,12 @@ pub struct FamilyReport {
     pub class_checked: usize,
     pub motion: f64,
     pub swap: f64,
+    /// Warm start (the dynamics' path for a lasting conic pair): pairs tried from a perturbed
+    /// copy of what the kernel carries to the next step, how many the warm path answered, and
+    /// the worst error of those answers in units of the bars.
+    pub warm_checked: usize,
+    pub warm_used: usize,
+    pub warm: f64,
     pub failures: Vec<String>,
     pub pairs: Vec<(Object, Object)>,
 }
@@ -276,28 +283,86 @@ fn check(case: &Case, rng: &mut Rng, st: &mut FamilyReport, label: &str, conditi
         }
     };
     let angle_bar = conditioned(16.0 * f64::EPSILON * scale);
-    // Geometry against the reference where the chord definition applies.
-    if let (Some(g), Some(rd), Some(rn), Some(rp)) = (k.geometry, ref_depth, r.normal, r.point_rel)
+    // Geometry against the reference where the chord definition applies: depth, normal and
+    // point errors (depth and point over a_max) and whether only the depth is meaningful.
+    let errors = |k: &Contact| -> Option<(f64, f64, f64, bool)> {
+        let (g, rd, rn, rp) = (k.geometry?, ref_depth?, r.normal?, r.point_rel?);
+        if !matches!(k.state, ContactState::Overlap | ContactState::Touching) {
+            return None;
+        }
+        let de = (g.depth - rd).abs() / scale;
+        let ae = angle_between(g.normal, rn);
+        let origin = Vec2::from(r.origin);
+        let round = 2.0 * ulp(g.point.x).max(ulp(g.point.y));
+        let pe = (((g.point - origin) - Vec2::from(rp)).norm() - round).max(0.0) / scale;
+        // A touching result's point and normal are only meaningful to the order of the
+        // crossings' own spread (they merge at tangency): compare depth only then.
+        let touching = k.state == ContactState::Touching || r.state == RState::Touching;
+        Some((de, ae, pe, touching))
+    };
+    if let Some((de, ae, pe, touching)) = errors(&k) {
+        st.depth = st.depth.max(de);
+        if !touching {
+            st.angle = st.angle.max(ae);
+            st.point = st.point.max(pe);
+        }
+        if de > DEPTH_BAR || (!touching && (ae > angle_bar || pe > POINT_BAR)) {
+            st.failures.push(format!(
+                "{label}: depth err {de:.2e}, angle err {ae:.2e}, point err {pe:.2e} ({:?} / {:?})",
+                case.i, case.j
+            ));
+        }
+    }
+    // The warm path: the pair again, started from a perturbed copy of what the kernel carries
+    // to the next step (crossings moved by up to 1e-4·a_max, an axis turned by up to 0.02 rad:
+    // more than one step of motion), held to the same bars.
+    if let (
+        Object::Body {
+            shape: s1,
+            pose: p1,
+        },
+        Object::Body {
+            shape: s2,
+            pose: p2,
+        },
+    ) = (&oi, &oj)
     {
-        if matches!(k.state, ContactState::Overlap | ContactState::Touching) {
-            let de = (g.depth - rd).abs() / scale;
-            let ae = angle_between(g.normal, rn);
-            let origin = Vec2::from(r.origin);
-            let round = 2.0 * ulp(g.point.x).max(ulp(g.point.y));
-            let pe = (((g.point - origin) - Vec2::from(rp)).norm() - round).max(0.0) / scale;
-            // A touching result's point and normal are only meaningful to the order of the
-            // crossings' own spread (they merge at tangency): compare depth only then.
-            let touching = k.state == ContactState::Touching || r.state == RState::Touching;
-            st.depth = st.depth.max(de);
-            if !touching {
-                st.angle = st.angle.max(ae);
-                st.point = st.point.max(pe);
-            }
-            if de > DEPTH_BAR || (!touching && (ae > angle_bar || pe > POINT_BAR)) {
+        if let (_, Some(carried), _) = contact_bodies_traced(s1, p1, s2, p2, None) {
+            let mut jitter = || (rng.next() - 0.5) * 2e-4 * scale;
+            let guess = match carried {
+                Warm::Crossings([p, q]) => Warm::Crossings([
+                    [p[0] + jitter(), p[1] + jitter()],
+                    [q[0] + jitter(), q[1] + jitter()],
+                ]),
+                Warm::Axis([c, s]) => {
+                    let t = (rng.next() - 0.5) * 0.04;
+                    let (st_, ct) = t.sin_cos();
+                    Warm::Axis([c * ct - s * st_, s * ct + c * st_])
+                }
+            };
+            let (kw, _, used) = contact_bodies_traced(s1, p1, s2, p2, Some(guess));
+            st.warm_checked += 1;
+            st.warm_used += used as usize;
+            if decisive && !same_state(kw.state, r.state) {
+                st.class_errors += 1;
+                st.warm = f64::INFINITY;
                 st.failures.push(format!(
-                    "{label}: depth err {de:.2e}, angle err {ae:.2e}, point err {pe:.2e} ({:?} / {:?})",
-                    case.i, case.j
+                    "{label}: warm start gives state {:?} vs reference {:?} ({:?} / {:?})",
+                    kw.state, r.state, case.i, case.j
                 ));
+            } else if let Some((de, ae, pe, touching)) = errors(&kw) {
+                let bars = if touching {
+                    de / DEPTH_BAR
+                } else {
+                    (de / DEPTH_BAR).max(ae / angle_bar).max(pe / POINT_BAR)
+                };
+                st.warm = st.warm.max(bars);
+                if bars > 1.0 {
+                    st.failures.push(format!(
+                        "{label}: warm start: depth err {de:.2e}, angle err {ae:.2e}, point err {pe:.2e} ({:?} / {:?})",
+                        case.i, case.j
+                    ));
+                }
             }
         }
     }
@@ -426,16 +491,21 @@ fn family_with(
 /// The Markdown table of the reports; with `ns_per_pair`, a column of the kernel's median time.
 pub fn markdown_table(reports: &[FamilyReport], ns_per_pair: Option<&[f64]>) -> String {
     let mut t = String::from(
-        "| family | cases | worst depth err / a_max | worst normal err (rad) | worst point err / a_max | misclassified / checked | rigid motion (bars) | swap (bars) |",
+        "| family | cases | worst depth err / a_max | worst normal err (rad) | worst point err / a_max | misclassified / checked | rigid motion (bars) | swap (bars) | warm start: answered / tried, worst (bars) |",
     );
     t.push_str(if ns_per_pair.is_some() {
-        " ns/pair |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n"
+        " ns/pair |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n"
     } else {
-        "\n|---|---:|---:|---:|---:|---:|---:|---:|\n"
+        "\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n"
     });
     for (k, r) in reports.iter().enumerate() {
+        let warm = if r.warm_checked == 0 {
+            "—".to_string()
+        } else {
+            format!("{}/{}, {:.2}", r.warm_used, r.warm_checked, r.warm)
+        };
         t.push_str(&format!(
-            "| {} | {} | {:.1e} | {:.1e} | {:.1e} | {}/{} | {:.2} | {:.2} |",
+            "| {} | {} | {:.1e} | {:.1e} | {:.1e} | {}/{} | {:.2} | {:.2} | {warm} |",
             r.name,
             r.cases,
             r.depth,

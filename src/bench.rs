@@ -1,0 +1,358 @@
+//! `dem2d bench`: throughput of settled piles of disks and ellipses at several sizes and thread
+//! counts — particle-steps per second, nanoseconds per contact, heap bytes per body — and a check
+//! that every thread count gives the same trajectory bit for bit.
+//!
+//! # How a settled pile is made
+//! A pile of n ≤ 10⁴ bodies is generated ([`PileSpec`]) and settled under gravity at a larger
+//! step (0.4 × the a-priori critical step, at most 5 × the case's) until its mean speed falls
+//! below [`SETTLED_SPEED`] or [`SETTLE_TIME_MAX`] has passed; bigger piles are that many settled
+//! 10⁴ piles side by side in one wide box. Settled piles are cached as case files (they are
+//! ordinary cases: `dem2d run` runs them). The timed steps then run at the case's Δt = 1e-5 s.
+
+use crate::dynamics::timestep::estimate_critical_dt;
+use crate::dynamics::{BodyInit, World};
+use crate::scene::Case;
+use crate::scene::generate::{PileShape, PileSpec, WIDTH_10K};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Mean speed (cm/s) below which a pile counts as settled for the benchmark.
+pub const SETTLED_SPEED: f64 = 0.5;
+/// Longest settling time (s of simulated time).
+pub const SETTLE_TIME_MAX: f64 = 3.0;
+
+/// What to measure.
+#[derive(Clone, Debug)]
+pub struct BenchOptions {
+    pub shapes: Vec<PileShape>,
+    pub sizes: Vec<usize>,
+    /// Timed steps per repetition.
+    pub steps: u64,
+    /// Repetitions (the median is reported).
+    pub reps: usize,
+    /// Thread counts; the first is the reference for the identical-trajectory check.
+    pub threads: Vec<usize>,
+    /// Where settled piles are cached (None: always settle).
+    pub cache: Option<PathBuf>,
+    /// Progress on stderr.
+    pub progress: bool,
+}
+
+/// One measurement.
+#[derive(Clone, Debug)]
+pub struct BenchRow {
+    pub shape: PileShape,
+    pub n: usize,
+    pub threads: usize,
+    pub steps: u64,
+    /// Median wall time of one repetition (s).
+    pub wall: f64,
+    pub particle_steps_per_second: f64,
+    /// Contacts (body–body and body–wall) per step, mean over the timed steps.
+    pub contacts_per_step: f64,
+    /// Wall time per contact-step (ns): the whole step's cost divided by its contacts.
+    pub ns_per_contact: f64,
+    /// Heap bytes held by the world (bodies, contacts, broad phase, buffers) per body.
+    pub bytes_per_body: f64,
+    /// Neighbour-list slots (candidate pairs) per body, and list builds per 1000 steps.
+    pub slots_per_body: f64,
+    pub builds_per_1000_steps: f64,
+    /// Heap allocations per step during the timed steps.
+    pub allocations_per_step: f64,
+    /// The world's own account of its heap, by part (bytes per body).
+    pub breakdown: Vec<(&'static str, f64)>,
+    /// The final state is bit-identical to the first thread count's.
+    pub identical: bool,
+}
+
+/// An error of the bench command, as text.
+#[derive(Debug)]
+pub struct BenchError(pub String);
+
+impl std::fmt::Display for BenchError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for BenchError {}
+
+fn world_of(case: &Case, dt: f64) -> World {
+    World::new(
+        &case.bodies,
+        case.walls.clone(),
+        case.gravity,
+        case.contact,
+        dt,
+    )
+}
+
+/// Mean speed of the bodies (cm/s).
+fn mean_speed(w: &World) -> f64 {
+    let b = &w.bodies;
+    b.state.iter().map(|s| s.vel.norm()).sum::<f64>() / b.len().max(1) as f64
+}
+
+/// The bodies of `world` as case bodies (shape, pose, velocities).
+fn bodies_of(w: &World) -> Vec<BodyInit> {
+    let b = &w.bodies;
+    (0..b.len())
+        .map(|k| BodyInit {
+            shape: b.shape[k],
+            position: b.state[k].pose.position,
+            angle: b.state[k].pose.angle(),
+            velocity: b.state[k].vel,
+            omega: b.state[k].omega,
+            density: b.density[k],
+        })
+        .collect()
+}
+
+/// Settles a generated pile of n bodies; returns its case-file text.
+fn settle(spec: &PileSpec, progress: bool) -> Result<String, BenchError> {
+    let case = Case::from_json(&spec.case_json()).map_err(|e| BenchError(e.to_string()))?;
+    let dt_crit = estimate_critical_dt(
+        &crate::dynamics::Bodies::new(&case.bodies),
+        &case.contact,
+        &case.walls,
+        case.gravity.norm(),
+    );
+    let dt = (0.4 * dt_crit).min(5.0 * case.dt);
+    let mut w = world_of(&case, dt);
+    let start = Instant::now();
+    let check = ((0.01 / dt).round() as u64).max(1);
+    let mut speed = mean_speed(&w);
+    let mut shown = Instant::now();
+    while w.time < SETTLE_TIME_MAX {
+        w.step()
+            .map_err(|b| BenchError(format!("settling {}: {b}", spec.name())))?;
+        if w.step % check == 0 {
+            speed = mean_speed(&w);
+            if progress && shown.elapsed().as_secs_f64() > 1.0 {
+                shown = Instant::now();
+                eprint!(
+                    "\rsettling {}: t = {:.2} s, mean speed {speed:.3} cm/s, {} contacts   ",
+                    spec.name(),
+                    w.time,
+                    w.contacts.len()
+                );
+            }
+            if w.time > 0.2 && speed < SETTLED_SPEED {
+                break;
+            }
+        }
+    }
+    if progress {
+        eprintln!();
+    }
+    let description = format!(
+        "{} settled at Δt = {dt:.3e} s for {:.2} s (mean speed {speed:.3} cm/s; {:.0} s of wall time) by `dem2d bench`, from: {}",
+        spec.name(),
+        w.time,
+        start.elapsed().as_secs_f64(),
+        case.description
+    );
+    Ok(spec.case_text(
+        &format!("{}_settled", spec.name()),
+        &description,
+        spec.width(),
+        &bodies_of(&w),
+    ))
+}
+
+/// The settled pile of `shape` with `n` bodies (from the cache when there).
+pub fn settled_pile(
+    shape: PileShape,
+    n: usize,
+    cache: Option<&Path>,
+    progress: bool,
+) -> Result<Case, BenchError> {
+    let spec = PileSpec { shape, n, seed: 1 };
+    let file = cache.map(|d| d.join(format!("{}_settled.json", spec.name())));
+    if let Some(f) = &file {
+        if let Ok(text) = std::fs::read_to_string(f) {
+            return Case::from_json(&text).map_err(|e| BenchError(format!("{}: {e}", f.display())));
+        }
+    }
+    let text = if n > 10_000 && n % 10_000 == 0 {
+        // Tiles of the settled 10⁴ pile, side by side.
+        let tile = settled_pile(shape, 10_000, cache, progress)?;
+        let copies = n / 10_000;
+        let mut bodies = Vec::with_capacity(n);
+        for k in 0..copies {
+            for b in &tile.bodies {
+                let mut b = *b;
+                b.position.x += WIDTH_10K * k as f64;
+                bodies.push(b);
+            }
+        }
+        let description = format!(
+            "{copies} copies of the settled 10 000-body pile side by side in one box {} cm wide (by `dem2d bench`): {}",
+            WIDTH_10K * copies as f64,
+            tile.description
+        );
+        spec.case_text(
+            &format!("{}_settled", spec.name()),
+            &description,
+            WIDTH_10K * copies as f64,
+            &bodies,
+        )
+    } else {
+        settle(&spec, progress)?
+    };
+    if let Some(f) = &file {
+        if let Some(d) = f.parent() {
+            std::fs::create_dir_all(d).map_err(|e| BenchError(format!("{}: {e}", d.display())))?;
+        }
+        std::fs::write(f, &text).map_err(|e| BenchError(format!("{}: {e}", f.display())))?;
+    }
+    Case::from_json(&text).map_err(|e| BenchError(e.to_string()))
+}
+
+/// The bits of every body's state, hashed (FNV-1a): equal hashes ⇔ (with overwhelming
+/// probability) bit-identical states.
+fn state_hash(w: &World) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let b = &w.bodies;
+    for k in 0..b.len() {
+        let p = b.state[k].pose;
+        for v in [
+            p.position.x,
+            p.position.y,
+            p.angle(),
+            b.state[k].vel.x,
+            b.state[k].vel.y,
+            b.state[k].omega,
+        ] {
+            for byte in v.to_bits().to_le_bytes() {
+                h = (h ^ byte as u64).wrapping_mul(0x0100_0000_01b3);
+            }
+        }
+    }
+    h
+}
+
+/// Runs the benchmark; `heap` reports the bytes currently allocated (the binary's counting
+/// allocator), so that the world's own footprint can be measured.
+pub fn run(
+    opts: &BenchOptions,
+    heap: &(dyn Fn() -> usize + Sync),
+    allocations: &(dyn Fn() -> usize + Sync),
+) -> Result<Vec<BenchRow>, BenchError> {
+    let mut rows = Vec::new();
+    for &shape in &opts.shapes {
+        for &n in &opts.sizes {
+            let case = settled_pile(shape, n, opts.cache.as_deref(), opts.progress)?;
+            let mut reference_hash = None;
+            for &threads in &opts.threads {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .map_err(|e| BenchError(format!("thread pool of {threads}: {e}")))?;
+                let row = pool.install(|| -> Result<BenchRow, BenchError> {
+                    let before = heap();
+                    let mut w = world_of(&case, case.dt);
+                    // Warm-up: contact histories, buffers at their working sizes.
+                    for _ in 0..opts.steps.min(200) {
+                        w.step().map_err(|b| BenchError(b.to_string()))?;
+                    }
+                    let mut walls = Vec::with_capacity(opts.reps.max(1));
+                    let mut contacts = 0u64;
+                    let builds = w.contacts.builds;
+                    let allocs = allocations();
+                    for _ in 0..opts.reps.max(1) {
+                        let start = Instant::now();
+                        for _ in 0..opts.steps {
+                            let r = w.step().map_err(|b| BenchError(b.to_string()))?;
+                            contacts += r.contacts as u64;
+                        }
+                        walls.push(start.elapsed().as_secs_f64());
+                    }
+                    let allocs = allocations() - allocs;
+                    let builds = w.contacts.builds - builds;
+                    let bytes = heap().saturating_sub(before);
+                    walls.sort_by(f64::total_cmp);
+                    let wall = walls[walls.len() / 2];
+                    let total_steps = opts.steps * opts.reps.max(1) as u64;
+                    let contacts_per_step = contacts as f64 / total_steps as f64;
+                    let hash = state_hash(&w);
+                    let identical = *reference_hash.get_or_insert(hash) == hash;
+                    Ok(BenchRow {
+                        shape,
+                        n,
+                        threads,
+                        steps: opts.steps,
+                        wall,
+                        particle_steps_per_second: n as f64 * opts.steps as f64 / wall,
+                        contacts_per_step,
+                        ns_per_contact: wall * 1e9
+                            / (opts.steps as f64 * contacts_per_step).max(1.0),
+                        bytes_per_body: bytes as f64 / n as f64,
+                        slots_per_body: w.contacts.slots.len() as f64 / n as f64,
+                        builds_per_1000_steps: 1000.0 * builds as f64 / total_steps as f64,
+                        allocations_per_step: allocs as f64 / total_steps as f64,
+                        breakdown: w
+                            .heap_breakdown()
+                            .iter()
+                            .map(|&(part, bytes)| (part, bytes as f64 / n as f64))
+                            .collect(),
+                        identical,
+                    })
+                })?;
+                if opts.progress {
+                    let parts: Vec<String> = row
+                        .breakdown
+                        .iter()
+                        .map(|(p, b)| format!("{p} {b:.0}"))
+                        .collect();
+                    eprintln!(
+                        "{:?} n = {n}, {threads} thread(s): {:.2} M particle-steps/s; heap {:.0} B/body ({})",
+                        shape,
+                        row.particle_steps_per_second / 1e6,
+                        row.bytes_per_body,
+                        parts.join(", ")
+                    );
+                }
+                rows.push(row);
+            }
+        }
+    }
+    Ok(rows)
+}
+
+/// The rows as a Markdown table, with the speed-up over one thread where measured.
+pub fn markdown(rows: &[BenchRow]) -> String {
+    let mut t = String::from(
+        "| pile | bodies | threads | particle-steps/s (M) | speed-up | contacts per body | slots per body | list builds per 1000 steps | ns per contact | heap bytes per body | allocations per step | same trajectory as 1 thread |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
+    );
+    for r in rows {
+        let one = rows
+            .iter()
+            .find(|o| o.shape == r.shape && o.n == r.n && o.threads == 1)
+            .map(|o| o.particle_steps_per_second);
+        let speedup = one.map_or(String::new(), |o| {
+            format!("{:.2}×", r.particle_steps_per_second / o)
+        });
+        let kind = match r.shape {
+            PileShape::Disks => "disks",
+            PileShape::Ellipses => "ellipses",
+        };
+        writeln!(
+            t,
+            "| {kind} | {} | {} | {:.2} | {speedup} | {:.2} | {:.2} | {:.1} | {:.0} | {:.0} | {:.2} | {} |",
+            r.n,
+            r.threads,
+            r.particle_steps_per_second / 1e6,
+            r.contacts_per_step / r.n as f64,
+            r.slots_per_body,
+            r.builds_per_1000_steps,
+            r.ns_per_contact,
+            r.bytes_per_body,
+            r.allocations_per_step,
+            if r.identical { "yes" } else { "**no**" }
+        )
+        .expect("string");
+    }
+    t
+}

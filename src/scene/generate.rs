@@ -1,0 +1,270 @@
+//! Generated scenes: piles of disks or ellipses on a jittered lattice in a box, for any number of
+//! bodies (`dem2d generate`). The output is case-file text, so a generated pile is an ordinary
+//! case: it can be saved, read, edited and run like any other.
+//!
+//! The 10 000-body piles of `cases/` are `generate --shape disks|ellipses --n 10000 --seed 1`.
+
+use crate::contact_law::damping_ratio_linear;
+use crate::dynamics::BodyInit;
+use crate::geometry::{Shape, Vec2};
+use serde_json::{Value, json};
+use std::fmt::Write as _;
+
+/// The grains of a pile.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PileShape {
+    /// Disks of radius r.
+    Disks,
+    /// Ellipses with a/b = 1.5 of the same area as the disk of radius r: a = r√1.5, b = r/√1.5.
+    Ellipses,
+}
+
+/// A pile: `n` bodies with radii (equal-area radii for ellipses) uniform in
+/// [`R_MIN`, `R_MAX`] on a jittered square lattice in a box with a floor and two side walls,
+/// with random initial velocities. The box is [`WIDTH_10K`] wide for 10 000 bodies and scales
+/// with √n, so that piles of every size have the same aspect ratio.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PileSpec {
+    pub shape: PileShape,
+    pub n: usize,
+    pub seed: u64,
+}
+
+/// Radii (cm).
+pub const R_MIN: f64 = 0.8;
+pub const R_MAX: f64 = 1.2;
+/// Box width for 10 000 bodies (cm).
+pub const WIDTH_10K: f64 = 500.0;
+/// Density (g/cm³, quartz).
+pub const DENSITY: f64 = 2.65;
+/// Largest initial speed (cm/s).
+pub const V_MAX: f64 = 5.0;
+/// Normal and shear stiffness over ρg (cm), as P's Fig. 4.
+pub const KN_OVER_RHO_G: f64 = 36400.0;
+/// Friction, everywhere.
+pub const FRICTION: f64 = 0.3;
+/// Restitution of a mean body (r = 1 cm) against a wall, for which the dashpot is tuned.
+pub const RESTITUTION: f64 = 0.5;
+/// |g| (cm/s²), time step (s).
+pub const G: f64 = 980.0;
+pub const DT: f64 = 1e-5;
+
+/// SplitMix64: a small, fast, well-mixed generator; the same seed gives the same pile on every
+/// machine (no dependency needed for this).
+struct SplitMix64(u64);
+
+impl SplitMix64 {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [0, 1) with 53 random bits.
+    fn uniform(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.uniform()
+    }
+}
+
+/// Rounds to 1e-6 (the case file then holds exactly the values the run uses, in short text).
+fn round6(x: f64) -> f64 {
+    (x * 1e6).round() / 1e6
+}
+
+impl PileSpec {
+    /// Lattice spacing: the largest bounding diameter plus a margin, so that nothing overlaps
+    /// at the start (disks: 2.5 cm for diameters up to 2.4 cm; ellipses: 3.0 cm for bounding
+    /// diameters up to 2·1.2·√1.5 = 2.94 cm).
+    pub fn spacing(&self) -> f64 {
+        match self.shape {
+            PileShape::Disks => 2.5,
+            PileShape::Ellipses => 3.0,
+        }
+    }
+
+    /// Largest bounding radius of a grain.
+    pub fn max_bound(&self) -> f64 {
+        match self.shape {
+            PileShape::Disks => R_MAX,
+            PileShape::Ellipses => R_MAX * 1.5f64.sqrt(),
+        }
+    }
+
+    /// Box width (cm): 500 cm at 10 000 bodies, ∝ √n.
+    pub fn width(&self) -> f64 {
+        WIDTH_10K * (self.n as f64 / 1e4).sqrt()
+    }
+
+    /// Columns of the lattice (at least one).
+    pub fn columns(&self) -> usize {
+        ((self.width() / self.spacing()).floor() as usize).max(1)
+    }
+
+    /// The constant dashpot η (per unit thickness) that gives restitution 0.5 for a body of
+    /// radius 1 cm (or its equal-area ellipse) against a wall: `η = 2ζ√(m k_n)` with ζ from e
+    /// (T12) and m* = m for a wall.
+    pub fn eta(&self) -> f64 {
+        let m = DENSITY * std::f64::consts::PI;
+        let kn = KN_OVER_RHO_G * DENSITY * G;
+        2.0 * damping_ratio_linear(RESTITUTION) * (m * kn).sqrt() // T(12)
+    }
+
+    /// The bodies of the pile on the jittered lattice, with their random radii, orientations and
+    /// velocities (values rounded to 1e-6, so that case-file text holds them exactly).
+    pub fn lattice_bodies(&self) -> Vec<BodyInit> {
+        let mut rng = SplitMix64(self.seed);
+        let (s, cols, w) = (self.spacing(), self.columns(), self.width());
+        let jitter = self.jitter();
+        let x0 = 0.5 * (w - cols as f64 * s);
+        (0..self.n)
+            .map(|k| {
+                let (row, col) = (k / cols, k % cols);
+                let r = round6(rng.range(R_MIN, R_MAX));
+                let x = round6(x0 + s * (col as f64 + 0.5) + rng.range(-jitter, jitter));
+                let y = round6(s * (row as f64 + 0.5) + rng.range(-jitter, jitter));
+                let (speed, dir) = (rng.range(0.0, V_MAX), rng.range(0.0, std::f64::consts::TAU));
+                let velocity = Vec2::new(round6(speed * dir.cos()), round6(speed * dir.sin()));
+                let (shape, angle) = match self.shape {
+                    PileShape::Disks => (Shape::Circle { r }, 0.0),
+                    PileShape::Ellipses => (
+                        Shape::Ellipse {
+                            a: r * 1.5f64.sqrt(),
+                            b: r / 1.5f64.sqrt(),
+                        },
+                        round6(rng.range(0.0, std::f64::consts::PI)),
+                    ),
+                };
+                BodyInit {
+                    shape,
+                    position: Vec2::new(x, y),
+                    angle,
+                    velocity,
+                    omega: 0.0,
+                    density: DENSITY,
+                }
+            })
+            .collect()
+    }
+
+    /// Jitter of the lattice: up to 40 % of the gap left between the largest neighbours, each way.
+    pub fn jitter(&self) -> f64 {
+        0.4 * (self.spacing() - 2.0 * self.max_bound()) / 2.0
+    }
+
+    /// The pile's name: `settle_disks_10k`, `settle_ellipses_1234`, …
+    pub fn name(&self) -> String {
+        let count = match self.n {
+            n if n >= 1000 && n % 1000 == 0 => format!("{}k", n / 1000),
+            n => n.to_string(),
+        };
+        let kind = match self.shape {
+            PileShape::Disks => "disks",
+            PileShape::Ellipses => "ellipses",
+        };
+        format!("settle_{kind}_{count}")
+    }
+
+    /// The pile as case-file text (`"version": 1`), one body per line.
+    pub fn case_json(&self) -> String {
+        let (s, cols, w, jitter, eta) = (
+            self.spacing(),
+            self.columns(),
+            self.width(),
+            self.jitter(),
+            self.eta(),
+        );
+        let (kind, label) = match self.shape {
+            PileShape::Disks => ("disks", "disks"),
+            PileShape::Ellipses => ("ellipses", "ellipses (a/b = 1.5, random orientations)"),
+        };
+        let description = format!(
+            "{n} {label} of radius uniform in [{R_MIN}, {R_MAX}] cm{area} on a {s} cm square lattice \
+             jittered by up to ±{jitter:.3} cm, {cols} columns, in a box {w:.1} cm wide (floor and two side walls), \
+             released with random velocities of up to {V_MAX} cm/s, settling under gravity. Linear law: \
+             Kn/ρg = Ks/ρg = {KN_OVER_RHO_G} cm, ρ = {DENSITY} g/cm³, friction {FRICTION}, and a constant dashpot \
+             η_n = η_s = {eta:.1} (g/s per unit thickness) that gives restitution {RESTITUTION} for a body of \
+             r = 1 cm against a wall (T12). Δt = {DT} s. Written by `dem2d generate --shape {kind} --n {n} --seed {seed}`.",
+            n = self.n,
+            area = match self.shape {
+                PileShape::Disks => "",
+                PileShape::Ellipses =>
+                    " (the radius of the disk of equal area: a = r√1.5, b = r/√1.5)",
+            },
+            seed = self.seed,
+        );
+        self.case_text(&self.name(), &description, w, &self.lattice_bodies())
+    }
+
+    /// Case-file text for this pile's law, time step and box of width `width`, holding `bodies`.
+    pub fn case_text(
+        &self,
+        name: &str,
+        description: &str,
+        width: f64,
+        bodies: &[BodyInit],
+    ) -> String {
+        let eta = round6(self.eta());
+        let head: [(&str, Value); 12] = [
+            ("version", json!(1)),
+            ("name", json!(name)),
+            ("description", json!(description)),
+            ("units", json!("cm")),
+            ("gravity", json!([0.0, -G])),
+            ("dt", json!(DT)),
+            ("duration", json!(3.0)),
+            ("quiescence", json!(1e-8)),
+            ("quiescence_window", json!(1000)),
+            ("output_every", json!(10000)),
+            (
+                "contact",
+                json!({
+                    "model": "linear",
+                    "kn_over_rho_g": KN_OVER_RHO_G,
+                    "ks_over_rho_g": KN_OVER_RHO_G,
+                    "eta_n": eta,
+                    "eta_s": eta,
+                    "friction": FRICTION,
+                }),
+            ),
+            (
+                "walls",
+                json!([
+                    {"point": [0.0, 0.0], "normal": [0.0, 1.0]},
+                    {"point": [0.0, 0.0], "normal": [1.0, 0.0]},
+                    {"point": [width, 0.0], "normal": [-1.0, 0.0]},
+                ]),
+            ),
+        ];
+        // Fields in reading order, one per line; bodies one per line.
+        let mut text = String::from("{\n");
+        for (key, value) in &head {
+            writeln!(text, "  \"{key}\": {value},").expect("string");
+        }
+        text.push_str("  \"bodies\": [\n");
+        for (k, b) in bodies.iter().enumerate() {
+            let shape = match b.shape {
+                Shape::Circle { r } => json!({"type": "circle", "r": r}),
+                Shape::Ellipse { a, b } => json!({"type": "ellipse", "a": a, "b": b}),
+                Shape::Rectangle { w, h } => json!({"type": "rectangle", "w": w, "h": h}),
+            };
+            let body = json!({
+                "shape": shape,
+                "position": [b.position.x, b.position.y],
+                "angle": b.angle,
+                "velocity": [b.velocity.x, b.velocity.y],
+                "omega": b.omega,
+                "density": b.density,
+            });
+            let sep = if k + 1 < bodies.len() { "," } else { "" };
+            writeln!(text, "    {body}{sep}").expect("string");
+        }
+        text.push_str("  ]\n}\n");
+        text
+    }
+}

@@ -1,0 +1,256 @@
+//! Many bodies: the neighbour list never misses a contact (checked against every pair, step by
+//! step, on random scenes with a 1:5 size spread and bodies leaving the populated region); the
+//! trajectory is bit-identical for any number of threads; the generated piles are what their
+//! description says, and the 10 000-body case files are exactly the generator's output.
+
+use dem2d::contact_law::{ContactSpec, LinearDamping, Scaled};
+use dem2d::dynamics::contacts::WALL_BASE;
+use dem2d::dynamics::{BodyInit, WallSpec, World};
+use dem2d::geometry::{Shape, Vec2, Wall};
+use dem2d::narrow_phase::{contact_bodies, contact_wall_body};
+use dem2d::scene::Case;
+use dem2d::scene::generate::{PileShape, PileSpec, R_MAX, R_MIN};
+use std::collections::BTreeSet;
+
+/// A small deterministic generator for the scenes (independent of the one under test).
+struct Lcg(u64);
+
+impl Lcg {
+    fn uniform(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.uniform()
+    }
+}
+
+fn law(friction: f64) -> ContactSpec {
+    ContactSpec::Linear {
+        kn: Scaled::Absolute(2e5),
+        ks: Scaled::Absolute(2e5),
+        damping: LinearDamping::Dashpots {
+            eta_n: Scaled::Absolute(20.0),
+            eta_s: Scaled::Absolute(20.0),
+        },
+        friction,
+    }
+}
+
+/// A random scene: circles, ellipses and rectangles with sizes spread 1:5, packed densely in a
+/// box with fast random velocities; `escapees` bodies are flung out of the populated region.
+fn random_scene(seed: u64, n: usize, escapees: usize) -> World {
+    let mut rng = Lcg(seed);
+    let mut bodies = Vec::new();
+    let cols = (n as f64).sqrt().ceil() as usize;
+    for k in 0..n {
+        let size = rng.range(0.2, 1.0); // 1:5
+        let shape = match k % 3 {
+            0 => Shape::Circle { r: size },
+            1 => Shape::Ellipse {
+                a: size,
+                b: size * rng.range(0.3, 1.0),
+            },
+            _ => Shape::Rectangle {
+                w: 1.6 * size,
+                h: 1.6 * size * rng.range(0.3, 1.0),
+            },
+        };
+        let (row, col) = (k / cols, k % cols);
+        // The last bodies (the top row) fly off up and to the right, out of the region.
+        let escapes = k + escapees >= n;
+        let speed = if escapes { 3000.0 } else { 30.0 };
+        let dir = if escapes {
+            rng.range(0.3, 1.2)
+        } else {
+            rng.range(0.0, std::f64::consts::TAU)
+        };
+        bodies.push(BodyInit {
+            shape,
+            position: Vec2::new(1.1 * col as f64 + 1.0, 1.1 * row as f64 + 1.0),
+            angle: rng.range(0.0, 6.3),
+            velocity: Vec2::new(dir.cos(), dir.sin()) * speed,
+            omega: rng.range(-20.0, 20.0),
+            density: 1.0,
+        });
+    }
+    let walls = vec![
+        WallSpec {
+            wall: Wall::new(Vec2::zeros(), Vec2::y()).unwrap(),
+            spec: law(0.5),
+        },
+        WallSpec {
+            wall: Wall::new(Vec2::zeros(), Vec2::x()).unwrap(),
+            spec: law(0.5),
+        },
+    ];
+    World::new(&bodies, walls, Vec2::new(0.0, -980.0), law(0.3), 2e-5)
+}
+
+/// Every overlapping pair, by testing all pairs with the narrow phase (no broad phase).
+fn all_pairs(w: &World) -> BTreeSet<(u32, u32)> {
+    let b = &w.bodies;
+    let mut out = BTreeSet::new();
+    for i in 0..b.len() {
+        for j in i + 1..b.len() {
+            let c = contact_bodies(&b.shape[i], &b.state[i].pose, &b.shape[j], &b.state[j].pose);
+            if c.geometry.is_some_and(|g| g.depth > 0.0) {
+                out.insert((i as u32, j as u32));
+            }
+        }
+        for (k, ws) in w.walls.iter().enumerate() {
+            let c = contact_wall_body(&ws.wall, &b.shape[i], &b.state[i].pose);
+            if c.geometry.is_some_and(|g| g.depth > 0.0) {
+                out.insert((i as u32, WALL_BASE + k as u32));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn the_neighbour_list_finds_every_contact_the_all_pairs_check_finds() {
+    for seed in 1..=3 {
+        let mut w = random_scene(seed, 150, 10);
+        let (mut checked, mut contacts) = (0, 0);
+        for step in 0..600 {
+            w.step().expect("stable");
+            if step % 3 == 0 {
+                let expected = all_pairs(&w);
+                let found: BTreeSet<(u32, u32)> =
+                    w.contacts.active().map(|c| (c.slot.i, c.slot.j)).collect();
+                assert_eq!(found, expected, "seed {seed}, step {step}");
+                contacts += expected.len();
+                checked += 1;
+            }
+        }
+        // The scene must exercise the list: many contacts, several rebuilds, bodies far away.
+        assert!(
+            contacts > 50 * checked,
+            "only {contacts} contacts in {checked} checks"
+        );
+        assert!(w.contacts.builds > 20, "{} builds", w.contacts.builds);
+        let far = w
+            .bodies
+            .state
+            .iter()
+            .filter(|s| s.pose.position.norm() > 40.0)
+            .count();
+        assert!(far >= 5, "{far} bodies left the region");
+    }
+}
+
+/// Runs `steps` steps of a dense random scene on a pool of `threads` threads; returns every
+/// body's state bits, the energies' bits and the mean number of contacts per step.
+fn run_on(threads: usize, steps: usize) -> (Vec<u64>, f64) {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        let mut w = random_scene(11, 1600, 0);
+        let mut contacts = 0;
+        for _ in 0..steps {
+            contacts += w.step().unwrap().contacts;
+        }
+        let b = &w.bodies;
+        let bits = (0..b.len())
+            .flat_map(|k| {
+                [
+                    b.state[k].pose.position.x,
+                    b.state[k].pose.position.y,
+                    b.state[k].pose.angle(),
+                    b.state[k].vel.x,
+                    b.state[k].vel.y,
+                    b.state[k].omega,
+                    b.force[k].x,
+                    b.force[k].y,
+                    b.torque[k],
+                ]
+            })
+            .chain([
+                w.energies.dissipated,
+                w.energies.elastic,
+                w.energies.kinetic,
+            ])
+            .map(f64::to_bits)
+            .collect();
+        (bits, contacts as f64 / steps as f64)
+    })
+}
+
+#[test]
+fn trajectories_are_bit_identical_for_any_number_of_threads() {
+    // 1600 circles, ellipses and rectangles in a dense, agitated box: thousands of slots in
+    // several parallel chunks, contacts opening and closing, list rebuilds.
+    let (one, contacts) = run_on(1, 800);
+    assert!(contacts > 1000.0, "only {contacts} contacts per step");
+    for threads in [2, 3, 4] {
+        let (many, _) = run_on(threads, 800);
+        let differ = one.iter().zip(&many).filter(|(a, b)| a != b).count();
+        assert_eq!(differ, 0, "{threads} threads: {differ} values differ");
+    }
+}
+
+#[test]
+fn generated_piles_start_without_overlap_inside_their_box() {
+    for shape in [PileShape::Disks, PileShape::Ellipses] {
+        let spec = PileSpec {
+            shape,
+            n: 2000,
+            seed: 3,
+        };
+        let case = Case::from_json(&spec.case_json()).unwrap();
+        assert_eq!(case.bodies.len(), 2000);
+        let w = World::new(
+            &case.bodies,
+            case.walls.clone(),
+            case.gravity,
+            case.contact,
+            case.dt,
+        );
+        assert!(all_pairs(&w).is_empty(), "{shape:?}: overlaps at the start");
+        let width = spec.width();
+        for b in &case.bodies {
+            let r_eq = match b.shape {
+                Shape::Circle { r } => r,
+                // Equal-area radius √(ab), and a/b = 1.5.
+                Shape::Ellipse { a, b } => {
+                    assert!((a / b - 1.5).abs() < 1e-12);
+                    (a * b).sqrt()
+                }
+                Shape::Rectangle { .. } => panic!("no rectangles in a pile"),
+            };
+            assert!((R_MIN..=R_MAX).contains(&r_eq), "radius {r_eq}");
+            let bound = b.shape.bounding_radius();
+            assert!(b.position.x - bound > 0.0 && b.position.x + bound < width);
+            assert!(b.position.y - bound > 0.0);
+            assert!(b.velocity.norm() <= 5.0 + 1e-6);
+        }
+    }
+}
+
+#[test]
+fn the_10k_case_files_are_the_generators_output() {
+    for (shape, file) in [
+        (PileShape::Disks, "settle_disks_10k.json"),
+        (PileShape::Ellipses, "settle_ellipses_10k.json"),
+    ] {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("cases")
+            .join(file);
+        let text = std::fs::read_to_string(&path).unwrap();
+        let spec = PileSpec {
+            shape,
+            n: 10_000,
+            seed: 1,
+        };
+        assert!(
+            text == spec.case_json(),
+            "{file} differs from `dem2d generate`'s output: regenerate it"
+        );
+    }
+}
