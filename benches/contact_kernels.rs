@@ -4,7 +4,11 @@
 //!   test rejects it);
 //! - `far`: rejected by the bounding circles;
 //! - `grazing`: separated by 1e-3 of the smaller size along a direction other than the line of
-//!   centres, so that no cheap axis test rejects it and the full test runs.
+//!   centres, so that no cheap axis test rejects it and the full test runs;
+//! - `lasting` and `near, warm`: conic pairs (circle–ellipse, ellipse–ellipse) as the dynamics
+//!   sees them, with the warm start carried from a configuration one step of motion away (j
+//!   moved by 1e-4 of its size and turned by 1e-4 rad): an overlap of 1e-4 to 1e-2 of the
+//!   smaller size (a DEM contact's), and a grazing pair with its separating axis.
 //!
 //! Each measurement runs over a batch of 1024 random pairs of the regime (so branch prediction
 //! sees realistic variety) and the table reports the median time per pair.
@@ -17,7 +21,7 @@ use criterion::{BenchmarkId, Criterion};
 use dem2d::geometry::cubic::{one_real_root, solve_cubic};
 use dem2d::geometry::support::support_local;
 use dem2d::geometry::{Pose, Shape, Vec2, Wall};
-use dem2d::narrow_phase::{ContactState, Object, contact};
+use dem2d::narrow_phase::{ContactState, Object, contact, contact_bodies_warm};
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -83,6 +87,8 @@ fn support_point(shape: &Shape, pose: &Pose, n: Vec2) -> Vec2 {
 #[derive(Clone, Copy, PartialEq)]
 enum Regime {
     Overlap,
+    /// A DEM contact's overlap: 1e-4 to 1e-2 of the smaller size.
+    Shallow,
     Near,
     Far,
     Grazing,
@@ -108,6 +114,7 @@ fn pair(rng: &mut Rng, ki: Kind, kj: Kind, regime: Regime) -> (Object, Object) {
         let rj = sj.bounding_radius();
         let gap = match regime {
             Regime::Overlap => -rng.range(0.01, 0.3) * sj.inscribed_radius(),
+            Regime::Shallow => -10f64.powf(rng.range(-4.0, -2.0)) * sj.inscribed_radius(),
             Regime::Near => rng.range(0.01, 0.5) * sj.inscribed_radius(),
             Regime::Far => reach_i + rj + rng.range(0.1, 2.0),
             Regime::Grazing => 1e-3 * sj.inscribed_radius(),
@@ -161,7 +168,7 @@ fn pair(rng: &mut Rng, ki: Kind, kj: Kind, regime: Regime) -> (Object, Object) {
             _ => 0.0,
         };
         let ok = match regime {
-            Regime::Overlap => c.state == ContactState::Overlap,
+            Regime::Overlap | Regime::Shallow => c.state == ContactState::Overlap,
             Regime::Near => {
                 c.state == ContactState::Separated && (ki == Kind::Wall || d_centres < reach_i + rj)
             }
@@ -234,6 +241,69 @@ fn bench_kernels(c: &mut Criterion) {
                         if let Some(g) =
                             contact(black_box(i), black_box(j)).and_then(|c| c.geometry)
                         {
+                            acc += g.depth;
+                        }
+                    }
+                    acc
+                })
+            });
+        }
+    }
+    // Conic pairs with the dynamics' warm start.
+    for (name, ki, kj) in [
+        ("circle-ellipse", Kind::Circle, Kind::Ellipse),
+        ("ellipse-ellipse", Kind::Ellipse, Kind::Ellipse),
+    ] {
+        // (Near pairs that the centre-line test does not reject are the grazing ones.)
+        for (regime, rname) in [(Regime::Shallow, "lasting"), (Regime::Grazing, "near-warm")] {
+            let mut rng =
+                Rng(0x9E37_79B9_7F4A_7C15 ^ (name.len() as u64 * 7919 + rname.len() as u64));
+            let mut pairs = Vec::new();
+            for _ in 0..100 * BATCH {
+                if pairs.len() == BATCH {
+                    break;
+                }
+                let (oi, oj) = pair(&mut rng, ki, kj, regime);
+                let (
+                    Object::Body {
+                        shape: si,
+                        pose: pi,
+                    },
+                    Object::Body {
+                        shape: sj,
+                        pose: pj,
+                    },
+                ) = (oi, oj)
+                else {
+                    unreachable!("body pairs")
+                };
+                // Last step: j a little elsewhere.
+                let size = sj.bounding_radius();
+                let before = Pose::new(
+                    pj.position + Vec2::new(1e-4 * size, -0.7e-4 * size),
+                    pj.angle() + 1e-4,
+                );
+                if let (_, Some(w)) = contact_bodies_warm(&si, &pi, &sj, &before, None) {
+                    pairs.push((si, pi, sj, pj, w));
+                }
+            }
+            assert_eq!(
+                pairs.len(),
+                BATCH,
+                "{name} {rname}: too few pairs carry a warm start"
+            );
+            group.bench_function(BenchmarkId::new(name, rname), |b| {
+                b.iter(|| {
+                    let mut acc = 0.0;
+                    for (si, pi, sj, pj, w) in &pairs {
+                        let (c, _) = contact_bodies_warm(
+                            black_box(si),
+                            black_box(pi),
+                            black_box(sj),
+                            black_box(pj),
+                            Some(*w),
+                        );
+                        if let Some(g) = c.geometry {
                             acc += g.depth;
                         }
                     }
@@ -315,9 +385,9 @@ fn print_table() {
     };
     let fmt = |x: Option<f64>| x.map_or("–".to_string(), |v| format!("{v:.1}"));
     println!(
-        "\n| pair kind (ns/pair) | overlap | near: separated, bounding circles overlap | far: rejected by bounding circles | grazing: separated by 1e-3·b, no axis test rejects |"
+        "\n| pair kind (ns/pair) | overlap | near: separated, bounding circles overlap | far: rejected by bounding circles | grazing: separated by 1e-3·b, the line of centres does not separate | lasting overlap (1e-4…1e-2 b), warm start | grazing, warm axis |"
     );
-    println!("|---|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|");
     for name in [
         "circle-circle",
         "circle-ellipse",
@@ -331,11 +401,13 @@ fn print_table() {
     ] {
         let dirname = |r: &str| format!("{name}/{r}");
         println!(
-            "| {name} | {} | {} | {} | {} |",
+            "| {name} | {} | {} | {} | {} | {} | {} |",
             fmt(median("contact", &dirname("overlap"))),
             fmt(median("contact", &dirname("near"))),
             fmt(median("contact", &dirname("far"))),
-            fmt(median("contact", &dirname("grazing")))
+            fmt(median("contact", &dirname("grazing"))),
+            fmt(median("contact", &dirname("lasting"))),
+            fmt(median("contact", &dirname("near-warm")))
         );
     }
     println!(

@@ -81,6 +81,10 @@ enum Command {
         /// No progress line on stderr.
         #[arg(long)]
         quiet: bool,
+        /// Worker threads (default: all cores). The results are the same bit for bit for any
+        /// number.
+        #[arg(long)]
+        threads: Option<usize>,
     },
     /// Draw a run (a directory written by `dem2d run`) as an SVG.
     Plot {
@@ -222,6 +226,21 @@ fn run_contact(file: &str) -> Result<(), Failure> {
         code: 1,
         message: format!("cannot write output: {e}"),
     })
+}
+
+/// Sizes the global thread pool (`None`: rayon's default, one thread per core).
+fn set_threads(threads: Option<usize>) -> Result<(), Failure> {
+    match threads {
+        None => Ok(()),
+        Some(0) => Err(Failure::input("--threads: must be at least 1".into())),
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global()
+            .map_err(|e| Failure {
+                code: 1,
+                message: format!("--threads: {e}"),
+            }),
+    }
 }
 
 fn run(
@@ -459,7 +478,8 @@ fn main() -> ExitCode {
             out,
             max_steps,
             quiet,
-        } => run(case, out.clone(), *max_steps, *quiet),
+            threads,
+        } => set_threads(*threads).and_then(|()| run(case, out.clone(), *max_steps, *quiet)),
         Command::Plot { run_dir, out, kind } => plot(run_dir, out.clone(), *kind),
         Command::Generate {
             shape,

@@ -46,10 +46,6 @@ pub struct Slot {
     pub history: History,
     /// Energy stored in the shear spring (lost when the contact opens).
     pub shear_energy: f64,
-    /// A conic pair's warm start for the narrow phase ([`Warm`]: last step's chord crossings,
-    /// or a separating axis as `[cos, sin, NaN, NaN]`), in single precision: a starting point
-    /// needs no more. All NaN when there is none.
-    pub warm: [f32; 4],
 }
 
 impl Slot {
@@ -62,29 +58,7 @@ impl Slot {
             state: ContactState::Separated,
             history: History::default(),
             shear_energy: 0.0,
-            warm: [f32::NAN; 4],
         }
-    }
-
-    /// The warm start, if any.
-    #[inline]
-    pub fn warm(&self) -> Option<Warm> {
-        let w = self.warm.map(f64::from);
-        match (w[0].is_nan(), w[2].is_nan()) {
-            (true, _) => None,
-            (false, true) => Some(Warm::Axis([w[0], w[1]])),
-            (false, false) => Some(Warm::Crossings([[w[0], w[1]], [w[2], w[3]]])),
-        }
-    }
-
-    /// Keeps `warm` (or none) for the next step.
-    #[inline]
-    pub fn set_warm(&mut self, warm: Option<Warm>) {
-        self.warm = match warm {
-            Some(Warm::Crossings([p, q])) => [p[0] as f32, p[1] as f32, q[0] as f32, q[1] as f32],
-            Some(Warm::Axis(a)) => [a[0] as f32, a[1] as f32, f32::NAN, f32::NAN],
-            None => [f32::NAN; 4],
-        };
     }
 
     /// True for a body–wall pair.
@@ -97,6 +71,39 @@ impl Slot {
     #[inline]
     pub fn key(&self) -> (u32, u32) {
         (self.i, self.j)
+    }
+}
+
+/// A conic pair's warm start for the narrow phase ([`Warm`]: last step's chord crossings, or a
+/// separating axis stored as `[cos, sin, NaN, NaN]`), in single precision: a starting point
+/// needs no more. All NaN when there is none. Kept beside the slots, and only in scenes that
+/// have conic pairs: a disk pile neither stores nor streams it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WarmStart(pub [f32; 4]);
+
+impl WarmStart {
+    /// No warm start.
+    pub const NONE: WarmStart = WarmStart([f32::NAN; 4]);
+
+    /// The warm start, if any.
+    #[inline]
+    pub fn get(&self) -> Option<Warm> {
+        let w = self.0.map(f64::from);
+        match (w[0].is_nan(), w[2].is_nan()) {
+            (true, _) => None,
+            (false, true) => Some(Warm::Axis([w[0], w[1]])),
+            (false, false) => Some(Warm::Crossings([[w[0], w[1]], [w[2], w[3]]])),
+        }
+    }
+
+    /// Keeps `warm` (or none) for the next step.
+    #[inline]
+    pub fn set(&mut self, warm: Option<Warm>) {
+        self.0 = match warm {
+            Some(Warm::Crossings([p, q])) => [p[0] as f32, p[1] as f32, q[0] as f32, q[1] as f32],
+            Some(Warm::Axis(a)) => [a[0] as f32, a[1] as f32, f32::NAN, f32::NAN],
+            None => [f32::NAN; 4],
+        };
     }
 }
 
@@ -194,6 +201,9 @@ pub struct ContactList {
     /// Scratch of the build (kept to avoid allocating at every build).
     pub(crate) keys: Vec<(u32, u32)>,
     pub(crate) rebuilt: Vec<Slot>,
+    /// Each slot's warm start (same index), or empty when the scene has no conic pair.
+    pub(crate) warm: Vec<WarmStart>,
+    pub(crate) rebuilt_warm: Vec<WarmStart>,
     pub(crate) adjacency_fill: Vec<u32>,
 }
 
@@ -225,10 +235,15 @@ impl ContactList {
     /// Replaces the slots by `keys` (sorted, unique), carrying every continuing slot with its
     /// history; rebuilds each body's adjacency for `n` bodies. Returns the shear-spring energy
     /// of contacts that were active but are no longer candidates (lost, as when a contact opens).
-    pub(crate) fn rebuild_from_keys(&mut self, n: usize) -> f64 {
+    pub(crate) fn rebuild_from_keys(&mut self, n: usize, conic: bool) -> f64 {
         let mut lost = 0.0;
         self.rebuilt.clear();
         reserve_for(&mut self.rebuilt, self.keys.len());
+        self.rebuilt_warm.clear();
+        if conic {
+            reserve_for(&mut self.rebuilt_warm, self.keys.len());
+        }
+        let carry_warm = conic && self.warm.len() == self.slots.len();
         let mut old = 0;
         for &(i, j) in &self.keys {
             while old < self.slots.len() && self.slots[old].key() < (i, j) {
@@ -239,9 +254,19 @@ impl ContactList {
             }
             if old < self.slots.len() && self.slots[old].key() == (i, j) {
                 self.rebuilt.push(self.slots[old]);
+                if conic {
+                    self.rebuilt_warm.push(if carry_warm {
+                        self.warm[old]
+                    } else {
+                        WarmStart::NONE
+                    });
+                }
                 old += 1;
             } else {
                 self.rebuilt.push(Slot::new(i, j));
+                if conic {
+                    self.rebuilt_warm.push(WarmStart::NONE);
+                }
             }
         }
         for s in &self.slots[old..] {
@@ -250,6 +275,7 @@ impl ContactList {
             }
         }
         std::mem::swap(&mut self.slots, &mut self.rebuilt);
+        std::mem::swap(&mut self.warm, &mut self.rebuilt_warm);
         // The data are recomputed from the slots every step: only their number changes.
         reserve_for(&mut self.data, self.slots.len());
         self.data.resize(self.slots.len(), ContactData::default());

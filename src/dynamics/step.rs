@@ -30,7 +30,7 @@
 //! step's crossings or separating axis (see [`crate::narrow_phase::ellipse_ellipse`]).
 
 use super::body::Bodies;
-use super::contacts::{ContactData, ContactExtra, Slot, WALL_BASE, reserve_for};
+use super::contacts::{ContactData, ContactExtra, Slot, WALL_BASE, WarmStart, reserve_for};
 use super::world::{WallSpec, World};
 use crate::contact_law::{ContactSpec, Kinematics};
 use crate::geometry::Shape;
@@ -279,7 +279,13 @@ impl World {
                 }
             }
         }
-        let lost = list.rebuild_from_keys(n);
+        // Conic pairs (circle–ellipse, ellipse–ellipse) carry warm starts; others need none.
+        let conic = self
+            .bodies
+            .shape
+            .iter()
+            .any(|s| matches!(s, Shape::Ellipse { .. }));
+        let lost = list.rebuild_from_keys(n, conic);
         self.energies.dissipated += lost;
         list.built_at.clear();
         reserve_for(&mut list.built_at, n);
@@ -304,17 +310,32 @@ impl World {
         let walls = &self.walls[..];
         let spec = &self.spec;
         let list = &mut self.contacts;
-        list.slots
+        let chunks = list
+            .slots
             .par_chunks_mut(SLOT_CHUNK)
             .zip(list.data.par_chunks_mut(SLOT_CHUNK))
-            .zip(self.slot_partials.par_iter_mut())
-            .for_each(|((slots, data), part)| {
+            .zip(self.slot_partials.par_iter_mut());
+        if list.warm.is_empty() {
+            chunks.for_each(|((slots, data), part)| {
                 let mut p = SlotPartial::default();
                 for (slot, data) in slots.iter_mut().zip(data) {
-                    update_slot(slot, data, None, bodies, walls, spec, laws, g, dt, &mut p);
+                    let ctx = (bodies, walls, spec, laws, g, dt);
+                    update_slot(slot, data, None, None, ctx, &mut p);
                 }
                 *part = p;
             });
+        } else {
+            chunks.zip(list.warm.par_chunks_mut(SLOT_CHUNK)).for_each(
+                |(((slots, data), part), warm)| {
+                    let mut p = SlotPartial::default();
+                    for ((slot, data), warm) in slots.iter_mut().zip(data).zip(warm) {
+                        let ctx = (bodies, walls, spec, laws, g, dt);
+                        update_slot(slot, data, None, Some(warm), ctx, &mut p);
+                    }
+                    *part = p;
+                },
+            );
+        }
         let mut sum = SlotPartial::default();
         for p in &self.slot_partials {
             sum.contacts += p.contacts;
@@ -349,24 +370,24 @@ impl World {
         };
         let (bodies, walls, spec) = (&self.bodies, &self.walls[..], &self.spec);
         let list = &mut self.contacts;
+        let warm = &list.warm[..];
         list.slots
             .par_chunks(SLOT_CHUNK)
             .zip(list.extra.par_chunks_mut(SLOT_CHUNK))
-            .for_each(|(slots, extra)| {
+            .enumerate()
+            .for_each(|(c, (slots, extra))| {
                 let mut p = SlotPartial::default();
-                for (slot, extra) in slots.iter().zip(extra) {
-                    let (mut copy, mut data) = (*slot, ContactData::default());
+                for (k, (slot, extra)) in slots.iter().zip(extra).enumerate() {
+                    let mut copy = (*slot, ContactData::default());
+                    let mut warm_copy = warm.get(c * SLOT_CHUNK + k).copied();
                     if slot.active {
+                        let ctx = (bodies, walls, spec, laws, g, 0.0);
                         update_slot(
-                            &mut copy,
-                            &mut data,
+                            &mut copy.0,
+                            &mut copy.1,
                             Some(extra),
-                            bodies,
-                            walls,
-                            spec,
-                            laws,
-                            g,
-                            0.0,
+                            warm_copy.as_mut(),
+                            ctx,
                             &mut p,
                         );
                     } else {
@@ -508,20 +529,26 @@ impl World {
     }
 }
 
-/// One slot's contact: geometry (narrow phase), kinematics at the contact point, the law, and
-/// the history; an inactive slot drops its history.
-#[inline]
-#[allow(clippy::too_many_arguments)] // the slot, its data, and what it is computed from
+/// What every slot's contact is computed from: the bodies, the walls, the scene's law, the laws
+/// resolved once for the step (if uniform), |g| and the step Δt.
+type SlotContext<'a> = (
+    &'a Bodies,
+    &'a [WallSpec],
+    &'a ContactSpec,
+    Option<&'a [crate::contact_law::Law]>,
+    f64,
+    f64,
+);
+
+/// One slot's contact: geometry (narrow phase, from the slot's warm start when it has one),
+/// kinematics at the contact point, the law, and the history; an inactive slot drops its
+/// history. `extra`, when given, receives the depth, normal and stiffness.
 fn update_slot(
     slot: &mut Slot,
     data: &mut ContactData,
     extra: Option<&mut ContactExtra>,
-    b: &Bodies,
-    walls: &[WallSpec],
-    spec: &ContactSpec,
-    laws: Option<&[crate::contact_law::Law]>,
-    g: f64,
-    dt: f64,
+    warm_start: Option<&mut WarmStart>,
+    (b, walls, spec, laws, g, dt): SlotContext,
     p: &mut SlotPartial,
 ) {
     let (iu, ju) = (slot.i as usize, slot.j as usize);
@@ -548,7 +575,7 @@ fn update_slot(
             } else {
                 // Conic pairs start from last step's crossings (if the contact lasts).
                 // (Only a separating axis survives a separated step.)
-                let guess = slot.warm();
+                let guess = warm_start.as_ref().and_then(|w| w.get());
                 let (c, next) = contact_bodies_warm(
                     &b.shape[iu],
                     &b.state[iu].pose,
@@ -587,7 +614,9 @@ fn update_slot(
                 p.lost_shear += slot.shear_energy;
             }
             *slot = Slot::new(slot.i, slot.j);
-            slot.set_warm(warm); // a separating axis, for the next step
+            if let Some(w) = warm_start {
+                w.set(warm); // a separating axis, for the next step
+            }
             *data = ContactData::default(); // zero forces: the gather adds them unconditionally
             if let Some(e) = extra {
                 *e = ContactExtra::default();
@@ -667,9 +696,10 @@ fn update_slot(
         state,
         history,
         shear_energy: cf.shear_energy,
-        warm: slot.warm,
     };
-    slot.set_warm(warm);
+    if let Some(w) = warm_start {
+        w.set(warm);
+    }
     *data = ContactData {
         point,
         force: f,

@@ -177,7 +177,7 @@ impl World {
             ("bodies", bodies),
             (
                 "slots and contact data",
-                held(&c.slots) + held(&c.data) + held(&c.extra),
+                held(&c.slots) + held(&c.data) + held(&c.extra) + held(&c.warm),
             ),
             (
                 "adjacency",
@@ -186,7 +186,11 @@ impl World {
             ("grid", self.grid.heap_bytes()),
             (
                 "build scratch",
-                held(&c.keys) + held(&c.rebuilt) + held(&c.built_at) + held(&self.pair_scratch),
+                held(&c.keys)
+                    + held(&c.rebuilt)
+                    + held(&c.rebuilt_warm)
+                    + held(&c.built_at)
+                    + held(&self.pair_scratch),
             ),
         ]
     }
