@@ -14,7 +14,8 @@
 //! sees realistic variety) and the table reports the median time per pair.
 //! Also: the robust cubic solver against bare `roots::find_roots_cubic` on the same cubics.
 //!
-//! Run: `cargo bench --bench contact_kernels` (prints a Markdown table at the end;
+//! Run: `cargo bench --bench contact_kernels` (prints a Markdown table at the end, writes it to
+//! `figures/kernel_speed.md` and into the README's `kernel_speed` section;
 //! `cargo bench --bench contact_kernels -- --quick` for a faster, noisier run).
 
 use criterion::{BenchmarkId, Criterion};
@@ -373,8 +374,11 @@ fn bench_cubic(c: &mut Criterion) {
     group.finish();
 }
 
-/// Reads criterion's median estimates and prints the ns/pair table.
+/// Reads criterion's median estimates, prints the ns/pair table, writes it to
+/// `figures/kernel_speed.md` and refreshes the README's `kernel_speed` section.
 fn print_table() {
+    use std::fmt::Write as _;
+    let mut md = String::new();
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/criterion");
     let median = |group: &str, id: &str| -> Option<f64> {
         let p = dir.join(group).join(id).join("new/estimates.json");
@@ -384,10 +388,12 @@ fn print_table() {
             .map(|ns| ns / BATCH as f64)
     };
     let fmt = |x: Option<f64>| x.map_or("–".to_string(), |v| format!("{v:.1}"));
-    println!(
-        "\n| pair kind (ns/pair) | overlap | near: separated, bounding circles overlap | far: rejected by bounding circles | grazing: separated by 1e-3·b, the line of centres does not separate | lasting overlap (1e-4…1e-2 b), warm start | grazing, warm axis |"
-    );
-    println!("|---|---:|---:|---:|---:|---:|---:|");
+    writeln!(
+        md,
+        "| pair kind (ns/pair) | overlap | near: separated, bounding circles overlap | far: rejected by bounding circles | grazing: separated by 1e-3·b, the line of centres does not separate | lasting overlap (1e-4…1e-2 b), warm start | grazing, warm axis |"
+    )
+    .unwrap();
+    writeln!(md, "|---|---:|---:|---:|---:|---:|---:|").unwrap();
     for name in [
         "circle-circle",
         "circle-ellipse",
@@ -400,7 +406,8 @@ fn print_table() {
         "rectangle-rectangle",
     ] {
         let dirname = |r: &str| format!("{name}/{r}");
-        println!(
+        writeln!(
+            md,
             "| {name} | {} | {} | {} | {} | {} | {} |",
             fmt(median("contact", &dirname("overlap"))),
             fmt(median("contact", &dirname("near"))),
@@ -408,14 +415,26 @@ fn print_table() {
             fmt(median("contact", &dirname("grazing"))),
             fmt(median("contact", &dirname("lasting"))),
             fmt(median("contact", &dirname("near-warm")))
-        );
+        )
+        .unwrap();
     }
-    println!(
-        "\ncubic solve (ns/cubic; half the cubics have one real root, half three): robust, all roots {} | fast single root (declines three-root cubics) {} | bare roots::find_roots_cubic {}",
+    writeln!(
+        md,
+        "\nCubic solve (ns/cubic; half the cubics have one real root, half three): robust, all roots {} | fast single root (declines three-root cubics) {} | bare roots::find_roots_cubic {}",
         fmt(median("cubic", "robust")),
         fmt(median("cubic", "one-real-root")),
         fmt(median("cubic", "roots-bare"))
-    );
+    )
+    .unwrap();
+    println!("\n{md}");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = root.join("figures/kernel_speed.md");
+    if let Err(e) = std::fs::write(&out, &md) {
+        eprintln!("{}: {e}", out.display());
+    }
+    if let Err(e) = dem2d::report::update_readme(&root.join("README.md"), &[("kernel_speed", md)]) {
+        eprintln!("README.md: {e}");
+    }
 }
 
 fn main() {
