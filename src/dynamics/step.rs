@@ -20,11 +20,11 @@
 //!
 //! # Many bodies, many threads
 //! The pairs come from a neighbour list ([`super::contacts`]) rebuilt only when bodies have
-//! moved far enough to matter. Each step is four parallel passes (rayon), each over fixed-size
-//! chunks of bodies or slots: kick and drift (bodies); every slot's contact (slots, each
-//! written by one thread only); gathering each body's forces from its own slots, in key order,
-//! then the second kick (bodies); and the sums. Every sum (increments, energies, counters) is
-//! formed per chunk and then over the chunks in order. Nothing depends on how chunks are
+//! moved far enough to matter. Each step is three parallel passes (rayon), each over
+//! fixed-size chunks of bodies or slots: kick and drift (bodies); every slot's contact (slots,
+//! each written by one thread only); gathering each body's forces from its own slots, in key
+//! order, then the second kick and the dissipated power (bodies). Every sum (increments,
+//! energies, counters) is formed per chunk and then over the chunks in order. Nothing depends on how chunks are
 //! scheduled, so a run gives the same bits on one thread or many. Circle pairs skip the chord
 //! (nothing reads it) and circles skip their sine and cosine; conic pairs start from the last
 //! step's crossings or separating axis (see [`crate::narrow_phase::ellipse_ellipse`]).
@@ -179,16 +179,17 @@ impl World {
                     *part = p;
                 });
         }
+        let blowup = |body, what| Blowup {
+            step: next_step,
+            time: next_time,
+            body,
+            what,
+        };
         let mut inc = [0.0f64; 3];
         let mut disp = [0.0f64; 2];
         for p in &self.body_partials {
             if let Some(body) = p.bad {
-                return Err(Blowup {
-                    step: next_step,
-                    time: next_time,
-                    body,
-                    what: "position",
-                });
+                return Err(blowup(body, "position"));
             }
             for (total, part) in inc.iter_mut().zip(p.inc) {
                 *total += part;
@@ -211,12 +212,7 @@ impl World {
         // 4. Kick to the full step, gathering each body's forces.
         let bodies_sum = self.gather_forces(Some(h));
         if let Some(body) = bodies_sum.bad {
-            return Err(Blowup {
-                step: next_step,
-                time: next_time,
-                body,
-                what: "velocity",
-            });
+            return Err(blowup(body, "velocity"));
         }
         // Energy the contacts took out during this step. Verlet applies the forces of time level
         // n+1 over the interval centred on it, so their work is taken with the velocities at n+1

@@ -158,16 +158,17 @@ fn newton_crossings(
 /// A separating axis of the two ellipses, if a few steps find one: the gap along the unit
 /// vector at angle φ from the line of centres, `g(φ) = d cos φ − S(φ)` (S the sum of the
 /// centred supports), is maximised by Newton's method on `g′ = 0` from `start`, stopping as
-/// soon as `g > tol` — a proof of separation (the supports are exact to rounding). `None` when
-/// none is found (overlapping, touching, or too close to tell): the pencil then decides.
+/// soon as `g > tol` — a proof of separation (the supports are exact to rounding) — or after
+/// `iterations`. `None` when none is found (overlapping, touching, too close to tell, or not
+/// within the iterations): the pencil then decides.
 /// `(ai, bi, cti, sti)` and `(aj, bj, ctj, stj)` are the ellipses as in [`support`].
-#[allow(clippy::too_many_arguments)] // two ellipses and where to start
 fn separating_axis(
     (ai, bi, cti, sti): (f64, f64, f64, f64),
     (aj, bj, ctj, stj): (f64, f64, f64, f64),
     d: f64,
     start: [f64; 2],
     tol: f64,
+    iterations: usize,
 ) -> Option<[f64; 2]> {
     // Support, its first and second derivatives in φ: with p = (a u·e_a, b u·e_b),
     // s = |p|, s′ = p_a p_b (b/a − a/b)/s, s″ = ((a/b)² p_b² + (b/a)² p_a² − s² − s′²)/s.
@@ -180,7 +181,7 @@ fn separating_axis(
         (s, s1, s2)
     };
     let (mut c, mut sn) = (start[0], start[1]);
-    for _ in 0..8 {
+    for _ in 0..iterations {
         let (si, si1, si2) = derivs(ai, bi, cti, sti, c, sn);
         let (sj, sj1, sj2) = derivs(aj, bj, ctj, stj, c, sn);
         let g = d * c - si - sj;
@@ -344,11 +345,14 @@ fn conic_pair_inner(
             }
         }
     } else {
-        let start = match guess {
-            Some(Warm::Axis(a)) => a,
-            _ => [1.0, 0.0], // the line of centres (already tested above)
+        // From last step's axis, a full search; from the line of centres (already tested
+        // above), a short one: a cold overlapping pair should not pay much before the pencil.
+        let (start, iterations) = match guess {
+            Some(Warm::Axis(a)) => (a, 8),
+            _ => ([1.0, 0.0], 3),
         };
-        if let Some(axis) = separating_axis((ai, bi, cti, sti), (aj, bj, ctj, stj), d, start, tol) {
+        let (ei, ej) = ((ai, bi, cti, sti), (aj, bj, ctj, stj));
+        if let Some(axis) = separating_axis(ei, ej, d, start, tol, iterations) {
             *used_warm = matches!(guess, Some(Warm::Axis(_)));
             return (Contact::SEPARATED, Some(Warm::Axis(axis)));
         }

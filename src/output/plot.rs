@@ -345,18 +345,31 @@ where
         }
     }
     if several {
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.4))
-            .label_font(("sans-serif", 13 * S))
-            .legend_area_size(26 * S)
-            .margin(8 * S)
-            .draw()
-            .map_err(err)?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     }
     Ok(())
+}
+
+/// The legend box, in the house style, at `position`.
+fn draw_legend<'a, DB, CT>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    position: SeriesLabelPosition,
+) -> Result<(), PlotError>
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+    CT: CoordTranslate,
+{
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
+        .label_font(("sans-serif", 13 * S))
+        .legend_area_size(26 * S)
+        .margin(8 * S)
+        .draw()
+        .map_err(err)
 }
 
 /// One series of a line panel.
@@ -711,22 +724,11 @@ where
     }
     if labelled {
         let px = chart.plotting_area().dim_in_pixel();
-        chart
-            .configure_series_labels()
-            .position(
-                match p.legend {
-                    Legend::Auto => auto_legend(p, (x0, x1, y0, y1), px),
-                    fixed => fixed,
-                }
-                .position(),
-            )
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.4))
-            .label_font(("sans-serif", 13 * S))
-            .legend_area_size(26 * S)
-            .margin(8 * S)
-            .draw()
-            .map_err(err)?;
+        let position = match p.legend {
+            Legend::Auto => auto_legend(p, (x0, x1, y0, y1), px),
+            fixed => fixed,
+        };
+        draw_legend(&mut chart, position.position())?;
     }
     Ok(())
 }

@@ -48,6 +48,11 @@ pub const RESTITUTION: f64 = 0.5;
 /// |g| (cm/s²), time step (s).
 pub const G: f64 = 980.0;
 pub const DT: f64 = 1e-5;
+/// At rest: P's criterion with 1e-7 cm per step (a mean speed of 0.01 cm/s, 1e-4 of the speeds
+/// of the fall) held for 1000 steps; or the end after 4 s.
+pub const QUIESCENCE: f64 = 1e-7;
+pub const QUIESCENCE_WINDOW: u64 = 1000;
+pub const DURATION: f64 = 4.0;
 
 /// SplitMix64: a small, fast, well-mixed generator; the same seed gives the same pile on every
 /// machine (no dependency needed for this).
@@ -189,7 +194,8 @@ impl PileSpec {
              released with random velocities of up to {V_MAX} cm/s, settling under gravity. Linear law: \
              Kn/ρg = Ks/ρg = {KN_OVER_RHO_G} cm, ρ = {DENSITY} g/cm³, friction {FRICTION}, and a constant dashpot \
              η_n = η_s = {eta:.1} (g/s per unit thickness) that gives restitution {RESTITUTION} for a body of \
-             r = 1 cm against a wall (T12). Δt = {DT} s. Written by `dem2d generate --shape {kind} --n {n} --seed {seed}`.",
+             r = 1 cm against a wall (T12). Δt = {DT} s. At rest when the mean increments per step stay below \
+             {QUIESCENCE} cm (a mean speed of 0.01 cm/s) for {QUIESCENCE_WINDOW} steps; at most {DURATION} s. Written by `dem2d generate --shape {kind} --n {n} --seed {seed}`.",
             n = self.n,
             area = match self.shape {
                 PileShape::Disks => "",
@@ -217,9 +223,9 @@ impl PileSpec {
             ("units", json!("cm")),
             ("gravity", json!([0.0, -G])),
             ("dt", json!(DT)),
-            ("duration", json!(3.0)),
-            ("quiescence", json!(1e-8)),
-            ("quiescence_window", json!(1000)),
+            ("duration", json!(DURATION)),
+            ("quiescence", json!(QUIESCENCE)),
+            ("quiescence_window", json!(QUIESCENCE_WINDOW)),
             ("output_every", json!(10000)),
             (
                 "contact",
