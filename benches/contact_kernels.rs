@@ -23,24 +23,11 @@ use dem2d::geometry::cubic::{one_real_root, solve_cubic};
 use dem2d::geometry::support::support_local;
 use dem2d::geometry::{Pose, Shape, Vec2, Wall};
 use dem2d::narrow_phase::{ContactState, Object, contact, contact_bodies_warm};
+use dem2d::validation::rng::Rng;
 use std::hint::black_box;
 use std::time::Duration;
 
 const BATCH: usize = 1024;
-
-/// A small deterministic generator (xorshift*), so every run benchmarks the same pairs.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next()
-    }
-}
 
 #[derive(Clone, Copy, PartialEq)]
 enum Kind {
@@ -327,7 +314,7 @@ fn bench_cubic(c: &mut Criterion) {
                 rng.range(-3.0, 3.0),
                 rng.range(0.0, 3.0),
             );
-            if rng.next() < 0.5 {
+            if rng.uniform() < 0.5 {
                 // (λ − r1)(λ − r2)(λ − r3)
                 [
                     1.0,

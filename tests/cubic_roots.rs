@@ -11,19 +11,7 @@
 use dem2d::geometry::cubic::{one_real_root, solve_cubic};
 use dem2d::validation::dd::DD;
 use dem2d::validation::reference::cubic_real_roots;
-
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next()
-    }
-}
+use dem2d::validation::rng::Rng;
 
 /// Relative condition number of a simple root r of t1 x³ + t2 x² + t3 x + t4.
 fn condition(t: [f64; 4], r: f64) -> f64 {
@@ -197,7 +185,7 @@ fn random_families_against_double_double() {
         // Near-double roots, separations 1e-2 … 1e-9.
         let s = 10f64.powf(rng.range(-9.0, -2.0));
         let base = rng.range(-3.0, 3.0);
-        let other = base + rng.range(0.5, 3.0) * if rng.next() < 0.5 { 1.0 } else { -1.0 };
+        let other = base + rng.range(0.5, 3.0) * if rng.uniform() < 0.5 { 1.0 } else { -1.0 };
         worst[2] = worst[2].max(check(
             cubic_from_roots([base, base + s, other]),
             "near double",
@@ -215,7 +203,7 @@ fn random_families_against_double_double() {
         ));
         // Coefficients spanning up to sixteen decades.
         let e = |rng: &mut Rng| {
-            10f64.powf(rng.range(-8.0, 8.0)) * if rng.next() < 0.5 { -1.0 } else { 1.0 }
+            10f64.powf(rng.range(-8.0, 8.0)) * if rng.uniform() < 0.5 { -1.0 } else { 1.0 }
         };
         worst[4] = worst[4].max(check(
             [e(&mut rng), e(&mut rng), e(&mut rng), e(&mut rng)],

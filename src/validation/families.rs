@@ -13,28 +13,12 @@ use crate::geometry::support::support_local;
 use crate::geometry::{Pose, Shape, Vec2, Wall};
 use crate::narrow_phase::ellipse_ellipse::Warm;
 use crate::narrow_phase::{Contact, ContactState, Object, contact, contact_bodies_traced};
+use crate::validation::rng::Rng;
 
 const DEPTH_BAR: f64 = 1e-12;
 const ANGLE_BAR: f64 = 1e-8;
 const POINT_BAR: f64 = 1e-9;
 const CLASS_BAR: f64 = 1e-12;
-
-/// Deterministic generator (xorshift*).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next()
-    }
-    fn angle(&mut self) -> f64 {
-        self.range(-std::f64::consts::PI, std::f64::consts::PI)
-    }
-}
 
 /// One side of a test pair, convertible to both the kernel's and the reference's types.
 #[derive(Clone, Copy, Debug)]
@@ -95,6 +79,22 @@ struct Case {
     i: Spec,
     j: Spec,
     along: [f64; 2],
+}
+
+impl Case {
+    /// The same pair with i and j exchanged (the build direction flips with them).
+    fn swapped(self) -> Case {
+        Case {
+            i: self.j,
+            j: self.i,
+            along: [-self.along[0], -self.along[1]],
+        }
+    }
+}
+
+/// +1 for even `k`, −1 for odd: families alternate overlap and separation.
+fn alternate(k: usize) -> f64 {
+    if k % 2 == 0 { 1.0 } else { -1.0 }
 }
 
 fn support(shape: &Shape, angle: f64, n: [f64; 2]) -> f64 {
@@ -328,14 +328,14 @@ fn check(case: &Case, rng: &mut Rng, st: &mut FamilyReport, label: &str, conditi
     ) = (&oi, &oj)
     {
         if let (_, Some(carried), _) = contact_bodies_traced(s1, p1, s2, p2, None) {
-            let mut jitter = || (rng.next() - 0.5) * 2e-4 * scale;
+            let mut jitter = || (rng.uniform() - 0.5) * 2e-4 * scale;
             let guess = match carried {
                 Warm::Crossings([p, q]) => Warm::Crossings([
                     [p[0] + jitter(), p[1] + jitter()],
                     [q[0] + jitter(), q[1] + jitter()],
                 ]),
                 Warm::Axis([c, s]) => {
-                    let t = (rng.next() - 0.5) * 0.04;
+                    let t = (rng.uniform() - 0.5) * 0.04;
                     let (st_, ct) = t.sin_cos();
                     Warm::Axis([c * ct - s * st_, s * ct + c * st_])
                 }
@@ -603,8 +603,7 @@ pub fn run_families() -> Vec<FamilyReport> {
                 b: 1.5 / aspect,
             };
             let th = rng.angle();
-            let nu =
-                DEPTHS[(k / 5) % DEPTHS.len()] * 1.5 / aspect * if k % 2 == 0 { 1.0 } else { -1.0 };
+            let nu = DEPTHS[(k / 5) % DEPTHS.len()] * 1.5 / aspect * alternate(k);
             Some(place(s, th, s, th, unit(rng.angle()), nu, [0.0, 0.0]))
         },
         450,
@@ -623,15 +622,7 @@ pub fn run_families() -> Vec<FamilyReport> {
             };
             let nu = DEPTHS[k % DEPTHS.len()] / aspect;
             let c = place(sc, 0.0, se, rng.angle(), unit(rng.angle()), nu, [0.0, 0.0]);
-            Some(if k % 2 == 0 {
-                c
-            } else {
-                Case {
-                    i: c.j,
-                    j: c.i,
-                    along: [-c.along[0], -c.along[1]],
-                }
-            })
+            Some(if k % 2 == 0 { c } else { c.swapped() })
         },
         450,
     );
@@ -784,18 +775,10 @@ pub fn run_families() -> Vec<FamilyReport> {
                     b: 1.0 / aspect,
                 }
             };
-            let nu = DEPTHS[(k / 5) % DEPTHS.len()] / aspect * if k % 2 == 0 { 1.0 } else { -1.0 };
+            let nu = DEPTHS[(k / 5) % DEPTHS.len()] / aspect * alternate(k);
             let far = if k % 3 == 0 { 1e6 } else { 0.0 };
             let c = place_wall(s, rng.angle(), unit(rng.angle()), nu, [far, -far]);
-            Some(if k % 5 == 2 {
-                Case {
-                    i: c.j,
-                    j: c.i,
-                    along: [-c.along[0], -c.along[1]],
-                }
-            } else {
-                c
-            })
+            Some(if k % 5 == 2 { c.swapped() } else { c })
         },
         450,
     );
@@ -807,7 +790,7 @@ pub fn run_families() -> Vec<FamilyReport> {
                 w: 1.0,
                 h: rng.range(0.1, 1.0),
             };
-            let nu = DEPTHS[k % DEPTHS.len()] * 0.1 * if k % 2 == 0 { 1.0 } else { -1.0 };
+            let nu = DEPTHS[k % DEPTHS.len()] * 0.1 * alternate(k);
             let th = if k % 7 == 0 { 0.0 } else { rng.angle() };
             Some(place_wall(s, th, unit(rng.angle()), nu, [0.0, 0.0]))
         },
@@ -832,7 +815,7 @@ pub fn run_families() -> Vec<FamilyReport> {
                     b: 0.8 / aspect,
                 }
             };
-            let nu = DEPTHS[(k / 5) % DEPTHS.len()] * 0.08 * if k % 2 == 0 { 1.0 } else { -1.0 };
+            let nu = DEPTHS[(k / 5) % DEPTHS.len()] * 0.08 * alternate(k);
             let c = place(
                 sr,
                 rng.angle(),
@@ -842,15 +825,7 @@ pub fn run_families() -> Vec<FamilyReport> {
                 nu,
                 [0.0, 0.0],
             );
-            Some(if k % 4 == 3 {
-                Case {
-                    i: c.j,
-                    j: c.i,
-                    along: [-c.along[0], -c.along[1]],
-                }
-            } else {
-                c
-            })
+            Some(if k % 4 == 3 { c.swapped() } else { c })
         },
         450,
     );
@@ -866,7 +841,7 @@ pub fn run_families() -> Vec<FamilyReport> {
                 w: rng.range(0.3, 1.5),
                 h: rng.range(0.2, 1.0),
             };
-            let nu = DEPTHS[k % DEPTHS.len()] * 0.1 * if k % 2 == 0 { 1.0 } else { -1.0 };
+            let nu = DEPTHS[k % DEPTHS.len()] * 0.1 * alternate(k);
             let ti = rng.angle();
             // Along a face normal of i: i's support there is a face, j's a corner (or an edge
             // when j is aligned, every fifth case: stacked boxes with collinear sides).
@@ -903,7 +878,7 @@ pub fn run_families() -> Vec<FamilyReport> {
                 w: rng.range(0.3, 1.5),
                 h: rng.range(0.2, 1.0),
             };
-            let nu = DEPTHS[k % DEPTHS.len()] * 0.1 * if k % 2 == 0 { 1.0 } else { -1.0 };
+            let nu = DEPTHS[k % DEPTHS.len()] * 0.1 * alternate(k);
             Some(place(
                 si,
                 rng.angle(),

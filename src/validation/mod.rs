@@ -10,3 +10,4 @@
 pub mod dd;
 pub mod families;
 pub mod reference;
+pub mod rng;
