@@ -11,11 +11,12 @@
 
 use crate::dynamics::timestep::estimate_critical_dt;
 use crate::dynamics::{BodyInit, World};
+use crate::output::progress::Progress;
 use crate::scene::Case;
 use crate::scene::generate::{PileShape, PileSpec, WIDTH_10K};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// Mean speed (cm/s) below which a pile counts as settled for the benchmark.
 pub const SETTLED_SPEED: f64 = 0.5;
@@ -123,29 +124,26 @@ fn settle(spec: &PileSpec, progress: bool) -> Result<String, BenchError> {
     let start = Instant::now();
     let check = ((0.01 / dt).round() as u64).max(1);
     let mut speed = mean_speed(&w);
-    let mut shown = Instant::now();
+    let mut shown = Progress::new(progress, Duration::ZERO);
     while w.time < SETTLE_TIME_MAX {
         w.step()
             .map_err(|b| BenchError(format!("settling {}: {b}", spec.name())))?;
         if w.step % check == 0 {
             speed = mean_speed(&w);
-            if progress && shown.elapsed().as_secs_f64() > 1.0 {
-                shown = Instant::now();
-                eprint!(
-                    "\rsettling {}: t = {:.2} s, mean speed {speed:.3} cm/s, {} contacts   ",
+            if shown.due() {
+                shown.show(&format!(
+                    "settling {}: t = {:.2} s, mean speed {speed:.3} cm/s, {} contacts",
                     spec.name(),
                     w.time,
                     w.contacts.len()
-                );
+                ));
             }
             if w.time > 0.2 && speed < SETTLED_SPEED {
                 break;
             }
         }
     }
-    if progress {
-        eprintln!();
-    }
+    shown.finish();
     let description = format!(
         "{} settled at Δt = {dt:.3e} s for {:.2} s (mean speed {speed:.3} cm/s; {:.0} s of wall time) by `dem2d bench`, from: {}",
         spec.name(),

@@ -5,12 +5,13 @@
 
 use crate::dynamics::timestep::estimate_critical_dt;
 use crate::dynamics::{Blowup, World};
+use crate::output::progress::Progress;
 use crate::output::summary::{DeepCounts, EnergyReport, FinalBody, Summary};
 use crate::output::trace::{IncrementsWriter, TrajectoryWriter};
 use crate::scene::Case;
 use std::io;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// Where and how to run.
 #[derive(Clone, Debug)]
@@ -64,7 +65,7 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<R
     let mut incs = IncrementsWriter::create(&opts.out_dir.join("increments.csv"))?;
     traj.write(&world)?;
     let start = Instant::now();
-    let mut last_progress = start;
+    let mut progress = Progress::new(opts.progress, Duration::from_secs(2));
     let mut quiescent_step = None;
     let mut streak = 0u64;
     let mut first_contact_step = None;
@@ -104,20 +105,16 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<R
                 break;
             }
         }
-        if opts.progress
-            && last_progress.elapsed().as_secs_f64() >= 1.0
-            && start.elapsed().as_secs_f64() >= 2.0
-        {
-            last_progress = Instant::now();
+        if progress.due() {
             let rate = s as f64 / start.elapsed().as_secs_f64();
-            eprint!(
-                "\r{}: step {s}/{steps} ({:.0} %), t = {:.4}, {:.0} steps/s, {} contacts   ",
+            progress.show(&format!(
+                "{}: step {s}/{steps} ({:.0} %), t = {:.4}, {:.0} steps/s, {} contacts",
                 case.name,
                 100.0 * s as f64 / steps as f64,
                 world.time,
                 rate,
                 report.contacts
-            );
+            ));
         }
     }
     let wall_seconds = start.elapsed().as_secs_f64();
@@ -131,9 +128,7 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<R
             case.dt
         ));
     }
-    if opts.progress && wall_seconds >= 2.0 {
-        eprintln!();
-    }
+    progress.finish();
     traj.write(&world)?;
     traj.flush()?;
     incs.flush()?;

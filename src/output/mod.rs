@@ -3,6 +3,7 @@
 pub mod contacts;
 pub mod panels;
 pub mod plot;
+pub mod progress;
 pub mod run_data;
 pub mod summary;
 pub mod trace;
