@@ -106,6 +106,102 @@ fn every_plot_kind_writes_an_svg_with_title_axes_and_units() {
     }
 }
 
+/// The polylines of an SVG with exactly `points` points (outlines of circles and ellipses are
+/// closed 72-gons: 73 points; axes, ticks and wall hatching have 2).
+fn polylines_with(svg: &str, points: usize) -> usize {
+    svg.split("<polyline")
+        .skip(1)
+        .filter(|p| {
+            let Some(start) = p.find("points=\"") else {
+                return false;
+            };
+            let rest = &p[start + 8..];
+            rest[..rest.find('"').unwrap_or(0)]
+                .split_whitespace()
+                .count()
+                == points
+        })
+        .count()
+}
+
+#[test]
+fn a_many_body_run_plots_as_a_snapshot_and_summarised_series() {
+    let dir = scratch("pile300");
+    let case = dir.join("pile.json");
+    let (code, _, err) = dem2d(&[
+        "generate",
+        "--shape",
+        "disks",
+        "--n",
+        "300",
+        "--seed",
+        "7",
+        "--out",
+        case.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let run = dir.join("run");
+    let (code, _, err) = dem2d(&[
+        "run",
+        case.to_str().unwrap(),
+        "--out",
+        run.to_str().unwrap(),
+        "--max-steps",
+        "20000",
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    // Scene: one outline per body (at the last frame), none of the earlier outlines or paths.
+    let scene = dir.join("scene.svg");
+    let (code, _, err) = dem2d(&[
+        "plot",
+        run.to_str().unwrap(),
+        "--out",
+        scene.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let svg = std::fs::read_to_string(&scene).unwrap();
+    assert_eq!(polylines_with(&svg, 73), 300);
+    // Series: the summary lines, not 300 legend entries.
+    let series = dir.join("series.svg");
+    let (code, _, err) = dem2d(&[
+        "plot",
+        run.to_str().unwrap(),
+        "--kind",
+        "series",
+        "--out",
+        series.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let t = texts(&std::fs::read_to_string(&series).unwrap());
+    for w in [
+        "mean of 300 bodies",
+        "lowest",
+        "highest",
+        "largest",
+        "rotation |θ − θ₀|",
+    ] {
+        assert!(t.iter().any(|s| s.contains(w)), "no text {w:?} in {t:?}");
+    }
+    assert!(!t.iter().any(|s| s.contains("body 0")), "{t:?}");
+    // The summary lines bracket every body, and the mean is the mean, read back from the
+    // trajectory file (heights) at every frame.
+    let data = dem2d::output::run_data::RunData::load(&run).unwrap();
+    let panels = dem2d::output::panels::time_series(&[(&data, "")], "pile");
+    let [mean, low, high] = [0, 1, 2].map(|s| &panels[0].series[s].points);
+    assert_eq!(mean.len(), data.frames.len());
+    for (k, f) in data.frames.iter().enumerate() {
+        let ys: Vec<f64> = f.bodies.iter().map(|b| b.y).collect();
+        let m = ys.iter().sum::<f64>() / ys.len() as f64;
+        assert!((mean[k].1 - m).abs() <= 1e-12 * m.abs().max(1.0));
+        assert_eq!(low[k].1, ys.iter().cloned().fold(f64::INFINITY, f64::min));
+        assert_eq!(
+            high[k].1,
+            ys.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+        );
+    }
+}
+
 #[test]
 fn plotting_a_directory_that_is_not_a_run_names_the_missing_file() {
     let dir = scratch("not_a_run");

@@ -34,6 +34,10 @@ pub fn time_series(runs: &[(&RunData, &str)], title: &str) -> Vec<LinePanel> {
     let mut c = 0;
     for (run, label) in runs {
         let n = run.case.bodies.len();
+        if n > PER_BODY_MAX {
+            summarise_bodies(run, label, &mut height, &mut angle, &mut c);
+            continue;
+        }
         for k in 0..n {
             let name = match (label.is_empty(), n > 1) {
                 (false, true) => format!("{label}, body {k}"),
@@ -63,6 +67,74 @@ pub fn time_series(runs: &[(&RunData, &str)], title: &str) -> Vec<LinePanel> {
         }
     }
     vec![height, angle]
+}
+
+/// Above this many bodies a run's time series are summarised over its bodies (one line per body
+/// would be an unreadable band with a legend taller than the figure).
+pub const PER_BODY_MAX: usize = 12;
+
+/// A many-body run as a few lines: the mean, lowest and highest centroid height, and the mean
+/// and largest rotation |θ − θ₀| since the start (the angle panel's label says so).
+fn summarise_bodies(
+    run: &RunData,
+    label: &str,
+    height: &mut LinePanel,
+    angle: &mut LinePanel,
+    c: &mut usize,
+) {
+    let n = run.case.bodies.len();
+    let prefix = if label.is_empty() {
+        String::new()
+    } else {
+        format!("{label}, ")
+    };
+    let first = run.frames.first();
+    let over = |f: fn(f64, f64) -> f64, init: f64, value: &dyn Fn(usize, usize) -> f64| {
+        run.frames
+            .iter()
+            .enumerate()
+            .map(|(t, fr)| (fr.t, (0..n).map(|k| value(t, k)).fold(init, f)))
+            .collect::<Vec<_>>()
+    };
+    let y = |t: usize, k: usize| run.frames[t].bodies[k].y;
+    let turn = |t: usize, k: usize| {
+        (run.frames[t].bodies[k].angle - first.map_or(0.0, |f| f.bodies[k].angle)).abs()
+    };
+    let mean = |value: &dyn Fn(usize, usize) -> f64| {
+        let mut pts = over(|a, b| a + b, 0.0, value);
+        pts.iter_mut().for_each(|p| p.1 /= n as f64);
+        pts
+    };
+    let line = |label: String, points: Vec<(f64, f64)>, color: usize| Series {
+        label,
+        points,
+        color,
+        line: true,
+        ..Default::default()
+    };
+    height
+        .series
+        .push(line(format!("{prefix}mean of {n} bodies"), mean(&y), *c));
+    height.series.push(line(
+        format!("{prefix}lowest"),
+        over(f64::min, f64::INFINITY, &y),
+        *c + 1,
+    ));
+    height.series.push(line(
+        format!("{prefix}highest"),
+        over(f64::max, f64::NEG_INFINITY, &y),
+        *c + 2,
+    ));
+    angle.y_label = "rotation |θ − θ₀| since the start (rad)".into();
+    angle
+        .series
+        .push(line(format!("{prefix}mean of {n} bodies"), mean(&turn), *c));
+    angle.series.push(line(
+        format!("{prefix}largest"),
+        over(f64::max, 0.0, &turn),
+        *c + 2,
+    ));
+    *c += 3;
 }
 
 /// P's quiescence measures (mean |Δx|, |Δy|, |Δθ| per step) against the step on a log scale,

@@ -97,6 +97,10 @@ pub struct SceneOptions {
     pub width: u32,
     /// Colour by body (one run per panel) rather than by run.
     pub color_by_body: bool,
+    /// Runs with more bodies than this are drawn as a snapshot: each body's outline at the last
+    /// time shown, without paths or earlier outlines (which would bury a pile and make the file
+    /// hundreds of megabytes).
+    pub snapshot_above: usize,
 }
 
 impl Default for SceneOptions {
@@ -106,13 +110,14 @@ impl Default for SceneOptions {
             outlines: 24,
             width: 1000,
             color_by_body: true,
+            snapshot_above: 100,
         }
     }
 }
 
-/// The box that holds every body of every panel over the time shown, extended to axis-aligned
-/// walls nearby; equal aspect is applied later.
-fn scene_bounds(panels: &[ScenePanel], t_max: f64) -> (f64, f64, f64, f64) {
+/// The box that holds every body of every panel over the time shown (at its last time only for a
+/// snapshot run), extended to axis-aligned walls nearby; equal aspect is applied later.
+fn scene_bounds(panels: &[ScenePanel], opts: &SceneOptions, t_max: f64) -> (f64, f64, f64, f64) {
     let (mut x0, mut x1, mut y0, mut y1) = (
         f64::INFINITY,
         f64::NEG_INFINITY,
@@ -121,7 +126,14 @@ fn scene_bounds(panels: &[ScenePanel], t_max: f64) -> (f64, f64, f64, f64) {
     );
     for p in panels {
         for (run, _) in &p.runs {
-            for f in run.frames.iter().filter(|f| f.t <= t_max) {
+            let shown: Vec<_> = run.frames.iter().filter(|f| f.t <= t_max).collect();
+            let snapshot = run.case.bodies.len() > opts.snapshot_above;
+            let from = if snapshot {
+                shown.len().saturating_sub(1)
+            } else {
+                0
+            };
+            for f in &shown[from..] {
                 for (b, init) in f.bodies.iter().zip(&run.case.bodies) {
                     for (x, y) in outline(&init.shape, b.x, b.y, b.angle) {
                         x0 = x0.min(x);
@@ -173,7 +185,7 @@ fn clip_line(p: Vec2, d: Vec2, b: (f64, f64, f64, f64)) -> Option<(Vec2, Vec2)> 
 /// Draws a scene figure: panels stacked vertically on common, equal-aspect axes.
 pub fn scene(path: &Path, panels: &[ScenePanel], opts: &SceneOptions) -> Result<(), PlotError> {
     let t_max = opts.t_max.unwrap_or(f64::INFINITY);
-    let (mut x0, mut x1, mut y0, mut y1) = scene_bounds(panels, t_max);
+    let (mut x0, mut x1, mut y0, mut y1) = scene_bounds(panels, opts, t_max);
     let (left, bottom, title_h, margin) = (60 * S, 45 * S, 30 * S, 12 * S);
     let width = opts.width * S;
     let plot_w = (width - left - 2 * margin) as f64;
@@ -285,6 +297,16 @@ where
             continue;
         };
         let span = (last.t - first.t).max(1e-300);
+        if run.case.bodies.len() > opts.snapshot_above {
+            let col = color(ri);
+            chart
+                .draw_series(run.case.bodies.iter().enumerate().map(|(k, init)| {
+                    let b = last.bodies[k];
+                    PathElement::new(outline(&init.shape, b.x, b.y, b.angle), col.stroke_width(S))
+                }))
+                .map_err(err)?;
+            continue;
+        }
         for (k, init) in run.case.bodies.iter().enumerate() {
             let col = if opts.color_by_body && !several {
                 color(k)
