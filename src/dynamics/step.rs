@@ -24,10 +24,11 @@
 //! fixed-size chunks of bodies or slots: kick and drift (bodies); every slot's contact (slots,
 //! each written by one thread only); gathering each body's forces from its own slots, in key
 //! order, then the second kick and the dissipated power (bodies). Every sum (increments,
-//! energies, counters) is formed per chunk and then over the chunks in order. Nothing depends on how chunks are
-//! scheduled, so a run gives the same bits on one thread or many. Circle pairs skip the chord
-//! (nothing reads it) and circles skip their sine and cosine; conic pairs start from the last
-//! step's crossings or separating axis (see [`crate::narrow_phase::ellipse_ellipse`]).
+//! energies, counters) is formed per chunk and then over the chunks in order. Nothing depends
+//! on how chunks are scheduled, so a run gives the same bits on one thread or many. Circle
+//! pairs skip the chord (nothing reads it) and circles skip their sine and cosine; conic pairs
+//! start from the last step's crossings or separating axis (see
+//! [`crate::narrow_phase::ellipse_ellipse`]).
 
 use super::body::Bodies;
 use super::contacts::{ContactData, ContactExtra, Slot, WALL_BASE, WarmStart, reserve_for};
