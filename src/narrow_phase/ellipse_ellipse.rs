@@ -212,7 +212,7 @@ fn separating_axis(
     None
 }
 
-/// [`conic_pair`] with a warm start: `guess` is last step's [`Warm`] crossings (None for a new
+/// The pencil contact of two conics (ellipses; a circle is `a = b = r`) with a warm start: `guess` is last step's [`Warm`] crossings (None for a new
 /// contact). Returns the contact and, for a two-crossing overlap, its crossings for the next
 /// step.
 #[inline]
