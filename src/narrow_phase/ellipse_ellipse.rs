@@ -212,9 +212,9 @@ fn separating_axis(
     None
 }
 
-/// The pencil contact of two conics (ellipses; a circle is `a = b = r`) with a warm start: `guess` is last step's [`Warm`] crossings (None for a new
-/// contact). Returns the contact and, for a two-crossing overlap, its crossings for the next
-/// step.
+/// The pencil contact of two conics (ellipses; a circle is `a = b = r`) with a warm start:
+/// `guess` is last step's [`Warm`] (None for a new contact). Returns the contact and what the
+/// next step starts from: a two-crossing overlap's crossings, or a separating axis.
 #[inline]
 pub fn conic_pair_warm(
     ai: f64,
