@@ -36,6 +36,17 @@ fn floor(spec: ContactSpec) -> WallSpec {
     }
 }
 
+/// One body at (0, y), angle 0, with velocity `v` and no spin, above the floor `y = 0`.
+fn on_floor(shape: Shape, y: f64, v: Vec2, gravity: Vec2, spec: ContactSpec, dt: f64) -> World {
+    World::new(
+        &[body(shape, 0.0, y, 0.0, v, 0.0)],
+        vec![floor(spec)],
+        gravity,
+        spec,
+        dt,
+    )
+}
+
 #[test]
 fn free_fall_is_exact_to_round_off() {
     // Velocity Verlet integrates constant acceleration exactly: x = x0 + v0 t + ½ g t².
@@ -106,16 +117,10 @@ fn disk_impact_matches_the_exact_clamped_spring_dashpot() {
         // measured times carry O(Δt/t_c) = 5e-5.
         let dt = tc_exact / 20_000.0;
         let spec = linear(k, k, eta, 0.0);
-        let mut w = World::new(
-            &[body(
-                Shape::Circle { r },
-                0.0,
-                r,
-                0.0,
-                Vec2::new(0.0, -v0),
-                0.0,
-            )],
-            vec![floor(spec)],
+        let mut w = on_floor(
+            Shape::Circle { r },
+            r,
+            Vec2::new(0.0, -v0),
             Vec2::zeros(),
             spec,
             dt,
@@ -151,16 +156,10 @@ fn sliding_disk_ends_rolling_at_two_thirds_speed() {
     let eta = 2.0 * 0.7 * (kn * m).sqrt();
     let spec = linear(kn, kn, eta, 0.3);
     let depth = m * g / kn;
-    let mut w = World::new(
-        &[body(
-            Shape::Circle { r },
-            0.0,
-            r - depth,
-            0.0,
-            Vec2::new(v0, 0.0),
-            0.0,
-        )],
-        vec![floor(spec)],
+    let mut w = on_floor(
+        Shape::Circle { r },
+        r - depth,
+        Vec2::new(v0, 0.0),
         Vec2::new(0.0, -g),
         spec,
         2e-6,
@@ -189,16 +188,10 @@ fn sliding_square_decelerates_at_mu_g_and_stops_at_v0_squared_over_2_mu_g() {
     let eta = 2.0 * 0.7 * (kn * m).sqrt();
     let spec = linear(kn, kn, eta, mu);
     let y0 = 0.5 * side - m * g / kn;
-    let mut w = World::new(
-        &[body(
-            Shape::Rectangle { w: side, h: side },
-            0.0,
-            y0,
-            0.0,
-            Vec2::new(v0, 0.0),
-            0.0,
-        )],
-        vec![floor(spec)],
+    let mut w = on_floor(
+        Shape::Rectangle { w: side, h: side },
+        y0,
+        Vec2::new(v0, 0.0),
         Vec2::new(0.0, -g),
         spec,
         2e-6,
@@ -243,16 +236,10 @@ fn ellipse_on_its_flat_side_sinks_mg_over_kn() {
         damping: LinearDamping::Restitution(0.1),
         friction: 0.5,
     };
-    let mut w = World::new(
-        &[body(
-            Shape::Ellipse { a, b },
-            0.0,
-            b,
-            0.0,
-            Vec2::zeros(),
-            0.0,
-        )],
-        vec![floor(spec)],
+    let mut w = on_floor(
+        Shape::Ellipse { a, b },
+        b,
+        Vec2::zeros(),
         Vec2::new(0.0, -g),
         spec,
         1e-5,
@@ -269,16 +256,10 @@ fn ellipse_on_its_flat_side_sinks_mg_over_kn() {
 /// bounces), E = kinetic + potential + elastic.
 fn bounce_energy_error(dt: f64) -> f64 {
     let spec = linear(1e6, 1e6, 0.0, 0.0);
-    let mut w = World::new(
-        &[body(
-            Shape::Circle { r: 1.0 },
-            0.0,
-            3.0,
-            0.0,
-            Vec2::zeros(),
-            0.0,
-        )],
-        vec![floor(spec)],
+    let mut w = on_floor(
+        Shape::Circle { r: 1.0 },
+        3.0,
+        Vec2::zeros(),
         Vec2::new(0.0, -980.0),
         spec,
         dt,
@@ -476,16 +457,10 @@ fn hertz_impact_matches_closed_form_and_an_independent_integration() {
             restitution: e,
             friction: 0.0,
         };
-        let mut w = World::new(
-            &[body(
-                Shape::Circle { r },
-                0.0,
-                r,
-                0.0,
-                Vec2::new(0.0, -v0),
-                0.0,
-            )],
-            vec![floor(spec)],
+        let mut w = on_floor(
+            Shape::Circle { r },
+            r,
+            Vec2::new(0.0, -v0),
             Vec2::zeros(),
             spec,
             tc / 2e4,
@@ -548,16 +523,10 @@ fn network_critical_step_matches_the_modes_of_closed_form_systems() {
     // ζ = ηw/(2ω): Δt = 2(√(1+ζ²) − ζ)/ω of the stiffer of the two.
     let eta = 100.0;
     let spec = linear(k, k, eta, 0.5);
-    let mut w = World::new(
-        &[body(
-            Shape::Circle { r: 1.0 },
-            0.0,
-            1.0 - 1e-4,
-            0.0,
-            Vec2::zeros(),
-            0.0,
-        )],
-        vec![floor(spec)],
+    let mut w = on_floor(
+        Shape::Circle { r: 1.0 },
+        1.0 - 1e-4,
+        Vec2::zeros(),
         Vec2::new(0.0, -980.0),
         spec,
         1e-6,
