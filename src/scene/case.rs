@@ -18,7 +18,7 @@
 
 use super::body::{parse_body_with, parse_wall_with};
 use super::fields::{FieldError, Obj, index, join, non_negative, number, positive, type_of, vec2};
-use crate::contact_law::{ContactSpec, LinearDamping, Scaled};
+use crate::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
 use crate::dynamics::{BodyInit, WallSpec};
 use crate::geometry::Vec2;
 use serde_json::{Map, Value};
@@ -45,8 +45,9 @@ pub struct Case {
     pub bodies: Vec<BodyInit>,
 }
 
-const CONTACT_KEYS: [&str; 13] = [
+const CONTACT_KEYS: [&str; 14] = [
     "model",
+    "normal_force",
     "kn",
     "kn_over_rho_g",
     "ks",
@@ -248,6 +249,19 @@ fn parse_contact(
         Some(v) => non_negative(v, &field("friction"))?,
         None => return Err(FieldError::new(join(missing_at, "friction"), "is missing")),
     };
+    let normal_force = match get("normal_force") {
+        None => NormalForce::default(),
+        Some(v) => match string(v, &field("normal_force"))?.as_str() {
+            "area" => NormalForce::Area,
+            "depth" => NormalForce::Depth,
+            other => {
+                return Err(FieldError::new(
+                    field("normal_force"),
+                    format!("unknown normal force `{other}` (expected `area` or `depth`)"),
+                ));
+            }
+        },
+    };
     let scaled = |abs: &str, rel: &str| -> Result<Option<Scaled>, FieldError> {
         match (get(abs), get(rel)) {
             (Some(_), Some(_)) => Err(FieldError::new(
@@ -334,6 +348,7 @@ fn parse_contact(
                 ks,
                 damping,
                 friction,
+                normal_force,
             })
         }
         "hertz_mindlin" => {
@@ -373,6 +388,7 @@ fn parse_contact(
                 poisson,
                 restitution,
                 friction,
+                normal_force,
             })
         }
         other => Err(FieldError::new(
