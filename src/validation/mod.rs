@@ -9,5 +9,6 @@
 
 pub mod dd;
 pub mod families;
+pub mod overlap_reference;
 pub mod reference;
 pub mod rng;
