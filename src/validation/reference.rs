@@ -409,7 +409,7 @@ impl V {
     }
 
     /// `|x| + |y|` (for tolerance scales).
-    fn norm1(self) -> f64 {
+    pub(super) fn norm1(self) -> f64 {
         self.x.abs().to_f64() + self.y.abs().to_f64()
     }
 
