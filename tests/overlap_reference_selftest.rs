@@ -11,6 +11,7 @@
 use dem2d::validation::dd::DD;
 use dem2d::validation::overlap_reference::{OverlapState, Side, reference_overlap};
 use dem2d::validation::reference::{RObj, RShape};
+use dem2d::validation::rng::Rng;
 
 /// `|got − want|`, as an `f64`.
 fn err(got: DD, want: DD) -> f64 {
@@ -513,4 +514,329 @@ fn wall_circle_and_ellipse_segments() {
         "wall–conic segments: worst error {worst:.3} × EPS/min(1 + D, 1 − D); states {states:?}"
     );
     assert!(states.iter().all(|&k| k > 0));
+}
+
+// ---------------------------------------------------------------------------
+// Rectangles and walls: polygon areas
+// ---------------------------------------------------------------------------
+
+/// A closed half-plane `n·x ≤ k` in DD (coordinates relative to some origin).
+type HalfPlane = ([DD; 2], DD);
+
+/// Corners (counter-clockwise) of a rectangle body, relative to `origin`, in DD, with the
+/// reference's axes convention.
+fn rect_corners_dd(w: f64, h: f64, pos: [f64; 2], angle: f64, origin: [f64; 2]) -> Vec<[DD; 2]> {
+    let (e1, e2) = axes(angle);
+    let c = [DD::from(pos[0]) - origin[0], DD::from(pos[1]) - origin[1]];
+    let (hw, hh) = (DD::from(w).mul_pow2(0.5), DD::from(h).mul_pow2(0.5));
+    [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+        .iter()
+        .map(|&(sx, sy)| {
+            [
+                c[0] + e1[0] * hw * sx + e2[0] * hh * sy,
+                c[1] + e1[1] * hw * sx + e2[1] * hh * sy,
+            ]
+        })
+        .collect()
+}
+
+/// The half-planes whose intersection is the solid of a rectangle or a wall.
+fn half_planes(o: &RObj, origin: [f64; 2]) -> Vec<HalfPlane> {
+    match *o {
+        RObj::Body {
+            shape: RShape::Rectangle { w, h },
+            pos,
+            angle,
+        } => {
+            let (e1, e2) = axes(angle);
+            let c = [DD::from(pos[0]) - origin[0], DD::from(pos[1]) - origin[1]];
+            let (hw, hh) = (DD::from(w).mul_pow2(0.5), DD::from(h).mul_pow2(0.5));
+            vec![
+                (e1, dotd(e1, c) + hw),
+                ([-e1[0], -e1[1]], hw - dotd(e1, c)),
+                (e2, dotd(e2, c) + hh),
+                ([-e2[0], -e2[1]], hh - dotd(e2, c)),
+            ]
+        }
+        RObj::Wall { point, normal } => {
+            let n = [DD::from(normal[0]), DD::from(normal[1])];
+            let p = [
+                DD::from(point[0]) - origin[0],
+                DD::from(point[1]) - origin[1],
+            ];
+            vec![(n, dotd(n, p))]
+        }
+        RObj::Body { .. } => panic!("not a polygon"),
+    }
+}
+
+/// Sutherland–Hodgman: the convex polygon `poly` clipped by the half-planes, in DD.
+fn clip(mut poly: Vec<[DD; 2]>, planes: &[HalfPlane]) -> Vec<[DD; 2]> {
+    for (n, k) in planes {
+        let g = |p: &[DD; 2]| dotd(*n, *p) - *k;
+        let mut out = Vec::new();
+        for idx in 0..poly.len() {
+            let (p, q) = (poly[idx], poly[(idx + 1) % poly.len()]);
+            let (gp, gq) = (g(&p), g(&q));
+            if gp <= 0.0 {
+                out.push(p);
+            }
+            if (gp < 0.0 && gq > 0.0) || (gp > 0.0 && gq < 0.0) {
+                let t = gp / (gp - gq);
+                out.push([p[0] + (q[0] - p[0]) * t, p[1] + (q[1] - p[1]) * t]);
+            }
+        }
+        poly = out;
+        if poly.is_empty() {
+            break;
+        }
+    }
+    poly
+}
+
+/// Shoelace area of a polygon in DD (relative to its first vertex).
+fn polygon_area(poly: &[[DD; 2]]) -> DD {
+    if poly.len() < 3 {
+        return DD::ZERO;
+    }
+    let p0 = poly[0];
+    let twice: DD = poly[1..]
+        .windows(2)
+        .map(|w| {
+            let (u, v) = (
+                [w[0][0] - p0[0], w[0][1] - p0[1]],
+                [w[1][0] - p0[0], w[1][1] - p0[1]],
+            );
+            u[0] * v[1] - u[1] * v[0]
+        })
+        .sum();
+    twice.mul_pow2(0.5)
+}
+
+/// Overlap of a rectangle `j` with a rectangle or wall `i` by polygon clipping in DD.
+fn clipped_area(i: &RObj, j: &RObj) -> DD {
+    let RObj::Body {
+        shape: RShape::Rectangle { w, h },
+        pos,
+        angle,
+    } = *j
+    else {
+        panic!("j must be a rectangle")
+    };
+    polygon_area(&clip(
+        rect_corners_dd(w, h, pos, angle, pos),
+        &half_planes(i, pos),
+    ))
+}
+
+/// Axis-aligned boxes (exact areas written down), shared edges, touching, contained,
+/// coincident; a 45° wall across a unit square (through corners too); everything also
+/// 1e6 from the origin.
+#[test]
+fn rectangles_exact_polygons() {
+    for off in [[0.0, 0.0], [1e6, -2e6]] {
+        let at = |x: f64, y: f64| [off[0] + x, off[1] + y];
+        // (i, j, area, state)
+        let cases = [
+            // Corner region: x overlap 0.75, y overlap 1.
+            (
+                rect(2.0, 1.0, at(0.0, 0.0), 0.0),
+                rect(1.0, 3.0, at(0.75, 0.5), 0.0),
+                0.75,
+                OverlapState::Overlap,
+            ),
+            // A plus: four crossings, the central unit square.
+            (
+                rect(4.0, 1.0, at(0.0, 0.0), 0.0),
+                rect(1.0, 4.0, at(0.0, 0.0), 0.0),
+                1.0,
+                OverlapState::Deep(4),
+            ),
+            // Collinear bottom and top edges: [1, 2] × [0, 1].
+            (
+                rect(2.0, 1.0, at(1.0, 0.5), 0.0),
+                rect(2.0, 1.0, at(2.0, 0.5), 0.0),
+                1.0,
+                OverlapState::Overlap,
+            ),
+            // Collinear bottom edges only: [1, 2] × [0, 1].
+            (
+                rect(2.0, 1.0, at(1.0, 0.5), 0.0),
+                rect(2.0, 2.0, at(2.0, 1.0), 0.0),
+                1.0,
+                OverlapState::Overlap,
+            ),
+            // Touching along an edge, at a corner: no overlap.
+            (
+                rect(2.0, 1.0, at(1.0, 0.5), 0.0),
+                rect(1.0, 1.0, at(2.5, 0.5), 0.0),
+                0.0,
+                OverlapState::Separated,
+            ),
+            (
+                rect(2.0, 1.0, at(1.0, 0.5), 0.0),
+                rect(1.0, 1.0, at(2.5, 1.5), 0.0),
+                0.0,
+                OverlapState::Separated,
+            ),
+            // Contained (strictly, and sharing two edges), coincident.
+            (
+                rect(2.0, 1.0, at(0.0, 0.0), 0.0),
+                rect(0.5, 0.25, at(0.25, -0.125), 0.0),
+                0.125,
+                OverlapState::Contained(Side::J),
+            ),
+            (
+                rect(1.0, 1.0, at(0.5, 0.5), 0.0),
+                rect(2.0, 2.0, at(1.0, 1.0), 0.0),
+                1.0,
+                OverlapState::Contained(Side::I),
+            ),
+            (
+                rect(1.5, 0.5, at(0.5, 0.5), 0.3),
+                rect(1.5, 0.5, at(0.5, 0.5), 0.3),
+                0.75,
+                OverlapState::Coincident,
+            ),
+            // Wall y ≤ 0.25 across a 2 × 1 box centred at (0, 0.5): 2 × 0.25.
+            (
+                wall(at(3.0, 0.25), [0.0, 1.0]),
+                rect(2.0, 1.0, at(0.0, 0.5), 0.0),
+                0.5,
+                OverlapState::Overlap,
+            ),
+            // The box resting on the wall's line, inside / outside the solid.
+            (
+                wall(at(3.0, 0.0), [0.0, -1.0]),
+                rect(2.0, 1.0, at(0.0, 0.5), 0.0),
+                2.0,
+                OverlapState::Contained(Side::J),
+            ),
+            (
+                wall(at(3.0, 0.0), [0.0, 1.0]),
+                rect(2.0, 1.0, at(0.0, 0.5), 0.0),
+                0.0,
+                OverlapState::Separated,
+            ),
+        ];
+        for (k, (i, j, want, state)) in cases.iter().enumerate() {
+            for (a, b, swapped) in [(i, j, false), (j, i, true)] {
+                if swapped && matches!(b, RObj::Wall { .. }) {
+                    // Wall second: the body is `i`.
+                    let o = reference_overlap(a, b);
+                    let s = match state {
+                        OverlapState::Contained(_) => OverlapState::Contained(Side::I),
+                        s => *s,
+                    };
+                    assert_eq!(o.state, s, "case {k} swapped");
+                    assert_eq!(o.area_dd, DD::from(*want), "case {k} swapped");
+                    continue;
+                }
+                let o = reference_overlap(a, b);
+                let s = match (state, swapped) {
+                    (OverlapState::Contained(Side::I), true) => OverlapState::Contained(Side::J),
+                    (OverlapState::Contained(Side::J), true) => OverlapState::Contained(Side::I),
+                    (s, _) => *s,
+                };
+                assert_eq!(o.state, s, "case {k} (swapped: {swapped})");
+                // Axis-aligned: every crossing, cap and polygon term is exact here.
+                assert_eq!(o.area_dd, DD::from(*want), "case {k} (swapped: {swapped})");
+            }
+        }
+
+        // Wall x + y ≤ t across the unit square [0, 1]²: t²/2, then 1 − (2 − t)²/2.
+        for t in [0.0, 0.25, 0.5, 1.0, 1.5, 1.75, 2.0, 2.5] {
+            let i = wall(at(t, 0.0), [1.0, 1.0]);
+            let j = rect(1.0, 1.0, at(0.5, 0.5), 0.0);
+            let want = if t <= 0.0 {
+                0.0
+            } else if t <= 1.0 {
+                t * t / 2.0
+            } else if t < 2.0 {
+                1.0 - (2.0 - t) * (2.0 - t) / 2.0
+            } else {
+                1.0
+            };
+            let o = reference_overlap(&i, &j);
+            let e = err(o.area_dd, DD::from(want));
+            // The wall normal is normalised in DD (1/√2 rounded): crossings carry ~EPS errors.
+            assert!(
+                e < 1e-31,
+                "45° wall t = {t}: {o:?}, want {want} (error {e:e})"
+            );
+            let state = match t {
+                t if t <= 0.0 => OverlapState::Separated,
+                t if t >= 2.0 => OverlapState::Contained(Side::J),
+                _ => OverlapState::Overlap,
+            };
+            assert_eq!(o.state, state, "45° wall t = {t}");
+        }
+    }
+}
+
+/// Rotated rectangles against rectangles and walls: the reference against polygon clipping
+/// (Sutherland–Hodgman) in DD, on the same DD corners; plus the brief's square rotated 45°
+/// with a corner through a wall, whose area is the triangle `t²` (t = the corner's depth).
+#[test]
+fn rectangles_vs_polygon_clipping() {
+    let mut g = Rng(0x5eed_0001);
+    let mut worst = 0.0f64;
+    let mut states = std::collections::BTreeMap::new();
+    for it in 0..400 {
+        let pos = [g.range(-1.0, 1.0), g.range(-1.0, 1.0)];
+        let j = rect(g.range(0.2, 2.0), g.range(0.05, 2.0), pos, g.angle());
+        let i = if it % 3 == 0 {
+            let p = [g.range(-1.5, 1.5), g.range(-1.5, 1.5)];
+            wall(p, [g.range(-1.0, 1.0), g.range(-1.0, 1.0)])
+        } else {
+            let p = [g.range(-1.5, 1.5), g.range(-1.5, 1.5)];
+            rect(g.range(0.2, 2.0), g.range(0.05, 2.0), p, g.angle())
+        };
+        let want = clipped_area(&i, &j);
+        let o = reference_overlap(&i, &j);
+        *states.entry(format!("{:?}", o.state)).or_insert(0) += 1;
+        let scale = 4.0; // (sizes ≤ 2)²
+        let e = err(o.area_dd, want);
+        worst = worst.max(e / scale);
+        // Both methods are exact up to DD rounding of the crossings (≈ EPS·scale each).
+        assert!(
+            e < 1e-29 * scale,
+            "it {it}: {i:?} {j:?}: {o:?} vs {want:?} ({e:e})"
+        );
+        if want.is_zero() {
+            assert!(matches!(o.state, OverlapState::Separated), "it {it}");
+        }
+    }
+    eprintln!("rectangles vs polygon clipping: worst |error|/4 = {worst:e}; states {states:?}");
+    assert!(states.len() >= 4, "states {states:?}");
+
+    // Square of side 1 at 45°, centre at height hgt above the line y = 0 (solid below): the
+    // bottom corner is at depth t = 1/√2 − hgt, the part below is a right isosceles triangle
+    // of area t². Computed from the DD corners (the angle is π/4 only to f64 precision).
+    for hgt in [0.7, 0.5, 0.1, 0.01] {
+        let sq = rect(1.0, 1.0, [0.0, hgt], std::f64::consts::FRAC_PI_4);
+        let o = reference_overlap(&wall([0.0, 0.0], [0.0, 1.0]), &sq);
+        let corners = rect_corners_dd(
+            1.0,
+            1.0,
+            [0.0, hgt],
+            std::f64::consts::FRAC_PI_4,
+            [0.0, hgt],
+        );
+        let bottom = corners
+            .iter()
+            .copied()
+            .min_by(|p, q| p[1].cmp_total(&q[1]))
+            .unwrap();
+        let t = -(bottom[1] + hgt);
+        let want = t.sqr();
+        let e = rel(o.area_dd, want);
+        // The DD axes are orthonormal to ~EPS, so the triangle is isosceles to ~EPS.
+        assert!(
+            e < 1e-30,
+            "45° square at height {hgt}: relative error {e:e}"
+        );
+        assert_eq!(o.state, OverlapState::Overlap);
+        assert_eq!(o.pieces.len(), 2);
+    }
 }
