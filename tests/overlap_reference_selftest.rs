@@ -1183,3 +1183,312 @@ fn random_object(g: &mut Rng, body_only: bool) -> RObj {
         _ => wall(pos, [g.range(-1.0, 1.0), g.range(-1.0, 1.0)]),
     }
 }
+
+// ---------------------------------------------------------------------------
+// Containment, coincidence, symmetry, rigid motions
+// ---------------------------------------------------------------------------
+
+/// Every pair kind wholly inside the other (also with an internal tangency), coincident,
+/// separated and externally tangent: the state and the area (the inner body's, exact in DD).
+#[test]
+fn contained_coincident_separated() {
+    let pi = DD::PI;
+    let (i_in, j_in) = (Side::I, Side::J);
+    let cases: Vec<(RObj, RObj, OverlapState, DD)> = vec![
+        // circle / circle, internal tangency.
+        (
+            circle(0.5, [0.1, 0.2]),
+            circle(2.0, [0.3, -0.1]),
+            OverlapState::Contained(i_in),
+            pi * 0.25,
+        ),
+        (
+            circle(2.0, [0.0, 0.0]),
+            circle(1.0, [1.0, 0.0]),
+            OverlapState::Contained(j_in),
+            pi,
+        ),
+        // circle / ellipse, both ways, and an ellipse tangent inside a circle at its tips.
+        (
+            circle(0.3, [0.2, 0.1]),
+            ellipse(2.0, 1.0, [0.0, 0.0], 0.4),
+            OverlapState::Contained(i_in),
+            pi * 0.3 * 0.3,
+        ),
+        (
+            ellipse(2.0, 0.5, [0.0, 0.0], 0.0),
+            circle(2.0, [0.0, 0.0]),
+            OverlapState::Contained(i_in),
+            pi,
+        ),
+        (
+            ellipse(0.5, 0.25, [0.1, 0.0], 1.0),
+            circle(1.0, [0.0, 0.0]),
+            OverlapState::Contained(i_in),
+            pi * 0.125,
+        ),
+        // ellipse / ellipse.
+        (
+            ellipse(3.0, 2.0, [0.0, 0.0], 0.3),
+            ellipse(1.0, 0.5, [0.5, -0.25], 2.0),
+            OverlapState::Contained(j_in),
+            pi * 0.5,
+        ),
+        (
+            ellipse(1.5, 0.5, [0.25, 0.5], 0.7),
+            ellipse(1.5, 0.5, [0.25, 0.5], 0.7),
+            OverlapState::Coincident,
+            pi * 0.75,
+        ),
+        // rectangle / conic, both ways (a square inscribed in a circle: corners on it).
+        (
+            rect(1.0, 0.5, [0.0, 0.0], 0.3),
+            circle(2.0, [0.1, 0.0]),
+            OverlapState::Contained(i_in),
+            DD::from(0.5),
+        ),
+        (
+            rect(2.0, 2.0, [0.0, 0.0], 0.0),
+            circle(1.0, [0.0, 0.0]),
+            OverlapState::Contained(j_in),
+            pi,
+        ),
+        (
+            rect(4.0, 4.0, [0.0, 0.0], 0.5),
+            ellipse(1.0, 0.5, [0.25, 0.25], -0.4),
+            OverlapState::Contained(j_in),
+            pi * 0.5,
+        ),
+        (
+            rect(1.0, 1.0, [0.0, 0.0], 0.0),
+            circle(0.5f64.sqrt(), [0.0, 0.0]),
+            OverlapState::Contained(i_in),
+            DD::ONE,
+        ),
+        // rectangle / rectangle.
+        (
+            rect(1.0, 0.5, [0.0, 0.0], 0.3),
+            rect(3.0, 3.0, [0.0, 0.0], -0.2),
+            OverlapState::Contained(i_in),
+            DD::from(0.5),
+        ),
+        (
+            rect(1.0, 0.5, [0.0, 0.0], 0.3),
+            rect(1.0, 0.5, [0.0, 0.0], 0.3),
+            OverlapState::Coincident,
+            DD::from(0.5),
+        ),
+        // wall / body: inside the solid, tangent from inside, outside, tangent from outside.
+        (
+            wall([0.0, 0.0], [0.0, 1.0]),
+            circle(1.0, [0.0, -1.5]),
+            OverlapState::Contained(j_in),
+            pi,
+        ),
+        (
+            wall([0.0, 0.0], [0.0, 1.0]),
+            circle(1.0, [0.3, -1.0]),
+            OverlapState::Contained(j_in),
+            pi,
+        ),
+        (
+            wall([0.0, 0.0], [1.0, 1.0]),
+            ellipse(1.0, 0.5, [-2.0, -1.0], 0.6),
+            OverlapState::Contained(j_in),
+            pi * 0.5,
+        ),
+        (
+            wall([0.0, 0.0], [1.0, 1.0]),
+            rect(1.0, 0.5, [-2.0, -1.0], 0.6),
+            OverlapState::Contained(j_in),
+            DD::from(0.5),
+        ),
+        (
+            wall([0.0, 0.0], [0.0, 1.0]),
+            circle(1.0, [0.0, 1.5]),
+            OverlapState::Separated,
+            DD::ZERO,
+        ),
+        (
+            wall([0.0, 0.0], [0.0, 1.0]),
+            circle(1.0, [0.3, 1.0]),
+            OverlapState::Separated,
+            DD::ZERO,
+        ),
+        (
+            wall([0.0, 0.0], [1.0, 0.0]),
+            rect(1.0, 1.0, [1.0, 0.0], 0.2),
+            OverlapState::Separated,
+            DD::ZERO,
+        ),
+        // separated and externally tangent bodies.
+        (
+            circle(1.0, [0.0, 0.0]),
+            circle(1.0, [2.0, 0.0]),
+            OverlapState::Separated,
+            DD::ZERO,
+        ),
+        (
+            ellipse(2.0, 1.0, [0.0, 0.0], 0.0),
+            ellipse(2.0, 1.0, [0.0, 2.0], 0.0),
+            OverlapState::Separated,
+            DD::ZERO,
+        ),
+        (
+            ellipse(2.0, 1.0, [0.0, 0.0], 0.0),
+            ellipse(1.0, 0.3, [3.0, 2.0], 0.5),
+            OverlapState::Separated,
+            DD::ZERO,
+        ),
+        (
+            rect(1.0, 1.0, [0.0, 0.0], 0.0),
+            circle(0.5, [1.0, 0.0]),
+            OverlapState::Separated,
+            DD::ZERO,
+        ),
+        (
+            rect(1.0, 1.0, [0.0, 0.0], 0.0),
+            ellipse(1.0, 0.5, [0.0, 2.0], 0.1),
+            OverlapState::Separated,
+            DD::ZERO,
+        ),
+    ];
+    for (k, (i, j, state, area)) in cases.iter().enumerate() {
+        let o = reference_overlap(i, j);
+        assert_eq!(o.state, *state, "case {k}: {i:?} / {j:?}");
+        // Areas are πab, πr² or wh from the exact sizes: a few EPS relative.
+        assert!(
+            err(o.area_dd, *area) <= 4.0 * DD::EPS * area.to_f64(),
+            "case {k}: area {:?}, want {area:?}",
+            o.area_dd
+        );
+        assert!(o.crossings.is_empty() && o.pieces.is_empty(), "case {k}");
+        // Swapped: the same area, the other side contained.
+        let s = reference_overlap(j, i);
+        let swapped = match *state {
+            OverlapState::Contained(Side::I) => OverlapState::Contained(Side::J),
+            OverlapState::Contained(Side::J) => OverlapState::Contained(Side::I),
+            st => st,
+        };
+        let swapped = match (i, swapped) {
+            // A wall second: the body is i.
+            (RObj::Wall { .. }, OverlapState::Contained(_)) => OverlapState::Contained(Side::I),
+            (_, st) => st,
+        };
+        assert_eq!(s.state, swapped, "case {k} swapped");
+        assert_eq!(s.area_dd, o.area_dd, "case {k} swapped");
+    }
+}
+
+/// Rigid motions and swapping: area(i, j) = area(j, i); translating the pair by (1e6, −2e6)
+/// (exact in f64 for these positions) changes nothing (the reference works relative to the
+/// pair); an exact quarter turn of axis-aligned shapes (`(x, y) → (−y, x)`, swapping the
+/// semi-axes / width and height) changes nothing to DD rounding; a general rotation (inputs
+/// rotated in f64) changes the area by the f64 perturbation of the inputs only.
+#[test]
+fn symmetry_and_rigid_motions() {
+    let mut g = Rng(0x5eed_0003);
+    let (mut worst_swap, mut worst_rot) = (0.0f64, 0.0f64);
+    let mut n_overlap = 0;
+    for it in 0..400 {
+        // Positions on a 2^-20 grid, so that adding 1e6 is exact.
+        let q = |x: f64| (x * 1048576.0).round() / 1048576.0;
+        let mut i = random_object(&mut g, it % 5 != 0);
+        let mut j = random_object(&mut g, true);
+        for o in [&mut i, &mut j] {
+            match o {
+                RObj::Body { pos, .. } => *pos = [q(pos[0]), q(pos[1])],
+                RObj::Wall { point, .. } => *point = [q(point[0]), q(point[1])],
+            }
+        }
+        let o = reference_overlap(&i, &j);
+        if matches!(o.state, OverlapState::Overlap | OverlapState::Deep(_)) {
+            n_overlap += 1;
+        }
+
+        // Swap: different crossing computations (the quartic is built on the other body's
+        // boundary); the areas agree to DD rounding of the crossings.
+        let s = reference_overlap(&j, &i);
+        let scale = body_area(&i).min(body_area(&j));
+        let e = err(s.area_dd, o.area_dd) / scale;
+        worst_swap = worst_swap.max(e);
+        assert!(e < 1e-28, "it {it}: swap {e:e}: {i:?} / {j:?}");
+        assert_eq!(o.pieces.len(), s.pieces.len(), "it {it}");
+
+        // Translation: identical relative geometry, identical result.
+        let shift = |o: &RObj| match *o {
+            RObj::Body { shape, pos, angle } => body(shape, [pos[0] + 1e6, pos[1] - 2e6], angle),
+            RObj::Wall { point, normal } => wall([point[0] + 1e6, point[1] - 2e6], normal),
+        };
+        let t = reference_overlap(&shift(&i), &shift(&j));
+        assert_eq!(t.area_dd, o.area_dd, "it {it}: translation");
+        assert_eq!(t.crossings, o.crossings, "it {it}: translation");
+
+        // General rotation by β about the origin, inputs rotated in f64 (perturbation ~1e-16).
+        let beta = 0.3 + it as f64 * 0.01;
+        let (cb, sb) = (beta.cos(), beta.sin());
+        let rot = |p: [f64; 2]| [cb * p[0] - sb * p[1], sb * p[0] + cb * p[1]];
+        let turn = |o: &RObj| match *o {
+            RObj::Body { shape, pos, angle } => body(shape, rot(pos), angle + beta),
+            RObj::Wall { point, normal } => wall(rot(point), rot(normal)),
+        };
+        let r = reference_overlap(&turn(&i), &turn(&j));
+        let e = (r.area - o.area).abs() / scale;
+        worst_rot = worst_rot.max(e);
+        // An input perturbation ε·size moves the area by at most ~ε·size·perimeter.
+        assert!(e < 1e-14, "it {it}: rotation {e:e}: {i:?} / {j:?}");
+    }
+    eprintln!(
+        "symmetry: swap worst |ΔA|/A_small = {worst_swap:e}; rotation (f64 inputs) {worst_rot:e}; \
+         {n_overlap} overlapping pairs"
+    );
+    assert!(n_overlap > 100);
+
+    // Exact quarter turns of axis-aligned shapes.
+    let quarter = |o: &RObj| match *o {
+        RObj::Body { shape, pos, angle } => {
+            assert_eq!(angle, 0.0);
+            let shape = match shape {
+                RShape::Circle { r } => RShape::Circle { r },
+                RShape::Ellipse { a, b } => RShape::Ellipse { a: b, b: a },
+                RShape::Rectangle { w, h } => RShape::Rectangle { w: h, h: w },
+            };
+            body(shape, [-pos[1], pos[0]], 0.0)
+        }
+        RObj::Wall { point, normal } => wall([-point[1], point[0]], [-normal[1], normal[0]]),
+    };
+    let pairs = [
+        (
+            ellipse(2.0, 0.5, [0.0, 0.0], 0.0),
+            ellipse(1.0, 0.75, [1.5, 0.625], 0.0),
+        ),
+        (
+            ellipse(2.0, 0.25, [0.0, 0.0], 0.0),
+            ellipse(0.25, 2.0, [0.125, 0.0], 0.0),
+        ),
+        (
+            rect(2.0, 1.0, [0.0, 0.0], 0.0),
+            ellipse(1.0, 0.75, [1.25, 0.5], 0.0),
+        ),
+        (rect(2.0, 1.0, [0.0, 0.0], 0.0), circle(0.75, [-1.0, 0.25])),
+        (
+            wall([0.5, 0.0], [1.0, 2.0]),
+            ellipse(1.0, 0.75, [0.25, 0.5], 0.0),
+        ),
+        (
+            wall([0.5, 0.0], [1.0, 2.0]),
+            rect(1.0, 0.75, [0.25, 0.5], 0.0),
+        ),
+    ];
+    for (k, (i, j)) in pairs.iter().enumerate() {
+        let o = reference_overlap(i, j);
+        let mut a = (*i, *j);
+        for turn in 1..4 {
+            a = (quarter(&a.0), quarter(&a.1));
+            let r = reference_overlap(&a.0, &a.1);
+            let e = rel(r.area_dd, o.area_dd);
+            assert!(e < 1e-29, "pair {k}, {turn} quarter turns: relative {e:e}");
+            assert_eq!(r.state, o.state);
+        }
+    }
+}

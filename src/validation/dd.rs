@@ -84,17 +84,17 @@ impl DD {
     pub const EPS: f64 = f64::EPSILON * f64::EPSILON;
     /// π to DD precision (error ≈ 3e-33).
     pub const PI: DD = DD {
-        hi: 3.141592653589793,
+        hi: std::f64::consts::PI,
         lo: 1.2246467991473532e-16,
     };
     /// π/2 to DD precision (exactly half of [`DD::PI`]).
     pub const FRAC_PI_2: DD = DD {
-        hi: 1.5707963267948966,
+        hi: std::f64::consts::FRAC_PI_2,
         lo: 6.123233995736766e-17,
     };
     /// 2π to DD precision (exactly twice [`DD::PI`]).
     pub const TAU: DD = DD {
-        hi: 6.283185307179586,
+        hi: std::f64::consts::TAU,
         lo: 2.4492935982947064e-16,
     };
 
