@@ -1058,6 +1058,26 @@ fn quadrature_area(i: &RObj, j: &RObj, tol: f64) -> f64 {
         .sum()
 }
 
+/// Plain-f64 signed "distance-like" inside function (negative inside).
+fn inside_f64(o: &RObj, x: [f64; 2]) -> f64 {
+    match *o {
+        RObj::Body { shape, pos, angle } => {
+            let (c, s) = (angle.cos(), angle.sin());
+            let (dx, dy) = (x[0] - pos[0], x[1] - pos[1]);
+            let (l1, l2) = (c * dx + s * dy, -s * dx + c * dy);
+            match shape {
+                RShape::Circle { r } => l1.hypot(l2) - r,
+                RShape::Ellipse { a, b } => (l1 / a).hypot(l2 / b) - 1.0,
+                RShape::Rectangle { w, h } => (l1.abs() - w / 2.0).max(l2.abs() - h / 2.0),
+            }
+        }
+        RObj::Wall { point, normal } => {
+            let d = normal[0] * (x[0] - point[0]) + normal[1] * (x[1] - point[1]);
+            d / normal[0].hypot(normal[1])
+        }
+    }
+}
+
 /// Area of a body (f64).
 fn body_area(o: &RObj) -> f64 {
     match *o {
@@ -1143,7 +1163,26 @@ fn conic_pairs_vs_quadrature() {
         assert_eq!(o.state, *state, "{i:?} / {j:?}");
         worst = worst.max(check_quadrature(i, j));
         worst = worst.max(check_quadrature(j, i));
-        // Pieces alternate between the owners and each ends where the next starts.
+        // Crossings on both boundaries (to f64 rounding of the check), in counter-clockwise
+        // order (the crossing polygon has positive area); pieces alternate between the owners and each ends where the next
+        // starts.
+        let world = |p: [f64; 2]| [o.origin[0] + p[0], o.origin[1] + p[1]];
+        for p in &o.crossings {
+            assert!(inside_f64(i, world(*p)).abs() < 1e-14, "{p:?} off i");
+            assert!(inside_f64(j, world(*p)).abs() < 1e-14, "{p:?} off j");
+        }
+        let c = &o.crossings;
+        let twice: f64 = (0..c.len())
+            .map(|k| {
+                let (p, q) = (c[k], c[(k + 1) % c.len()]);
+                p[0] * q[1] - p[1] * q[0]
+            })
+            .sum();
+        // (Two crossings span no area; their order is checked on the lens.)
+        assert!(
+            c.len() < 3 || twice > 0.0,
+            "crossings not counter-clockwise: {c:?}"
+        );
         let n = o.pieces.len();
         for k in 0..n {
             assert_ne!(o.pieces[k].owner, o.pieces[(k + 1) % n].owner);
