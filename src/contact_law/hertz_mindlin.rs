@@ -44,6 +44,7 @@ impl HertzMindlin {
             eta_n: eta_n * o.rho,
             ..Default::default()
         };
+        (out.couple, out.couple_non_elastic) = o.couple(kn * o.depth, eta_n);
         if self.friction > 0.0 {
             let kt = 8.0 * self.g_star * root; // T(18)
             let before = 0.5 * kt * h.shear * h.shear;

@@ -37,6 +37,7 @@ impl Linear {
             eta_n: self.eta_n * o.rho,
             ..Default::default()
         };
+        (out.couple, out.couple_non_elastic) = o.couple(self.kn * o.depth, self.eta_n);
         if self.friction > 0.0 {
             let before = 0.5 * self.ks * h.shear * h.shear;
             h.shear += k.vt * k.dt; // T(16)

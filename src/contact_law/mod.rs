@@ -75,15 +75,23 @@ pub enum EquivalentOverlap {
 }
 
 impl EquivalentOverlap {
-    /// `(δ_eq, L_eq)` for the overlap area `area`. `L_eq` is kept above 1e-3 of the smaller
-    /// radius (it vanishes only when one disk's lens covers the other wholly, far beyond any
-    /// DEM overlap), so that ρ stays finite.
+    /// `(δ_eq, L_eq)` for the overlap area `area`. Past half the smaller disk (δ_eq > r1, far
+    /// beyond any DEM overlap) `L_eq` is kept above 1e-3 r1: it vanishes when one disk covers
+    /// the other wholly, and ρ = L/L_eq must stay finite.
     #[inline]
     pub fn depth_for_area(&self, area: f64) -> (f64, f64) {
         match *self {
             EquivalentOverlap::Lens(lens) => {
                 let (delta, chord) = lens.depth_for_area(area);
-                (delta, chord.max(1e-3 * lens.radii().0))
+                let r1 = lens.radii().0;
+                (
+                    delta,
+                    if delta > r1 {
+                        chord.max(1e-3 * r1)
+                    } else {
+                        chord
+                    },
+                )
             }
             EquivalentOverlap::Flat(ell) => (area / ell, ell),
         }
@@ -99,6 +107,8 @@ pub struct AreaKinematics {
     pub length: f64,
     /// `dA/dt` (`−L v_n` for two crossings).
     pub rate: f64,
+    /// The gradient's couple (see `narrow_phase::OverlapArea`; zero for two crossings).
+    pub couple: f64,
     /// How A maps to the overlap the spring acts on.
     pub equivalent: EquivalentOverlap,
 }
@@ -137,6 +147,29 @@ pub struct SpringOverlap {
     pub rho: f64,
     /// The overlap whose product with `depth` gives twice the spring's energy over `k_n`.
     pub energy_depth: f64,
+    /// `L_eq = dA/dδ_eq` and the gradient's couple (area law; 1 and 0 for the depth).
+    pub chord: f64,
+    pub couple: f64,
+}
+
+impl SpringOverlap {
+    /// The couple that goes with the normal force of a deep overlap, and its non-elastic part
+    /// (zero but for the area law's four-crossing overlaps): the normal force per unit
+    /// `|∂A/∂x_j|`, `λ = (F_s + (η/ρ) δ̇_eq)/L_eq` (so that `F_n = λ L`), times the
+    /// gradient's couple. `spring` is `F_s(δ_eq)` (before ρ), `eta` the dashpot. For an
+    /// exactly symmetric crossing the gradient is a pure couple (L = 0, ρ = 0): ρ is then taken
+    /// as 1e-3 in the dashpot's share.
+    #[inline]
+    pub fn couple(&self, spring: f64, eta: f64) -> (f64, f64) {
+        if self.couple == 0.0 {
+            return (0.0, 0.0);
+        }
+        let lambda = ((spring + eta / self.rho.max(1e-3) * self.rate) / self.chord).max(0.0);
+        (
+            lambda * self.couple,
+            (lambda - spring / self.chord) * self.couple,
+        )
+    }
 }
 
 impl Kinematics {
@@ -150,6 +183,8 @@ impl Kinematics {
                 rate: -self.vn,
                 rho: 1.0,
                 energy_depth: self.energy_depth,
+                chord: 1.0,
+                couple: 0.0,
             },
             Some(a) => {
                 let (delta, chord) = a.equivalent.depth_for_area(a.area);
@@ -158,6 +193,8 @@ impl Kinematics {
                     rate: a.rate / chord,
                     rho: a.length / chord,
                     energy_depth: delta,
+                    chord,
+                    couple: a.couple,
                 }
             }
         }
@@ -200,6 +237,10 @@ pub struct ContactForce {
     pub shear_energy: f64,
     /// Change of the shear spring's energy over this step (including a reset by the slider).
     pub shear_energy_change: f64,
+    /// A couple on j (its opposite on i) and its non-elastic part (see
+    /// [`SpringOverlap::couple`]).
+    pub couple: f64,
+    pub couple_non_elastic: f64,
 }
 
 /// A contact law with its parameters resolved for one pair.

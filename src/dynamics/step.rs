@@ -232,7 +232,7 @@ impl World {
     }
 
     /// Evaluates the forces of the current configuration without advancing (used at t = 0).
-    pub(crate) fn evaluate_forces(&mut self) {
+    pub fn evaluate_forces(&mut self) {
         self.size_partials();
         self.rebuild_neighbours();
         self.compute_slots(0.0);
@@ -612,8 +612,13 @@ fn update_slot(
                     }
                     // The area potential: between two rectangles, the flat-equivalent overlap;
                     // otherwise the equal-area disks' lens.
-                    (flat, Some(a)) if area_law => {
-                        let equivalent = if flat.is_some() {
+                    (_, Some(a)) if area_law => {
+                        let flat_pair = !wall
+                            && matches!(
+                                (b.shape[iu], b.shape[ju]),
+                                (Shape::Rectangle { .. }, Shape::Rectangle { .. })
+                            );
+                        let equivalent = if flat_pair {
                             EquivalentOverlap::Flat(
                                 0.5 * (face_length(&b.shape[iu]) + face_length(&b.shape[ju])),
                             )
@@ -659,10 +664,10 @@ fn update_slot(
     // Where the force acts and along which normal: the chord midpoint and normal (the area
     // gradient's for the area law, which equal them for two crossings); for a Winkler contact
     // the overlap's centroid.
-    let (point, n_, couple) = match spring {
-        Spring::Winkler(_, _, centroid) => (centroid, geo_normal, 0.0),
-        Spring::Area(a, _) => (a.point, a.normal, a.couple),
-        Spring::Depth => (geo_point, geo_normal, 0.0),
+    let (point, n_) = match spring {
+        Spring::Winkler(_, _, centroid) => (centroid, geo_normal),
+        Spring::Area(a, _) => (a.point, a.normal),
+        Spring::Depth => (geo_point, geo_normal),
     };
     let t_ = Vec2::new(-n_.y, n_.x);
     // The body that receives +F ("j" of the law) and the one that receives −F.
@@ -708,6 +713,7 @@ fn update_slot(
                 area: a.area,
                 length: a.length,
                 rate: -a.length * vn + a.couple * spin,
+                couple: a.couple,
                 equivalent,
             }),
         ),
@@ -735,15 +741,6 @@ fn update_slot(
     let cf = law.force(&kin, &mut history);
     let f = n_ * cf.normal + t_ * cf.tangential; // T(5): on the receiving body
     let f_ne = n_ * cf.normal_non_elastic + t_ * cf.tangential;
-    // A deep overlap's gradient may leave a couple (zero for two crossings): the normal force
-    // per unit |∇A| times the gradient's couple.
-    let (m, m_ne) = match area {
-        Some(a) if couple != 0.0 && a.length > 0.0 => {
-            let per = couple / a.length;
-            (cf.normal * per, cf.normal_non_elastic * per)
-        }
-        _ => (0.0, 0.0),
-    };
     p.contacts += 1;
     p.elastic += cf.elastic_energy;
     p.shear_energy_change += cf.shear_energy_change;
@@ -768,8 +765,8 @@ fn update_slot(
         point,
         force: f,
         force_non_elastic: f_ne,
-        couple: m,
-        couple_non_elastic: m_ne,
+        couple: cf.couple,
+        couple_non_elastic: cf.couple_non_elastic,
     };
     if let Some(e) = extra {
         *e = ContactExtra {

@@ -2,7 +2,7 @@
 //! (`x²/a² + y²/b² = 1`), where both the depth and the chord have closed forms.
 
 use super::{Contact, ContactState, LocalFrame, LocalOverlap, TOUCH_TOL, pow2_floor};
-use crate::geometry::overlap_area::ellipse_cap;
+use crate::geometry::overlap_area::ellipse_cap_at_depth;
 use crate::geometry::{Pose, Wall};
 
 /// Contact between a wall (i) and an ellipse (j) with semi-axes `a` (along its x axis) and `b`.
@@ -58,8 +58,8 @@ pub fn wall_ellipse_with(wall: &Wall, a: f64, b: f64, pose: &Pose, area: bool) -
     let mut g = frame.geometry(p, q, mid, [nx, ny], depth);
     g.normal = wall.normal;
     if area && state == ContactState::Overlap {
-        // The part of the ellipse below the wall line; its centre is in it when h < 0.
-        let cap = ellipse_cap(a, b, p, [2.0 * half * tx, 2.0 * half * ty], h < 0.0);
+        // The part of the ellipse below the wall line, from the depth (exact to rounding).
+        let cap = ellipse_cap_at_depth(a, b, [-nx, -ny], depth);
         g.area = Some(frame.overlap(&LocalOverlap::chord(cap, p, q, [nx, ny])));
         if let Some(o) = &mut g.area {
             o.normal = wall.normal;

@@ -6,7 +6,7 @@ use super::{
     Contact, ContactState, LocalFrame, LocalOverlap, TOUCH_TOL, deep_fallback, deep_overlap,
     orient, pow2_floor,
 };
-use crate::geometry::overlap_area::{ellipse_cap, polygon_cap};
+use crate::geometry::overlap_area::{ellipse_cap, ellipse_cap_at_depth, polygon_cap};
 use crate::geometry::support::support_local;
 use crate::geometry::{Pose, Shape};
 
@@ -118,8 +118,15 @@ pub fn rectangle_conic_with(
             let mid = super::midpoint(p, qv);
             let mut g = frame.geometry(p, qv, mid, nrm, dpt);
             if area {
-                let e = [qv[0] - p[0], qv[1] - p[1]];
-                let caps = rect_cap(mid, nrm) + conic_cap(p, e, [-nrm[0], -nrm[1]]);
+                let caps = if cross[0].edge == cross[1].edge {
+                    // A face cuts the conic: the chord is on the face line (no cap of the
+                    // rectangle), and the conic's cap follows from the depth, where the
+                    // crossings of a nearly tangent face are ill-conditioned.
+                    ellipse_cap_at_depth(a, b, nrm, dpt)
+                } else {
+                    let e = [qv[0] - p[0], qv[1] - p[1]];
+                    rect_cap(mid, nrm) + conic_cap(p, e, [-nrm[0], -nrm[1]])
+                };
                 g.area = Some(frame.overlap(&LocalOverlap::chord(caps, p, qv, nrm)));
             }
             Contact {

@@ -10,9 +10,9 @@
 use super::rectangle_wall::corners;
 use super::{
     Contact, ContactState, LocalFrame, LocalOverlap, TOUCH_TOL, deep_fallback, deep_overlap,
-    orient, polygon_area_centroid, pow2_floor,
+    orient, pow2_floor,
 };
-use crate::geometry::overlap_area::polygon_cap;
+use crate::geometry::overlap_area::{polygon_area, polygon_cap};
 use crate::geometry::support::support_local;
 use crate::geometry::{Pose, Shape};
 
@@ -235,7 +235,7 @@ pub fn rectangle_rectangle_with(
             let mut g = frame.geometry(a.point, b.point, mid, n, dpt);
             g.flat = Some(frame.flat(poly));
             if area {
-                let (a_poly, _) = polygon_area_centroid(poly);
+                let a_poly = polygon_area(poly);
                 g.area = Some(frame.overlap(&LocalOverlap::chord(a_poly, a.point, b.point, n)));
             }
             Contact {

@@ -1,6 +1,7 @@
 //! Wall–rectangle contact: the wall line ∩ the rectangle's edges.
 
 use super::{Contact, ContactState, LocalFrame, LocalOverlap, TOUCH_TOL, pow2_floor};
+use crate::geometry::overlap_area::polygon_area;
 use crate::geometry::{Pose, Wall};
 
 /// Corners of a `w × h` rectangle centred at the origin, counter-clockwise.
@@ -85,7 +86,7 @@ pub fn contact_wall_rectangle(wall: &Wall, w: f64, h: f64, pose: &Pose) -> Conta
     if state == ContactState::Overlap {
         // The overlap is the polygon below the line; its gradient is the chord's (cheap, so
         // always given).
-        let (a, _) = super::polygon_area_centroid(&under[..nu]);
+        let a = polygon_area(&under[..nu]);
         let mut o = frame.overlap(&LocalOverlap::chord(a, p1, p2, normal_local));
         o.normal = wall.normal;
         g.area = Some(o);
