@@ -359,7 +359,7 @@ fn loop_work_mean(i: &Side, j: &Side, corners: [[f64; 3]; 4], nf: NormalForce) -
         0.2816035507792589,
         0.4580167776572274,
         0.6178762444026438,
-        0.7554044083550030,
+        0.755404408355003,
         0.8656312023878318,
         0.9445750230732326,
         0.9894009349916499,
@@ -453,7 +453,7 @@ fn the_issues_loops_gain_work_under_the_depth_law_and_none_under_the_area_law() 
 
 #[test]
 fn no_work_around_closed_loops_for_any_pair_kind() {
-    let mut rng = Rng(0x100b_5);
+    let mut rng = Rng(0x0001_00b5);
     let mut worst = 0.0f64;
     let mut count = 0;
     for (ki, kj) in [(1, 1), (0, 1), (3, 1), (2, 1), (2, 0), (2, 2), (3, 2)] {
