@@ -560,3 +560,177 @@ fn overlap_area_matches_the_double_double_reference() {
     assert!(by_decade[8] <= 1e-13, "{by_decade:?}");
     assert!(count >= 200, "only {count} pairs");
 }
+
+/// A world for the energy tests: `kn_over_rho_g` = P's 36400 cm, ρ = 1, undamped or with a
+/// restitution, frictionless.
+fn energy_spec(nf: NormalForce, restitution: Option<f64>) -> ContactSpec {
+    ContactSpec::Linear {
+        kn: Scaled::Absolute(36400.0 * 980.0),
+        ks: Scaled::Absolute(36400.0 * 980.0),
+        damping: match restitution {
+            Some(e) => LinearDamping::Restitution(e),
+            None => LinearDamping::Dashpots {
+                eta_n: Scaled::Absolute(0.0),
+                eta_s: Scaled::Absolute(0.0),
+            },
+        },
+        friction: 0.0,
+        normal_force: nf,
+    }
+}
+
+/// The largest |E − E₀|/E₀ over a run (E = kinetic + potential + elastic; nothing dissipates).
+fn energy_drift(mut w: World, steps: usize) -> f64 {
+    let e0 = w.energies.total();
+    let mut worst = 0.0f64;
+    for _ in 0..steps {
+        w.step().unwrap();
+        worst = worst.max(((w.energies.total() - e0) / e0).abs());
+    }
+    worst
+}
+
+/// An ellipse (1.5, 1) dropped tilted and spinning onto a floor: three bounces in 0.6 s;
+/// `phase` (0…1) shifts the release height so that impacts fall elsewhere within a step.
+fn ellipse_bouncing(nf: NormalForce, dt: f64, phase: f64) -> World {
+    let spec = energy_spec(nf, None);
+    let floor = WallSpec {
+        wall: Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(),
+        spec,
+    };
+    let mut body = init(
+        Shape::Ellipse { a: 1.5, b: 1.0 },
+        Vec2::new(0.0, 2.2 + 0.013 * phase),
+        0.5,
+    );
+    body.omega = 3.0;
+    World::new(&[body], vec![floor], Vec2::new(0.0, -980.0), spec, dt)
+}
+
+/// Two ellipses colliding off-centre in free space (energy: kinetic + elastic only); `phase`
+/// (0…1) shifts the first one's start.
+fn ellipses_colliding(nf: NormalForce, dt: f64, phase: f64) -> World {
+    let e = Shape::Ellipse { a: 1.5, b: 1.0 };
+    let mut a = init(e, Vec2::new(-0.006 * phase, 0.0), 0.3);
+    let mut b = init(e, Vec2::new(4.0, 0.9), 1.2);
+    a.velocity = Vec2::new(60.0, 0.0);
+    b.velocity = Vec2::new(-40.0, 5.0);
+    b.omega = -2.0;
+    World::new(&[a, b], vec![], Vec2::zeros(), energy_spec(nf, None), dt)
+}
+
+#[test]
+fn undamped_frictionless_ellipses_conserve_energy_to_second_order() {
+    for (name, scene, duration) in [
+        (
+            "ellipse bouncing on a floor",
+            ellipse_bouncing as fn(NormalForce, f64, f64) -> World,
+            0.6,
+        ),
+        ("ellipses colliding off-centre", ellipses_colliding, 0.05),
+    ] {
+        let dts = [4e-6, 2e-6, 1e-6];
+        // The error of an impact depends on where its onset falls within a step (the force's
+        // derivative jumps there): averaged over eight phases.
+        let drift = |nf, dt: f64| {
+            (0..8)
+                .map(|k| {
+                    energy_drift(
+                        scene(nf, dt, k as f64 / 8.0),
+                        (duration / dt).round() as usize,
+                    )
+                })
+                .sum::<f64>()
+                / 8.0
+        };
+        let area: Vec<f64> = dts.iter().map(|&dt| drift(NormalForce::Area, dt)).collect();
+        let depth: Vec<f64> = dts
+            .iter()
+            .map(|&dt| drift(NormalForce::Depth, dt))
+            .collect();
+        let order = |e: &[f64]| (e[0] / e[2]).log2() / 2.0;
+        eprintln!(
+            "{name}: max |ΔE/E| at Δt = 4e-6, 2e-6, 1e-6 s — area law {:.1e} {:.1e} {:.1e} (order {:.2}); depth law {:.1e} {:.1e} {:.1e} (order {:.2})",
+            area[0],
+            area[1],
+            area[2],
+            order(&area),
+            depth[0],
+            depth[1],
+            depth[2],
+            order(&depth)
+        );
+        // Second order: halving Δt divides the error by about four.
+        assert!(order(&area) > 1.8, "{name}: order {}", order(&area));
+        assert!(area[2] < 1e-5, "{name}: {area:?}");
+        // The control: the depth law's error does not converge with Δt.
+        assert!(
+            order(&depth) < 0.5 && depth[2] > 1e-4,
+            "{name}: depth law {depth:?}"
+        );
+    }
+}
+
+/// Rebound speed over impact speed of a body thrown at a floor without gravity (a flat impact:
+/// no rotation), under the linear law with restitution `e` or Hertz–Mindlin.
+fn obtained_restitution(shape: Shape, angle: f64, nf: NormalForce, e: f64, hertz: bool) -> f64 {
+    let spec = if hertz {
+        ContactSpec::HertzMindlin {
+            young: 1e8,
+            poisson: 0.3,
+            restitution: e,
+            friction: 0.0,
+            normal_force: nf,
+        }
+    } else {
+        energy_spec(nf, Some(e))
+    };
+    let floor = WallSpec {
+        wall: Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(),
+        spec,
+    };
+    let h = support(&shape, angle, Vec2::new(0.0, -1.0));
+    let mut body = init(shape, Vec2::new(0.0, h + 0.05), angle);
+    let v0 = 50.0;
+    body.velocity = Vec2::new(0.0, -v0);
+    let mut w = World::new(&[body], vec![floor], Vec2::zeros(), spec, 2e-7);
+    let mut touched = false;
+    loop {
+        w.step().unwrap();
+        let c = w.contacts.len() > 0;
+        touched |= c;
+        if touched && !c {
+            return w.bodies.state[0].vel.y / v0;
+        }
+    }
+}
+
+#[test]
+fn requested_restitution_keeps_its_meaning_under_the_area_law() {
+    let disk = Shape::Circle { r: 1.5f64.sqrt() };
+    let ellipse = Shape::Ellipse { a: 1.5, b: 1.0 };
+    for hertz in [false, true] {
+        for e in [0.9, 0.7, 0.5, 0.3] {
+            let d = obtained_restitution(disk, 0.0, NormalForce::Depth, e, hertz);
+            let flat = obtained_restitution(ellipse, 0.0, NormalForce::Area, e, hertz);
+            let tip = obtained_restitution(
+                ellipse,
+                std::f64::consts::FRAC_PI_2,
+                NormalForce::Area,
+                e,
+                hertz,
+            );
+            let flat_depth = obtained_restitution(ellipse, 0.0, NormalForce::Depth, e, hertz);
+            eprintln!(
+                "{} e = {e}: disk {d:.4}; ellipse (area law) flat side {flat:.4}, tip {tip:.4}; (depth law) flat {flat_depth:.4}",
+                if hertz { "Hertz " } else { "linear" }
+            );
+            // The dashpot acts on δ_eq with η/ρ: the damping ratio, hence e, is the disk's
+            // (itself the exact clamped solution, tests/dynamics_analytic.rs).
+            assert!(
+                (flat - d).abs() < 1e-3 && (tip - d).abs() < 1e-3,
+                "{flat} {tip} vs {d}"
+            );
+        }
+    }
+}

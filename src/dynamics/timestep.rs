@@ -12,7 +12,7 @@
 use super::body::Bodies;
 use super::contacts::Contact;
 use super::world::{WallSpec, World};
-use crate::contact_law::{ContactSpec, Law};
+use crate::contact_law::{ContactSpec, Law, NormalForce};
 use crate::geometry::Shape;
 
 /// Stability limit of one damped contact mode (∞ without stiffness).
@@ -37,11 +37,59 @@ pub fn max_normal_lever(shape: &Shape) -> f64 {
     }
 }
 
+/// The largest factor by which a contact of this scene can be stiffer (against its depth) than
+/// the law's `k_n`: body pairs, or (with `wall`) a body against a wall, under `normal_force`.
+///
+/// - The area law on a smooth contact acts like a spring `k_n ρ²` with
+///   `ρ² ≈ (R*_t/R*_eq)^{2/3}`, `R*_t` from the true radii of curvature and `R*_eq` from the
+///   equal-area radii (see `contact_law`); a body's flattest point has `κ = R_max/R_eq`
+///   (ellipse `(a/b)^{3/2}`), a pair's ratio is at most the larger κ, and a rectangle's face
+///   against a conic gives `κ_c (1 + R_eq,c/R_eq,rect)`.
+/// - Between flat faces: the Winkler contact (either law, against a wall; the depth law between
+///   rectangles) is `k_n L/ℓ` for a face of length L; the area law's flat-equivalent potential
+///   between rectangles `k_n (L/ℓ)²`.
+pub fn stiffness_factor(bodies: &Bodies, normal_force: NormalForce, wall: bool) -> f64 {
+    let (mut kappa, mut r_eq_conic, mut r_eq_rect, mut side_ratio) =
+        (0.0f64, 0.0f64, f64::INFINITY, 0.0f64);
+    let (mut conics, mut rects) = (false, false);
+    for s in &bodies.shape {
+        match *s {
+            Shape::Rectangle { w, h } => {
+                rects = true;
+                r_eq_rect = r_eq_rect.min(s.equal_area_radius());
+                side_ratio = side_ratio.max(w.max(h) / (0.5 * (w + h)));
+            }
+            _ => {
+                conics = true;
+                kappa = kappa.max(s.max_curvature_radius() / s.equal_area_radius());
+                r_eq_conic = r_eq_conic.max(s.equal_area_radius());
+            }
+        }
+    }
+    let mut factor: f64 = 1.0;
+    if rects {
+        // Winkler against a wall; between rectangles, Winkler or the flat potential.
+        factor = factor.max(side_ratio);
+        if !wall && normal_force == NormalForce::Area {
+            factor = factor.max(side_ratio * side_ratio);
+        }
+    }
+    if normal_force == NormalForce::Area && conics {
+        let mut ratio = kappa;
+        if rects && !wall {
+            ratio = ratio.max(kappa * (1.0 + r_eq_conic / r_eq_rect));
+        }
+        factor = factor.max(ratio.powf(2.0 / 3.0));
+    }
+    factor
+}
+
 /// An a-priori estimate of the critical time step of a scene, from the stiffest contact it can
 /// have: the two bodies with the largest inverse effective masses (normal and tangential, with
 /// the worst lever arms), or the lightest body against a wall, under every contact law of the
-/// scene. For Hertz–Mindlin the stiffness grows with the overlap: it is evaluated at an overlap
-/// of 1 % of the smallest body's inscribed radius (the observed value is reported separately).
+/// scene, with the stiffest geometry the scene's shapes allow ([`stiffness_factor`]). For
+/// Hertz–Mindlin the stiffness grows with the overlap: it is evaluated at an overlap of 1 % of
+/// the smallest body's inscribed radius (the observed value is reported separately).
 pub fn estimate_critical_dt(
     bodies: &Bodies,
     spec: &ContactSpec,
@@ -113,8 +161,11 @@ pub fn estimate_critical_dt(
                 (kn, eta, kt, eta)
             }
         };
+        // A normal spring stiffer by the factor f: stiffness f k_n and dashpot √f η (the area
+        // law's ρ η; more damping only lowers the limit).
+        let f = stiffness_factor(bodies, s.normal_force(), b.is_none());
         dt = dt
-            .min(critical_dt(kn, eta_n, w_n))
+            .min(critical_dt(f * kn, f.sqrt() * eta_n, w_n))
             .min(critical_dt(kt, eta_t, w_t));
     }
     dt

@@ -76,6 +76,22 @@ impl Shape {
         }
     }
 
+    /// Radius of the disk of the same area (the area law's equivalent lens).
+    #[inline]
+    pub fn equal_area_radius(&self) -> f64 {
+        (super::mass::area(self) / std::f64::consts::PI).sqrt()
+    }
+
+    /// The largest radius of curvature of the boundary: circle `r`, ellipse `a²/b` (a ≥ b, at
+    /// the ends of the minor axis), rectangle ∞ (a face).
+    pub fn max_curvature_radius(&self) -> f64 {
+        match *self {
+            Shape::Circle { r } => r,
+            Shape::Ellipse { a, b } => a.max(b) * a.max(b) / a.min(b),
+            Shape::Rectangle { .. } => f64::INFINITY,
+        }
+    }
+
     /// The shape's type name as written in case files (`circle`, `ellipse`, `rectangle`).
     pub fn type_name(&self) -> &'static str {
         match self {
