@@ -697,7 +697,7 @@ fn obtained_restitution(shape: Shape, angle: f64, nf: NormalForce, e: f64, hertz
     let mut touched = false;
     loop {
         w.step().unwrap();
-        let c = w.contacts.len() > 0;
+        let c = !w.contacts.is_empty();
         touched |= c;
         if touched && !c {
             return w.bodies.state[0].vel.y / v0;
