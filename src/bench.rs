@@ -166,7 +166,7 @@ pub fn settled_pile(
     cache: Option<&Path>,
     progress: bool,
 ) -> Result<Case, BenchError> {
-    let spec = PileSpec { shape, n, seed: 1 };
+    let spec = PileSpec::new(shape, n, 1);
     let file = cache.map(|d| d.join(format!("{}_settled.json", spec.name())));
     if let Some(f) = &file {
         if let Ok(text) = std::fs::read_to_string(f) {

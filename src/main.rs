@@ -110,6 +110,18 @@ enum Command {
         /// Seed of the random radii, jitter, orientations and velocities.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// Ellipses' aspect ratio a/b.
+        #[arg(long, default_value_t = 1.5)]
+        aspect: f64,
+        /// Radii uniform in [0.8, 1.2] cm, or bidisperse 1:1.4 (half of each, mean 1 cm).
+        #[arg(long, value_enum, default_value = "uniform")]
+        sizes: PileSizesArg,
+        /// Coulomb friction between grains and with the walls.
+        #[arg(long, default_value_t = 0.3)]
+        friction: f64,
+        /// What the normal spring acts on: the overlap area (conservative) or the depth (P).
+        #[arg(long, value_enum, default_value = "area")]
+        normal_force: NormalForceArg,
         /// Output file (default: standard output).
         #[arg(long)]
         out: Option<PathBuf>,
@@ -174,6 +186,18 @@ enum Command {
 enum PileShapeArg {
     Disks,
     Ellipses,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum PileSizesArg {
+    Uniform,
+    Bidisperse,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum NormalForceArg {
+    Area,
+    Depth,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -348,19 +372,40 @@ fn generate(
     shape: PileShapeArg,
     n: usize,
     seed: u64,
+    (aspect, sizes, friction, normal_force): (f64, PileSizesArg, f64, NormalForceArg),
     out: Option<&std::path::Path>,
 ) -> Result<(), Failure> {
-    use dem2d::scene::generate::{PileShape, PileSpec};
+    use dem2d::scene::generate::{PileShape, PileSizes, PileSpec};
     if n == 0 {
         return Err(Failure::input("--n: must be at least 1".into()));
     }
-    let spec = PileSpec {
-        shape: match shape {
+    if !(aspect.is_finite() && (1.0..=20.0).contains(&aspect)) {
+        return Err(Failure::input(format!(
+            "--aspect: must be in [1, 20], got {aspect}"
+        )));
+    }
+    if !(friction.is_finite() && friction >= 0.0) {
+        return Err(Failure::input(format!(
+            "--friction: must be finite and ≥ 0, got {friction}"
+        )));
+    }
+    let mut spec = PileSpec::new(
+        match shape {
             PileShapeArg::Disks => PileShape::Disks,
             PileShapeArg::Ellipses => PileShape::Ellipses,
         },
         n,
         seed,
+    );
+    spec.aspect = aspect;
+    spec.sizes = match sizes {
+        PileSizesArg::Uniform => PileSizes::Uniform,
+        PileSizesArg::Bidisperse => PileSizes::Bidisperse,
+    };
+    spec.friction = friction;
+    spec.normal_force = match normal_force {
+        NormalForceArg::Area => dem2d::contact_law::NormalForce::Area,
+        NormalForceArg::Depth => dem2d::contact_law::NormalForce::Depth,
     };
     let text = spec.case_json();
     match out {
@@ -486,7 +531,17 @@ fn main() -> ExitCode {
             n,
             seed,
             out,
-        } => generate(*shape, *n, *seed, out.as_deref()),
+            aspect,
+            sizes,
+            friction,
+            normal_force,
+        } => generate(
+            *shape,
+            *n,
+            *seed,
+            (*aspect, *sizes, *friction, *normal_force),
+            out.as_deref(),
+        ),
         Command::Bench {
             shapes,
             sizes,

@@ -198,12 +198,19 @@ fn trajectories_are_bit_identical_for_any_number_of_threads() {
 
 #[test]
 fn generated_piles_start_without_overlap_inside_their_box() {
-    for shape in [PileShape::Disks, PileShape::Ellipses] {
-        let spec = PileSpec {
-            shape,
-            n: 2000,
-            seed: 3,
-        };
+    // The piles of cases/, and bidisperse frictionless ones of several aspect ratios.
+    let mut specs = vec![
+        PileSpec::new(PileShape::Disks, 2000, 3),
+        PileSpec::new(PileShape::Ellipses, 2000, 3),
+    ];
+    for aspect in [1.2, 3.0] {
+        let mut s = PileSpec::new(PileShape::Ellipses, 2000, 3);
+        s.aspect = aspect;
+        s.sizes = dem2d::scene::generate::PileSizes::Bidisperse;
+        s.friction = 0.0;
+        specs.push(s);
+    }
+    for spec in specs {
         let case = Case::from_json(&spec.case_json()).unwrap();
         assert_eq!(case.bodies.len(), 2000);
         let w = World::new(
@@ -213,19 +220,34 @@ fn generated_piles_start_without_overlap_inside_their_box() {
             case.contact,
             case.dt,
         );
-        assert!(all_pairs(&w).is_empty(), "{shape:?}: overlaps at the start");
+        assert!(
+            all_pairs(&w).is_empty(),
+            "{}: overlaps at the start",
+            spec.name()
+        );
         let width = spec.width();
         for b in &case.bodies {
             let r_eq = match b.shape {
                 Shape::Circle { r } => r,
-                // Equal-area radius √(ab), and a/b = 1.5.
+                // Equal-area radius √(ab), and the asked a/b.
                 Shape::Ellipse { a, b } => {
-                    assert!((a / b - 1.5).abs() < 1e-12);
+                    assert!((a / b - spec.aspect).abs() < 1e-12 * spec.aspect);
                     (a * b).sqrt()
                 }
                 Shape::Rectangle { .. } => panic!("no rectangles in a pile"),
             };
-            assert!((R_MIN..=R_MAX).contains(&r_eq), "radius {r_eq}");
+            match spec.sizes {
+                dem2d::scene::generate::PileSizes::Uniform => {
+                    assert!((R_MIN..=R_MAX).contains(&r_eq), "radius {r_eq}")
+                }
+                dem2d::scene::generate::PileSizes::Bidisperse => {
+                    let small = dem2d::scene::generate::R_SMALL;
+                    assert!(
+                        (r_eq - small).abs() < 1e-6 || (r_eq - 1.4 * small).abs() < 1e-6,
+                        "radius {r_eq}"
+                    )
+                }
+            }
             let bound = b.shape.bounding_radius();
             assert!(b.position.x - bound > 0.0 && b.position.x + bound < width);
             assert!(b.position.y - bound > 0.0);
@@ -244,11 +266,7 @@ fn the_10k_case_files_are_the_generators_output() {
             .join("cases")
             .join(file);
         let text = std::fs::read_to_string(&path).unwrap();
-        let spec = PileSpec {
-            shape,
-            n: 10_000,
-            seed: 1,
-        };
+        let spec = PileSpec::new(shape, 10_000, 1);
         assert!(
             text == spec.case_json(),
             "{file} differs from `dem2d generate`'s output: regenerate it"

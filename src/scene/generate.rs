@@ -4,7 +4,7 @@
 //!
 //! The 10 000-body piles of `cases/` are `generate --shape disks|ellipses --n 10000 --seed 1`.
 
-use crate::contact_law::damping_ratio_linear;
+use crate::contact_law::{NormalForce, damping_ratio_linear};
 use crate::dynamics::BodyInit;
 use crate::geometry::{Shape, Vec2};
 use serde_json::{Value, json};
@@ -15,12 +15,22 @@ use std::fmt::Write as _;
 pub enum PileShape {
     /// Disks of radius r.
     Disks,
-    /// Ellipses with a/b = 1.5 of the same area as the disk of radius r: a = r√1.5, b = r/√1.5.
+    /// Ellipses of aspect ratio α = a/b ([`PileSpec::aspect`]) of the same area as the disk of
+    /// radius r: a = r√α, b = r/√α.
     Ellipses,
 }
 
-/// A pile: `n` bodies with radii (equal-area radii for ellipses) uniform in
-/// [`R_MIN`, `R_MAX`] on a jittered square lattice in a box with a floor and two side walls,
+/// How the radii (equal-area radii for ellipses) are drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PileSizes {
+    /// Uniform in [`R_MIN`, `R_MAX`].
+    Uniform,
+    /// Bidisperse: half of radius [`R_SMALL`], half 1.4 times that (the jamming literature's
+    /// 1:1.4 mixture), in random order.
+    Bidisperse,
+}
+
+/// A pile: `n` bodies on a jittered square lattice in a box with a floor and two side walls,
 /// with random initial velocities. The box is [`WIDTH_10K`] wide for 10 000 bodies and scales
 /// with √n, so that piles of every size have the same aspect ratio.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -28,11 +38,35 @@ pub struct PileSpec {
     pub shape: PileShape,
     pub n: usize,
     pub seed: u64,
+    /// Ellipses' aspect ratio a/b (ignored for disks).
+    pub aspect: f64,
+    pub sizes: PileSizes,
+    /// Coulomb friction, between grains and with the walls.
+    pub friction: f64,
+    /// What the normal spring acts on.
+    pub normal_force: NormalForce,
+}
+
+impl PileSpec {
+    /// The piles of `cases/`: uniform radii, a/b = 1.5, friction 0.3, the area law.
+    pub fn new(shape: PileShape, n: usize, seed: u64) -> Self {
+        PileSpec {
+            shape,
+            n,
+            seed,
+            aspect: 1.5,
+            sizes: PileSizes::Uniform,
+            friction: FRICTION,
+            normal_force: NormalForce::Area,
+        }
+    }
 }
 
 /// Radii (cm).
 pub const R_MIN: f64 = 0.8;
 pub const R_MAX: f64 = 1.2;
+/// The small radius of a bidisperse pile (the large is 1.4 times it; mean radius 1 cm).
+pub const R_SMALL: f64 = 1.0 / 1.2;
 /// Box width for 10 000 bodies (cm).
 pub const WIDTH_10K: f64 = 500.0;
 /// Density (g/cm³, quartz).
@@ -41,7 +75,7 @@ pub const DENSITY: f64 = 2.65;
 pub const V_MAX: f64 = 5.0;
 /// Normal and shear stiffness over ρg (cm), as P's Fig. 4.
 pub const KN_OVER_RHO_G: f64 = 36400.0;
-/// Friction, everywhere.
+/// Friction, everywhere (by default).
 pub const FRICTION: f64 = 0.3;
 /// Restitution of a mean body (r = 1 cm) against a wall, for which the dashpot is tuned.
 pub const RESTITUTION: f64 = 0.5;
@@ -84,20 +118,30 @@ fn round6(x: f64) -> f64 {
 
 impl PileSpec {
     /// Lattice spacing: the largest bounding diameter plus a margin, so that nothing overlaps
-    /// at the start (disks: 2.5 cm for diameters up to 2.4 cm; ellipses: 3.0 cm for bounding
-    /// diameters up to 2·1.2·√1.5 = 2.94 cm).
+    /// at the start (the piles of `cases/`: disks 2.5 cm for diameters up to 2.4 cm; ellipses
+    /// 3.0 cm for bounding diameters up to 2·1.2·√1.5 = 2.94 cm); other piles the largest
+    /// bounding diameter plus 0.1 cm, rounded up to 0.1 cm.
     pub fn spacing(&self) -> f64 {
-        match self.shape {
-            PileShape::Disks => 2.5,
-            PileShape::Ellipses => 3.0,
+        match (self.shape, self.sizes, self.aspect == 1.5) {
+            (PileShape::Disks, PileSizes::Uniform, _) => 2.5,
+            (PileShape::Ellipses, PileSizes::Uniform, true) => 3.0,
+            _ => ((2.0 * self.max_bound() + 0.1) * 10.0).ceil() / 10.0,
+        }
+    }
+
+    /// The largest (equal-area) radius.
+    pub fn max_radius(&self) -> f64 {
+        match self.sizes {
+            PileSizes::Uniform => R_MAX,
+            PileSizes::Bidisperse => 1.4 * R_SMALL,
         }
     }
 
     /// Largest bounding radius of a grain.
     pub fn max_bound(&self) -> f64 {
         match self.shape {
-            PileShape::Disks => R_MAX,
-            PileShape::Ellipses => R_MAX * 1.5f64.sqrt(),
+            PileShape::Disks => self.max_radius(),
+            PileShape::Ellipses => self.max_radius() * self.aspect.sqrt(),
         }
     }
 
@@ -130,7 +174,11 @@ impl PileSpec {
         (0..self.n)
             .map(|k| {
                 let (row, col) = (k / cols, k % cols);
-                let r = round6(rng.range(R_MIN, R_MAX));
+                let r = match self.sizes {
+                    PileSizes::Uniform => round6(rng.range(R_MIN, R_MAX)),
+                    PileSizes::Bidisperse if rng.uniform() < 0.5 => round6(R_SMALL),
+                    PileSizes::Bidisperse => round6(1.4 * R_SMALL),
+                };
                 let x = round6(x0 + s * (col as f64 + 0.5) + rng.range(-jitter, jitter));
                 let y = round6(s * (row as f64 + 0.5) + rng.range(-jitter, jitter));
                 let (speed, dir) = (rng.range(0.0, V_MAX), rng.range(0.0, std::f64::consts::TAU));
@@ -139,8 +187,8 @@ impl PileSpec {
                     PileShape::Disks => (Shape::Circle { r }, 0.0),
                     PileShape::Ellipses => (
                         Shape::Ellipse {
-                            a: r * 1.5f64.sqrt(),
-                            b: r / 1.5f64.sqrt(),
+                            a: r * self.aspect.sqrt(),
+                            b: r / self.aspect.sqrt(),
                         },
                         round6(rng.range(0.0, std::f64::consts::PI)),
                     ),
@@ -162,17 +210,55 @@ impl PileSpec {
         0.4 * (self.spacing() - 2.0 * self.max_bound()) / 2.0
     }
 
-    /// The pile's name: `settle_disks_10k`, `settle_ellipses_1234`, …
+    /// The pile's name: `settle_disks_10k`, `settle_ellipses_1234`, …, with what differs from
+    /// the piles of `cases/` (`_a2`, `_bi`, `_mu0`, `_depth`).
     pub fn name(&self) -> String {
         let count = match self.n {
             n if n >= 1000 && n % 1000 == 0 => format!("{}k", n / 1000),
             n => n.to_string(),
         };
+        let mut kind = match self.shape {
+            PileShape::Disks => "disks".to_string(),
+            PileShape::Ellipses => "ellipses".to_string(),
+        };
+        if self.shape == PileShape::Ellipses && self.aspect != 1.5 {
+            kind += &format!("_a{}", self.aspect);
+        }
+        if self.sizes == PileSizes::Bidisperse {
+            kind += "_bi";
+        }
+        if self.friction != FRICTION {
+            kind += &format!("_mu{}", self.friction);
+        }
+        if self.normal_force != NormalForce::Area {
+            kind += &format!("_{}", self.normal_force.as_str());
+        }
+        format!("settle_{kind}_{count}")
+    }
+
+    /// The command line that writes this pile.
+    pub fn command(&self) -> String {
         let kind = match self.shape {
             PileShape::Disks => "disks",
             PileShape::Ellipses => "ellipses",
         };
-        format!("settle_{kind}_{count}")
+        let mut c = format!(
+            "dem2d generate --shape {kind} --n {} --seed {}",
+            self.n, self.seed
+        );
+        if self.shape == PileShape::Ellipses && self.aspect != 1.5 {
+            c += &format!(" --aspect {}", self.aspect);
+        }
+        if self.sizes == PileSizes::Bidisperse {
+            c += " --sizes bidisperse";
+        }
+        if self.friction != FRICTION {
+            c += &format!(" --friction {}", self.friction);
+        }
+        if self.normal_force != NormalForce::Area {
+            c += &format!(" --normal-force {}", self.normal_force.as_str());
+        }
+        c
     }
 
     /// The pile as case-file text (`"version": 1`), one body per line.
@@ -184,25 +270,40 @@ impl PileSpec {
             self.jitter(),
             self.eta(),
         );
-        let (kind, label) = match self.shape {
-            PileShape::Disks => ("disks", "disks"),
-            PileShape::Ellipses => ("ellipses", "ellipses (a/b = 1.5, random orientations)"),
+        let label = match self.shape {
+            PileShape::Disks => "disks".to_string(),
+            PileShape::Ellipses => format!("ellipses (a/b = {}, random orientations)", self.aspect),
         };
+        let (sizes, area) = match (self.sizes, self.shape) {
+            (PileSizes::Uniform, _) => (format!("of radius uniform in [{R_MIN}, {R_MAX}] cm"), ""),
+            (PileSizes::Bidisperse, _) => (
+                format!(
+                    "half of radius {:.6} cm and half 1.4 times that, in random order,",
+                    round6(R_SMALL)
+                ),
+                "",
+            ),
+        };
+        let area = match self.shape {
+            PileShape::Disks => area,
+            PileShape::Ellipses => " (the radius of the disk of equal area: a = r√α, b = r/√α)",
+        };
+        let command = self.command();
         let description = format!(
-            "{n} {label} of radius uniform in [{R_MIN}, {R_MAX}] cm{area} on a {s} cm square lattice \
-             jittered by up to ±{jitter:.3} cm, {cols} columns, in a box {w:.1} cm wide (floor and two side walls), \
-             released with random velocities of up to {V_MAX} cm/s, settling under gravity. Linear law: \
-             Kn/ρg = Ks/ρg = {KN_OVER_RHO_G} cm, ρ = {DENSITY} g/cm³, friction {FRICTION}, and a constant dashpot \
-             η_n = η_s = {eta:.1} (g/s per unit thickness) that gives restitution {RESTITUTION} for a body of \
-             r = 1 cm against a wall (T12). Δt = {DT} s. At rest when the mean increments per step stay below \
-             {QUIESCENCE} cm (a mean speed of 0.01 cm/s) for {QUIESCENCE_WINDOW} steps; at most {DURATION} s. Written by `dem2d generate --shape {kind} --n {n} --seed {seed}`.",
+            "{n} {label} {sizes}{area} on a {s} cm square lattice jittered by up to ±{jitter:.3} cm, \
+             {cols} columns, in a box {w:.1} cm wide (floor and two side walls), released with random \
+             velocities of up to {V_MAX} cm/s, settling under gravity. Linear law on the {nf} \
+             (normal_force): Kn/ρg = Ks/ρg = {KN_OVER_RHO_G} cm, ρ = {DENSITY} g/cm³, friction \
+             {friction}, and a constant dashpot η_n = η_s = {eta:.1} (g/s per unit thickness) that \
+             gives restitution {RESTITUTION} for a body of r = 1 cm against a wall (T12). Δt = {DT} s. \
+             At rest when the mean increments per step stay below {QUIESCENCE} cm (a mean speed of \
+             0.01 cm/s) for {QUIESCENCE_WINDOW} steps; at most {DURATION} s. Written by `{command}`.",
             n = self.n,
-            area = match self.shape {
-                PileShape::Disks => "",
-                PileShape::Ellipses =>
-                    " (the radius of the disk of equal area: a = r√1.5, b = r/√1.5)",
+            nf = match self.normal_force {
+                NormalForce::Area => "overlap area",
+                NormalForce::Depth => "depth",
             },
-            seed = self.seed,
+            friction = self.friction,
         );
         self.case_text(&self.name(), &description, w, &self.lattice_bodies())
     }
@@ -231,11 +332,12 @@ impl PileSpec {
                 "contact",
                 json!({
                     "model": "linear",
+                    "normal_force": self.normal_force.as_str(),
                     "kn_over_rho_g": KN_OVER_RHO_G,
                     "ks_over_rho_g": KN_OVER_RHO_G,
                     "eta_n": eta,
                     "eta_s": eta,
-                    "friction": FRICTION,
+                    "friction": self.friction,
                 }),
             ),
             (
