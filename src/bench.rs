@@ -9,6 +9,7 @@
 //! 10⁴ piles side by side in one wide box. Settled piles are cached as case files (they are
 //! ordinary cases: `dem2d run` runs them). The timed steps then run at the case's Δt = 1e-5 s.
 
+use crate::contact_law::NormalForce;
 use crate::dynamics::timestep::estimate_critical_dt;
 use crate::dynamics::{BodyInit, World};
 use crate::output::progress::Progress;
@@ -34,6 +35,8 @@ pub struct BenchOptions {
     pub reps: usize,
     /// Thread counts; the first is the reference for the identical-trajectory check.
     pub threads: Vec<usize>,
+    /// The normal-force laws to time each pile under (the same settled state for each).
+    pub normal_forces: Vec<NormalForce>,
     /// Where settled piles are cached (None: always settle).
     pub cache: Option<PathBuf>,
     /// Progress on stderr.
@@ -45,6 +48,7 @@ pub struct BenchOptions {
 pub struct BenchRow {
     pub shape: PileShape,
     pub n: usize,
+    pub normal_force: NormalForce,
     pub threads: usize,
     pub steps: u64,
     /// Median wall time of one repetition (s).
@@ -241,78 +245,83 @@ pub fn run(
     let mut rows = Vec::new();
     for &shape in &opts.shapes {
         for &n in &opts.sizes {
-            let case = settled_pile(shape, n, opts.cache.as_deref(), opts.progress)?;
-            let mut reference_hash = None;
-            for &threads in &opts.threads {
-                let pool = rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads)
-                    .build()
-                    .map_err(|e| BenchError(format!("thread pool of {threads}: {e}")))?;
-                let row = pool.install(|| -> Result<BenchRow, BenchError> {
-                    let before = heap();
-                    let mut w = world_of(&case, case.dt);
-                    // Warm-up: contact histories, buffers at their working sizes.
-                    for _ in 0..opts.steps.min(200) {
-                        w.step().map_err(|b| BenchError(b.to_string()))?;
-                    }
-                    let mut walls = Vec::with_capacity(opts.reps.max(1));
-                    let mut contacts = 0u64;
-                    let builds = w.contacts.builds;
-                    let allocs = allocations();
-                    for _ in 0..opts.reps.max(1) {
-                        let start = Instant::now();
-                        for _ in 0..opts.steps {
-                            let r = w.step().map_err(|b| BenchError(b.to_string()))?;
-                            contacts += r.contacts as u64;
+            let settled = settled_pile(shape, n, opts.cache.as_deref(), opts.progress)?;
+            for &normal_force in &opts.normal_forces {
+                let case = settled.clone().with_normal_force(normal_force);
+                let mut reference_hash = None;
+                for &threads in &opts.threads {
+                    let pool = rayon::ThreadPoolBuilder::new()
+                        .num_threads(threads)
+                        .build()
+                        .map_err(|e| BenchError(format!("thread pool of {threads}: {e}")))?;
+                    let row = pool.install(|| -> Result<BenchRow, BenchError> {
+                        let before = heap();
+                        let mut w = world_of(&case, case.dt);
+                        // Warm-up: contact histories, buffers at their working sizes.
+                        for _ in 0..opts.steps.min(200) {
+                            w.step().map_err(|b| BenchError(b.to_string()))?;
                         }
-                        walls.push(start.elapsed().as_secs_f64());
-                    }
-                    let allocs = allocations() - allocs;
-                    let builds = w.contacts.builds - builds;
-                    let bytes = heap().saturating_sub(before);
-                    walls.sort_by(f64::total_cmp);
-                    let wall = walls[walls.len() / 2];
-                    let total_steps = opts.steps * opts.reps.max(1) as u64;
-                    let contacts_per_step = contacts as f64 / total_steps as f64;
-                    let hash = state_hash(&w);
-                    let identical = *reference_hash.get_or_insert(hash) == hash;
-                    Ok(BenchRow {
-                        shape,
-                        n,
-                        threads,
-                        steps: opts.steps,
-                        wall,
-                        particle_steps_per_second: n as f64 * opts.steps as f64 / wall,
-                        contacts_per_step,
-                        ns_per_contact: wall * 1e9
-                            / (opts.steps as f64 * contacts_per_step).max(1.0),
-                        bytes_per_body: bytes as f64 / n as f64,
-                        slots_per_body: w.contacts.slots.len() as f64 / n as f64,
-                        builds_per_1000_steps: 1000.0 * builds as f64 / total_steps as f64,
-                        allocations_per_step: allocs as f64 / total_steps as f64,
-                        breakdown: w
-                            .heap_breakdown()
+                        let mut walls = Vec::with_capacity(opts.reps.max(1));
+                        let mut contacts = 0u64;
+                        let builds = w.contacts.builds;
+                        let allocs = allocations();
+                        for _ in 0..opts.reps.max(1) {
+                            let start = Instant::now();
+                            for _ in 0..opts.steps {
+                                let r = w.step().map_err(|b| BenchError(b.to_string()))?;
+                                contacts += r.contacts as u64;
+                            }
+                            walls.push(start.elapsed().as_secs_f64());
+                        }
+                        let allocs = allocations() - allocs;
+                        let builds = w.contacts.builds - builds;
+                        let bytes = heap().saturating_sub(before);
+                        walls.sort_by(f64::total_cmp);
+                        let wall = walls[walls.len() / 2];
+                        let total_steps = opts.steps * opts.reps.max(1) as u64;
+                        let contacts_per_step = contacts as f64 / total_steps as f64;
+                        let hash = state_hash(&w);
+                        let identical = *reference_hash.get_or_insert(hash) == hash;
+                        Ok(BenchRow {
+                            shape,
+                            n,
+                            normal_force,
+                            threads,
+                            steps: opts.steps,
+                            wall,
+                            particle_steps_per_second: n as f64 * opts.steps as f64 / wall,
+                            contacts_per_step,
+                            ns_per_contact: wall * 1e9
+                                / (opts.steps as f64 * contacts_per_step).max(1.0),
+                            bytes_per_body: bytes as f64 / n as f64,
+                            slots_per_body: w.contacts.slots.len() as f64 / n as f64,
+                            builds_per_1000_steps: 1000.0 * builds as f64 / total_steps as f64,
+                            allocations_per_step: allocs as f64 / total_steps as f64,
+                            breakdown: w
+                                .heap_breakdown()
+                                .iter()
+                                .map(|&(part, bytes)| (part, bytes as f64 / n as f64))
+                                .collect(),
+                            identical,
+                        })
+                    })?;
+                    if opts.progress {
+                        let parts: Vec<String> = row
+                            .breakdown
                             .iter()
-                            .map(|&(part, bytes)| (part, bytes as f64 / n as f64))
-                            .collect(),
-                        identical,
-                    })
-                })?;
-                if opts.progress {
-                    let parts: Vec<String> = row
-                        .breakdown
-                        .iter()
-                        .map(|(p, b)| format!("{p} {b:.0}"))
-                        .collect();
-                    eprintln!(
-                        "{:?} n = {n}, {threads} thread(s): {:.2} M particle-steps/s; heap {:.0} B/body ({})",
-                        shape,
-                        row.particle_steps_per_second / 1e6,
-                        row.bytes_per_body,
-                        parts.join(", ")
-                    );
+                            .map(|(p, b)| format!("{p} {b:.0}"))
+                            .collect();
+                        eprintln!(
+                            "{:?} n = {n}, {} law, {threads} thread(s): {:.2} M particle-steps/s; heap {:.0} B/body ({})",
+                            shape,
+                            normal_force.as_str(),
+                            row.particle_steps_per_second / 1e6,
+                            row.bytes_per_body,
+                            parts.join(", ")
+                        );
+                    }
+                    rows.push(row);
                 }
-                rows.push(row);
             }
         }
     }
@@ -322,12 +331,17 @@ pub fn run(
 /// The rows as a Markdown table, with the speed-up over one thread where measured.
 pub fn markdown(rows: &[BenchRow]) -> String {
     let mut t = String::from(
-        "| pile | bodies | threads | particle-steps/s (M) | speed-up | contacts per body | slots per body | list builds per 1000 steps | ns per contact | heap bytes per body | allocations per step | same trajectory as 1 thread |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
+        "| pile | bodies | normal force | threads | particle-steps/s (M) | speed-up | contacts per body | slots per body | list builds per 1000 steps | ns per contact | heap bytes per body | allocations per step | same trajectory as 1 thread |\n|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
     );
     for r in rows {
         let one = rows
             .iter()
-            .find(|o| o.shape == r.shape && o.n == r.n && o.threads == 1)
+            .find(|o| {
+                o.shape == r.shape
+                    && o.n == r.n
+                    && o.normal_force == r.normal_force
+                    && o.threads == 1
+            })
             .map(|o| o.particle_steps_per_second);
         let speedup = one.map_or(String::new(), |o| {
             format!("{:.2}×", r.particle_steps_per_second / o)
@@ -338,8 +352,9 @@ pub fn markdown(rows: &[BenchRow]) -> String {
         };
         writeln!(
             t,
-            "| {kind} | {} | {} | {:.2} | {speedup} | {:.2} | {:.2} | {:.1} | {:.0} | {:.0} | {:.2} | {} |",
+            "| {kind} | {} | {} | {} | {:.2} | {speedup} | {:.2} | {:.2} | {:.1} | {:.0} | {:.0} | {:.2} | {} |",
             r.n,
+            r.normal_force.as_str(),
             r.threads,
             r.particle_steps_per_second / 1e6,
             r.contacts_per_step / r.n as f64,

@@ -150,6 +150,9 @@ enum Command {
         /// Thread counts (default: 1 and all cores).
         #[arg(long, value_delimiter = ',')]
         threads: Vec<usize>,
+        /// Normal-force laws to time each settled pile under.
+        #[arg(long, value_enum, value_delimiter = ',', default_value = "area")]
+        normal_force: Vec<NormalForceArg>,
         /// Cache of settled piles.
         #[arg(long, default_value = "target/bench-piles")]
         cache: PathBuf,
@@ -198,6 +201,15 @@ enum PileSizesArg {
 enum NormalForceArg {
     Area,
     Depth,
+}
+
+impl From<NormalForceArg> for dem2d::contact_law::NormalForce {
+    fn from(n: NormalForceArg) -> Self {
+        match n {
+            NormalForceArg::Area => dem2d::contact_law::NormalForce::Area,
+            NormalForceArg::Depth => dem2d::contact_law::NormalForce::Depth,
+        }
+    }
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -403,10 +415,7 @@ fn generate(
         PileSizesArg::Bidisperse => PileSizes::Bidisperse,
     };
     spec.friction = friction;
-    spec.normal_force = match normal_force {
-        NormalForceArg::Area => dem2d::contact_law::NormalForce::Area,
-        NormalForceArg::Depth => dem2d::contact_law::NormalForce::Depth,
-    };
+    spec.normal_force = normal_force.into();
     let text = spec.case_json();
     match out {
         Some(path) => std::fs::write(path, text).map_err(|e| Failure {
@@ -429,6 +438,7 @@ fn bench(
     steps: u64,
     reps: usize,
     threads: &[usize],
+    normal_forces: &[NormalForceArg],
     cache: &std::path::Path,
     out: Option<&std::path::Path>,
     readme: Option<&std::path::Path>,
@@ -463,6 +473,7 @@ fn bench(
         steps,
         reps,
         threads,
+        normal_forces: normal_forces.iter().map(|&n| n.into()).collect(),
         cache: Some(cache.to_path_buf()),
         progress: true,
     };
@@ -548,6 +559,7 @@ fn main() -> ExitCode {
             steps,
             reps,
             threads,
+            normal_force,
             cache,
             out,
             readme,
@@ -557,6 +569,7 @@ fn main() -> ExitCode {
             *steps,
             *reps,
             threads,
+            normal_force,
             cache,
             out.as_deref(),
             readme.as_deref(),

@@ -7,6 +7,7 @@
 //! are replaced by the Markdown of the same name, so the README's tables are never edited by
 //! hand either.
 
+use crate::contact_law::NormalForce;
 use crate::dynamics::World;
 use crate::dynamics::timestep::estimate_critical_dt;
 use crate::narrow_phase::contact;
@@ -57,15 +58,44 @@ fn load_case(path: &Path) -> Result<(Case, String), ReportError> {
 }
 
 fn run(opts: &FigureOptions, name: &str) -> Result<RunData, ReportError> {
-    let (case, text) = load_case(&opts.cases.join(format!("{name}.json")))?;
-    let dir = opts.work.join(name);
+    run_law(opts, name, None)
+}
+
+/// Runs case `name` as its file gives it (`law` None), or with every contact under `law` (the
+/// run, and the case name in its `case.json`, then carry the law's name as a suffix).
+fn run_law(
+    opts: &FigureOptions,
+    name: &str,
+    law: Option<NormalForce>,
+) -> Result<RunData, ReportError> {
+    let path = opts.cases.join(format!("{name}.json"));
+    let (mut case, mut text) = load_case(&path)?;
+    let mut label = name.to_string();
+    if let Some(law) = law {
+        label = format!("{name}_{}", law.as_str());
+        case = case.with_normal_force(law);
+        case.name = label.clone();
+        let mut v: serde_json::Value =
+            serde_json::from_str(&text).map_err(e(&path.display().to_string()))?;
+        v["name"] = label.clone().into();
+        v["contact"]["normal_force"] = law.as_str().into();
+        if let Some(walls) = v["walls"].as_array_mut() {
+            for w in walls {
+                if w.get("normal_force").is_some() {
+                    w["normal_force"] = law.as_str().into();
+                }
+            }
+        }
+        text = serde_json::to_string_pretty(&v).map_err(e(&label))?;
+    }
+    let dir = opts.work.join(&label);
     let ro = RunOptions {
         out_dir: dir.clone(),
         progress: false,
         max_steps: None,
     };
-    run_case(&case, &text, &ro).map_err(e(name))?;
-    RunData::load(&dir).map_err(e(name))
+    run_case(&case, &text, &ro).map_err(e(&label))?;
+    RunData::load(&dir).map_err(e(&label))
 }
 
 /// Regenerates everything; returns the files written.
@@ -85,13 +115,23 @@ pub fn figures(opts: &FigureOptions) -> Result<Vec<PathBuf>, ReportError> {
         "settle3_dt1e-5",
         "settle3_dt1e-4",
     ];
+    // Each as its file gives it (P's spring on the depth), and under the area law.
     let mut runs = Vec::new();
+    let mut area_runs = Vec::new();
     for n in names {
-        eprintln!("figures: running {n}");
+        eprintln!("figures: running {n}, with the depth law and with the area law");
         runs.push(run(opts, n)?);
+        area_runs.push(run_law(opts, n, Some(NormalForce::Area))?);
     }
     let by = |n: &str| &runs[names.iter().position(|m| *m == n).expect("known case")];
-    tables.push(("paper_cases", paper_cases_table(&runs)));
+    let by_area = |n: &str| &area_runs[names.iter().position(|m| *m == n).expect("known case")];
+    let both: Vec<RunData> = runs
+        .iter()
+        .zip(&area_runs)
+        .flat_map(|(d, a)| [d.clone(), a.clone()])
+        .collect();
+    tables.push(("paper_cases", paper_cases_table(&both)));
+    written.extend(area_law_figures(opts, &by_area)?);
 
     // P Fig. 2: the drop at two frictions.
     let (d1, d5) = (by("drop_rebound_mu01"), by("drop_rebound_mu05"));
@@ -155,10 +195,22 @@ pub fn figures(opts: &FigureOptions) -> Result<Vec<PathBuf>, ReportError> {
     )
     .map_err(e("fig3 series"))?;
     written.push(f);
+    let (ac, ae, as_) = (
+        by_area("throw_circle"),
+        by_area("throw_ellipse"),
+        by_area("throw_square"),
+    );
     tables.push((
         "fig3_comparison",
-        comparison_table(&[(tc, "circle"), (te, "ellipse"), (ts, "square")]),
+        comparison_table(&[
+            (tc, "circle (either law: central)"),
+            (te, "ellipse, depth law"),
+            (ae, "ellipse, area law"),
+            (ts, "square, depth law"),
+            (as_, "square, area law (Winkler on a wall: the same)"),
+        ]),
     ));
+    let _ = ac;
 
     // P Fig. 4: the three ellipses at both time steps, and the quiescence measures.
     let (s5, s4) = (by("settle3_dt1e-5"), by("settle3_dt1e-4"));
@@ -223,6 +275,15 @@ pub fn figures(opts: &FigureOptions) -> Result<Vec<PathBuf>, ReportError> {
     written.push(f);
     tables.push(("stability", st_md));
 
+    // The area law: force against the depth spring, restitution, energy.
+    eprintln!("figures: area law tables");
+    tables.push(("area_force", crate::area_law_report::force_overlap_table()));
+    tables.push((
+        "area_restitution",
+        crate::area_law_report::restitution_table(),
+    ));
+    tables.push(("area_energy", crate::area_law_report::energy_table()));
+
     // The contact kernel: accuracy against the reference and time per pair.
     eprintln!("figures: contact kernel families");
     tables.push(("kernel_report", kernel_report(opts.quick)));
@@ -240,7 +301,7 @@ pub fn figures(opts: &FigureOptions) -> Result<Vec<PathBuf>, ReportError> {
 
 fn paper_cases_table(runs: &[RunData]) -> String {
     let mut t = String::from(
-        "| case | steps | at rest at step | first contact at step | dt | dt_critical (a priori) | max δ / inscribed radius | wall time (s) |\n|---|---:|---:|---:|---:|---:|---:|---:|\n",
+        "| case | normal force | steps | at rest at step | first contact at step | dt | dt_critical (a priori) | max δ / inscribed radius | wall time (s) |\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     for r in runs {
         let s = &r.summary;
@@ -252,8 +313,9 @@ fn paper_cases_table(runs: &[RunData]) -> String {
             .map_or("–".to_string(), |v| v.to_string());
         writeln!(
             t,
-            "| `{}` | {} | {q} | {fc} | {:e} | {:.3e} | {:.4} | {:.3} |",
+            "| `{}` | {} | {} | {q} | {fc} | {:e} | {:.3e} | {:.4} | {:.3} |",
             r.case.name,
+            r.case.contact.normal_force().as_str(),
             s["steps"],
             s["dt"].as_f64().unwrap_or(f64::NAN),
             s["dt_critical"].as_f64().unwrap_or(f64::NAN),
@@ -263,6 +325,133 @@ fn paper_cases_table(runs: &[RunData]) -> String {
         .expect("string");
     }
     t
+}
+
+/// P's Figs. 2–4 again under the area law (`*_area.svg`).
+fn area_law_figures<'a>(
+    opts: &FigureOptions,
+    by: &dyn Fn(&str) -> &'a RunData,
+) -> Result<Vec<PathBuf>, ReportError> {
+    let out = |f: &str| opts.out.join(f);
+    let mut written = Vec::new();
+    let (d1, d5) = (by("drop_rebound_mu01"), by("drop_rebound_mu05"));
+    let f = out("fig2_drop_rebound_area.svg");
+    plot::scene(
+        &f,
+        &[
+            ScenePanel {
+                title: "P Fig. 2 (a), area law: floor friction μ = 0.1".into(),
+                runs: vec![(d1, String::new())],
+            },
+            ScenePanel {
+                title: "P Fig. 2 (b), area law: floor friction μ = 0.5".into(),
+                runs: vec![(d5, String::new())],
+            },
+        ],
+        &SceneOptions {
+            t_max: Some(0.6),
+            outlines: 25,
+            ..Default::default()
+        },
+    )
+    .map_err(e("fig2 area"))?;
+    written.push(f);
+    let f = out("fig2_drop_rebound_series_area.svg");
+    plot::line_panels(
+        &f,
+        (1000, 700),
+        (2, 1),
+        &panels::time_series(
+            &[(d1, "μ = 0.1"), (d5, "μ = 0.5")],
+            "P Fig. 2, area law: centroid height and angle",
+        ),
+    )
+    .map_err(e("fig2 series area"))?;
+    written.push(f);
+    let (tc, te, ts) = (by("throw_circle"), by("throw_ellipse"), by("throw_square"));
+    let f = out("fig3_throw_comparison_area.svg");
+    plot::scene(
+        &f,
+        &[ScenePanel {
+            title: "P Fig. 3, area law: circle, ellipse and square thrown sideways, first 0.8 s"
+                .into(),
+            runs: vec![
+                (tc, "circle".into()),
+                (te, "ellipse".into()),
+                (ts, "square".into()),
+            ],
+        }],
+        &SceneOptions {
+            t_max: Some(0.8),
+            outlines: 14,
+            color_by_body: false,
+            ..Default::default()
+        },
+    )
+    .map_err(e("fig3 area"))?;
+    written.push(f);
+    let f = out("fig3_throw_series_area.svg");
+    plot::line_panels(
+        &f,
+        (1000, 700),
+        (2, 1),
+        &panels::time_series(
+            &[(tc, "circle"), (te, "ellipse"), (ts, "square")],
+            "P Fig. 3, area law: centroid height and angle",
+        ),
+    )
+    .map_err(e("fig3 series area"))?;
+    written.push(f);
+    let (s5, s4) = (by("settle3_dt1e-5"), by("settle3_dt1e-4"));
+    let rest = |r: &RunData| {
+        r.summary["quiescent_step"]
+            .as_u64()
+            .map_or("never at rest".to_string(), |s| {
+                format!("at rest at step {s}")
+            })
+    };
+    let f = out("fig4_settle3_area.svg");
+    plot::scene(
+        &f,
+        &[
+            ScenePanel {
+                title: format!("P Fig. 4, area law, Δt = 1e-5 s: {}", rest(s5)),
+                runs: vec![(s5, String::new())],
+            },
+            ScenePanel {
+                title: format!("the same at Δt = 1e-4 s: {}", rest(s4)),
+                runs: vec![(s4, String::new())],
+            },
+        ],
+        &SceneOptions {
+            outlines: 12,
+            width: 800,
+            ..Default::default()
+        },
+    )
+    .map_err(e("fig4 area"))?;
+    written.push(f);
+    let f = out("fig4_quiescence_area.svg");
+    plot::line_panels(
+        &f,
+        (1200, 500),
+        (1, 2),
+        &[
+            panels::quiescence(
+                s5,
+                "P's quiescence measures, area law, Δt = 1e-5 s",
+                Some((1e-14, 1e-3)),
+            ),
+            panels::quiescence(
+                s4,
+                "P's quiescence measures, area law, Δt = 1e-4 s",
+                Some((1e-14, 1e-3)),
+            ),
+        ],
+    )
+    .map_err(e("fig4 quiescence area"))?;
+    written.push(f);
+    Ok(written)
 }
 
 /// Rebound heights, impacts, distance travelled at 1 s, final rotation and time to rest.

@@ -62,6 +62,19 @@ impl ContactSpec {
         }
     }
 
+    /// The same spec with the normal spring acting on `normal_force`.
+    pub fn with_normal_force(mut self, normal_force: NormalForce) -> Self {
+        match &mut self {
+            ContactSpec::Linear {
+                normal_force: n, ..
+            }
+            | ContactSpec::HertzMindlin {
+                normal_force: n, ..
+            } => *n = normal_force,
+        }
+        self
+    }
+
     /// Coulomb friction coefficient.
     pub fn friction(&self) -> f64 {
         match *self {

@@ -172,6 +172,15 @@ impl Case {
         })
     }
 
+    /// The same case with every contact (the scene's and each wall's) under `normal_force`.
+    pub fn with_normal_force(mut self, normal_force: NormalForce) -> Case {
+        self.contact = self.contact.with_normal_force(normal_force);
+        for w in &mut self.walls {
+            w.spec = w.spec.with_normal_force(normal_force);
+        }
+        self
+    }
+
     /// Number of steps the duration takes (rounded to the nearest step).
     pub fn steps(&self) -> u64 {
         (self.duration / self.dt).round().max(1.0) as u64
