@@ -59,12 +59,16 @@ fn load_case(path: &Path) -> Result<(Case, String), ReportError> {
 fn run(opts: &FigureOptions, name: &str) -> Result<RunData, ReportError> {
     let (case, text) = load_case(&opts.cases.join(format!("{name}.json")))?;
     let dir = opts.work.join(name);
+    // The work directory holds the previous figures' runs: replace them.
     let ro = RunOptions {
         out_dir: dir.clone(),
-        progress: false,
-        max_steps: None,
+        overwrite: true,
+        ..Default::default()
     };
-    run_case(&case, &text, &ro).map_err(e(name))?;
+    let outcome = run_case(&case, &text, &ro).map_err(e(name))?;
+    if let Some(err) = outcome.summary.error {
+        return Err(ReportError(format!("{name}: {err}")));
+    }
     RunData::load(&dir).map_err(e(name))
 }
 
