@@ -132,7 +132,9 @@ fn every_bad_case_is_refused_with_its_error() {
 #[test]
 fn a_blow_up_stops_with_step_and_body_and_keeps_its_output() {
     // Two stiff, undamped disks squeezed between two walls with Δt far above the critical step
-    // (ωΔt ≈ 25): every step multiplies the oscillation until the state overflows.
+    // (ωΔt ≈ 18): every step multiplies the oscillation. The run must stop before anything is
+    // non-finite, name the step and the body, keep what it wrote, and label the last rows with
+    // the step whose state they hold.
     let case = r#"{"version": 1, "name": "blowup", "gravity": [0, 0], "dt": 1e-3, "duration": 10.0,
       "output_every": 1,
       "contact": {"model": "linear", "kn": 1e9, "eta_n": 0, "friction": 0},
@@ -153,7 +155,7 @@ fn a_blow_up_stops_with_step_and_body_and_keeps_its_output() {
     ]);
     assert_eq!(code, 1, "{err}");
     assert!(
-        err.contains("non-finite") && err.contains("body") && err.contains("step"),
+        err.contains("blow-up at step 1 ") && err.contains("body") && err.contains("energy grew"),
         "{err}"
     );
     assert!(
@@ -161,19 +163,27 @@ fn a_blow_up_stops_with_step_and_body_and_keeps_its_output() {
         "{err}"
     );
     let s = summary(&out);
+    assert_eq!(s["status"], "blowup");
     assert!(
-        s["error"].as_str().unwrap().contains("step"),
+        s["error"].as_str().unwrap().contains("step 1 "),
         "{}",
         s["error"]
     );
-    let rows = std::fs::read_to_string(out.join("trajectory.csv"))
-        .unwrap()
+    for e in ["kinetic", "potential", "elastic", "dissipated"] {
+        assert!(s["energies"][e].as_f64().unwrap().is_finite(), "{e}");
+    }
+    let traj = std::fs::read_to_string(out.join("trajectory.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = traj
         .lines()
-        .count();
-    assert!(
-        rows > 3,
-        "the trajectory up to the blow-up is kept ({rows} lines)"
-    );
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 4, "the initial state and the state at the blow-up");
+    let last = &rows[rows.len() - 1];
+    assert_eq!(last[0], 1.0, "the last row is labelled with the step it holds");
+    assert_eq!(last[1], 1e-3);
+    assert_eq!(last[3], s["final"][1]["x"].as_f64().unwrap());
+    assert_eq!(last[6], s["final"][1]["vx"].as_f64().unwrap());
 }
 
 #[test]
