@@ -246,15 +246,31 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
     write_summary(dir, &summary).map_err(io_at(&summary_file))?;
 
     let mut last_label = None;
-    let result = step_loop(case, opts, &mut world, &mut counters, &mut last_label);
-    // The last rows: the state the loop left (labelled with the step it belongs to).
-    let result = result.and_then(|(stop, mut traj, mut incs)| {
-        let label = last_label.unwrap_or(world.step);
-        traj.write_labelled(&world, label)?;
-        traj.flush()?;
-        incs.flush()?;
-        Ok(stop)
-    });
+    let traj_file = dir.join("trajectory.csv");
+    let incs_file = dir.join("increments.csv");
+    let result = match TrajectoryWriter::create(&traj_file)
+        .and_then(|t| Ok((t, IncrementsWriter::create(&incs_file)?)))
+    {
+        Err(e) => Err(e),
+        Ok((mut traj, mut incs)) => {
+            let stopped = step_loop(
+                case,
+                opts,
+                &mut world,
+                (&mut traj, &mut incs),
+                &mut counters,
+                &mut last_label,
+            );
+            // The last rows — the state the loop left, labelled with the step it belongs to —
+            // and the buffers, also after a failed write (to the other file, it may succeed).
+            let label = last_label.unwrap_or(world.step);
+            let traj_done = traj
+                .write_labelled(&world, label)
+                .and_then(|()| traj.flush());
+            let incs_done = incs.flush();
+            stopped.and_then(|stop| traj_done.and(incs_done).map(|()| stop))
+        }
+    };
     world.network_critical_dt();
     let observed = world.diagnostics.dt_critical_observed;
     if case.dt > observed && observed.is_finite() {
@@ -313,21 +329,19 @@ pub fn signal_name(sig: i32) -> String {
     }
 }
 
-/// The steps; returns how they ended and the open traces. `last_label` is set when the world's
-/// state belongs to a step that failed part-way (a non-finite state found inside the step).
+/// The steps; returns how they ended. `last_label` is set when the world's state belongs to a
+/// step that failed part-way (a non-finite state found inside the step).
 fn step_loop(
     case: &Case,
     opts: &RunOptions,
     world: &mut World,
+    (traj, incs): (&mut TrajectoryWriter, &mut IncrementsWriter),
     counters: &mut Counters,
     last_label: &mut Option<u64>,
-) -> Result<(Stop, TrajectoryWriter, IncrementsWriter), WriteError> {
-    let dir = &opts.out_dir;
+) -> Result<Stop, WriteError> {
     let case_steps = case.steps();
     let steps = opts.max_steps.map_or(case_steps, |m| m.min(case_steps));
     let thin = steps.div_ceil(MAX_INCREMENT_ROWS).max(1);
-    let mut traj = TrajectoryWriter::create(&dir.join("trajectory.csv"))?;
-    let mut incs = IncrementsWriter::create(&dir.join("increments.csv"))?;
     traj.write(world)?;
     let mut watch = BlowupWatch::new(world);
     let start = Instant::now();
@@ -402,7 +416,7 @@ fn step_loop(
     }
     counters.wall_seconds = start.elapsed().as_secs_f64();
     progress.finish();
-    Ok((stop, traj, incs))
+    Ok(stop)
 }
 
 /// A non-finite state found inside a step.

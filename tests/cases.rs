@@ -178,9 +178,16 @@ fn a_blow_up_stops_with_step_and_body_and_keeps_its_output() {
         .skip(1)
         .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
         .collect();
-    assert_eq!(rows.len(), 4, "the initial state and the state at the blow-up");
+    assert_eq!(
+        rows.len(),
+        4,
+        "the initial state and the state at the blow-up"
+    );
     let last = &rows[rows.len() - 1];
-    assert_eq!(last[0], 1.0, "the last row is labelled with the step it holds");
+    assert_eq!(
+        last[0], 1.0,
+        "the last row is labelled with the step it holds"
+    );
     assert_eq!(last[1], 1e-3);
     assert_eq!(last[3], s["final"][1]["x"].as_f64().unwrap());
     assert_eq!(last[6], s["final"][1]["vx"].as_f64().unwrap());

@@ -77,8 +77,26 @@ fn at_mut<'a>(v: &'a mut Value, path: &[Value]) -> &'a mut Value {
 /// Numbers a mutation may put in: zeros, signs, subnormals, the edges of the accepted ranges and
 /// beyond, float64's extremes.
 const EXTREMES: [f64; 20] = [
-    0.0, -0.0, -1.0, 1.0, 2.5, 5e-324, 1e-320, 1e-200, 1e-41, 1e-40, 1e-12, 1e8, -1e8, 1e12, 1e40,
-    1e41, 1e160, 1e200, 1e308, -1.7976931348623157e308,
+    0.0,
+    -0.0,
+    -1.0,
+    1.0,
+    2.5,
+    5e-324,
+    1e-320,
+    1e-200,
+    1e-41,
+    1e-40,
+    1e-12,
+    1e8,
+    -1e8,
+    1e12,
+    1e40,
+    1e41,
+    1e160,
+    1e200,
+    1e308,
+    -1.7976931348623157e308,
 ];
 const FACTORS: [f64; 10] = [1e-30, 1e-6, 1e-3, 0.5, 2.0, 10.0, 1e3, 1e6, 1e30, -1.0];
 
@@ -206,11 +224,16 @@ fn base_cases() -> Vec<(String, Value)> {
     }
     // A small generated pile (walls on three sides, many contacts).
     let pile = Command::new(env!("CARGO_BIN_EXE_dem2d"))
-        .args(["generate", "--shape", "ellipses", "--n", "24", "--seed", "3"])
+        .args([
+            "generate", "--shape", "ellipses", "--n", "24", "--seed", "3",
+        ])
         .output()
         .unwrap();
     assert!(pile.status.success());
-    out.push(("pile24".into(), serde_json::from_slice(&pile.stdout).unwrap()));
+    out.push((
+        "pile24".into(),
+        serde_json::from_slice(&pile.stdout).unwrap(),
+    ));
     out.sort_by(|a, b| a.0.cmp(&b.0));
     assert!(out.len() >= 8, "{} base cases", out.len());
     out

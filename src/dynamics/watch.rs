@@ -84,8 +84,7 @@ impl BlowupWatch {
         let boundary_work = 0.0;
         let boundary_available = 0.0;
         self.gravity_supplied = self.gravity_supplied.max(self.potential0 - e.potential);
-        let available =
-            self.kinetic0 + self.elastic0 + self.gravity_supplied + boundary_available;
+        let available = self.kinetic0 + self.elastic0 + self.gravity_supplied + boundary_available;
         let created = e.total() - self.total0 - boundary_work;
         // The rounding of the sums that form the totals (the potential can dwarf the rest).
         let rounding = 1e-9

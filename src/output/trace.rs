@@ -10,7 +10,7 @@ use crate::dynamics::World;
 use crate::dynamics::step::StepReport;
 use std::fmt;
 use std::fs::File;
-use std::io::{self, Write};
+use std::io::{self, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
 /// A failed write: the file and the error.
@@ -69,9 +69,7 @@ pub fn time_text(step: u64, dt: f64) -> String {
 
 /// The time `step × dt` as a number (the double nearest to [`time_text`]).
 pub fn time_value(step: u64, dt: f64) -> f64 {
-    time_text(step, dt)
-        .parse()
-        .unwrap_or(step as f64 * dt)
+    time_text(step, dt).parse().unwrap_or(step as f64 * dt)
 }
 
 /// A text file written in whole lines (see the module documentation).
@@ -113,7 +111,10 @@ impl LineFile {
 
     /// Writes the buffered lines; on failure cuts the file back to its last whole line.
     fn flush(&mut self) -> Result<(), WriteError> {
-        let result = self.file.write_all(&self.buf).and_then(|()| self.file.flush());
+        let result = self
+            .file
+            .write_all(&self.buf)
+            .and_then(|()| self.file.flush());
         match result {
             Ok(()) => {
                 self.committed += self.buf.len() as u64;
@@ -123,6 +124,7 @@ impl LineFile {
             Err(error) => {
                 // Shrinking needs no space; if even that fails, the write's error is the news.
                 let _ = self.file.set_len(self.committed);
+                let _ = self.file.seek(SeekFrom::Start(self.committed));
                 self.buf.clear();
                 Err(WriteError {
                     file: self.path.clone(),
@@ -143,6 +145,8 @@ impl TrajectoryWriter {
     pub fn create(path: &Path) -> Result<Self, WriteError> {
         let mut out = LineFile::create(path)?;
         out.line(format_args!("step,t,body,x,y,angle,vx,vy,omega"))?;
+        // A run killed before its first full buffer still leaves a readable (empty) table.
+        out.flush()?;
         Ok(TrajectoryWriter {
             out,
             last_step: None,
@@ -199,6 +203,7 @@ impl IncrementsWriter {
         out.line(format_args!(
             "step,t,mean_dx,mean_dy,mean_dtheta,unbalanced_force_ratio,contacts"
         ))?;
+        out.flush()?;
         Ok(IncrementsWriter { out })
     }
 
@@ -244,7 +249,10 @@ mod tests {
         // Against the exact rational product, for dt's with long decimal forms.
         for (step, dt) in [(12345u64, 1.0 / 3.0), (987, std::f64::consts::PI * 1e-7)] {
             let v = time_value(step, dt);
-            assert!((v - step as f64 * dt).abs() <= 2.0 * f64::EPSILON * v, "{v}");
+            assert!(
+                (v - step as f64 * dt).abs() <= 2.0 * f64::EPSILON * v,
+                "{v}"
+            );
         }
     }
 }

@@ -56,7 +56,11 @@ pub fn parse_wall_with<T>(
     // Scaled by its largest component first, so that a tiny non-zero normal such as
     // [1e-200, 1e-200] (whose squared length underflows) is not taken for zero.
     let largest = normal.x.abs().max(normal.y.abs());
-    let normal = if largest > 0.0 { normal / largest } else { normal };
+    let normal = if largest > 0.0 {
+        normal / largest
+    } else {
+        normal
+    };
     let wall = Wall::new(Vec2::from(point), normal)
         .ok_or_else(|| FieldError::new(o.field_path("normal"), "must be a non-zero vector"))?;
     let t = extra(&mut o)?;

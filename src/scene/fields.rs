@@ -277,9 +277,7 @@ pub fn scale(v: &Value, path: &str) -> Result<f64, FieldError> {
     } else {
         Err(FieldError::new(
             path,
-            format!(
-                "{x:e} is outside the accepted range {MIN_SCALE:e} … {MAX_MAGNITUDE:e}"
-            ),
+            format!("{x:e} is outside the accepted range {MIN_SCALE:e} … {MAX_MAGNITUDE:e}"),
         ))
     }
 }

@@ -217,9 +217,7 @@ pub fn check_spec(
                 };
                 return Err(FieldError::new(
                     field(name),
-                    format!(
-                        "resolves to {abs} = {r:e}{how}, outside the accepted range {range}"
-                    ),
+                    format!("resolves to {abs} = {r:e}{how}, outside the accepted range {range}"),
                 ));
             }
         }
