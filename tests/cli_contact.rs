@@ -171,9 +171,7 @@ fn bad_input_is_refused_with_the_field_named() {
             "pairs[0].i.shape.a`: 1e308 is outside the accepted range",
         ),
         (
-            format!(
-                r#"[{{"i": {{"wall": {{"point": [1e308, 0], "normal": [-1, 0]}}}}, "j": {{"shape": {{"type": "circle", "r": 1}}, "position": [-1e308, 0]}}}}]"#
-            ),
+            r#"[{"i": {"wall": {"point": [1e308, 0], "normal": [-1, 0]}}, "j": {"shape": {"type": "circle", "r": 1}, "position": [-1e308, 0]}}]"#.to_string(),
             "pairs[0].i.wall.point[0]`: 1e308 is outside the accepted range",
         ),
         (
