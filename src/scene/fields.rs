@@ -410,3 +410,51 @@ impl<'a> Obj<'a> {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_read_exactly() {
+        // Against Rust's own parse (correctly rounded): 17-digit decimals of random doubles of
+        // every magnitude the ranges accept, and the issue's example.
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        let mut texts = vec!["933.1286246343909".to_string()];
+        while texts.len() < 3000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let x = f64::from_bits(state);
+            if x.is_finite() && x.abs() <= 1e40 && x.abs() >= 1e-40 {
+                texts.push(format!("{x:.16e}"));
+                texts.push(format!("{}", x));
+            }
+        }
+        let json = format!("[{}]", texts.join(","));
+        let v = parse_json(&json, "").unwrap();
+        for (t, v) in texts.iter().zip(v.as_array().unwrap()) {
+            let want: f64 = t.parse().unwrap();
+            assert_eq!(v.as_f64().unwrap().to_bits(), want.to_bits(), "{t}");
+        }
+    }
+
+    #[test]
+    fn a_key_given_twice_is_named_with_its_path() {
+        let e = parse_json(r#"{"a": [{"b": {"c": 1, "c": 2}}]}"#, "top").unwrap_err();
+        assert_eq!(e.path, "top.a[0].b.c");
+        assert!(e.message.starts_with("duplicate key"), "{}", e.message);
+        let e = parse_json(r#"{"dt": -1, "dt": 1e-5}"#, "").unwrap_err();
+        assert_eq!(e.path, "dt");
+        // The same key in two objects is no duplicate.
+        assert!(parse_json(r#"[{"c": 1}, {"c": 2}]"#, "").is_ok());
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_skipped_and_non_finite_literals_are_marked() {
+        let v = parse_json("\u{feff}{\"x\": NaN, \"s\": \"NaN\"}", "").unwrap();
+        let e = number(&v["x"], "x").unwrap_err();
+        assert_eq!(e.message, "must be a finite number, got NaN");
+        assert_eq!(v["s"], "NaN");
+    }
+}
