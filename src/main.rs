@@ -155,7 +155,8 @@ enum Command {
         readme: Option<PathBuf>,
     },
     /// Regenerate every figure and table of the README into figures/ (runs the paper's cases,
-    /// the time-step sweeps and the contact-kernel report; about 5 s).
+    /// the time-step sweeps and the contact-kernel report; about 10 s). The README itself is
+    /// refreshed only with --readme.
     Figures {
         /// Output directory for SVG, CSV and Markdown.
         #[arg(long, default_value = "figures")]
@@ -166,9 +167,10 @@ enum Command {
         /// Where the runs go.
         #[arg(long, default_value = "target/figure-runs")]
         work: PathBuf,
-        /// README whose marked tables are refreshed ("" to leave it alone).
-        #[arg(long, default_value = "README.md")]
-        readme: String,
+        /// Refresh the marked tables of this README (without it, no README is touched). The
+        /// tables are deterministic; timings go to WORK/timings.md.
+        #[arg(long)]
+        readme: Option<PathBuf>,
         /// Fewer sweep points and repetitions (a quick look, not the README's numbers).
         #[arg(long)]
         quick: bool,
@@ -542,14 +544,14 @@ fn figures(
     out: PathBuf,
     cases: PathBuf,
     work: PathBuf,
-    readme: String,
+    readme: Option<PathBuf>,
     quick: bool,
 ) -> Result<(), Failure> {
     let opts = dem2d::report::FigureOptions {
         cases,
         out,
         work,
-        readme: (!readme.is_empty()).then(|| PathBuf::from(readme)),
+        readme,
         quick,
     };
     let written = dem2d::report::figures(&opts).map_err(|e| Failure {
