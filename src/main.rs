@@ -328,7 +328,15 @@ fn run(args: RunArgs) -> Result<(), Failure> {
     }
     let kept = format!("output so far kept in {}", out_dir.display());
     if let Some(e) = &outcome.summary_error {
-        return Err(Failure::failed(e.clone()));
+        let first = match (&outcome.io_error, &outcome.blowup, outcome.signal) {
+            (Some(io), _, _) => format!("{io}; then "),
+            (_, Some(b), _) => format!("{name}: {b}; then "),
+            (_, _, Some(sig)) => format!("{name}: interrupted by {}; then ", signal_name(sig)),
+            _ => String::new(),
+        };
+        return Err(Failure::failed(format!(
+            "{first}{e} (it still says `running`)"
+        )));
     }
     if let Some(e) = &outcome.io_error {
         return Err(Failure::failed(format!(

@@ -581,6 +581,43 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_state_found_non_finite_inside_a_step_is_labelled_with_that_step() {
+        // Beyond the accepted ranges on purpose (the case is changed after reading): a speed of
+        // 1e300 over dt = 1e10 makes the position infinite in the first step's drift, inside
+        // the step, which stops there (the body's velocity kicked to step ½, its position not
+        // moved). The last rows hold that state, so they must say step 1, not step 0.
+        let mut case = Case::from_json(
+            r#"{"version": 1, "name": "t", "gravity": [0, 0], "dt": 1e-3, "duration": 1,
+                "contact": {"model": "linear", "kn": 1, "eta_n": 0, "friction": 0},
+                "bodies": [{"shape": {"type": "circle", "r": 1}, "position": [0, 0]}]}"#,
+        )
+        .unwrap();
+        case.bodies[0].velocity = crate::geometry::Vec2::new(1e300, 0.0);
+        case.dt = 1e10;
+        case.duration = 1e11;
+        let dir = std::env::temp_dir().join(format!("dem2d-runner-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let opts = RunOptions {
+            out_dir: dir.clone(),
+            ..Default::default()
+        };
+        let outcome = run_case(&case, "{}", &opts).unwrap();
+        let b = outcome.blowup.expect("a blow-up");
+        assert_eq!((b.step, b.body), (1, 0));
+        assert!(b.reason.contains("non-finite position"), "{}", b.reason);
+        assert_eq!(outcome.summary.status, Status::Blowup);
+        assert_eq!(outcome.summary.steps, 0, "no step completed");
+        let traj = std::fs::read_to_string(dir.join("trajectory.csv")).unwrap();
+        let rows: Vec<&str> = traj.lines().collect();
+        assert_eq!(rows.len(), 3, "{traj}");
+        assert!(rows[1].starts_with("0,0,0,0,0,"), "{}", rows[1]);
+        let last: Vec<&str> = rows[2].split(',').collect();
+        assert_eq!(&last[..3], ["1", "1e10", "0"], "{}", rows[2]);
+        assert_eq!(last[6].parse::<f64>().unwrap(), 1e300);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
     fn case_names_become_one_file_name_component() {
         assert_eq!(file_name_component("settle3_dt1e-5"), "settle3_dt1e-5");
         assert_eq!(file_name_component("../../etc/x"), "_._.._etc_x");
