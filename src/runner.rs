@@ -480,7 +480,9 @@ fn describe(trigger: Trigger, world: &mut World) -> BlowupReport {
     }
 }
 
-/// The warning for bodies that overlap at the start (deepest first, at most five named).
+/// The warning for bodies that overlap at the start (deepest first, at most five named). A
+/// settled pile given as a case overlaps everywhere by design, slightly; a body listed twice,
+/// inside another or below the floor overlaps deeply and is flung out.
 fn initial_overlap_warning(overlaps: &[watch::Overlap]) -> Option<String> {
     let first = overlaps.first()?;
     let named: Vec<String> = overlaps
@@ -497,12 +499,12 @@ fn initial_overlap_warning(overlaps: &[watch::Overlap]) -> Option<String> {
         .collect();
     let more = overlaps.len().saturating_sub(5);
     Some(format!(
-        "{} pair{} overlap{} at the start and will be pushed apart{}: {}{}",
+        "{} pair{} overlap{} at the start (their contacts act from the first step{}): {}{}",
         overlaps.len(),
         if overlaps.len() == 1 { "" } else { "s" },
         if overlaps.len() == 1 { "s" } else { "" },
         if first.ratio > 0.1 {
-            " (deep overlaps release their elastic energy as speed)"
+            "; deep overlaps fling the bodies apart, their elastic energy turned into speed"
         } else {
             ""
         },

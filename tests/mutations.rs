@@ -16,7 +16,7 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 /// Mutated cases run per test (`MUTATION_COUNT` overrides it, for a longer search).
-const MUTATIONS: usize = 1500;
+const MUTATIONS: usize = 1000;
 /// Longest run allowed (the runs take milliseconds; this is the hang detector).
 const TIMEOUT: Duration = Duration::from_secs(60);
 /// Steps per run.

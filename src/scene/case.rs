@@ -31,7 +31,8 @@ use serde_json::{Map, Value};
 pub struct Case {
     pub name: String,
     pub description: String,
-    /// The length unit, for labels only (`"cm"` in the paper's cases; default empty).
+    /// The length unit, for the plots' labels only (`"cm"` in every shipped case: dem2d works in
+    /// cgs; default empty).
     pub units: String,
     pub gravity: Vec2,
     pub dt: f64,
