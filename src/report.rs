@@ -600,6 +600,7 @@ fn speed_vs_error(opts: &FigureOptions) -> Result<SpeedVsError, ReportError> {
         ks: crate::contact_law::Scaled::OverRhoG(36400.0),
         damping: crate::contact_law::LinearDamping::Restitution(1.0),
         friction: 0.0,
+        normal_force: drop.contact.normal_force(),
     };
     for w in &mut elastic.walls {
         w.spec = elastic.contact;

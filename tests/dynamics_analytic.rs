@@ -2,7 +2,7 @@
 //! Each test states its tolerance and why it is that size.
 
 use approx::assert_relative_eq;
-use dem2d::contact_law::{ContactSpec, LinearDamping, Scaled};
+use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
 use dem2d::dynamics::{BodyInit, WallSpec, World};
 use dem2d::geometry::{Shape, Vec2, Wall};
 
@@ -26,6 +26,7 @@ fn linear(kn: f64, ks: f64, eta: f64, friction: f64) -> ContactSpec {
             eta_s: Scaled::Absolute(eta),
         },
         friction,
+        normal_force: NormalForce::Depth,
     }
 }
 
@@ -235,6 +236,7 @@ fn ellipse_on_its_flat_side_sinks_mg_over_kn() {
         ks: Scaled::Absolute(kn),
         damping: LinearDamping::Restitution(0.1),
         friction: 0.5,
+        normal_force: NormalForce::Depth,
     };
     let mut w = on_floor(
         Shape::Ellipse { a, b },
@@ -456,6 +458,7 @@ fn hertz_impact_matches_closed_form_and_an_independent_integration() {
             poisson: nu,
             restitution: e,
             friction: 0.0,
+            normal_force: NormalForce::Depth,
         };
         let mut w = on_floor(
             Shape::Circle { r },

@@ -3,7 +3,7 @@
 //! trajectory is bit-identical for any number of threads; the generated piles are what their
 //! description says, and the 10 000-body case files are exactly the generator's output.
 
-use dem2d::contact_law::{ContactSpec, LinearDamping, Scaled};
+use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
 use dem2d::dynamics::contacts::WALL_BASE;
 use dem2d::dynamics::{BodyInit, WallSpec, World};
 use dem2d::geometry::{Shape, Vec2, Wall};
@@ -37,6 +37,7 @@ fn law(friction: f64) -> ContactSpec {
             eta_s: Scaled::Absolute(20.0),
         },
         friction,
+        normal_force: NormalForce::Area,
     }
 }
 

@@ -22,25 +22,29 @@ pub struct HertzMindlin {
 
 impl HertzMindlin {
     /// `k_n = 4/3 E* √(R* δ)` (T10), `F_n = max(0, k_n δ − η_n v_n)` with
-    /// `η_n = β √(m* k_n)` (T14); `k_t = 8 G* √(R* δ)` (T18), `η_t = η_n`,
+    /// `η_n = β √(m* k_n)` (T14), on the spring's overlap ([`Kinematics::spring_overlap`]: the
+    /// depth, or the area law's `F_n = max(0, ρ k_n δ_eq + η_n δ̇_eq)`, with R* the
+    /// equal-area disks'); `k_t = 8 G* √(R* δ)` (T18), `η_t = η_n`,
     /// `F_t = −k_t δ_t − η_t v_t` (T15) limited by `μ F_n` (T20).
     /// Elastic energy `∫F dδ = (2/5) k_n δ²` plus `½ k_t δ_t²`.
     #[inline]
     pub fn force(&self, k: &Kinematics, h: &mut History) -> ContactForce {
-        let root = (k.r_eff * k.depth.max(0.0)).sqrt();
+        let o = k.spring_overlap();
+        let root = (k.r_eff * o.depth.max(0.0)).sqrt();
         let kn = 4.0 / 3.0 * self.e_star * root; // T(10)
         let eta_n = self.beta * (k.m_eff * kn).sqrt(); // T(14)
-        let spring = kn * k.depth;
-        let fn_ = (spring - eta_n * k.vn).max(0.0);
-        // dF_n/dδ = (3/2) k_n for the time-step estimate.
+        let spring = o.rho * (kn * o.depth);
+        let fn_ = (spring + eta_n * o.rate).max(0.0);
+        // dF_n/dδ = (3/2) k_n ρ² for the time-step estimate.
         let mut out = ContactForce {
             normal: fn_,
             normal_non_elastic: fn_ - spring,
-            elastic_energy: 0.4 * kn * k.depth * k.energy_depth,
-            kn: 1.5 * kn,
-            eta_n,
+            elastic_energy: 0.4 * kn * o.depth * o.energy_depth,
+            kn: 1.5 * kn * o.rho * o.rho,
+            eta_n: eta_n * o.rho,
             ..Default::default()
         };
+        (out.couple, out.couple_non_elastic) = o.couple(kn * o.depth, eta_n);
         if self.friction > 0.0 {
             let kt = 8.0 * self.g_star * root; // T(18)
             let before = 0.5 * kt * h.shear * h.shear;

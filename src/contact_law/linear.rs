@@ -19,21 +19,25 @@ pub struct Linear {
 }
 
 impl Linear {
-    /// `F_n = max(0, k_n δ − η_n v_n)` (T6, clamped so that the contact never pulls);
+    /// `F_n = max(0, k_n δ − η_n v_n)` (T6, clamped so that the contact never pulls) on the
+    /// spring's overlap ([`Kinematics::spring_overlap`]: the depth, or the area law's
+    /// `F_n = max(0, ρ k_n δ_eq + η_n δ̇_eq)`);
     /// `F_t = −k_s δ_t − η_s v_t` (T15) with `δ_t += v_t Δt` (T16), limited by `μ F_n` (T20).
     /// Elastic energy `½k_n δ² + ½k_s δ_t²` (with `δ²` → `δ·energy_depth`).
     #[inline]
     pub fn force(&self, k: &Kinematics, h: &mut History) -> ContactForce {
-        let spring = self.kn * k.depth;
-        let fn_ = (spring - self.eta_n * k.vn).max(0.0); // T(6)
+        let o = k.spring_overlap();
+        let spring = o.rho * (self.kn * o.depth);
+        let fn_ = (spring + self.eta_n * o.rate).max(0.0); // T(6)
         let mut out = ContactForce {
             normal: fn_,
             normal_non_elastic: fn_ - spring,
-            elastic_energy: 0.5 * self.kn * k.depth * k.energy_depth,
-            kn: self.kn,
-            eta_n: self.eta_n,
+            elastic_energy: 0.5 * self.kn * o.depth * o.energy_depth,
+            kn: self.kn * o.rho * o.rho,
+            eta_n: self.eta_n * o.rho,
             ..Default::default()
         };
+        (out.couple, out.couple_non_elastic) = o.couple(self.kn * o.depth, self.eta_n);
         if self.friction > 0.0 {
             let before = 0.5 * self.ks * h.shear * h.shear;
             h.shear += k.vt * k.dt; // T(16)

@@ -10,6 +10,24 @@
 //! T writes the Voigt element for the force on i with `n_ij` pointing from j to i and the overlap
 //! negative (T6–T9); with our n (i → j) and δ > 0 the same law reads `F_n = k_n δ − η_n v_n` for
 //! the force on j.
+//!
+//! # What the normal spring acts on ([`NormalForce`])
+//! - **Depth** (P's model): the spring acts on the depth δ along the chord normal, at the chord
+//!   midpoint. For non-circular bodies this force is not the gradient of any potential: a
+//!   closed loop of configurations gains or loses work (of order δ/a per collision).
+//! - **Area** (the energy-conserving contact of Feng, Han & Owen 2012): the normal force derives
+//!   from a potential `W(A)` of the overlap area A. Moving j changes A by `−L n·du` (L the chord
+//!   length), so `−∇W` is the force `W′(A) L` along P's chord normal at P's chord midpoint — the
+//!   same geometry, another magnitude. `W` keeps the stiffness parameters' meaning: with
+//!   `δ_eq(A)` the overlap of two disks of the bodies' equal-area radii whose lens has area A
+//!   (and `L_eq = dA/dδ_eq` that lens's chord), `W = ∫F_s(δ_eq) dδ_eq` with `F_s` the law's
+//!   spring (`k_n δ`, or Hertz), so two disks get exactly the spring on their depth. Then
+//!   `F_n = ρ F_s(δ_eq) + η δ̇_eq` with `ρ = L/L_eq` and `δ̇_eq = Ȧ/L_eq = −ρ v_n`: the law
+//!   evaluated at the equivalent overlap, scaled by ρ. The dashpot acts on the same overlap's
+//!   rate with the coefficient η/ρ, so that the damping ratio, and hence a requested
+//!   restitution, is that of the spring on the depth for any ρ (a smooth contact whose true
+//!   radius of curvature is R*_t has ρ ≈ (R*_t/R*_eq)^{1/3} and stiffness `k_n ρ²` against its
+//!   depth). See [`EquivalentOverlap`] for two flat faces.
 
 pub mod hertz_mindlin;
 pub mod linear;
@@ -18,6 +36,82 @@ pub mod spec;
 pub use hertz_mindlin::HertzMindlin;
 pub use linear::Linear;
 pub use spec::{ContactSpec, LinearDamping, Scaled};
+
+use crate::geometry::overlap_area::DiskLens;
+
+/// What the normal spring acts on (a case's `contact.normal_force`); see the module
+/// documentation.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum NormalForce {
+    /// P's spring on the depth δ (kept to reproduce P; not conservative for non-circular bodies).
+    Depth,
+    /// The overlap-area potential `W(A)`: conservative for every pair.
+    #[default]
+    Area,
+}
+
+impl NormalForce {
+    /// The name used in case files.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            NormalForce::Depth => "depth",
+            NormalForce::Area => "area",
+        }
+    }
+}
+
+/// How an overlap area A maps to the overlap the spring acts on, `δ_eq(A)`, and
+/// `L_eq = dA/dδ_eq`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum EquivalentOverlap {
+    /// The overlap of two disks (the bodies' equal-area radii; ∞ for a wall) whose lens has area
+    /// A, with the lens's chord.
+    Lens(DiskLens),
+    /// Two flat faces: `δ_eq = A/ℓ`, `L_eq = ℓ` (ℓ the pair's mean face length), so two faces
+    /// of length ℓ pressed flat by δ feel exactly the spring on δ. A potential of A alone
+    /// cannot stiffen a face against tilting while both its ends stay in contact (A does not
+    /// change): that rocking is neutral within a band of ±2δ/ℓ.
+    Flat(f64),
+}
+
+impl EquivalentOverlap {
+    /// `(δ_eq, L_eq)` for the overlap area `area`. Past half the smaller disk (δ_eq > r1, far
+    /// beyond any DEM overlap) `L_eq` is kept above 1e-3 r1: it vanishes when one disk covers
+    /// the other wholly, and ρ = L/L_eq must stay finite.
+    #[inline]
+    pub fn depth_for_area(&self, area: f64) -> (f64, f64) {
+        match *self {
+            EquivalentOverlap::Lens(lens) => {
+                let (delta, chord) = lens.depth_for_area(area);
+                let r1 = lens.radii().0;
+                (
+                    delta,
+                    if delta > r1 {
+                        chord.max(1e-3 * r1)
+                    } else {
+                        chord
+                    },
+                )
+            }
+            EquivalentOverlap::Flat(ell) => (area / ell, ell),
+        }
+    }
+}
+
+/// The area law's view of a contact (see the module documentation).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AreaKinematics {
+    /// Overlap area A.
+    pub area: f64,
+    /// `|∂A/∂x_j|`: the chord length L for two crossings.
+    pub length: f64,
+    /// `dA/dt` (`−L v_n` for two crossings).
+    pub rate: f64,
+    /// The gradient's couple (see `narrow_phase::OverlapArea`; zero for two crossings).
+    pub couple: f64,
+    /// How A maps to the overlap the spring acts on.
+    pub equivalent: EquivalentOverlap,
+}
 
 /// What a law needs to know about one contact at one instant.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -38,6 +132,73 @@ pub struct Kinematics {
     pub r_eff: f64,
     /// Time step (the shear displacement is integrated over it, T16).
     pub dt: f64,
+    /// For the area law: the overlap area and its rate (None: the spring acts on `depth`).
+    pub area: Option<AreaKinematics>,
+}
+
+/// The overlap a normal spring acts on, for one contact (see [`Kinematics::spring_overlap`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpringOverlap {
+    /// The overlap the spring acts on: δ, or the area law's δ_eq.
+    pub depth: f64,
+    /// Its rate of change (`−v_n` for the depth).
+    pub rate: f64,
+    /// The factor mapping the spring's force onto the contact normal (1 for the depth).
+    pub rho: f64,
+    /// The overlap whose product with `depth` gives twice the spring's energy over `k_n`.
+    pub energy_depth: f64,
+    /// `L_eq = dA/dδ_eq` and the gradient's couple (area law; 1 and 0 for the depth).
+    pub chord: f64,
+    pub couple: f64,
+}
+
+impl SpringOverlap {
+    /// The couple that goes with the normal force of a deep overlap, and its non-elastic part
+    /// (zero but for the area law's four-crossing overlaps): the normal force per unit
+    /// `|∂A/∂x_j|`, `λ = (F_s + (η/ρ) δ̇_eq)/L_eq` (so that `F_n = λ L`), times the
+    /// gradient's couple. `spring` is `F_s(δ_eq)` (before ρ), `eta` the dashpot. For an
+    /// exactly symmetric crossing the gradient is a pure couple (L = 0, ρ = 0): ρ is then taken
+    /// as 1e-3 in the dashpot's share.
+    #[inline]
+    pub fn couple(&self, spring: f64, eta: f64) -> (f64, f64) {
+        if self.couple == 0.0 {
+            return (0.0, 0.0);
+        }
+        let lambda = ((spring + eta / self.rho.max(1e-3) * self.rate) / self.chord).max(0.0);
+        (
+            lambda * self.couple,
+            (lambda - spring / self.chord) * self.couple,
+        )
+    }
+}
+
+impl Kinematics {
+    /// The overlap the normal spring acts on: the depth `(δ, −v_n, ρ = 1)`, or for the area law
+    /// `(δ_eq, Ȧ/L_eq, ρ = L/L_eq)`.
+    #[inline]
+    pub fn spring_overlap(&self) -> SpringOverlap {
+        match &self.area {
+            None => SpringOverlap {
+                depth: self.depth,
+                rate: -self.vn,
+                rho: 1.0,
+                energy_depth: self.energy_depth,
+                chord: 1.0,
+                couple: 0.0,
+            },
+            Some(a) => {
+                let (delta, chord) = a.equivalent.depth_for_area(a.area);
+                SpringOverlap {
+                    depth: delta,
+                    rate: a.rate / chord,
+                    rho: a.length / chord,
+                    energy_depth: delta,
+                    chord,
+                    couple: a.couple,
+                }
+            }
+        }
+    }
 }
 
 /// The per-contact state carried from step to step while the contact lasts (T16): the shear
@@ -76,6 +237,10 @@ pub struct ContactForce {
     pub shear_energy: f64,
     /// Change of the shear spring's energy over this step (including a reset by the slider).
     pub shear_energy_change: f64,
+    /// A couple on j (its opposite on i) and its non-elastic part (see
+    /// [`SpringOverlap::couple`]).
+    pub couple: f64,
+    pub couple_non_elastic: f64,
 }
 
 /// A contact law with its parameters resolved for one pair.

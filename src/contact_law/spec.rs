@@ -5,7 +5,7 @@
 //! bodies', the body's against a wall) and |g|, and in a scene of one density ρ cancels from
 //! every equation of motion.
 
-use super::{HertzMindlin, Law, Linear, damping_factor_hertz, damping_ratio_linear};
+use super::{HertzMindlin, Law, Linear, NormalForce, damping_factor_hertz, damping_ratio_linear};
 
 /// A value given absolutely or divided by ρg.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,16 +42,26 @@ pub enum ContactSpec {
         ks: Scaled,
         damping: LinearDamping,
         friction: f64,
+        normal_force: NormalForce,
     },
     HertzMindlin {
         young: f64,
         poisson: f64,
         restitution: f64,
         friction: f64,
+        normal_force: NormalForce,
     },
 }
 
 impl ContactSpec {
+    /// What the normal spring acts on.
+    pub fn normal_force(&self) -> NormalForce {
+        match *self {
+            ContactSpec::Linear { normal_force, .. }
+            | ContactSpec::HertzMindlin { normal_force, .. } => normal_force,
+        }
+    }
+
     /// Coulomb friction coefficient.
     pub fn friction(&self) -> f64 {
         match *self {
@@ -71,6 +81,7 @@ impl ContactSpec {
                 ks,
                 damping,
                 friction,
+                ..
             } => {
                 let kn = kn.value(rho, g);
                 let (eta_n, eta_s) = match damping {
@@ -95,6 +106,7 @@ impl ContactSpec {
                 poisson,
                 restitution,
                 friction,
+                ..
             } => {
                 let (e2, nu2) = match *other_material {
                     ContactSpec::HertzMindlin { young, poisson, .. } => (young, poisson),

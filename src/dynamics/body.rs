@@ -40,6 +40,8 @@ pub struct Bodies {
     pub inv_inertia: Vec<f64>,
     /// Radius of the bounding circle about the centroid.
     pub bound: Vec<f64>,
+    /// Radius of the disk of the same area (the area law's equivalent lens).
+    pub area_radius: Vec<f64>,
     /// Pose and velocities.
     pub state: Vec<BodyState>,
     /// The body is a circle (its orientation enters no contact; the drift reads this rather
@@ -62,6 +64,7 @@ impl Bodies {
             inertia: Vec::with_capacity(n),
             inv_inertia: Vec::with_capacity(n),
             bound: Vec::with_capacity(n),
+            area_radius: Vec::with_capacity(n),
             state: Vec::with_capacity(n),
             is_circle: Vec::with_capacity(n),
             force: Vec::with_capacity(n),
@@ -77,6 +80,8 @@ impl Bodies {
             b.inertia.push(i);
             b.inv_inertia.push(1.0 / i);
             b.bound.push(init.shape.bounding_radius());
+            b.area_radius
+                .push((area(&init.shape) / std::f64::consts::PI).sqrt());
             b.is_circle.push(matches!(init.shape, Shape::Circle { .. }));
             b.state.push(BodyState {
                 pose: Pose::new(init.position, init.angle),

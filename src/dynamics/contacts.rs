@@ -120,6 +120,10 @@ pub struct ContactData {
     /// energy — the normal force's non-elastic part (dashpot, or what the clamp `F_n ≥ 0`
     /// withholds) plus the whole shear force (whose spring's energy is accounted apart).
     pub force_non_elastic: Vec2,
+    /// A couple on j (its opposite on i), and its non-elastic part: zero but for the area law's
+    /// deep (four-crossing) overlaps.
+    pub couple: f64,
+    pub couple_non_elastic: f64,
 }
 
 /// The rest of a slot's contact, read only for reports (the depth) and the critical time step

@@ -33,12 +33,13 @@
 use super::body::Bodies;
 use super::contacts::{ContactData, ContactExtra, Slot, WALL_BASE, WarmStart, reserve_for};
 use super::world::{WallSpec, World};
-use crate::contact_law::{ContactSpec, Kinematics};
+use crate::contact_law::{AreaKinematics, ContactSpec, EquivalentOverlap, Kinematics, NormalForce};
 use crate::geometry::Shape;
+use crate::geometry::overlap_area::DiskLens;
 use crate::geometry::{Pose, Vec2};
 use crate::narrow_phase::circle_circle::overlap_circle_circle;
 use crate::narrow_phase::circle_wall::overlap_wall_circle;
-use crate::narrow_phase::{ContactState, contact_bodies_warm, contact_wall_body};
+use crate::narrow_phase::{ContactState, OverlapArea, contact_bodies_with, contact_wall_body_with};
 use rayon::prelude::*;
 use std::fmt;
 
@@ -231,7 +232,7 @@ impl World {
     }
 
     /// Evaluates the forces of the current configuration without advancing (used at t = 0).
-    pub(crate) fn evaluate_forces(&mut self) {
+    pub fn evaluate_forces(&mut self) {
         self.size_partials();
         self.rebuild_neighbours();
         self.compute_slots(0.0);
@@ -492,10 +493,12 @@ impl World {
                         let (sign, r) = (a.sign(), d.point - x);
                         let fs = d.force * sign;
                         f += fs; // T(4)
-                        m += cross(r, fs); // T(22): r from the centroid to the contact point
+                        // T(22): r from the centroid to the contact point; plus the contact's
+                        // couple (on j; its opposite on i).
+                        m += cross(r, fs) + d.couple * sign;
                         let fe = d.force_non_elastic * sign;
                         f_ne += fe;
-                        m_ne += cross(r, fe);
+                        m_ne += cross(r, fe) + d.couple_non_elastic * sign;
                     }
                     force[k] = f;
                     torque[k] = m;
@@ -550,60 +553,92 @@ fn update_slot(
 ) {
     let (iu, ju) = (slot.i as usize, slot.j as usize);
     let wall = slot.is_wall();
+    let governing = if wall {
+        &walls[ju - WALL_BASE as usize].spec
+    } else {
+        spec
+    };
+    let area_law = governing.normal_force() == NormalForce::Area;
     let mut warm = None;
-    // Circles take the lean path (no chord: nothing below reads it); every other pair the
-    // chord contact. Either way: state, point, normal, depth, and a flat overlap's spring.
+    // Circles take the lean path (no chord: nothing below reads it; both normal-force laws are
+    // the spring on the depth for two disks); every other pair the chord contact, with the
+    // overlap area under the area law.
     let lean = match (wall, b.shape[iu], b.shape.get(ju)) {
         (true, Shape::Circle { r }, _) => {
             overlap_wall_circle(&walls[ju - WALL_BASE as usize].wall, r, &b.state[iu].pose)
-                .map(|(s, pt, n, d)| (s, pt, n, d, None))
+                .map(|(s, pt, n, d)| (s, pt, n, d, Spring::Depth))
         }
         (false, Shape::Circle { r: ri }, Some(&Shape::Circle { r: rj })) => {
             overlap_circle_circle(ri, &b.state[iu].pose, rj, &b.state[ju].pose)
-                .map(|(s, pt, n, d)| (s, pt, n, d, None))
+                .map(|(s, pt, n, d)| (s, pt, n, d, Spring::Depth))
         }
         _ => {
             let c = if wall {
-                contact_wall_body(
+                contact_wall_body_with(
                     &walls[ju - WALL_BASE as usize].wall,
                     &b.shape[iu],
                     &b.state[iu].pose,
+                    area_law,
                 )
             } else {
                 // Conic pairs start from last step's crossings (if the contact lasts).
                 // (Only a separating axis survives a separated step.)
                 let guess = warm_start.as_ref().and_then(|w| w.get());
-                let (c, next) = contact_bodies_warm(
+                let (c, next, _) = contact_bodies_with(
                     &b.shape[iu],
                     &b.state[iu].pose,
                     &b.shape[ju],
                     &b.state[ju].pose,
                     guess,
+                    area_law,
                 );
                 warm = next;
                 c
             };
             c.geometry.map(|g| {
-                // Flat on flat: a Winkler foundation (see `FlatOverlap`) — resultant k′A with
-                // k′ = k_n/ℓ, ℓ the pair's face length, at the overlap centroid; energy k′Aȳ.
-                // The spring then acts on δ_s = A/ℓ with energy ½k_n δ_s (2ȳ).
-                let flat = match g.flat {
-                    Some(f) if c.state == ContactState::Overlap => {
+                let spring = match (g.flat, g.area) {
+                    // Flat on flat against a wall: a Winkler foundation (see `FlatOverlap`),
+                    // under either law (against a straight line it is the gradient of its
+                    // energy) — resultant k′A with k′ = k_n/ℓ at the overlap centroid; energy
+                    // k′Aȳ. The spring then acts on δ_s = A/ℓ with energy ½k_n δ_s (2ȳ).
+                    (Some(f), _) if c.state == ContactState::Overlap && (wall || !area_law) => {
                         let ell = if wall {
                             face_length(&b.shape[iu])
                         } else {
                             0.5 * (face_length(&b.shape[iu]) + face_length(&b.shape[ju]))
                         };
                         let ybar = (f.centroid - g.chord.0).dot(&g.normal).abs();
-                        Some((f.area / ell, 2.0 * ybar, f.centroid))
+                        Spring::Winkler(f.area / ell, 2.0 * ybar, f.centroid)
                     }
-                    _ => None,
+                    // The area potential: between two rectangles, the flat-equivalent overlap;
+                    // otherwise the equal-area disks' lens.
+                    (_, Some(a)) if area_law => {
+                        let flat_pair = !wall
+                            && matches!(
+                                (b.shape[iu], b.shape[ju]),
+                                (Shape::Rectangle { .. }, Shape::Rectangle { .. })
+                            );
+                        let equivalent = if flat_pair {
+                            EquivalentOverlap::Flat(
+                                0.5 * (face_length(&b.shape[iu]) + face_length(&b.shape[ju])),
+                            )
+                        } else {
+                            let far = if wall {
+                                f64::INFINITY
+                            } else {
+                                b.area_radius[ju]
+                            };
+                            EquivalentOverlap::Lens(DiskLens::new(b.area_radius[iu], far))
+                        };
+                        Spring::Area(a, equivalent)
+                    }
+                    _ => Spring::Depth,
                 };
-                (c.state, g.point, g.normal, g.depth, flat)
+                (c.state, g.point, g.normal, g.depth, spring)
             })
         }
     };
-    let (state, geo_point, n_, depth, flat) = match lean {
+    let (state, geo_point, geo_normal, depth, spring) = match lean {
         Some(l) if l.3 > 0.0 => l,
         // Separated, or touching without overlap: no force, no history.
         _ => {
@@ -626,8 +661,14 @@ fn update_slot(
         ContactState::Contained => p.contained += 1,
         _ => {}
     }
-    // Elsewhere than flat on flat: the depth, at the chord midpoint.
-    let (spring_depth, energy_depth, point) = flat.unwrap_or((depth, depth, geo_point));
+    // Where the force acts and along which normal: the chord midpoint and normal (the area
+    // gradient's for the area law, which equal them for two crossings); for a Winkler contact
+    // the overlap's centroid.
+    let (point, n_) = match spring {
+        Spring::Winkler(_, _, centroid) => (centroid, geo_normal),
+        Spring::Area(a, _) => (a.point, a.normal),
+        Spring::Depth => (geo_point, geo_normal),
+    };
     let t_ = Vec2::new(-n_.y, n_.x);
     // The body that receives +F ("j" of the law) and the one that receives −F.
     let (recv, give) = if wall { (iu, None) } else { (ju, Some(iu)) };
@@ -635,35 +676,58 @@ fn update_slot(
     let mut v_rel = b.point_velocity(recv, r_recv);
     let mut inv_m = b.inv_mass[recv];
     let mut rho = b.density[recv];
+    let mut spin = b.state[recv].omega; // ω_j − ω_i, for the rate of a deep overlap's area
     if let Some(k) = give {
         v_rel -= b.point_velocity(k, point - b.state[k].pose.position);
         inv_m += b.inv_mass[k];
         rho = 0.5 * (rho + b.density[k]);
+        spin -= b.state[k].omega;
     }
-    let governing = if wall {
-        &walls[ju - WALL_BASE as usize].spec
-    } else {
-        spec
-    };
-    // R* only matters to Hertz–Mindlin (T11): a linear scene does not pay for curvatures.
-    let r_eff = match governing {
-        ContactSpec::HertzMindlin { .. } => {
+    let vn = v_rel.dot(&n_);
+    // R* only matters to Hertz–Mindlin (T11): a linear scene does not pay for curvatures. The
+    // area law takes the equal-area disks' (so that its potential depends on A alone).
+    let r_eff = match (governing, &spring) {
+        (ContactSpec::HertzMindlin { .. }, Spring::Area(_, EquivalentOverlap::Lens(lens))) => {
+            let (r1, r2) = lens.radii();
+            if r2.is_finite() {
+                r1 * r2 / (r1 + r2)
+            } else {
+                r1
+            }
+        }
+        (ContactSpec::HertzMindlin { .. }, _) => {
             let mut inv_r = 1.0 / b.curvature_radius(recv, -n_);
             if let Some(k) = give {
                 inv_r += 1.0 / b.curvature_radius(k, n_);
             }
             1.0 / inv_r // T(11)
         }
-        ContactSpec::Linear { .. } => f64::NAN,
+        (ContactSpec::Linear { .. }, _) => f64::NAN,
+    };
+    let (spring_depth, energy_depth, area) = match spring {
+        Spring::Winkler(ds, de, _) => (ds, de, None),
+        Spring::Area(a, equivalent) => (
+            depth,
+            depth,
+            Some(AreaKinematics {
+                area: a.area,
+                length: a.length,
+                rate: -a.length * vn + a.couple * spin,
+                couple: a.couple,
+                equivalent,
+            }),
+        ),
+        Spring::Depth => (depth, depth, None),
     };
     let kin = Kinematics {
         depth: spring_depth,
         energy_depth,
-        vn: v_rel.dot(&n_),
+        vn,
         vt: v_rel.dot(&t_),
         m_eff: 1.0 / inv_m, // T(13)
         r_eff,
         dt,
+        area,
     };
     let law = match laws {
         Some(l) => l[if wall { 1 + ju - WALL_BASE as usize } else { 0 }],
@@ -701,6 +765,8 @@ fn update_slot(
         point,
         force: f,
         force_non_elastic: f_ne,
+        couple: cf.couple,
+        couple_non_elastic: cf.couple_non_elastic,
     };
     if let Some(e) = extra {
         *e = ContactExtra {
@@ -712,6 +778,18 @@ fn update_slot(
             eta_t: cf.eta_t as f32,
         };
     }
+}
+
+/// What the normal spring of a slot acts on, as the geometry found it.
+#[derive(Clone, Copy, Debug)]
+enum Spring {
+    /// The depth, at the chord midpoint.
+    Depth,
+    /// A Winkler foundation: `δ_s = A/ℓ`, twice the centroid's distance from the chord, and
+    /// the overlap's centroid (where it acts).
+    Winkler(f64, f64, Vec2),
+    /// The area potential.
+    Area(OverlapArea, EquivalentOverlap),
 }
 
 /// The face length ℓ of a flat-sided shape for the Winkler contact: the mean side, `(w + h)/2`,

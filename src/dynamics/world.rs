@@ -169,6 +169,7 @@ impl World {
             + held(&b.inertia)
             + held(&b.inv_inertia)
             + held(&b.bound)
+            + held(&b.area_radius)
             + held(&b.state)
             + held(&b.is_circle)
             + held(&b.force)

@@ -6,6 +6,7 @@
 pub mod conic;
 pub mod cubic;
 pub mod mass;
+pub mod overlap_area;
 pub mod pencil;
 pub mod shape;
 pub mod support;

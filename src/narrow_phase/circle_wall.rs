@@ -1,6 +1,7 @@
 //! Wall–circle contact in closed form: the chord is where the wall line cuts the circle.
 
-use super::{Contact, ContactGeometry, ContactState, TOUCH_TOL};
+use super::{Contact, ContactGeometry, ContactState, OverlapArea, TOUCH_TOL};
+use crate::geometry::overlap_area::ellipse_cap;
 use crate::geometry::{Pose, Vec2, Wall};
 
 /// What the dynamics needs of a wall–circle pair — state, contact point, normal, depth —
@@ -28,19 +29,38 @@ pub fn overlap_wall_circle(
     Some((state, point, n, depth))
 }
 
-/// Contact between a wall (i) and a circle (j) of radius `r`; the normal is the wall's normal.
+/// Contact between a wall (i) and a circle (j) of radius `r`, with the overlap area; the normal
+/// is the wall's normal.
 #[inline]
 pub fn contact_wall_circle(wall: &Wall, r: f64, pose: &Pose) -> Contact {
+    contact_wall_circle_with(wall, r, pose, true)
+}
+
+/// [`contact_wall_circle`], with the overlap area only when `area` is set.
+#[inline]
+pub fn contact_wall_circle_with(wall: &Wall, r: f64, pose: &Pose, area: bool) -> Contact {
     let Some((state, point, n, depth)) = overlap_wall_circle(wall, r, pose) else {
         return Contact::SEPARATED;
     };
+    let mut overlap = None;
     let chord = if state == ContactState::Contained {
         (point, point)
     } else {
-        let h = r - depth;
-        let half = ((r - h) * (r + h)).max(0.0).sqrt();
-        let t = Vec2::new(-n.y, n.x) * half;
-        (point - t, point + t)
+        // The sagitta is the depth: no cancellation at small overlaps.
+        let half = (depth * (2.0 * r - depth)).max(0.0).sqrt();
+        let t = Vec2::new(-n.y, n.x);
+        if area && state == ContactState::Overlap {
+            // The cap below the wall line, in the frame (t, n) about the centre.
+            let cap = ellipse_cap(r, r, [-half, depth - r], [2.0 * half, 0.0], depth > r);
+            overlap = Some(OverlapArea {
+                area: cap,
+                length: 2.0 * half,
+                normal: n,
+                point,
+                couple: 0.0,
+            });
+        }
+        (point - t * half, point + t * half)
     };
     Contact {
         state,
@@ -50,6 +70,7 @@ pub fn contact_wall_circle(wall: &Wall, r: f64, pose: &Pose) -> Contact {
             depth,
             chord,
             flat: None,
+            area: overlap,
         }),
     }
 }

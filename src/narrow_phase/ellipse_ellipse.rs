@@ -34,11 +34,13 @@
 //! the pencil.
 
 use super::{
-    Contact, ContactState, LocalFrame, TOUCH_TOL, deep_fallback, orient_symmetric, pow2_floor,
+    Contact, ContactState, LocalFrame, LocalOverlap, TOUCH_TOL, deep_fallback, deep_overlap,
+    orient_symmetric, pow2_floor,
 };
 use crate::geometry::Pose;
 use crate::geometry::conic::EllipseForm;
 use crate::geometry::cubic::{one_real_root, solve_cubic};
+use crate::geometry::overlap_area::ellipse_cap;
 use crate::geometry::pencil::{
     LineCut, Pencil, cut_line, mixed_invariant_from_inverse_squares, split_degenerate,
 };
@@ -69,7 +71,8 @@ pub enum Warm {
     Axis([f64; 2]),
 }
 
-/// Contact between ellipse i (semi-axes `ai` along its x axis, `bi`) and ellipse j.
+/// Contact between ellipse i (semi-axes `ai` along its x axis, `bi`) and ellipse j, with the
+/// overlap area.
 #[inline]
 pub fn contact_ellipse_ellipse(
     ai: f64,
@@ -80,6 +83,50 @@ pub fn contact_ellipse_ellipse(
     pj: &Pose,
 ) -> Contact {
     conic_pair(ai, bi, pi, aj, bj, pj)
+}
+
+/// An ellipse placed in P's local frame (lengths scaled): semi-axes, the direction
+/// `(cos, sin)` of its `a` axis, and its centre `(x, 0)` on the line of centres.
+#[derive(Clone, Copy, Debug)]
+struct Placed {
+    a: f64,
+    b: f64,
+    cos: f64,
+    sin: f64,
+    x: f64,
+}
+
+impl Placed {
+    /// Centred support along `u`.
+    #[inline]
+    fn support(&self, u: [f64; 2]) -> f64 {
+        support(self.a, self.b, self.cos, self.sin, u[0], u[1])
+    }
+
+    /// `max over the ellipse of u·(p − m)` for a unit `u`.
+    #[inline]
+    fn height(&self, u: [f64; 2], m: [f64; 2]) -> f64 {
+        self.support(u) + u[0] * (self.x - m[0]) - u[1] * m[1]
+    }
+
+    /// Area of the ellipse beyond the chord from `p` (on its boundary) by `e`, on the side
+    /// towards `u`: the minor cap, or the rest when its centre is on that side.
+    #[inline]
+    fn cap(&self, p: [f64; 2], e: [f64; 2], u: [f64; 2]) -> f64 {
+        let (c, s) = (self.cos, self.sin);
+        let body = |v: [f64; 2]| [c * v[0] + s * v[1], -s * v[0] + c * v[1]];
+        let rel = [p[0] - self.x, p[1]];
+        let major = u[0] * rel[0] + u[1] * rel[1] < 0.0;
+        ellipse_cap(self.a, self.b, body(rel), body(e), major)
+    }
+}
+
+/// The overlap of two crossings p, p + e with chord normal `n` (i → j): the cap of i beyond the
+/// chord towards j and the cap of j towards i.
+#[inline]
+fn chord_overlap(ei: &Placed, ej: &Placed, p: [f64; 2], e: [f64; 2], n: [f64; 2]) -> LocalOverlap {
+    let area = ei.cap(p, e, n) + ej.cap(p, e, [-n[0], -n[1]]);
+    LocalOverlap::chord(area, p, [p[0] + e[0], p[1] + e[1]], n)
 }
 
 /// Centred support function of an ellipse along a direction `(ux, uy)` of a frame in which its
@@ -94,7 +141,7 @@ fn support(a: f64, b: f64, cos: f64, sin: f64, ux: f64, uy: f64) -> f64 {
 /// with `a = b = r`).
 #[inline]
 pub(crate) fn conic_pair(ai: f64, bi: f64, pi: &Pose, aj: f64, bj: f64, pj: &Pose) -> Contact {
-    conic_pair_warm(ai, bi, pi, aj, bj, pj, None).0
+    conic_pair_traced(ai, bi, pi, aj, bj, pj, None, true).0
 }
 
 /// Refines two crossings of the boundaries `Q_i(p) = 1` (i centred at the origin) and
@@ -213,25 +260,12 @@ fn separating_axis(
 }
 
 /// The pencil contact of two conics (ellipses; a circle is `a = b = r`) with a warm start:
-/// `guess` is last step's [`Warm`] (None for a new contact). Returns the contact and what the
-/// next step starts from: a two-crossing overlap's crossings, or a separating axis.
-#[inline]
-pub fn conic_pair_warm(
-    ai: f64,
-    bi: f64,
-    pi: &Pose,
-    aj: f64,
-    bj: f64,
-    pj: &Pose,
-    guess: Option<Warm>,
-) -> (Contact, Option<Warm>) {
-    let (c, w, _) = conic_pair_traced(ai, bi, pi, aj, bj, pj, guess);
-    (c, w)
-}
-
-/// [`conic_pair_warm`], also telling whether the result came from the warm start (the refined
-/// crossings, or the carried separating axis) rather than from the pencil — for the tests that
-/// hold the warm path to the same bars as the pencil.
+/// `guess` is last step's [`Warm`] (None for a new contact); with `area`, the overlap area and
+/// its gradient too. Returns the contact, what the next step starts from (a two-crossing
+/// overlap's crossings, or a separating axis), and whether the result came from the warm start
+/// (the refined crossings, or the carried separating axis) rather than from the pencil — for
+/// the tests that hold the warm path to the same bars as the pencil.
+#[allow(clippy::too_many_arguments)] // the two ellipses, the guess and what to compute
 #[inline]
 pub fn conic_pair_traced(
     ai: f64,
@@ -241,6 +275,7 @@ pub fn conic_pair_traced(
     bj: f64,
     pj: &Pose,
     guess: Option<Warm>,
+    area: bool,
 ) -> (Contact, Option<Warm>, bool) {
     // Bounding circles first, here where it inlines: separated pairs cost a few ns.
     let (ri, rj) = (ai.max(bi), aj.max(bj));
@@ -248,7 +283,7 @@ pub fn conic_pair_traced(
         return (Contact::SEPARATED, None, false);
     }
     let mut used_warm = false;
-    let (c, w) = conic_pair_inner(ai, bi, pi, aj, bj, pj, guess, &mut used_warm);
+    let (c, w) = conic_pair_inner(ai, bi, pi, aj, bj, pj, guess, area, &mut used_warm);
     (c, w, used_warm)
 }
 
@@ -261,6 +296,7 @@ fn conic_pair_inner(
     bj: f64,
     pj: &Pose,
     guess: Option<Warm>,
+    want_area: bool,
     used_warm: &mut bool,
 ) -> (Contact, Option<Warm>) {
     let dv = pj.position - pi.position;
@@ -316,6 +352,20 @@ fn conic_pair_inner(
         ]
     };
     let tol = TOUCH_TOL;
+    let placed_i = Placed {
+        a: ai,
+        b: bi,
+        cos: cti,
+        sin: sti,
+        x: 0.0,
+    };
+    let placed_j = Placed {
+        a: aj,
+        b: bj,
+        cos: ctj,
+        sin: stj,
+        x: d,
+    };
 
     // The warm paths (see the module documentation): a lasting contact's crossings refined; a
     // separated pair's separating axis confirmed or turned until it separates.
@@ -335,10 +385,15 @@ fn conic_pair_inner(
             if dpt > tol && dpt <= WARM_MAX_DEPTH * bi.min(bj) {
                 let mid = super::midpoint(p, q);
                 *used_warm = true;
+                let mut g = frame.geometry(p, q, mid, n, dpt);
+                if want_area {
+                    let o = chord_overlap(&placed_i, &placed_j, p, [ex, ey], n);
+                    g.area = Some(frame.overlap(&o));
+                }
                 return (
                     Contact {
                         state: ContactState::Overlap,
-                        geometry: Some(frame.geometry(p, q, mid, n, dpt)),
+                        geometry: Some(g),
                     },
                     Some(Warm::Crossings([to_warm(p), to_warm(q)])),
                 );
@@ -433,10 +488,21 @@ fn conic_pair_inner(
             let (p, q, n, dpt) = deep_fallback(&mut crossings, depth);
             if dpt > tol {
                 let mid = super::midpoint(p, q);
+                let mut g = frame.geometry(p, q, mid, n, dpt);
+                if want_area {
+                    let placed = [placed_i, placed_j];
+                    let o = deep_overlap(
+                        &crossings,
+                        [d, 0.0],
+                        |k, u, m| placed[k].height(u, m),
+                        |k, p, q, u| placed[k].cap(p, [q[0] - p[0], q[1] - p[1]], u),
+                    );
+                    g.area = Some(frame.overlap(&o));
+                }
                 return (
                     Contact {
                         state: ContactState::Deep,
-                        geometry: Some(frame.geometry(p, q, mid, n, dpt)),
+                        geometry: Some(g),
                     },
                     None,
                 );
@@ -456,10 +522,17 @@ fn conic_pair_inner(
             };
             let warm = (state == ContactState::Overlap && n_cross == 2)
                 .then(|| Warm::Crossings([to_warm(p), to_warm(q)]));
+            let mut g = frame.geometry(p, q, cut.mid, n, dpt);
+            if want_area && state == ContactState::Overlap {
+                // The chord vector from the half-length, not from two rounded end points.
+                let s = 2.0 * cut.half_sq.max(0.0).sqrt();
+                let o = chord_overlap(&placed_i, &placed_j, p, [s * cut.dir[0], s * cut.dir[1]], n);
+                g.area = Some(frame.overlap(&o));
+            }
             return (
                 Contact {
                     state,
-                    geometry: Some(frame.geometry(p, q, cut.mid, n, dpt)),
+                    geometry: Some(g),
                 },
                 warm,
             );

@@ -1,7 +1,8 @@
 //! Wall–ellipse contact: the wall line ∩ the conic, in the ellipse's own frame
 //! (`x²/a² + y²/b² = 1`), where both the depth and the chord have closed forms.
 
-use super::{Contact, ContactState, LocalFrame, TOUCH_TOL, pow2_floor};
+use super::{Contact, ContactState, LocalFrame, LocalOverlap, TOUCH_TOL, pow2_floor};
+use crate::geometry::overlap_area::ellipse_cap_at_depth;
 use crate::geometry::{Pose, Wall};
 
 /// Contact between a wall (i) and an ellipse (j) with semi-axes `a` (along its x axis) and `b`.
@@ -9,6 +10,13 @@ use crate::geometry::{Pose, Wall};
 /// line and `s(n) = √(a²n_x² + b²n_y²)` the ellipse's support in its own frame.
 #[inline]
 pub fn contact_wall_ellipse(wall: &Wall, a: f64, b: f64, pose: &Pose) -> Contact {
+    wall_ellipse_with(wall, a, b, pose, true)
+}
+
+/// [`contact_wall_ellipse`], with the overlap area (the ellipse's cap beyond the wall line)
+/// only when `area` is set.
+#[inline]
+pub fn wall_ellipse_with(wall: &Wall, a: f64, b: f64, pose: &Pose, area: bool) -> Contact {
     let scale = pow2_floor(a.max(b));
     let inv = 1.0 / scale;
     let (a, b) = (a * inv, b * inv);
@@ -49,6 +57,14 @@ pub fn contact_wall_ellipse(wall: &Wall, a: f64, b: f64, pose: &Pose) -> Contact
     };
     let mut g = frame.geometry(p, q, mid, [nx, ny], depth);
     g.normal = wall.normal;
+    if area && state == ContactState::Overlap {
+        // The part of the ellipse below the wall line, from the depth (exact to rounding).
+        let cap = ellipse_cap_at_depth(a, b, [-nx, -ny], depth);
+        g.area = Some(frame.overlap(&LocalOverlap::chord(cap, p, q, [nx, ny])));
+        if let Some(o) = &mut g.area {
+            o.normal = wall.normal;
+        }
+    }
     Contact {
         state,
         geometry: Some(g),

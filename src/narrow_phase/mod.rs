@@ -75,6 +75,36 @@ pub struct ContactGeometry {
     /// The overlap polygon's area and centroid where both sides are flat (rectangle–wall,
     /// rectangle–rectangle); `None` otherwise. See [`FlatOverlap`].
     pub flat: Option<FlatOverlap>,
+    /// The overlap area and its gradient, when asked for (see [`OverlapArea`]); `None`
+    /// otherwise, and for touching pairs.
+    pub area: Option<OverlapArea>,
+}
+
+/// The overlap area `A` of a pair and how it changes with j's rigid motion: the geometry of the
+/// energy-conserving normal force, which derives from a potential `W(A)` (Feng, Han & Owen
+/// 2012). Moving j by `du` and turning it by `dθ` about its centroid `c_j` changes the area by
+///
+/// `dA = −length · n·du − (length · (point − c_j) × n + couple) dθ`,
+///
+/// so the force `W′(A) · length · n` at `point` plus the couple `W′(A) · couple` on j (their
+/// opposites on i) is exactly `−∇W`. For two crossings (divergence theorem over the part of j
+/// inside i) `length` is the chord length L, `n` and `point` are the chord's normal and
+/// midpoint — P's chord, so only the magnitude differs from a spring on the depth — and the
+/// couple is zero. For four or more crossings the gradient is the sum, over the arcs of j's
+/// boundary inside i, of each arc's closing chord `L_k n_k` at its midpoint; `point` is then the
+/// crossings' mean and `couple` what the sum leaves about it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OverlapArea {
+    /// Area of the overlap.
+    pub area: f64,
+    /// `|∂A/∂x_j|`: the chord length for two crossings.
+    pub length: f64,
+    /// Unit vector along `−∂A/∂x_j` (from i towards j).
+    pub normal: Vec2,
+    /// Where the force acts (world coordinates).
+    pub point: Vec2,
+    /// The gradient's couple about `point`, see above (zero for two crossings).
+    pub couple: f64,
 }
 
 /// The overlap of two flat-sided objects (a polygon), for a contact that acts like a Winkler
@@ -114,6 +144,11 @@ impl Contact {
     pub fn swapped(mut self) -> Contact {
         if let Some(g) = &mut self.geometry {
             g.normal = -g.normal;
+            if let Some(a) = &mut g.area {
+                // The other body's gradient: the opposite force and the opposite couple.
+                a.normal = -a.normal;
+                a.couple = -a.couple;
+            }
         }
         self
     }
@@ -126,7 +161,8 @@ pub enum Object {
     Wall(Wall),
 }
 
-/// Contact between two objects (at least one a body); `None` for two walls.
+/// Contact between two objects (at least one a body), with the overlap area; `None` for two
+/// walls.
 pub fn contact(i: &Object, j: &Object) -> Option<Contact> {
     match (i, j) {
         (
@@ -147,38 +183,14 @@ pub fn contact(i: &Object, j: &Object) -> Option<Contact> {
     }
 }
 
-/// Contact between two bodies, dispatched on the pair of shapes (closed forms where they exist:
-/// a circle pair never touches the conic machinery).
+/// Contact between two bodies, with the overlap area (see [`contact_bodies_with`]).
 #[inline]
 pub fn contact_bodies(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose) -> Contact {
-    use Shape::*;
-    match (*si, *sj) {
-        (Circle { r: ri }, Circle { r: rj }) => {
-            circle_circle::contact_circle_circle(ri, pi, rj, pj)
-        }
-        (Circle { r }, Ellipse { a, b }) => circle_ellipse::contact_circle_ellipse(r, pi, a, b, pj),
-        (Ellipse { a, b }, Circle { r }) => {
-            circle_ellipse::contact_circle_ellipse(r, pj, a, b, pi).swapped()
-        }
-        (Ellipse { a: ai, b: bi }, Ellipse { a: aj, b: bj }) => {
-            ellipse_ellipse::contact_ellipse_ellipse(ai, bi, pi, aj, bj, pj)
-        }
-        (Rectangle { w, h }, Circle { .. } | Ellipse { .. }) => {
-            rectangle_conic::contact_rectangle_conic(w, h, pi, sj, pj)
-        }
-        (Circle { .. } | Ellipse { .. }, Rectangle { w, h }) => {
-            rectangle_conic::contact_rectangle_conic(w, h, pj, si, pi).swapped()
-        }
-        (Rectangle { w: wi, h: hi }, Rectangle { w: wj, h: hj }) => {
-            rectangle_rectangle::contact_rectangle_rectangle(wi, hi, pi, wj, hj, pj)
-        }
-    }
+    contact_bodies_with(si, pi, sj, pj, None, true).0
 }
 
-/// [`contact_bodies`] with a warm start for the pairs that take the pencil (circle–ellipse and
-/// ellipse–ellipse; see [`ellipse_ellipse`]): `guess` is what the last step returned for this
-/// pair (None for a new contact); the returned [`ellipse_ellipse::Warm`] is the guess for the
-/// next step. Other pairs ignore the guess and return none.
+/// [`contact_bodies_with`] without the overlap area, from a warm start (the chord geometry alone,
+/// as the depth law and the kernel benchmark use it).
 #[inline]
 pub fn contact_bodies_warm(
     si: &Shape,
@@ -187,12 +199,12 @@ pub fn contact_bodies_warm(
     pj: &Pose,
     guess: Option<ellipse_ellipse::Warm>,
 ) -> (Contact, Option<ellipse_ellipse::Warm>) {
-    let (c, warm, _) = contact_bodies_traced(si, pi, sj, pj, guess);
+    let (c, warm, _) = contact_bodies_with(si, pi, sj, pj, guess, false);
     (c, warm)
 }
 
-/// [`contact_bodies_warm`], also telling whether the warm start gave the result (see
-/// [`ellipse_ellipse::conic_pair_traced`]); for the tests of the warm path.
+/// [`contact_bodies_with`] with the overlap area, also telling whether the warm start gave the
+/// result; for the tests of the warm path.
 #[inline]
 pub fn contact_bodies_traced(
     si: &Shape,
@@ -201,27 +213,64 @@ pub fn contact_bodies_traced(
     pj: &Pose,
     guess: Option<ellipse_ellipse::Warm>,
 ) -> (Contact, Option<ellipse_ellipse::Warm>, bool) {
+    contact_bodies_with(si, pi, sj, pj, guess, true)
+}
+
+/// Contact between two bodies, dispatched on the pair of shapes (closed forms where they exist:
+/// a circle pair never touches the conic machinery); with `area`, also the overlap area and its
+/// gradient ([`OverlapArea`]). The pairs that take the pencil (circle–ellipse and
+/// ellipse–ellipse; see [`ellipse_ellipse`]) start from `guess`, what the last step returned for
+/// this pair (None for a new contact), and return the guess for the next step; other pairs
+/// ignore it and return none. The last value tells whether the warm start gave the result.
+#[inline]
+pub fn contact_bodies_with(
+    si: &Shape,
+    pi: &Pose,
+    sj: &Shape,
+    pj: &Pose,
+    guess: Option<ellipse_ellipse::Warm>,
+    area: bool,
+) -> (Contact, Option<ellipse_ellipse::Warm>, bool) {
     use Shape::*;
     use ellipse_ellipse::conic_pair_traced;
+    let plain = |c: Contact| (c, None, false);
     match (*si, *sj) {
-        (Circle { r }, Ellipse { a, b }) => conic_pair_traced(r, r, pi, a, b, pj, guess),
+        (Circle { r: ri }, Circle { r: rj }) => plain(circle_circle::contact_circle_circle_with(
+            ri, pi, rj, pj, area,
+        )),
+        (Circle { r }, Ellipse { a, b }) => conic_pair_traced(r, r, pi, a, b, pj, guess, area),
         (Ellipse { a, b }, Circle { r }) => {
-            let (c, warm, used) = conic_pair_traced(r, r, pj, a, b, pi, guess);
+            let (c, warm, used) = conic_pair_traced(r, r, pj, a, b, pi, guess, area);
             (c.swapped(), warm, used)
         }
         (Ellipse { a: ai, b: bi }, Ellipse { a: aj, b: bj }) => {
-            conic_pair_traced(ai, bi, pi, aj, bj, pj, guess)
+            conic_pair_traced(ai, bi, pi, aj, bj, pj, guess, area)
         }
-        _ => (contact_bodies(si, pi, sj, pj), None, false),
+        (Rectangle { w, h }, Circle { .. } | Ellipse { .. }) => plain(
+            rectangle_conic::rectangle_conic_with(w, h, pi, sj, pj, area),
+        ),
+        (Circle { .. } | Ellipse { .. }, Rectangle { w, h }) => {
+            plain(rectangle_conic::rectangle_conic_with(w, h, pj, si, pi, area).swapped())
+        }
+        (Rectangle { w: wi, h: hi }, Rectangle { w: wj, h: hj }) => plain(
+            rectangle_rectangle::rectangle_rectangle_with(wi, hi, pi, wj, hj, pj, area),
+        ),
     }
 }
 
-/// Contact between a wall (as i) and a body (as j): the normal is the wall's normal.
+/// Contact between a wall (as i) and a body (as j), with the overlap area: the normal is the
+/// wall's normal.
 #[inline]
 pub fn contact_wall_body(wall: &Wall, shape: &Shape, pose: &Pose) -> Contact {
+    contact_wall_body_with(wall, shape, pose, true)
+}
+
+/// [`contact_wall_body`], with the overlap area only when `area` is set.
+#[inline]
+pub fn contact_wall_body_with(wall: &Wall, shape: &Shape, pose: &Pose, area: bool) -> Contact {
     match *shape {
-        Shape::Circle { r } => circle_wall::contact_wall_circle(wall, r, pose),
-        Shape::Ellipse { a, b } => ellipse_wall::contact_wall_ellipse(wall, a, b, pose),
+        Shape::Circle { r } => circle_wall::contact_wall_circle_with(wall, r, pose, area),
+        Shape::Ellipse { a, b } => ellipse_wall::wall_ellipse_with(wall, a, b, pose, area),
         Shape::Rectangle { w, h } => rectangle_wall::contact_wall_rectangle(wall, w, h, pose),
     }
 }
@@ -269,7 +318,112 @@ impl LocalFrame {
             depth: depth * self.scale,
             chord: (self.point(p1), self.point(p2)),
             flat: None,
+            area: None,
         }
+    }
+
+    /// An [`OverlapArea`] from local quantities (lengths in units of `scale`): `grad` is
+    /// `∂A/∂x_j`, the others as in [`LocalOverlap`].
+    #[inline]
+    pub fn overlap(&self, o: &LocalOverlap) -> OverlapArea {
+        let len = (o.grad[0] * o.grad[0] + o.grad[1] * o.grad[1]).sqrt();
+        let normal = if len > 0.0 {
+            self.vector([-o.grad[0] / len, -o.grad[1] / len])
+        } else {
+            self.vector([1.0, 0.0]) // a pure couple (only at an exactly symmetric crossing)
+        };
+        let s2 = self.scale * self.scale;
+        OverlapArea {
+            area: o.area * s2,
+            length: len * self.scale,
+            normal,
+            point: self.point(o.point),
+            couple: o.couple * s2,
+        }
+    }
+}
+
+/// An [`OverlapArea`] in a pair's local frame: the area, `∂A/∂x_j` (for two crossings
+/// `−L n`), the point and the couple.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct LocalOverlap {
+    pub area: f64,
+    pub grad: [f64; 2],
+    pub point: [f64; 2],
+    pub couple: f64,
+}
+
+impl LocalOverlap {
+    /// Two crossings: area `cap_i + cap_j`, gradient `−L n` at the chord midpoint.
+    #[inline]
+    pub fn chord(area: f64, p: [f64; 2], q: [f64; 2], n: [f64; 2]) -> Self {
+        let len = ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)).sqrt();
+        LocalOverlap {
+            area,
+            grad: [-len * n[0], -len * n[1]],
+            point: midpoint(p, q),
+            couple: 0.0,
+        }
+    }
+}
+
+/// The overlap area and its gradient for four or more crossings (`points`, sorted
+/// counter-clockwise about their mean, as [`deep_fallback`] leaves them). The overlap is the
+/// convex polygon of the crossings plus, beyond each of its edges, the cap of whichever body's
+/// boundary bounds the overlap there — the one that bulges less past the edge, since both
+/// boundaries run between the same two crossings and the inner one lies inside the other body.
+/// `height(k, u, m)` is `max over body k of u·(x − m)` (k = 0 for i, 1 for j; u unit) and
+/// `cap(k, p, q, u)` the area of body k beyond the chord pq towards u. `c_j` is j's centroid.
+pub(crate) fn deep_overlap(
+    points: &[[f64; 2]],
+    c_j: [f64; 2],
+    height: impl Fn(usize, [f64; 2], [f64; 2]) -> f64,
+    cap: impl Fn(usize, [f64; 2], [f64; 2], [f64; 2]) -> f64,
+) -> LocalOverlap {
+    let k = points.len();
+    let n = k as f64;
+    let centre = [
+        points.iter().map(|p| p[0]).sum::<f64>() / n,
+        points.iter().map(|p| p[1]).sum::<f64>() / n,
+    ];
+    let mut twice_polygon = 0.0;
+    let mut area = 0.0;
+    let mut grad = [0.0f64; 2];
+    let mut turn = 0.0; // ∂A/∂θ_j about c_j
+    for idx in 0..k {
+        let (p, q) = (points[idx], points[(idx + 1) % k]);
+        let (rp, rq) = (
+            [p[0] - centre[0], p[1] - centre[1]],
+            [q[0] - centre[0], q[1] - centre[1]],
+        );
+        twice_polygon += rp[0] * rq[1] - rp[1] * rq[0];
+        let e = [q[0] - p[0], q[1] - p[1]];
+        let len = (e[0] * e[0] + e[1] * e[1]).sqrt();
+        if len == 0.0 {
+            continue;
+        }
+        let u = [e[1] / len, -e[0] / len]; // outward normal of a counter-clockwise polygon
+        let m = midpoint(p, q);
+        let body = if height(1, u, m) < height(0, u, m) {
+            1
+        } else {
+            0
+        };
+        area += cap(body, p, q, u);
+        if body == 1 {
+            // j's boundary: its outward normal integrates to L u over the arc.
+            grad[0] += len * u[0];
+            grad[1] += len * u[1];
+            turn += len * ((m[0] - c_j[0]) * u[1] - (m[1] - c_j[1]) * u[0]);
+        }
+    }
+    // ∂A/∂θ_j = (point − c_j) × grad + (the couple of the gradient, with the sign of dA).
+    let lever = (centre[0] - c_j[0]) * grad[1] - (centre[1] - c_j[1]) * grad[0];
+    LocalOverlap {
+        area: area + 0.5 * twice_polygon.abs(),
+        grad,
+        point: centre,
+        couple: -(turn - lever),
     }
 }
 

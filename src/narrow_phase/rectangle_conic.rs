@@ -2,7 +2,11 @@
 //! the conic's own frame (`x²/a² + y²/b² = 1`; a circle is `a = b = r`).
 
 use super::rectangle_wall::corners;
-use super::{Contact, ContactState, LocalFrame, TOUCH_TOL, deep_fallback, orient, pow2_floor};
+use super::{
+    Contact, ContactState, LocalFrame, LocalOverlap, TOUCH_TOL, deep_fallback, deep_overlap,
+    orient, pow2_floor,
+};
+use crate::geometry::overlap_area::{ellipse_cap, ellipse_cap_at_depth, polygon_cap};
 use crate::geometry::support::support_local;
 use crate::geometry::{Pose, Shape};
 
@@ -12,6 +16,20 @@ use crate::geometry::{Pose, Shape};
 /// If `conic` is a rectangle (the dispatcher never passes one).
 #[inline]
 pub fn contact_rectangle_conic(w: f64, h: f64, pi: &Pose, conic: &Shape, pj: &Pose) -> Contact {
+    rectangle_conic_with(w, h, pi, conic, pj, true)
+}
+
+/// [`contact_rectangle_conic`], with the overlap area (the rectangle's cap beyond the chord plus
+/// the conic's) only when `area` is set.
+#[inline]
+pub fn rectangle_conic_with(
+    w: f64,
+    h: f64,
+    pi: &Pose,
+    conic: &Shape,
+    pj: &Pose,
+    area: bool,
+) -> Contact {
     let (a, b) = match *conic {
         Shape::Circle { r } => (r, r),
         Shape::Ellipse { a, b } => (a, b),
@@ -87,14 +105,33 @@ pub fn contact_rectangle_conic(w: f64, h: f64, pi: &Pose, conic: &Shape, pj: &Po
         sin: sj,
         scale,
     };
+    // Caps beyond a chord through m towards u: the rectangle's by clipping its corners, the
+    // conic's (centred at the origin here) in closed form.
+    let rect_cap = |m: [f64; 2], u: [f64; 2]| polygon_cap(&q, m, u);
+    let conic_cap = |p: [f64; 2], e: [f64; 2], u: [f64; 2]| {
+        ellipse_cap(a, b, p, e, u[0] * p[0] + u[1] * p[1] < 0.0)
+    };
     match n {
         2 => {
             let (p, qv) = (cross[0].point(), cross[1].point());
             let (nrm, dpt) = orient(chord_direction_normal(&cross[0], &cross[1]), depth);
             let mid = super::midpoint(p, qv);
+            let mut g = frame.geometry(p, qv, mid, nrm, dpt);
+            if area {
+                let caps = if cross[0].edge == cross[1].edge {
+                    // A face cuts the conic: the chord is on the face line (no cap of the
+                    // rectangle), and the conic's cap follows from the depth, where the
+                    // crossings of a nearly tangent face are ill-conditioned.
+                    ellipse_cap_at_depth(a, b, nrm, dpt)
+                } else {
+                    let e = [qv[0] - p[0], qv[1] - p[1]];
+                    rect_cap(mid, nrm) + conic_cap(p, e, [-nrm[0], -nrm[1]])
+                };
+                g.area = Some(frame.overlap(&LocalOverlap::chord(caps, p, qv, nrm)));
+            }
             Contact {
                 state: ContactState::Overlap,
-                geometry: Some(frame.geometry(p, qv, mid, nrm, dpt)),
+                geometry: Some(g),
             }
         }
         n if n >= 3 => {
@@ -104,9 +141,32 @@ pub fn contact_rectangle_conic(w: f64, h: f64, pi: &Pose, conic: &Shape, pj: &Po
             }
             let (p, qv, nrm, dpt) = deep_fallback(&mut pts[..n], depth);
             let mid = super::midpoint(p, qv);
+            let mut g = frame.geometry(p, qv, mid, nrm, dpt);
+            if area {
+                let o = deep_overlap(
+                    &pts[..n],
+                    [0.0, 0.0],
+                    |k, u, m| {
+                        let (su, um) = (u[0] * m[0] + u[1] * m[1], u[0] * c.x + u[1] * c.y);
+                        if k == 0 {
+                            rect_support(u[0], u[1]) + um - su
+                        } else {
+                            ell_support(u[0], u[1]) - su
+                        }
+                    },
+                    |k, p, qq, u| {
+                        if k == 0 {
+                            rect_cap(super::midpoint(p, qq), u)
+                        } else {
+                            conic_cap(p, [qq[0] - p[0], qq[1] - p[1]], u)
+                        }
+                    },
+                );
+                g.area = Some(frame.overlap(&o));
+            }
             Contact {
                 state: ContactState::Deep,
-                geometry: Some(frame.geometry(p, qv, mid, nrm, dpt)),
+                geometry: Some(g),
             }
         }
         _ => {

@@ -8,7 +8,11 @@
 //! normal along the stack and `δ` exactly.
 
 use super::rectangle_wall::corners;
-use super::{Contact, ContactState, LocalFrame, TOUCH_TOL, deep_fallback, orient, pow2_floor};
+use super::{
+    Contact, ContactState, LocalFrame, LocalOverlap, TOUCH_TOL, deep_fallback, deep_overlap,
+    orient, pow2_floor,
+};
+use crate::geometry::overlap_area::{polygon_area, polygon_cap};
 use crate::geometry::support::support_local;
 use crate::geometry::{Pose, Shape};
 
@@ -22,7 +26,7 @@ enum Side {
     Both,
 }
 
-/// Contact between rectangle i (`wi × hi`) and rectangle j (`wj × hj`).
+/// Contact between rectangle i (`wi × hi`) and rectangle j (`wj × hj`), with the overlap area.
 pub fn contact_rectangle_rectangle(
     wi: f64,
     hi: f64,
@@ -30,6 +34,20 @@ pub fn contact_rectangle_rectangle(
     wj: f64,
     hj: f64,
     pj: &Pose,
+) -> Contact {
+    rectangle_rectangle_with(wi, hi, pi, wj, hj, pj, true)
+}
+
+/// [`contact_rectangle_rectangle`], with the overlap area (the clipped polygon's, exactly) and
+/// its gradient only when `area` is set.
+pub fn rectangle_rectangle_with(
+    wi: f64,
+    hi: f64,
+    pi: &Pose,
+    wj: f64,
+    hj: f64,
+    pj: &Pose,
+    area: bool,
 ) -> Contact {
     let dv = pj.position - pi.position;
     let (ri, rj) = (0.5 * wi.hypot(hi), 0.5 * wj.hypot(hj));
@@ -45,11 +63,10 @@ pub fn contact_rectangle_rectangle(
     let (cr, sr) = (cj * ci + sj * si, sj * ci - cj * si); // j's axis in i's frame
     let shape_i = Shape::Rectangle { w: wi, h: hi };
     let shape_j = Shape::Rectangle { w: wj, h: hj };
+    let depth_j_support =
+        |n: [f64; 2]| support_local(&shape_j, cr * n[0] + sr * n[1], -sr * n[0] + cr * n[1]);
     let depth = |n: [f64; 2]| {
-        support_local(&shape_i, n[0], n[1])
-            + support_local(&shape_j, cr * n[0] + sr * n[1], -sr * n[0] + cr * n[1])
-            - n[0] * c.x
-            - n[1] * c.y
+        support_local(&shape_i, n[0], n[1]) + depth_j_support(n) - n[0] * c.x - n[1] * c.y
     };
     // Separating axes: the four face normals decide separation of two rectangles exactly.
     let axes = [[1.0, 0.0], [0.0, 1.0], [cr, sr], [-sr, cr]];
@@ -217,6 +234,10 @@ pub fn contact_rectangle_rectangle(
             let mid = super::midpoint(a.point, b.point);
             let mut g = frame.geometry(a.point, b.point, mid, n, dpt);
             g.flat = Some(frame.flat(poly));
+            if area {
+                let a_poly = polygon_area(poly);
+                g.area = Some(frame.overlap(&LocalOverlap::chord(a_poly, a.point, b.point, n)));
+            }
             Contact {
                 state: ContactState::Overlap,
                 geometry: Some(g),
@@ -229,9 +250,26 @@ pub fn contact_rectangle_rectangle(
             }
             let (p, q, n, dpt) = deep_fallback(&mut pts[..nc.max(2)], depth);
             let mid = super::midpoint(p, q);
+            let mut g = frame.geometry(p, q, mid, n, dpt);
+            if area && nc >= 2 {
+                let qi = corners(wi, hi);
+                let height = |k: usize, u: [f64; 2], m: [f64; 2]| {
+                    let su = u[0] * m[0] + u[1] * m[1];
+                    if k == 0 {
+                        support_local(&shape_i, u[0], u[1]) - su
+                    } else {
+                        depth_j_support(u) + u[0] * c.x + u[1] * c.y - su
+                    }
+                };
+                let cap = |k: usize, p: [f64; 2], q: [f64; 2], u: [f64; 2]| {
+                    polygon_cap(if k == 0 { &qi } else { &qj }, super::midpoint(p, q), u)
+                };
+                let o = deep_overlap(&pts[..nc], [c.x, c.y], height, cap);
+                g.area = Some(frame.overlap(&o));
+            }
             Contact {
                 state: ContactState::Deep,
-                geometry: Some(frame.geometry(p, q, mid, n, dpt)),
+                geometry: Some(g),
             }
         }
     }

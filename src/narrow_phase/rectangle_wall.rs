@@ -1,6 +1,7 @@
 //! Wall–rectangle contact: the wall line ∩ the rectangle's edges.
 
-use super::{Contact, ContactState, LocalFrame, TOUCH_TOL, pow2_floor};
+use super::{Contact, ContactState, LocalFrame, LocalOverlap, TOUCH_TOL, pow2_floor};
+use crate::geometry::overlap_area::polygon_area;
 use crate::geometry::{Pose, Wall};
 
 /// Corners of a `w × h` rectangle centred at the origin, counter-clockwise.
@@ -82,6 +83,14 @@ pub fn contact_wall_rectangle(wall: &Wall, w: f64, h: f64, pose: &Pose) -> Conta
     let mut g = frame.geometry(p1, p2, mid, normal_local, depth);
     g.normal = wall.normal;
     g.flat = Some(frame.flat(&under[..nu]));
+    if state == ContactState::Overlap {
+        // The overlap is the polygon below the line; its gradient is the chord's (cheap, so
+        // always given).
+        let a = polygon_area(&under[..nu]);
+        let mut o = frame.overlap(&LocalOverlap::chord(a, p1, p2, normal_local));
+        o.normal = wall.normal;
+        g.area = Some(o);
+    }
     Contact {
         state,
         geometry: Some(g),

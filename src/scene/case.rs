@@ -21,7 +21,7 @@ use super::fields::{
     FieldError, Obj, index, join, non_negative, number, positive, scale, type_of, vec2,
 };
 use super::ranges::{Placed, SpecContext, check_extent, check_spec, check_steps};
-use crate::contact_law::{ContactSpec, LinearDamping, Scaled};
+use crate::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
 use crate::dynamics::{BodyInit, WallSpec};
 use crate::geometry::Vec2;
 use serde_json::{Map, Value};
@@ -49,8 +49,9 @@ pub struct Case {
     pub bodies: Vec<BodyInit>,
 }
 
-const CONTACT_KEYS: [&str; 13] = [
+const CONTACT_KEYS: [&str; 14] = [
     "model",
+    "normal_force",
     "kn",
     "kn_over_rho_g",
     "ks",
@@ -308,6 +309,19 @@ fn parse_contact(
         Some(v) => non_negative(v, &field("friction"))?,
         None => return Err(FieldError::new(join(missing_at, "friction"), "is missing")),
     };
+    let normal_force = match get("normal_force") {
+        None => NormalForce::default(),
+        Some(v) => match string(v, &field("normal_force"))?.as_str() {
+            "area" => NormalForce::Area,
+            "depth" => NormalForce::Depth,
+            other => {
+                return Err(FieldError::new(
+                    field("normal_force"),
+                    format!("unknown normal force `{other}` (expected `area` or `depth`)"),
+                ));
+            }
+        },
+    };
     // A stiffness is a scale (zero would let bodies pass through each other); a damping may be
     // zero.
     type Reader = fn(&Value, &str) -> Result<f64, FieldError>;
@@ -402,6 +416,7 @@ fn parse_contact(
                 ks,
                 damping,
                 friction,
+                normal_force,
             })
         }
         "hertz_mindlin" => {
@@ -442,6 +457,7 @@ fn parse_contact(
                 poisson,
                 restitution,
                 friction,
+                normal_force,
             })
         }
         other => Err(FieldError::new(

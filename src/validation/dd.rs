@@ -14,6 +14,25 @@
 //! multiple of [`DD::EPS`] = 2^-104 ≈ 4.9e-32. Results are *not* correctly rounded,
 //! and overflow, underflow and non-finite values get no special treatment (none
 //! of them occurs in the reference computations).
+//!
+//! # Elementary functions
+//!
+//! [`DD::sin`], [`DD::cos`], [`DD::sin_cos`], [`DD::x_minus_sin`], [`DD::atan2`],
+//! [`DD::atan`], [`DD::asin`] and [`DD::acos`], for the overlap-area reference:
+//!
+//! * sine and cosine: argument reduction `r = x − k·π/2` in DD with the DD value
+//!   [`DD::FRAC_PI_2`] (`k` the nearest integer), then the Taylor series of `sin r`
+//!   and `cos r` on `|r| ≤ π/4` (15 terms each, truncation < 1e-37), summed by
+//!   Horner's rule in DD. The absolute error is a few [`DD::EPS`] for `|x| ≲ 10`
+//!   and grows like `|x|·1e-33` beyond (the error of `k` times the DD `π/2`);
+//!   the reference only uses angles in `[−2π, 4π]`.
+//! * `atan2(y, x)`: the `f64` `atan2` of the leading parts, `z`, corrected once by
+//!   `z + (y cos z − x sin z)/(x cos z + y sin z)` (= `z + tan(θ − z)` for the true
+//!   angle θ, so the remaining error is `(θ − z)³/3 ≈ 1e-48` plus rounding: a few
+//!   `EPS` absolute). `atan`, `asin`, `acos` are reduced to `atan2`
+//!   (`1 − x²` formed as `(1 − x)(1 + x)`).
+//! * `x − sin x` without cancellation (the area of circular segments): its Taylor
+//!   series for `|x| < 1`, the difference otherwise (where `x − sin x ≥ 0.15|x|`).
 
 use std::cmp::Ordering;
 use std::iter::Sum;
@@ -63,6 +82,21 @@ impl DD {
     pub const ONE: DD = DD { hi: 1.0, lo: 0.0 };
     /// 2^-104 ≈ 4.93e-32: unit of the relative error of DD operations.
     pub const EPS: f64 = f64::EPSILON * f64::EPSILON;
+    /// π to DD precision (error ≈ 3e-33).
+    pub const PI: DD = DD {
+        hi: std::f64::consts::PI,
+        lo: 1.2246467991473532e-16,
+    };
+    /// π/2 to DD precision (exactly half of [`DD::PI`]).
+    pub const FRAC_PI_2: DD = DD {
+        hi: std::f64::consts::FRAC_PI_2,
+        lo: 6.123233995736766e-17,
+    };
+    /// 2π to DD precision (exactly twice [`DD::PI`]).
+    pub const TAU: DD = DD {
+        hi: std::f64::consts::TAU,
+        lo: 2.4492935982947064e-16,
+    };
 
     /// The (renormalised) value `hi + lo`; both parts may be arbitrary.
     pub fn new(hi: f64, lo: f64) -> DD {
@@ -163,6 +197,106 @@ impl DD {
     /// Total order for sorting (NaN compares equal to everything).
     pub fn cmp_total(&self, other: &DD) -> Ordering {
         self.partial_cmp(other).unwrap_or(Ordering::Equal)
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Elementary functions (see the module documentation)
+// ---------------------------------------------------------------------------
+
+/// Number of Taylor terms of `sin`/`cos` on `|r| ≤ π/4`: `(π/4)^31/31! ≈ 7e-38`.
+const TRIG_TERMS: usize = 15;
+
+/// `sin r` and `cos r` for `|r| ≤ π/4 (+ a little)`, Taylor series by Horner's rule:
+/// `sin r = r(1 − r²/(2·3)(1 − r²/(4·5)(1 − …)))`, `cos r = 1 − r²/(1·2)(1 − r²/(3·4)(1 − …))`.
+fn sin_cos_taylor(r: DD) -> (DD, DD) {
+    let r2 = r.sqr();
+    let (mut s, mut c) = (DD::ONE, DD::ONE);
+    for k in (1..=TRIG_TERMS).rev() {
+        let k = k as f64;
+        s = DD::ONE - s * r2 / ((2.0 * k) * (2.0 * k + 1.0));
+        c = DD::ONE - c * r2 / ((2.0 * k - 1.0) * (2.0 * k));
+    }
+    (r * s, c)
+}
+
+impl DD {
+    /// `(sin x, cos x)`; see the module documentation for the method and accuracy.
+    pub fn sin_cos(self) -> (DD, DD) {
+        let k = (self.hi / DD::FRAC_PI_2.hi).round();
+        let r = self - DD::FRAC_PI_2 * k;
+        let (s, c) = sin_cos_taylor(r);
+        match (k.rem_euclid(4.0)) as u8 {
+            0 => (s, c),
+            1 => (c, -s),
+            2 => (-s, -c),
+            _ => (-c, s),
+        }
+    }
+
+    /// `sin x`.
+    pub fn sin(self) -> DD {
+        self.sin_cos().0
+    }
+
+    /// `cos x`.
+    pub fn cos(self) -> DD {
+        self.sin_cos().1
+    }
+
+    /// `x − sin x`, accurate to a few `EPS` relative for all `x` (no cancellation for small `x`).
+    pub fn x_minus_sin(self) -> DD {
+        if self.hi.abs() >= 1.0 {
+            return self - self.sin();
+        }
+        // x³/3! − x⁵/5! + … = x³/6 (1 − x²/(4·5)(1 − x²/(6·7)(1 − …))); x^33/33! < 1e-37.
+        let x2 = self.sqr();
+        let mut t = DD::ONE;
+        for k in (2..=16).rev() {
+            let k = k as f64;
+            t = DD::ONE - t * x2 / ((2.0 * k) * (2.0 * k + 1.0));
+        }
+        self * x2 * t / 6.0
+    }
+
+    /// The angle of the point `(x, y)` (`self` is `y`), in `(−π, π]`; `atan2(0, 0) = 0`.
+    /// Signed zeros are not distinguished beyond what `f64::atan2` does with the leading parts.
+    pub fn atan2(self, x: DD) -> DD {
+        let y = self;
+        if x.is_zero() && y.is_zero() {
+            return DD::ZERO;
+        }
+        let z = DD::from(y.hi.atan2(x.hi));
+        let (s, c) = z.sin_cos();
+        // tan(θ − z) with θ the true angle: r sin(θ − z) / (r cos(θ − z)).
+        let num = y * c - x * s;
+        let den = x * c + y * s;
+        let out = z + num / den;
+        // Keep the branch cut: the result stays in (−π, π].
+        if out > DD::PI {
+            out - DD::TAU
+        } else if out <= -DD::PI {
+            out + DD::TAU
+        } else {
+            out
+        }
+    }
+
+    /// `atan x` in `(−π/2, π/2)`.
+    pub fn atan(self) -> DD {
+        self.atan2(DD::ONE)
+    }
+
+    /// `asin x` for `|x| ≤ 1`, in `[−π/2, π/2]`.
+    pub fn asin(self) -> DD {
+        let c = ((DD::ONE - self) * (DD::ONE + self)).sqrt();
+        self.atan2(c)
+    }
+
+    /// `acos x` for `|x| ≤ 1`, in `[0, π]`.
+    pub fn acos(self) -> DD {
+        let s = ((DD::ONE - self) * (DD::ONE + self)).sqrt();
+        s.atan2(self)
     }
 }
 

@@ -5,9 +5,12 @@
 //! The reference computes in double-double arithmetic (≈ 106 bits) from the exact double inputs,
 //! by methods deliberately different from the kernel's: the boundary of one body in parametric
 //! form substituted into the other's implicit form (a quartic in tan(t/2)) instead of the pencil
-//! of conics, segment intersections for rectangles.
+//! of conics, segment intersections for rectangles. [`overlap_reference`] adds the overlap
+//! area of a pair (and the boundary pieces it is made of) by Green's theorem in closed form on
+//! the same crossings, for the tests of the overlap-area contact law.
 
 pub mod dd;
 pub mod families;
+pub mod overlap_reference;
 pub mod reference;
 pub mod rng;

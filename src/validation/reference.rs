@@ -376,13 +376,13 @@ fn solve_bracket(p: &[DD], dp: &[DD], a: DD, b: DD, fa: DD) -> DD {
 
 /// A 2-vector of DD numbers.
 #[derive(Clone, Copy, Debug)]
-struct V {
-    x: DD,
-    y: DD,
+pub(super) struct V {
+    pub(super) x: DD,
+    pub(super) y: DD,
 }
 
 impl V {
-    fn new(x: DD, y: DD) -> V {
+    pub(super) fn new(x: DD, y: DD) -> V {
         V { x, y }
     }
 
@@ -395,12 +395,12 @@ impl V {
         V::new(DD::from(p[0]) - origin[0], DD::from(p[1]) - origin[1])
     }
 
-    fn dot(self, o: V) -> DD {
+    pub(super) fn dot(self, o: V) -> DD {
         self.x * o.x + self.y * o.y
     }
 
     /// Rotation by +90°.
-    fn perp(self) -> V {
+    pub(super) fn perp(self) -> V {
         V::new(-self.y, self.x)
     }
 
@@ -409,7 +409,7 @@ impl V {
     }
 
     /// `|x| + |y|` (for tolerance scales).
-    fn norm1(self) -> f64 {
+    pub(super) fn norm1(self) -> f64 {
         self.x.abs().to_f64() + self.y.abs().to_f64()
     }
 
@@ -418,11 +418,11 @@ impl V {
         V::new(self.x / k, self.y / k)
     }
 
-    fn mid(self, o: V) -> V {
+    pub(super) fn mid(self, o: V) -> V {
         (self + o) * 0.5
     }
 
-    fn to_f64(self) -> [f64; 2] {
+    pub(super) fn to_f64(self) -> [f64; 2] {
         [self.x.to_f64(), self.y.to_f64()]
     }
 }
@@ -485,7 +485,7 @@ fn sort_about_mean(pts: &mut [V]) {
 
 /// In / on / out classification of a point with respect to a closed solid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Cls {
+pub(super) enum Cls {
     In,
     On,
     Out,
@@ -510,16 +510,16 @@ fn axes(angle: f64) -> (V, V) {
 
 /// Circle or ellipse.
 #[derive(Clone, Copy, Debug)]
-struct Conic {
-    c: V,
-    e1: V,
-    e2: V,
-    a: DD,
-    b: DD,
+pub(super) struct Conic {
+    pub(super) c: V,
+    pub(super) e1: V,
+    pub(super) e2: V,
+    pub(super) a: DD,
+    pub(super) b: DD,
 }
 
 impl Conic {
-    fn local(&self, x: V) -> (DD, DD) {
+    pub(super) fn local(&self, x: V) -> (DD, DD) {
         let w = x - self.c;
         (w.dot(self.e1), w.dot(self.e2))
     }
@@ -534,13 +534,13 @@ impl Conic {
         (t1 + t2 - t0, t1.to_f64() + t2.to_f64() + t0.to_f64())
     }
 
-    fn classify(&self, x: V) -> Cls {
+    pub(super) fn classify(&self, x: V) -> Cls {
         let (v, scale) = self.implicit(x);
         cls_of(v, TOL_REL * scale)
     }
 
     /// Boundary point with parameter `(cos t, sin t)`.
-    fn point_at(&self, cos: DD, sin: DD) -> V {
+    pub(super) fn point_at(&self, cos: DD, sin: DD) -> V {
         self.c + self.e1 * (self.a * cos) + self.e2 * (self.b * sin)
     }
 
@@ -558,17 +558,17 @@ impl Conic {
 
 /// Rectangle with half sizes `hw`, `hh`.
 #[derive(Clone, Copy, Debug)]
-struct Rect {
-    c: V,
-    e1: V,
-    e2: V,
-    hw: DD,
-    hh: DD,
+pub(super) struct Rect {
+    pub(super) c: V,
+    pub(super) e1: V,
+    pub(super) e2: V,
+    pub(super) hw: DD,
+    pub(super) hh: DD,
 }
 
 impl Rect {
     /// Corners in CCW order, starting at the (−,−) corner.
-    fn corners(&self) -> [V; 4] {
+    pub(super) fn corners(&self) -> [V; 4] {
         let u = self.e1 * self.hw;
         let v = self.e2 * self.hh;
         [
@@ -593,7 +593,7 @@ impl Rect {
         (g, TOL_REL * scale)
     }
 
-    fn classify(&self, x: V) -> Cls {
+    pub(super) fn classify(&self, x: V) -> Cls {
         let (g, tol) = self.edge_values(x);
         cls_of(g.into_iter().fold(g[0], DD::max), tol)
     }
@@ -619,9 +619,9 @@ impl Rect {
 
 /// Wall half-plane `{x : n·(x − p) ≤ 0}` with unit `n`.
 #[derive(Clone, Copy, Debug)]
-struct Wall {
-    p: V,
-    n: V,
+pub(super) struct Wall {
+    pub(super) p: V,
+    pub(super) n: V,
 }
 
 impl Wall {
@@ -633,7 +633,7 @@ impl Wall {
         )
     }
 
-    fn classify(&self, x: V) -> Cls {
+    pub(super) fn classify(&self, x: V) -> Cls {
         let (v, tol) = self.value(x);
         cls_of(v, tol)
     }
@@ -641,14 +641,14 @@ impl Wall {
 
 /// An object of the pair in DD, relative to the pair origin.
 #[derive(Clone, Copy, Debug)]
-enum Geo {
+pub(super) enum Geo {
     Conic(Conic),
     Rect(Rect),
     Wall(Wall),
 }
 
 impl Geo {
-    fn new(obj: &RObj, origin: [f64; 2]) -> Geo {
+    pub(super) fn new(obj: &RObj, origin: [f64; 2]) -> Geo {
         match *obj {
             RObj::Body { shape, pos, angle } => {
                 let c = V::rel(pos, origin);
@@ -712,7 +712,7 @@ impl Geo {
     }
 }
 
-fn origin_of(i: &RObj, j: &RObj) -> [f64; 2] {
+pub(super) fn origin_of(i: &RObj, j: &RObj) -> [f64; 2] {
     match (i, j) {
         (RObj::Body { pos, .. }, _) | (RObj::Wall { .. }, RObj::Body { pos, .. }) => *pos,
         _ => panic!("reference: a pair of two walls has no contact geometry"),
@@ -749,16 +749,16 @@ fn orient(gi: &Geo, gj: &Geo, n: V) -> V {
 
 /// Raw result of the crossing search.
 #[derive(Debug, Default)]
-struct Found {
-    crossings: Vec<V>,
-    touches: Vec<V>,
+pub(super) struct Found {
+    pub(super) crossings: Vec<V>,
+    pub(super) touches: Vec<V>,
     /// Only meaningful without crossings and touches.
-    contained: bool,
+    pub(super) contained: bool,
     /// The two boundaries coincide.
-    coincident: bool,
+    pub(super) coincident: bool,
 }
 
-fn find(gi: &Geo, gj: &Geo) -> Found {
+pub(super) fn find(gi: &Geo, gj: &Geo) -> Found {
     match (gi, gj) {
         (Geo::Conic(a), Geo::Conic(b)) => conic_conic(a, b),
         (Geo::Wall(w), Geo::Conic(c)) | (Geo::Conic(c), Geo::Wall(w)) => wall_conic(w, c),
