@@ -93,7 +93,8 @@ pub fn force_overlap_table() -> String {
     let (flat, tip) = (a * a / b, b * b / a); // radii of curvature
     let harm = |x: f64, y: f64| x * y / (x + y);
     // (label, wall angle or None, pair angles, R*_t, R*_eq)
-    let rows: [(&str, Option<f64>, (f64, f64), f64, f64); 6] = [
+    type Row<'a> = (&'a str, Option<f64>, (f64, f64), f64, f64);
+    let rows: [Row; 6] = [
         ("ellipse–wall, flat side", Some(0.0), (0.0, 0.0), flat, r_eq),
         (
             "ellipse–wall, 45°",
@@ -281,7 +282,8 @@ pub fn energy_table() -> String {
                 dt,
             )
         };
-        let scenes: [(&str, &dyn Fn(f64, f64) -> World, f64); 2] = [
+        type Scene<'a> = (&'a str, &'a dyn Fn(f64, f64) -> World, f64);
+        let scenes: [Scene; 2] = [
             ("ellipse bouncing on a floor (3 bounces)", &bounce, 0.6),
             ("two ellipses colliding off-centre", &collide, 0.05),
         ];

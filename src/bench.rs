@@ -132,7 +132,7 @@ fn settle(spec: &PileSpec, progress: bool) -> Result<String, BenchError> {
     while w.time < SETTLE_TIME_MAX {
         w.step()
             .map_err(|b| BenchError(format!("settling {}: {b}", spec.name())))?;
-        if w.step % check == 0 {
+        if w.step.is_multiple_of(check) {
             speed = mean_speed(&w);
             if shown.due() {
                 shown.show(&format!(
@@ -172,12 +172,12 @@ pub fn settled_pile(
 ) -> Result<Case, BenchError> {
     let spec = PileSpec::new(shape, n, 1);
     let file = cache.map(|d| d.join(format!("{}_settled.json", spec.name())));
-    if let Some(f) = &file {
-        if let Ok(text) = std::fs::read_to_string(f) {
-            return Case::from_json(&text).map_err(|e| BenchError(format!("{}: {e}", f.display())));
-        }
+    if let Some(f) = &file
+        && let Ok(text) = std::fs::read_to_string(f)
+    {
+        return Case::from_json(&text).map_err(|e| BenchError(format!("{}: {e}", f.display())));
     }
-    let text = if n > 10_000 && n % 10_000 == 0 {
+    let text = if n > 10_000 && n.is_multiple_of(10_000) {
         // Tiles of the settled 10⁴ pile, side by side.
         let tile = settled_pile(shape, 10_000, cache, progress)?;
         let copies = n / 10_000;

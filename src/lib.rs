@@ -9,7 +9,8 @@
 //! moments → integrator → quiescence check → output`.
 //!
 //! # Conventions
-//! - Units are the case's own (the paper's cases use cm, s, g); bodies have unit thickness.
+//! - Units: cgs (cm, g, s; forces in dyn, energies in erg); the equations are unit-agnostic, the
+//!   documentation, the cases and the accepted ranges are cgs. Bodies have unit thickness.
 //! - Angles in radians, counter-clockwise; a body's angle is that of its own x axis.
 //! - For a contact between i and j the unit normal points from i to j; the overlap `δ > 0` when
 //!   penetrating; the force on j is `+F` and on i `−F`.

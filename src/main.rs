@@ -4,10 +4,11 @@
 use clap::{Parser, Subcommand};
 use dem2d::narrow_phase::contact;
 use dem2d::output::contacts::contact_json;
-use dem2d::runner::{RunOptions, run_case};
-use dem2d::scene::fields::parse_lenient;
+use dem2d::output::summary::Status;
+use dem2d::runner::{RunError, RunOptions, default_out_dir, run_case, signal_name};
+use dem2d::scene::fields::parse_json;
 use dem2d::scene::{Case, parse_pairs};
-use std::io::{Read, Write};
+use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -85,6 +86,10 @@ enum Command {
         /// number.
         #[arg(long)]
         threads: Option<usize>,
+        /// Replace the outputs of an earlier run in the output directory (without it, such a
+        /// directory is refused).
+        #[arg(long)]
+        overwrite: bool,
     },
     /// Draw a run (a directory written by `dem2d run`) as an SVG.
     Plot {
@@ -165,7 +170,8 @@ enum Command {
         readme: Option<PathBuf>,
     },
     /// Regenerate every figure and table of the README into figures/ (runs the paper's cases,
-    /// the time-step sweeps and the contact-kernel report; about 5 s).
+    /// the time-step sweeps and the contact-kernel report; about 10 s). The README itself is
+    /// refreshed only with --readme.
     Figures {
         /// Output directory for SVG, CSV and Markdown.
         #[arg(long, default_value = "figures")]
@@ -176,9 +182,10 @@ enum Command {
         /// Where the runs go.
         #[arg(long, default_value = "target/figure-runs")]
         work: PathBuf,
-        /// README whose marked tables are refreshed ("" to leave it alone).
-        #[arg(long, default_value = "README.md")]
-        readme: String,
+        /// Refresh the marked tables of this README (without it, no README is touched). The
+        /// tables are deterministic; timings go to WORK/timings.md.
+        #[arg(long)]
+        readme: Option<PathBuf>,
         /// Fewer sweep points and repetitions (a quick look, not the README's numbers).
         #[arg(long)]
         quick: bool,
@@ -229,39 +236,85 @@ impl Failure {
     fn input(message: String) -> Self {
         Failure { code: 2, message }
     }
+
+    fn failed(message: String) -> Self {
+        Failure { code: 1, message }
+    }
 }
 
-fn read_input(file: &str) -> Result<String, Failure> {
-    let mut text = String::new();
-    if file == "-" {
-        std::io::stdin()
-            .read_to_string(&mut text)
-            .map_err(|e| Failure::input(format!("<stdin>: cannot read: {e}")))?;
-    } else {
-        text = std::fs::read_to_string(file)
-            .map_err(|e| Failure::input(format!("{file}: cannot read: {e}")))?;
+/// Writes `text` to standard output; a failure (a full device, a closed pipe) is an error that
+/// names it rather than a panic.
+fn print_out(text: &str) -> Result<(), Failure> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())
+        .and_then(|()| out.flush())
+        .map_err(|e| Failure::failed(format!("standard output: cannot write: {e}")))
+}
+
+/// A line on standard error; if even that cannot be written there is nobody to tell.
+fn say(text: &str) {
+    let _ = writeln!(std::io::stderr().lock(), "{text}");
+}
+
+/// SIGINT and SIGTERM ask a run to stop after its current step: the handler only records the
+/// signal (an atomic store, async-signal-safe) and restores the default action, so that a second
+/// signal ends the process at once. A two-function binding to the C library's `signal`, which
+/// every Unix target of Rust links; no crate needed for it.
+#[cfg(unix)]
+mod signals {
+    use std::ffi::c_int;
+    use std::sync::atomic::{AtomicI32, Ordering};
+
+    /// The signal received (0: none yet).
+    pub static STOP: AtomicI32 = AtomicI32::new(0);
+    const SIGINT: c_int = 2;
+    const SIGTERM: c_int = 15;
+    const SIG_DFL: usize = 0;
+
+    unsafe extern "C" {
+        /// C's `signal(2)`: `sighandler_t signal(int, sighandler_t)`, a handler being a
+        /// pointer-sized value.
+        fn signal(signum: c_int, handler: usize) -> usize;
     }
-    Ok(text)
+
+    extern "C" fn on_signal(sig: c_int) {
+        STOP.store(sig, Ordering::Relaxed);
+        // SAFETY: `signal` is async-signal-safe (POSIX), restoring the default action.
+        unsafe {
+            signal(sig, SIG_DFL);
+        }
+    }
+
+    /// Installs the handler for SIGINT and SIGTERM.
+    pub fn install() -> &'static AtomicI32 {
+        let handler = on_signal as extern "C" fn(c_int) as usize;
+        // SAFETY: the handler only stores into an atomic and calls `signal`.
+        unsafe {
+            signal(SIGINT, handler);
+            signal(SIGTERM, handler);
+        }
+        &STOP
+    }
+}
+
+/// Reads an input file (`-`: standard input) with the size cap of the scene reader.
+fn read_input(file: &str) -> Result<String, Failure> {
+    let name = if file == "-" { "<stdin>" } else { file };
+    dem2d::scene::ranges::read_input(file).map_err(|e| Failure::input(format!("{name}: {e}")))
 }
 
 fn run_contact(file: &str) -> Result<(), Failure> {
     let name = if file == "-" { "<stdin>" } else { file };
     let text = read_input(file)?;
-    let value =
-        parse_lenient(&text).map_err(|e| Failure::input(format!("{name}: malformed JSON: {e}")))?;
+    let value = parse_json(&text, "pairs").map_err(|e| Failure::input(format!("{name}: {e}")))?;
     let pairs = parse_pairs(&value).map_err(|e| Failure::input(format!("{name}: {e}")))?;
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    let failed = |e: std::io::Error| Failure::failed(format!("standard output: cannot write: {e}"));
     for (i, j) in &pairs {
         let c = contact(i, j).expect("parse_pairs rejects wall–wall pairs");
-        writeln!(out, "{}", contact_json(&c)).map_err(|e| Failure {
-            code: 1,
-            message: format!("cannot write output: {e}"),
-        })?;
+        writeln!(out, "{}", contact_json(&c)).map_err(failed)?;
     }
-    out.flush().map_err(|e| Failure {
-        code: 1,
-        message: format!("cannot write output: {e}"),
-    })
+    out.flush().map_err(failed)
 }
 
 /// Sizes the global thread pool (`None`: rayon's default, one thread per core).
@@ -272,72 +325,131 @@ fn set_threads(threads: Option<usize>) -> Result<(), Failure> {
         Some(n) => rayon::ThreadPoolBuilder::new()
             .num_threads(n)
             .build_global()
-            .map_err(|e| Failure {
-                code: 1,
-                message: format!("--threads: {e}"),
-            }),
+            .map_err(|e| Failure::failed(format!("--threads: {e}"))),
     }
 }
 
-fn run(
-    case_path: &PathBuf,
+/// What `dem2d run` was asked.
+struct RunArgs<'a> {
+    case: &'a std::path::Path,
     out: Option<PathBuf>,
     max_steps: Option<u64>,
     quiet: bool,
-) -> Result<(), Failure> {
-    let name = case_path.display().to_string();
-    let text = std::fs::read_to_string(case_path)
-        .map_err(|e| Failure::input(format!("{name}: cannot read: {e}")))?;
+    overwrite: bool,
+}
+
+fn run(args: RunArgs) -> Result<(), Failure> {
+    let name = args.case.display().to_string();
+    let text = read_input(&name)?;
     let case = Case::from_json(&text).map_err(|e| Failure::input(format!("{name}: {e}")))?;
-    let out_dir = out.unwrap_or_else(|| PathBuf::from("runs").join(&case.name));
+    let out_dir = args.out.unwrap_or_else(|| default_out_dir(&case));
+    #[cfg(unix)]
+    let stop = Some(signals::install());
+    #[cfg(not(unix))]
+    let stop = None;
     let opts = RunOptions {
         out_dir: out_dir.clone(),
-        progress: !quiet,
-        max_steps,
+        progress: !args.quiet,
+        max_steps: args.max_steps,
+        overwrite: args.overwrite,
+        stop,
     };
-    let outcome = run_case(&case, &text, &opts).map_err(|e| Failure {
-        code: 1,
-        message: format!("{}: cannot write output: {e}", out_dir.display()),
+    let outcome = run_case(&case, &text, &opts).map_err(|e| match e {
+        RunError::Occupied { .. } => Failure::input(e.to_string()),
+        RunError::Io(_) => Failure::failed(e.to_string()),
     })?;
     let s = &outcome.summary;
     for w in &s.warnings {
-        eprintln!("dem2d: warning: {w}");
+        say(&format!("dem2d: warning: {w}"));
     }
-    if let Some(b) = outcome.blowup {
+    let kept = format!("output so far kept in {}", out_dir.display());
+    if let Some(e) = &outcome.summary_error {
+        let first = match (&outcome.io_error, &outcome.blowup, outcome.signal) {
+            (Some(io), _, _) => format!("{io}; then "),
+            (_, Some(b), _) => format!("{name}: {b}; then "),
+            (_, _, Some(sig)) => format!("{name}: interrupted by {}; then ", signal_name(sig)),
+            _ => String::new(),
+        };
+        return Err(Failure::failed(format!(
+            "{first}{e} (it still says `running`)"
+        )));
+    }
+    if let Some(e) = &outcome.io_error {
+        return Err(Failure::failed(format!(
+            "{e}; the run stopped at step {} (summary.json says io_error)",
+            s.steps
+        )));
+    }
+    if let Some(b) = &outcome.blowup {
+        return Err(Failure::failed(format!("{name}: {b}; {kept}")));
+    }
+    if let Some(sig) = outcome.signal {
         return Err(Failure {
-            code: 1,
-            message: format!("{name}: {b}; output so far kept in {}", out_dir.display()),
+            code: (128 + sig).clamp(0, 255) as u8,
+            message: format!(
+                "{name}: interrupted by {} after step {}; {kept}",
+                signal_name(sig),
+                s.steps
+            ),
         });
     }
     let rest = match s.quiescent_step {
         Some(q) => format!(
-            "at rest at step {q} (quiescence {:e})",
+            ", at rest at step {q} (quiescence {:e})",
             case.quiescence.unwrap_or(0.0)
         ),
-        None if case.quiescence.is_some() => "not at rest".to_string(),
+        None if case.quiescence.is_some() => ", not at rest".to_string(),
         None => String::new(),
     };
-    println!(
-        "{}: {} steps, t = {:.6} s, {}; wall time {:.2} s; dt = {:e}, dt_critical = {:.3e} (a priori), {} (contact network); output in {}",
+    let status = match s.status {
+        Status::MaxSteps => " (stopped by --max-steps)",
+        _ => "",
+    };
+    print_out(&format!(
+        "{}: {} steps{status}, t = {} s{rest}; wall time {:.2} s; dt = {:e}, dt_critical = {:.3e} (a priori), {} (contact network); output in {}\n",
         s.name,
         s.steps,
         s.time,
-        rest,
         s.wall_seconds,
         s.dt,
         s.dt_critical,
         s.dt_critical_observed
             .map_or("none".to_string(), |v| format!("{v:.3e}")),
         out_dir.display()
-    );
-    Ok(())
+    ))
 }
 
 fn plot(run_dir: &std::path::Path, out: Option<PathBuf>, kind: PlotKind) -> Result<(), Failure> {
     use dem2d::output::panels;
     use dem2d::output::plot::{self, SceneOptions, ScenePanel};
+    if let Some(out) = &out
+        && !out
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("svg"))
+    {
+        return Err(Failure::input(format!(
+            "--out {}: dem2d plot writes SVG only; give a file name ending in .svg",
+            out.display()
+        )));
+    }
     let run = dem2d::output::run_data::RunData::load(run_dir)
         .map_err(|e| Failure::input(e.to_string()))?;
+    match run.summary["status"].as_str() {
+        Some("completed" | "at_rest" | "max_steps") => {}
+        Some(status) => say(&format!(
+            "dem2d: warning: {}: the run's status is `{status}`{}: drawing what it wrote",
+            run_dir.join("summary.json").display(),
+            if status == "running" {
+                " (it did not finish: killed, or still running)"
+            } else {
+                ""
+            }
+        )),
+        None => say(&format!(
+            "dem2d: warning: {}: no status (written by an older dem2d)",
+            run_dir.join("summary.json").display()
+        )),
+    }
     let name = match kind {
         PlotKind::Scene => "scene",
         PlotKind::Series => "series",
@@ -372,12 +484,8 @@ fn plot(run_dir: &std::path::Path, out: Option<PathBuf>, kind: PlotKind) -> Resu
             &[panels::quiescence(&run, &title, None)],
         ),
     };
-    result.map_err(|e| Failure {
-        code: 1,
-        message: format!("{}: {e}", out.display()),
-    })?;
-    println!("{}", out.display());
-    Ok(())
+    result.map_err(|e| Failure::failed(format!("{}: {e}", out.display())))?;
+    print_out(&format!("{}\n", out.display()))
 }
 
 fn generate(
@@ -422,12 +530,7 @@ fn generate(
             code: 1,
             message: format!("{}: cannot write: {e}", path.display()),
         }),
-        None => std::io::stdout()
-            .write_all(text.as_bytes())
-            .map_err(|e| Failure {
-                code: 1,
-                message: format!("standard output: {e}"),
-            }),
+        None => print_out(&text),
     }
 }
 
@@ -485,7 +588,7 @@ fn bench(
         message: e.to_string(),
     })?;
     let md = dem2d::bench::markdown(&rows);
-    print!("{md}");
+    print_out(&md)?;
     if let Some(path) = out {
         std::fs::write(path, &md).map_err(|e| Failure {
             code: 1,
@@ -505,14 +608,14 @@ fn figures(
     out: PathBuf,
     cases: PathBuf,
     work: PathBuf,
-    readme: String,
+    readme: Option<PathBuf>,
     quick: bool,
 ) -> Result<(), Failure> {
     let opts = dem2d::report::FigureOptions {
         cases,
         out,
         work,
-        readme: (!readme.is_empty()).then(|| PathBuf::from(readme)),
+        readme,
         quick,
     };
     let written = dem2d::report::figures(&opts).map_err(|e| Failure {
@@ -520,7 +623,7 @@ fn figures(
         message: e.to_string(),
     })?;
     for f in written {
-        println!("{}", f.display());
+        print_out(&format!("{}\n", f.display()))?;
     }
     Ok(())
 }
@@ -535,7 +638,16 @@ fn main() -> ExitCode {
             max_steps,
             quiet,
             threads,
-        } => set_threads(*threads).and_then(|()| run(case, out.clone(), *max_steps, *quiet)),
+            overwrite,
+        } => set_threads(*threads).and_then(|()| {
+            run(RunArgs {
+                case,
+                out: out.clone(),
+                max_steps: *max_steps,
+                quiet: *quiet,
+                overwrite: *overwrite,
+            })
+        }),
         Command::Plot { run_dir, out, kind } => plot(run_dir, out.clone(), *kind),
         Command::Generate {
             shape,
@@ -591,7 +703,7 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(f) => {
-            eprintln!("dem2d: {}", f.message);
+            say(&format!("dem2d: {}", f.message));
             ExitCode::from(f.code)
         }
     }

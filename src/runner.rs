@@ -1,42 +1,211 @@
-//! Runs a case: builds the world, steps it until the duration ends or P's quiescence criterion
-//! holds, and writes `trajectory.csv`, `increments.csv`, `case.json` and `summary.json` into
-//! the output directory. A blow-up stops the run with the step and the body; what was written is
-//! kept and the summary records the error.
+//! Runs a case: builds the world, steps it until the duration ends, P's quiescence criterion
+//! holds, `--max-steps` is reached, a blow-up is detected or a stop is asked for (SIGINT,
+//! SIGTERM), and writes `trajectory.csv`, `increments.csv`, `case.json` and `summary.json` into
+//! the output directory.
+//!
+//! # What a run leaves behind
+//! - A directory holding an earlier run's outputs is refused unless `overwrite` is set; then
+//!   those outputs are removed first (`summary.json` before anything else), so that nothing of
+//!   the earlier run can be mistaken for this one's.
+//! - `summary.json` is written atomically with status `running` before the first step, and at
+//!   the end with one of `completed`, `at_rest`, `max_steps`, `blowup`, `interrupted`,
+//!   `io_error` (see [`Status`]). A summary that still says `running` belongs to a run that was
+//!   killed.
+//! - The CSV files always end with a whole line; after a blow-up they hold everything up to it.
+//! - A blow-up is detected before anything is non-finite where possible ([`BlowupWatch`]: energy
+//!   created beyond what the initial state and gravity supply, or an overlap deeper than the
+//!   bodies); the report names the step, the body and the reason.
 
 use crate::dynamics::timestep::estimate_critical_dt;
+use crate::dynamics::watch::{self, BlowupWatch, Trigger};
 use crate::dynamics::{Blowup, World};
 use crate::output::progress::Progress;
-use crate::output::summary::{DeepCounts, EnergyReport, FinalBody, Summary};
-use crate::output::trace::{IncrementsWriter, TrajectoryWriter};
+use crate::output::summary::{DeepCounts, EnergyReport, FinalBody, Status, Summary, write_summary};
+use crate::output::trace::{IncrementsWriter, TrajectoryWriter, WriteError, time_value};
 use crate::scene::Case;
+use std::fmt;
 use std::io;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicI32, Ordering};
 use std::time::{Duration, Instant};
 
 /// Where and how to run.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct RunOptions {
     pub out_dir: PathBuf,
     /// Print a progress line on stderr (only for runs longer than about two seconds).
     pub progress: bool,
     /// Stop after this many steps even if the case's duration is longer (for quick checks).
     pub max_steps: Option<u64>,
+    /// Replace the outputs of an earlier run in `out_dir` (without it, such a directory is
+    /// refused).
+    pub overwrite: bool,
+    /// Set to a signal number (non-zero) to stop the run after the current step, with status
+    /// `interrupted` (the command line's SIGINT and SIGTERM handlers set it).
+    pub stop: Option<&'static AtomicI32>,
 }
 
-/// The result of a run that could write its output.
+/// The files a run writes (and `dem2d plot`'s default outputs, drawn from them): what is
+/// removed from a directory before a run replaces an earlier one. The summary comes first.
+pub const OUTPUT_FILES: [&str; 8] = [
+    "summary.json",
+    "summary.json.tmp",
+    "case.json",
+    "trajectory.csv",
+    "increments.csv",
+    "scene.svg",
+    "series.svg",
+    "quiescence.svg",
+];
+
+/// A blow-up: where it was found and why.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BlowupReport {
+    /// The step at which it was found (the state written last is that step's).
+    pub step: u64,
+    pub time: f64,
+    /// The body most concerned (the most energetic one, or one of the pair that overlaps).
+    pub body: usize,
+    pub reason: String,
+}
+
+impl fmt::Display for BlowupReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "blow-up at step {} (t = {}), body {}: {}",
+            self.step, self.time, self.body, self.reason
+        )
+    }
+}
+
+/// The result of a run that started (its directory was prepared and its first summary written).
 #[derive(Debug)]
 pub struct RunOutcome {
     pub summary: Summary,
-    pub blowup: Option<Blowup>,
+    pub blowup: Option<BlowupReport>,
+    /// The signal that stopped the run (status `interrupted`).
+    pub signal: Option<i32>,
+    /// The write that failed (status `io_error`), naming the file.
+    pub io_error: Option<String>,
+    /// The final `summary.json` could not be written (the status above is then only reported
+    /// here, and the file on disk still says `running`).
+    pub summary_error: Option<String>,
+}
+
+/// Why a run did not start.
+#[derive(Debug)]
+pub enum RunError {
+    /// The directory holds these outputs of an earlier run, and overwriting was not asked for.
+    Occupied { dir: PathBuf, files: Vec<String> },
+    /// The directory, `case.json` or the first `summary.json` could not be written.
+    Io(WriteError),
+}
+
+impl fmt::Display for RunError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RunError::Occupied { dir, files } => write!(
+                f,
+                "{}: holds the outputs of an earlier run ({}); give --overwrite to replace them, \
+                 or choose another --out",
+                dir.display(),
+                files.join(", ")
+            ),
+            RunError::Io(e) => e.fmt(f),
+        }
+    }
+}
+
+impl std::error::Error for RunError {}
+
+fn io_at(file: &Path) -> impl FnOnce(io::Error) -> RunError + '_ {
+    move |error| {
+        RunError::Io(WriteError {
+            file: file.to_path_buf(),
+            error,
+        })
+    }
+}
+
+/// The case name as one file-name component (the default output directory is
+/// `runs/<this>`): characters other than letters, digits and `-_.+=,@` become `_`, a leading dot
+/// too, and an empty result is `run`; at most 100 characters. A name such as `../../x` or
+/// `/etc` can then never lead outside `runs/`.
+pub fn file_name_component(name: &str) -> String {
+    let mut s: String = name
+        .chars()
+        .take(100)
+        .map(|c| {
+            if c.is_alphanumeric() || "-_.+=,@".contains(c) {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if s.starts_with('.') {
+        s.replace_range(..1, "_");
+    }
+    if s.is_empty() { "run".to_string() } else { s }
+}
+
+/// The default output directory of a case: `runs/<name as a file-name component>`.
+pub fn default_out_dir(case: &Case) -> PathBuf {
+    Path::new("runs").join(file_name_component(&case.name))
+}
+
+/// Refuses a directory holding an earlier run's outputs, or (with `overwrite`) removes them,
+/// the summary first.
+fn prepare_dir(dir: &Path, overwrite: bool) -> Result<(), RunError> {
+    let present: Vec<&str> = OUTPUT_FILES
+        .into_iter()
+        .filter(|f| dir.join(f).symlink_metadata().is_ok())
+        .collect();
+    if present.is_empty() {
+        return Ok(());
+    }
+    if !overwrite {
+        return Err(RunError::Occupied {
+            dir: dir.to_path_buf(),
+            files: present.iter().map(|f| f.to_string()).collect(),
+        });
+    }
+    for f in present {
+        let path = dir.join(f);
+        std::fs::remove_file(&path).map_err(io_at(&path))?;
+    }
+    Ok(())
 }
 
 /// Per-step increments are written for runs of up to this many steps, thinned beyond.
 const MAX_INCREMENT_ROWS: u64 = 200_000;
 
+/// How the step loop ended.
+enum Stop {
+    Completed,
+    AtRest,
+    MaxSteps,
+    Blowup(BlowupReport),
+    Interrupted(i32),
+}
+
+/// What the loop counts, for the summary.
+#[derive(Default)]
+struct Counters {
+    quiescent_step: Option<u64>,
+    first_contact_step: Option<u64>,
+    contact_sum: u64,
+    wall_seconds: f64,
+}
+
 /// Runs `case` (whose JSON text is `case_text`, copied to the output) with `opts`.
-pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<RunOutcome> {
-    std::fs::create_dir_all(&opts.out_dir)?;
-    std::fs::write(opts.out_dir.join("case.json"), case_text)?;
+pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOutcome, RunError> {
+    let dir = &opts.out_dir;
+    prepare_dir(dir, opts.overwrite)?;
+    std::fs::create_dir_all(dir).map_err(io_at(dir))?;
+    let case_file = dir.join("case.json");
+    std::fs::write(&case_file, case_text).map_err(io_at(&case_file))?;
     let mut world = World::new(
         &case.bodies,
         case.walls.clone(),
@@ -58,36 +227,154 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<R
             case.dt, dt_critical
         ));
     }
+    world.refresh_contact_extras();
+    if let Some(w) = initial_overlap_warning(&watch::overlaps(&world)) {
+        warnings.push(w);
+    }
     let initial_total = world.energies.total();
-    let steps = opts.max_steps.map_or(case.steps(), |m| m.min(case.steps()));
+    let mut counters = Counters::default();
+    let summary = summarize(
+        case,
+        &world,
+        Status::Running,
+        &counters,
+        (dt_critical, initial_total),
+        &warnings,
+        None,
+    );
+    let summary_file = dir.join("summary.json");
+    write_summary(dir, &summary).map_err(io_at(&summary_file))?;
+
+    let mut last_label = None;
+    let traj_file = dir.join("trajectory.csv");
+    let incs_file = dir.join("increments.csv");
+    let result = match TrajectoryWriter::create(&traj_file)
+        .and_then(|t| Ok((t, IncrementsWriter::create(&incs_file)?)))
+    {
+        Err(e) => Err(e),
+        Ok((mut traj, mut incs)) => {
+            let stopped = step_loop(
+                case,
+                opts,
+                &mut world,
+                (&mut traj, &mut incs),
+                &mut counters,
+                &mut last_label,
+            );
+            // The last rows — the state the loop left, labelled with the step it belongs to —
+            // and the buffers, also after a failed write (to the other file, it may succeed).
+            let label = last_label.unwrap_or(world.step);
+            let traj_done = traj
+                .write_labelled(&world, label)
+                .and_then(|()| traj.flush());
+            let incs_done = incs.flush();
+            stopped.and_then(|stop| traj_done.and(incs_done).map(|()| stop))
+        }
+    };
+    world.network_critical_dt();
+    let observed = world.diagnostics.dt_critical_observed;
+    if case.dt > observed && observed.is_finite() {
+        warnings.push(format!(
+            "dt = {:e} exceeds the critical time step of the contact network observed during the run, \
+             {observed:.3e} (its stiffest mode, sampled every output interval): the explicit scheme may \
+             oscillate or blow up",
+            case.dt
+        ));
+    }
+    let (status, blowup, signal, io_error) = match result {
+        Ok(Stop::Completed) => (Status::Completed, None, None, None),
+        Ok(Stop::AtRest) => (Status::AtRest, None, None, None),
+        Ok(Stop::MaxSteps) => (Status::MaxSteps, None, None, None),
+        Ok(Stop::Blowup(b)) => (Status::Blowup, Some(b), None, None),
+        Ok(Stop::Interrupted(sig)) => (Status::Interrupted, None, Some(sig), None),
+        Err(e) => (Status::IoError, None, None, Some(e.to_string())),
+    };
+    let error = match (&blowup, signal, &io_error) {
+        (Some(b), _, _) => Some(b.to_string()),
+        (_, Some(sig), _) => Some(format!(
+            "interrupted by signal {sig} ({}) after step {}",
+            signal_name(sig),
+            world.step
+        )),
+        (_, _, Some(e)) => Some(e.clone()),
+        _ => None,
+    };
+    let summary = summarize(
+        case,
+        &world,
+        status,
+        &counters,
+        (dt_critical, initial_total),
+        &warnings,
+        error,
+    );
+    let summary_error = write_summary(dir, &summary)
+        .err()
+        .map(|e| format!("{}: cannot write: {e}", summary_file.display()));
+    Ok(RunOutcome {
+        summary,
+        blowup,
+        signal,
+        io_error,
+        summary_error,
+    })
+}
+
+/// `SIGINT`, `SIGTERM` or the number.
+pub fn signal_name(sig: i32) -> String {
+    match sig {
+        2 => "SIGINT".into(),
+        15 => "SIGTERM".into(),
+        n => format!("signal {n}"),
+    }
+}
+
+/// The steps; returns how they ended. `last_label` is set when the world's state belongs to a
+/// step that failed part-way (a non-finite state found inside the step).
+fn step_loop(
+    case: &Case,
+    opts: &RunOptions,
+    world: &mut World,
+    (traj, incs): (&mut TrajectoryWriter, &mut IncrementsWriter),
+    counters: &mut Counters,
+    last_label: &mut Option<u64>,
+) -> Result<Stop, WriteError> {
+    let case_steps = case.steps();
+    let steps = opts.max_steps.map_or(case_steps, |m| m.min(case_steps));
     let thin = steps.div_ceil(MAX_INCREMENT_ROWS).max(1);
-    let mut traj = TrajectoryWriter::create(&opts.out_dir.join("trajectory.csv"))?;
-    let mut incs = IncrementsWriter::create(&opts.out_dir.join("increments.csv"))?;
-    traj.write(&world)?;
+    traj.write(world)?;
+    let mut watch = BlowupWatch::new(world);
     let start = Instant::now();
     let mut progress = Progress::new(opts.progress, Duration::from_secs(2));
-    let mut quiescent_step = None;
     let mut streak = 0u64;
-    let mut first_contact_step = None;
-    let mut blowup = None;
-    let mut contact_sum = 0u64;
+    let mut stop = if steps < case_steps {
+        Stop::MaxSteps
+    } else {
+        Stop::Completed
+    };
     for s in 1..=steps {
         let report = match world.step() {
             Ok(r) => r,
             Err(b) => {
-                blowup = Some(b);
+                *last_label = Some(b.step);
+                stop = Stop::Blowup(from_step_failure(&b, world));
                 break;
             }
         };
-        contact_sum += report.contacts as u64;
-        if first_contact_step.is_none() && report.contacts > 0 {
-            first_contact_step = Some(s);
+        counters.contact_sum += report.contacts as u64;
+        if counters.first_contact_step.is_none() && report.contacts > 0 {
+            counters.first_contact_step = Some(s);
+        }
+        if let Some(trigger) = watch.check(world) {
+            incs.write(world, &report)?;
+            stop = Stop::Blowup(describe(trigger, world));
+            break;
         }
         if s % thin == 0 || s == steps {
-            incs.write(&world, &report)?;
+            incs.write(world, &report)?;
         }
         if s % case.output_every == 0 {
-            traj.write(&world)?;
+            traj.write(world)?;
             world.network_critical_dt();
         }
         if let Some(q) = case.quiescence {
@@ -98,12 +385,22 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<R
             }
             if streak >= case.quiescence_window {
                 // At rest since the first step of the streak (P's count for a window of one).
-                quiescent_step = Some(s + 1 - streak);
-                if s % thin != 0 {
-                    incs.write(&world, &report)?;
+                counters.quiescent_step = Some(s + 1 - streak);
+                if s % thin != 0 && s != steps {
+                    incs.write(world, &report)?;
                 }
+                stop = Stop::AtRest;
                 break;
             }
+        }
+        if let Some(sig) = opts.stop.map(|f| f.load(Ordering::Relaxed))
+            && sig != 0
+        {
+            if s % thin != 0 && s != steps {
+                incs.write(world, &report)?;
+            }
+            stop = Stop::Interrupted(sig);
+            break;
         }
         if progress.due() {
             let rate = s as f64 / start.elapsed().as_secs_f64();
@@ -117,21 +414,119 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<R
             ));
         }
     }
-    let wall_seconds = start.elapsed().as_secs_f64();
-    world.network_critical_dt();
-    let observed = world.diagnostics.dt_critical_observed;
-    if case.dt > observed && observed.is_finite() {
-        warnings.push(format!(
-            "dt = {:e} exceeds the critical time step of the contact network observed during the run, \
-             {observed:.3e} (its stiffest mode, sampled every output interval): the explicit scheme may \
-             oscillate or blow up",
-            case.dt
-        ));
-    }
+    counters.wall_seconds = start.elapsed().as_secs_f64();
     progress.finish();
-    traj.write(&world)?;
-    traj.flush()?;
-    incs.flush()?;
+    Ok(stop)
+}
+
+/// A non-finite state found inside a step.
+fn from_step_failure(b: &Blowup, world: &World) -> BlowupReport {
+    BlowupReport {
+        step: b.step,
+        time: time_value(b.step, world.dt),
+        body: b.body,
+        reason: format!(
+            "non-finite {} (the state written last is where the step stopped)",
+            b.what
+        ),
+    }
+}
+
+/// A trigger of the watch, with the body it concerns.
+fn describe(trigger: Trigger, world: &mut World) -> BlowupReport {
+    let (body, reason) = match trigger {
+        Trigger::NonFinite(what) => (
+            watch::most_energetic_body(world),
+            format!("non-finite {what}"),
+        ),
+        Trigger::Energy { created, available } => (
+            watch::most_energetic_body(world),
+            format!(
+                "the energy grew by {created:.3e} erg, more than {} × the {available:.3e} erg that \
+                 the initial state and gravity can supply (the step is unstable: is dt above the \
+                 critical step, or a stiffness far above what dt can follow?)",
+                watch::ENERGY_GROWTH
+            ),
+        ),
+        Trigger::Depth { ratio } => {
+            world.refresh_contact_extras();
+            match watch::overlaps(world).first() {
+                Some(o) => (
+                    o.i,
+                    format!(
+                        "{} overlap by δ = {:.3e}, {:.3} × the smaller inscribed radius: deeper \
+                         than the bodies themselves (the contact is too soft for the impact, or \
+                         dt too large)",
+                        o.names(),
+                        o.depth,
+                        o.ratio
+                    ),
+                ),
+                None => (
+                    watch::most_energetic_body(world),
+                    format!(
+                        "an overlap reached {ratio:.3} × the smaller inscribed radius: deeper than \
+                         the bodies themselves"
+                    ),
+                ),
+            }
+        }
+    };
+    BlowupReport {
+        step: world.step,
+        time: time_value(world.step, world.dt),
+        body,
+        reason,
+    }
+}
+
+/// The warning for bodies that overlap at the start (deepest first, at most five named). A
+/// settled pile given as a case overlaps everywhere by design, slightly; a body listed twice,
+/// inside another or below the floor overlaps deeply and is flung out.
+fn initial_overlap_warning(overlaps: &[watch::Overlap]) -> Option<String> {
+    let first = overlaps.first()?;
+    let named: Vec<String> = overlaps
+        .iter()
+        .take(5)
+        .map(|o| {
+            format!(
+                "{} by δ = {:.3e} ({:.3} × the smaller inscribed radius)",
+                o.names(),
+                o.depth,
+                o.ratio
+            )
+        })
+        .collect();
+    let more = overlaps.len().saturating_sub(5);
+    Some(format!(
+        "{} pair{} overlap{} at the start (their contacts act from the first step{}): {}{}",
+        overlaps.len(),
+        if overlaps.len() == 1 { "" } else { "s" },
+        if overlaps.len() == 1 { "s" } else { "" },
+        if first.ratio > 0.1 {
+            "; deep overlaps fling the bodies apart, their elastic energy turned into speed"
+        } else {
+            ""
+        },
+        named.join("; "),
+        if more > 0 {
+            format!("; and {more} more")
+        } else {
+            String::new()
+        }
+    ))
+}
+
+/// The summary of the world as it stands.
+fn summarize(
+    case: &Case,
+    world: &World,
+    status: Status,
+    counters: &Counters,
+    (dt_critical, initial_total): (f64, f64),
+    warnings: &[String],
+    error: Option<String>,
+) -> Summary {
     let b = &world.bodies;
     let final_state = (0..b.len())
         .map(|k| FinalBody {
@@ -146,13 +541,14 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<R
     let e = world.energies;
     let done = world.step.max(1);
     let unbalanced = world.unbalanced_ratios();
-    let summary = Summary {
+    Summary {
         name: case.name.clone(),
+        status,
         steps: world.step,
-        time: world.time,
-        quiescent: quiescent_step.is_some(),
-        quiescent_step,
-        first_contact_step,
+        time: time_value(world.step, world.dt),
+        quiescent: counters.quiescent_step.is_some(),
+        quiescent_step: counters.quiescent_step,
+        first_contact_step: counters.first_contact_step,
         final_state,
         max_depth_ratio: world.diagnostics.max_depth_ratio,
         deep_contacts: DeepCounts {
@@ -173,18 +569,73 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> io::Result<R
         dt_critical,
         dt_critical_observed: Some(world.diagnostics.dt_critical_observed)
             .filter(|v| v.is_finite()),
-        warnings,
-        wall_seconds,
-        particle_steps_per_second: b.len() as f64 * world.step as f64 / wall_seconds.max(1e-9),
-        contacts_per_step: contact_sum as f64 / done as f64,
-        error: blowup.as_ref().map(|b| b.to_string()),
-    };
-    write_summary(&opts.out_dir, &summary)?;
-    Ok(RunOutcome { summary, blowup })
+        warnings: warnings.to_vec(),
+        wall_seconds: counters.wall_seconds,
+        particle_steps_per_second: b.len() as f64 * world.step as f64
+            / counters.wall_seconds.max(1e-9),
+        contacts_per_step: counters.contact_sum as f64 / done as f64,
+        error,
+    }
 }
 
-/// Writes `summary.json` (pretty-printed).
-pub fn write_summary(dir: &Path, summary: &Summary) -> io::Result<()> {
-    let text = serde_json::to_string_pretty(summary).map_err(io::Error::other)?;
-    std::fs::write(dir.join("summary.json"), text + "\n")
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_state_found_non_finite_inside_a_step_is_labelled_with_that_step() {
+        // Beyond the accepted ranges on purpose (the case is changed after reading): a speed of
+        // 1e300 over dt = 1e10 makes the position infinite in the first step's drift, inside
+        // the step, which stops there (the body's velocity kicked to step ½, its position not
+        // moved). The last rows hold that state, so they must say step 1, not step 0.
+        let mut case = Case::from_json(
+            r#"{"version": 1, "name": "t", "gravity": [0, 0], "dt": 1e-3, "duration": 1,
+                "contact": {"model": "linear", "kn": 1, "eta_n": 0, "friction": 0},
+                "bodies": [{"shape": {"type": "circle", "r": 1}, "position": [0, 0]}]}"#,
+        )
+        .unwrap();
+        case.bodies[0].velocity = crate::geometry::Vec2::new(1e300, 0.0);
+        case.dt = 1e10;
+        case.duration = 1e11;
+        let dir = std::env::temp_dir().join(format!("dem2d-runner-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let opts = RunOptions {
+            out_dir: dir.clone(),
+            ..Default::default()
+        };
+        let outcome = run_case(&case, "{}", &opts).unwrap();
+        let b = outcome.blowup.expect("a blow-up");
+        assert_eq!((b.step, b.body), (1, 0));
+        assert!(b.reason.contains("non-finite position"), "{}", b.reason);
+        assert_eq!(outcome.summary.status, Status::Blowup);
+        assert_eq!(outcome.summary.steps, 0, "no step completed");
+        let traj = std::fs::read_to_string(dir.join("trajectory.csv")).unwrap();
+        let rows: Vec<&str> = traj.lines().collect();
+        assert_eq!(rows.len(), 3, "{traj}");
+        assert!(rows[1].starts_with("0,0,0,0,0,"), "{}", rows[1]);
+        let last: Vec<&str> = rows[2].split(',').collect();
+        assert_eq!(&last[..3], ["1", "1e10", "0"], "{}", rows[2]);
+        assert_eq!(last[6].parse::<f64>().unwrap(), 1e300);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn case_names_become_one_file_name_component() {
+        assert_eq!(file_name_component("settle3_dt1e-5"), "settle3_dt1e-5");
+        assert_eq!(file_name_component("../../etc/x"), "_._.._etc_x");
+        assert_eq!(file_name_component("/abs/path"), "_abs_path");
+        assert_eq!(file_name_component(".."), "_.");
+        assert_eq!(file_name_component(""), "run");
+        assert_eq!(file_name_component("P Fig. 4"), "P_Fig._4");
+        for name in ["../../x", "/etc", "..", ".", "a/../../b", "c:\\x", "\0"] {
+            let p = Path::new("runs").join(file_name_component(name));
+            assert_eq!(p.components().count(), 2, "{name}: {}", p.display());
+            assert!(p.starts_with("runs"));
+            assert!(
+                p.components()
+                    .all(|c| matches!(c, std::path::Component::Normal(_))),
+                "{name}"
+            );
+        }
+    }
 }

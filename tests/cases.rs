@@ -132,7 +132,9 @@ fn every_bad_case_is_refused_with_its_error() {
 #[test]
 fn a_blow_up_stops_with_step_and_body_and_keeps_its_output() {
     // Two stiff, undamped disks squeezed between two walls with Δt far above the critical step
-    // (ωΔt ≈ 25): every step multiplies the oscillation until the state overflows.
+    // (ωΔt ≈ 18): every step multiplies the oscillation. The run must stop before anything is
+    // non-finite, name the step and the body, keep what it wrote, and label the last rows with
+    // the step whose state they hold.
     let case = r#"{"version": 1, "name": "blowup", "gravity": [0, 0], "dt": 1e-3, "duration": 10.0,
       "output_every": 1,
       "contact": {"model": "linear", "kn": 1e9, "eta_n": 0, "friction": 0},
@@ -153,7 +155,7 @@ fn a_blow_up_stops_with_step_and_body_and_keeps_its_output() {
     ]);
     assert_eq!(code, 1, "{err}");
     assert!(
-        err.contains("non-finite") && err.contains("body") && err.contains("step"),
+        err.contains("blow-up at step 1 ") && err.contains("body") && err.contains("energy grew"),
         "{err}"
     );
     assert!(
@@ -161,19 +163,34 @@ fn a_blow_up_stops_with_step_and_body_and_keeps_its_output() {
         "{err}"
     );
     let s = summary(&out);
+    assert_eq!(s["status"], "blowup");
     assert!(
-        s["error"].as_str().unwrap().contains("step"),
+        s["error"].as_str().unwrap().contains("step 1 "),
         "{}",
         s["error"]
     );
-    let rows = std::fs::read_to_string(out.join("trajectory.csv"))
-        .unwrap()
+    for e in ["kinetic", "potential", "elastic", "dissipated"] {
+        assert!(s["energies"][e].as_f64().unwrap().is_finite(), "{e}");
+    }
+    let traj = std::fs::read_to_string(out.join("trajectory.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = traj
         .lines()
-        .count();
-    assert!(
-        rows > 3,
-        "the trajectory up to the blow-up is kept ({rows} lines)"
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(
+        rows.len(),
+        4,
+        "the initial state and the state at the blow-up"
     );
+    let last = &rows[rows.len() - 1];
+    assert_eq!(
+        last[0], 1.0,
+        "the last row is labelled with the step it holds"
+    );
+    assert_eq!(last[1], 1e-3);
+    assert_eq!(last[3], s["final"][1]["x"].as_f64().unwrap());
+    assert_eq!(last[6], s["final"][1]["vx"].as_f64().unwrap());
 }
 
 #[test]
@@ -243,4 +260,91 @@ fn paper_drop_differs_visibly_with_floor_friction() {
         dx > 1.0,
         "final positions differ by only {dx} cm: {finals:?}"
     );
+}
+
+#[test]
+fn the_dynamics_is_the_same_at_every_scale_of_the_accepted_ranges() {
+    // P's settling scene with every length (sizes, positions, gravity, stiffness per ρg) scaled
+    // by 2^-64 ≈ 5e-20 and by 2^40 ≈ 1e12, times unchanged: scaling by a power of two is exact in
+    // float64 and every formula of the step is homogeneous in length, so the trajectory divided
+    // by the scale must be the same bits. (The case's quiescence is left out: P's criterion
+    // compares angle increments with a length.) A difference means an absolute tolerance
+    // somewhere, which the accepted ranges (1e-40 … 1e40) would expose.
+    let base: Value = serde_json::from_str(
+        &std::fs::read_to_string(cases_dir().join("settle3_dt1e-5.json")).unwrap(),
+    )
+    .unwrap();
+    let dir = scratch("scales");
+    std::fs::create_dir_all(&dir).unwrap();
+    let run = |e: i32| -> Vec<[f64; 5]> {
+        let s = 2f64.powi(e);
+        let mut c = base.clone();
+        let scale = |v: &mut Value| *v = Value::from(v.as_f64().unwrap() * s);
+        c["gravity"]
+            .as_array_mut()
+            .unwrap()
+            .iter_mut()
+            .for_each(scale);
+        for (k, v) in c["contact"].as_object_mut().unwrap() {
+            if k.ends_with("_over_rho_g") {
+                scale(v);
+            }
+        }
+        for w in c["walls"].as_array_mut().unwrap() {
+            assert!(
+                w.as_object()
+                    .unwrap()
+                    .keys()
+                    .all(|k| k == "point" || k == "normal")
+            );
+            w["point"]
+                .as_array_mut()
+                .unwrap()
+                .iter_mut()
+                .for_each(scale);
+        }
+        for b in c["bodies"].as_array_mut().unwrap() {
+            b["position"]
+                .as_array_mut()
+                .unwrap()
+                .iter_mut()
+                .for_each(scale);
+            for (k, v) in b["shape"].as_object_mut().unwrap() {
+                if k != "type" {
+                    scale(v);
+                }
+            }
+            assert!(b.get("velocity").is_none());
+        }
+        c.as_object_mut().unwrap().remove("quiescence");
+        c["output_every"] = Value::from(1);
+        let file = dir.join(format!("scale{e}.json"));
+        std::fs::write(&file, c.to_string()).unwrap();
+        let out = dir.join(format!("out{e}"));
+        let (code, _, err) = dem2d(&[
+            "run",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--max-steps",
+            "8000",
+        ]);
+        assert_eq!(code, 0, "2^{e}: {err}");
+        let traj = std::fs::read_to_string(out.join("trajectory.csv")).unwrap();
+        traj.lines()
+            .skip(1)
+            .map(|l| {
+                let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+                [v[3] / s, v[4] / s, v[5], v[6] / s, v[8]]
+            })
+            .collect()
+    };
+    let unit = run(0);
+    assert_eq!(unit.len(), 3 * 8001);
+    for e in [-64, 40] {
+        let scaled = run(e);
+        let first = unit.iter().zip(&scaled).position(|(a, b)| a != b);
+        assert_eq!(first, None, "2^{e}: first different row {first:?}");
+    }
 }

@@ -157,6 +157,46 @@ fn bad_input_is_refused_with_the_field_named() {
             ),
             "malformed JSON",
         ),
+        // The accepted ranges (issue 11): sizes, coordinates, spread of sizes, extent.
+        (
+            format!(
+                r#"[{{"i": {{"shape": {{"type": "ellipse", "a": 1e-320, "b": 1e-320}}, "position": [0, 0]}}, "j": {body}}}]"#
+            ),
+            "pairs[0].i.shape.a`: 1e-320 is outside the accepted range",
+        ),
+        (
+            format!(
+                r#"[{{"i": {{"shape": {{"type": "ellipse", "a": 1e308, "b": 1}}, "position": [0, 0]}}, "j": {body}}}]"#
+            ),
+            "pairs[0].i.shape.a`: 1e308 is outside the accepted range",
+        ),
+        (
+            r#"[{"i": {"wall": {"point": [1e308, 0], "normal": [-1, 0]}}, "j": {"shape": {"type": "circle", "r": 1}, "position": [-1e308, 0]}}]"#.to_string(),
+            "pairs[0].i.wall.point[0]`: 1e308 is outside the accepted range",
+        ),
+        (
+            format!(
+                r#"[{{"i": {{"shape": {{"type": "circle", "r": 1e7}}, "position": [0, 0]}}, "j": {body}}}]"#
+            ),
+            "pairs[0].i.shape.r`: 1e7 is 1.0e7 × the smallest size",
+        ),
+        (
+            format!(
+                r#"[{{"i": {body}, "j": {{"shape": {{"type": "circle", "r": 1}}, "position": [2e9, 0]}}}}]"#
+            ),
+            "pairs[0].j.position`: a coordinate of 2e9",
+        ),
+        // A key given twice, and an empty key.
+        (
+            format!(
+                r#"[{{"i": {body}, "j": {{"shape": {{"type": "circle", "r": -1, "r": 1}}, "position": [0, 0]}}}}]"#
+            ),
+            "pairs[0].j.shape.r`: duplicate key",
+        ),
+        (
+            format!(r#"[{{"i": {body}, "j": {body}, "": 0}}]"#),
+            "pairs[0].\"\"`: unknown field (an empty key)",
+        ),
     ];
     for (input, expected) in cases {
         let (code, out, err) = dem2d(&["contact", "-"], &input);
@@ -173,6 +213,71 @@ fn bad_input_is_refused_with_the_field_named() {
     assert_eq!(code, 2);
     assert!(
         out.is_empty() && err.contains("/nonexistent/pairs.json"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_byte_order_mark_is_accepted_and_no_negative_zero_is_printed() {
+    // The demo file printed a `-0.0` (a sign of zero carries no meaning in a contact record);
+    // read with a UTF-8 byte-order mark in front, it must give the same records.
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cases/contacts_demo.json");
+    let (code, plain, err) = dem2d(&["contact", path], "");
+    assert_eq!(code, 0, "{err}");
+    for zero in ["-0.0,", "-0.0]"] {
+        assert!(!plain.contains(zero), "{plain}");
+    }
+    let text = std::fs::read_to_string(path).unwrap();
+    let (code, bom, err) = dem2d(&["contact", "-"], &format!("\u{feff}{text}"));
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(bom, plain);
+}
+
+#[test]
+fn a_tiny_non_zero_wall_normal_is_a_direction() {
+    // [1e-200, 1e-200] has a squared length that underflows; it is still the direction (1, 1).
+    let input = r#"[{"i": {"wall": {"point": [0, 0], "normal": [1e-200, 1e-200]}},
+                     "j": {"shape": {"type": "circle", "r": 1}, "position": [0, 0]}}]"#;
+    let (code, out, err) = dem2d(&["contact", "-"], input);
+    assert_eq!(code, 0, "{err}");
+    let v: Value = serde_json::from_str(out.trim()).unwrap();
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let n = v["normal"].as_array().unwrap();
+    assert!((n[0].as_f64().unwrap() - h).abs() < 1e-15, "{out}");
+    assert!((n[1].as_f64().unwrap() - h).abs() < 1e-15, "{out}");
+    // The circle's centre lies on the wall: the overlap is its radius.
+    assert!((v["depth"].as_f64().unwrap() - 1.0).abs() < 1e-15, "{out}");
+}
+
+#[test]
+fn a_full_standard_output_is_an_error_not_a_panic() {
+    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
+        eprintln!("no /dev/full here: skipped");
+        return;
+    };
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cases/contacts_demo.json");
+    let out = Command::new(env!("CARGO_BIN_EXE_dem2d"))
+        .args(["contact", path])
+        .stdout(full)
+        .output()
+        .unwrap();
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("standard output: cannot write"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+#[test]
+fn an_endless_input_is_refused_at_the_size_limit() {
+    if !std::path::Path::new("/dev/zero").exists() {
+        eprintln!("no /dev/zero here: skipped");
+        return;
+    }
+    let (code, out, err) = dem2d(&["contact", "/dev/zero"], "");
+    assert_eq!(code, 2, "{err}");
+    assert!(out.is_empty());
+    assert!(
+        err.contains("/dev/zero: larger than 256 MiB, the limit for an input file"),
         "{err}"
     );
 }

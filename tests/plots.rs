@@ -237,20 +237,23 @@ fn plotting_a_directory_that_is_not_a_run_names_the_missing_file() {
 fn figures_quick_writes_every_figure_and_table_of_the_readme() {
     let out = scratch("figures");
     let work = scratch("figure_runs");
-    let (code, stdout, err) = dem2d(&[
-        "figures",
-        "--quick",
-        "--readme",
-        "",
-        "--out",
-        out.to_str().unwrap(),
-        "--work",
-        work.to_str().unwrap(),
-    ]);
+    let readme_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md");
+    let readme = std::fs::read_to_string(&readme_path).unwrap();
+    let figures = |out: &Path, work: &Path| {
+        dem2d(&[
+            "figures",
+            "--quick",
+            "--out",
+            out.to_str().unwrap(),
+            "--work",
+            work.to_str().unwrap(),
+        ])
+    };
+    let (code, stdout, err) = figures(&out, &work);
     assert_eq!(code, 0, "{err}");
+    // Without --readme the README is left alone.
+    assert_eq!(std::fs::read_to_string(&readme_path).unwrap(), readme);
     // Every figure the README embeds and every table it includes.
-    let readme =
-        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
     let mut wanted = Vec::new();
     for part in readme.split("](figures/").skip(1) {
         wanted.push(part.split(')').next().unwrap().to_string());
@@ -272,4 +275,81 @@ fn figures_quick_writes_every_figure_and_table_of_the_readme() {
             "{f} is almost empty"
         );
     }
+    // The timings, and only they, go to the work directory.
+    let timings = std::fs::read_to_string(work.join("timings.md")).unwrap();
+    assert!(timings.contains("machine-dependent") && timings.contains("ns/pair"));
+    // What goes to the output directory is the same bits every time (regenerating leaves a
+    // clean tree).
+    let (out2, work2) = (scratch("figures2"), scratch("figure_runs2"));
+    let (code, _, err) = figures(&out2, &work2);
+    assert_eq!(code, 0, "{err}");
+    let mut files = 0;
+    for entry in std::fs::read_dir(&out).unwrap() {
+        let name = entry.unwrap().file_name();
+        let (a, b) = (
+            std::fs::read(out.join(&name)).unwrap(),
+            std::fs::read(out2.join(&name)).unwrap(),
+        );
+        assert!(a == b, "{name:?} differs between two runs of figures");
+        files += 1;
+    }
+    assert!(files >= 12);
+}
+
+#[test]
+fn plot_refuses_what_it_cannot_draw_and_writes_svg_only() {
+    let run = scratch("huge");
+    let (code, _, err) = dem2d(&[
+        "run",
+        "cases/settle3_dt1e-5.json",
+        "--out",
+        run.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    // `--out x.png` would have been an SVG in a .png file.
+    let png = run.join("x.png");
+    let (code, _, err) = dem2d(&[
+        "plot",
+        run.to_str().unwrap(),
+        "--out",
+        png.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("SVG only"), "{err}");
+    assert!(!png.exists());
+    // A coordinate of 1e155 (a run that blew up) made the scene plot grow without end: it must
+    // return, promptly, with the range named.
+    let traj = run.join("trajectory.csv");
+    let text = std::fs::read_to_string(&traj).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let last = lines.pop().unwrap();
+    let mut fields: Vec<&str> = last.split(',').collect();
+    fields[3] = "1e155";
+    lines.push(fields.join(","));
+    std::fs::write(&traj, lines.join("\n") + "\n").unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_dem2d"))
+        .args(["plot", run.to_str().unwrap()])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        if start.elapsed().as_secs() > 60 {
+            child.kill().unwrap();
+            panic!("plot did not return in 60 s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    let mut err = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut err).unwrap();
+    assert_eq!(status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("cannot be drawn") && err.contains("1.03e155"),
+        "{err}"
+    );
 }

@@ -6,6 +6,7 @@ pub mod broad_phase;
 pub mod contacts;
 pub mod step;
 pub mod timestep;
+pub mod watch;
 pub mod world;
 
 pub use body::{Bodies, BodyInit, BodyState};

@@ -16,15 +16,21 @@ pub struct ContactRecord {
     pub chord: Option<[[f64; 2]; 2]>,
 }
 
+/// `x`, with −0 written as 0 (a sign of zero carries no meaning in a contact record).
+fn z(x: f64) -> f64 {
+    x + 0.0
+}
+
 impl From<&Contact> for ContactRecord {
     fn from(c: &Contact) -> Self {
         let g = c.geometry.as_ref();
+        let v = |p: crate::geometry::Vec2| [z(p.x), z(p.y)];
         ContactRecord {
             state: c.state.as_str(),
-            depth: g.map(|g| g.depth),
-            normal: g.map(|g| [g.normal.x, g.normal.y]),
-            point: g.map(|g| [g.point.x, g.point.y]),
-            chord: g.map(|g| [[g.chord.0.x, g.chord.0.y], [g.chord.1.x, g.chord.1.y]]),
+            depth: g.map(|g| z(g.depth)),
+            normal: g.map(|g| v(g.normal)),
+            point: g.map(|g| v(g.point)),
+            chord: g.map(|g| [v(g.chord.0), v(g.chord.1)]),
         }
     }
 }

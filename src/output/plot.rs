@@ -25,6 +25,27 @@ fn err<E: std::fmt::Debug>(e: E) -> PlotError {
     PlotError(format!("{e:?}"))
 }
 
+/// Largest magnitude of a coordinate or value that is drawn. plotters forms squares of
+/// coordinates: a scene with a coordinate of 1e155 never finished drawing (its memory grew
+/// without bound), so a plot reaching beyond this is refused with the range it holds.
+pub const PLOT_LIMIT: f64 = 1e100;
+
+/// Refuses an axis range that cannot be drawn: not finite, beyond [`PLOT_LIMIT`], or too narrow
+/// for its distance from zero to be resolved.
+fn check_range(what: &str, lo: f64, hi: f64) -> Result<(), PlotError> {
+    let far = lo.abs().max(hi.abs());
+    let drawable = lo.is_finite() && hi.is_finite() && far <= PLOT_LIMIT && hi - lo > 1e-9 * far;
+    if drawable {
+        Ok(())
+    } else {
+        Err(PlotError(format!(
+            "{what} from {lo:e} to {hi:e} cannot be drawn: values must be finite, at most \
+             {PLOT_LIMIT:e} in magnitude, and spread over more than 1e-9 of their magnitude (a \
+             run that blew up?)"
+        )))
+    }
+}
+
 /// The colours of series and bodies (colour-blind-safe order).
 pub const COLORS: [RGBColor; 6] = [
     RGBColor(0, 114, 178),
@@ -186,6 +207,8 @@ fn clip_line(p: Vec2, d: Vec2, b: (f64, f64, f64, f64)) -> Option<(Vec2, Vec2)> 
 pub fn scene(path: &Path, panels: &[ScenePanel], opts: &SceneOptions) -> Result<(), PlotError> {
     let t_max = opts.t_max.unwrap_or(f64::INFINITY);
     let (mut x0, mut x1, mut y0, mut y1) = scene_bounds(panels, opts, t_max);
+    check_range("the scene's x", x0, x1)?;
+    check_range("the scene's y", y0, y1)?;
     let (left, bottom, title_h, margin) = (60 * S, 45 * S, 30 * S, 12 * S);
     let width = opts.width * S;
     let plot_w = (width - left - 2 * margin) as f64;
@@ -604,6 +627,8 @@ where
         .chain(p.hlines.iter().map(|h| h.0));
     let (x0, x1) = p.x_range.unwrap_or_else(|| data_range(xs, p.log_x));
     let (y0, y1) = p.y_range.unwrap_or_else(|| data_range(ys, p.log_y));
+    check_range(&format!("`{}`: x", p.title), x0, x1)?;
+    check_range(&format!("`{}`: y", p.title), y0, y1)?;
     let mut builder = ChartBuilder::on(area);
     builder
         .caption(&p.title, ("sans-serif", 16 * S))

@@ -1,7 +1,7 @@
 //! Progress lines on stderr for long runs: rewritten in place about once a second on a terminal;
 //! in a log (stderr not a terminal) one full line every 30 s, so logs stay readable.
 
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
 use std::time::{Duration, Instant};
 
 /// Throttled progress reporting; silent until `quiet_for` has passed since creation.
@@ -45,17 +45,19 @@ impl Progress {
     pub fn show(&mut self, line: &str) {
         self.last = Instant::now();
         self.shown = true;
-        if self.tty {
-            eprint!("\r{line}   ");
+        // Progress is a courtesy: a closed or full stderr must not stop the run.
+        let mut err = std::io::stderr().lock();
+        let _ = if self.tty {
+            write!(err, "\r{line}   ")
         } else {
-            eprintln!("{line}");
-        }
+            writeln!(err, "{line}")
+        };
     }
 
     /// Ends the in-place line on a terminal, if one was shown.
     pub fn finish(&self) {
         if self.shown && self.tty {
-            eprintln!();
+            let _ = writeln!(std::io::stderr());
         }
     }
 }

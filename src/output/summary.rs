@@ -1,6 +1,45 @@
-//! `summary.json`: what a run did, in one object.
+//! `summary.json`: what a run did, in one object. It is written (atomically: a temporary file
+//! renamed over it) with status `running` before the first step and once more at the end.
 
 use serde::Serialize;
+use std::io::{self, Write};
+use std::path::Path;
+
+/// How a run stands, or how it ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Status {
+    /// Started and not finished (a summary still saying this after the process is gone: the run
+    /// was killed).
+    Running,
+    /// Ran the case's whole duration.
+    Completed,
+    /// Stopped at rest (the case's quiescence criterion).
+    AtRest,
+    /// Stopped by `--max-steps` before the duration ended.
+    MaxSteps,
+    /// Stopped by a blow-up (see `error`).
+    Blowup,
+    /// Stopped by SIGINT or SIGTERM after a whole step.
+    Interrupted,
+    /// Stopped because an output could not be written (see `error`).
+    IoError,
+}
+
+impl Status {
+    /// The name written in `summary.json`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Status::Running => "running",
+            Status::Completed => "completed",
+            Status::AtRest => "at_rest",
+            Status::MaxSteps => "max_steps",
+            Status::Blowup => "blowup",
+            Status::Interrupted => "interrupted",
+            Status::IoError => "io_error",
+        }
+    }
+}
 
 /// Final state of one body.
 #[derive(Clone, Debug, Serialize)]
@@ -36,6 +75,7 @@ pub struct DeepCounts {
 #[derive(Clone, Debug, Serialize)]
 pub struct Summary {
     pub name: String,
+    pub status: Status,
     pub steps: u64,
     pub time: f64,
     pub quiescent: bool,
@@ -61,6 +101,23 @@ pub struct Summary {
     pub particle_steps_per_second: f64,
     /// Mean number of contacts per step.
     pub contacts_per_step: f64,
-    /// Why the run stopped early (a blow-up), or null.
+    /// Why the run stopped early (a blow-up, a failed write, a signal), or null.
     pub error: Option<String>,
+}
+
+/// Writes `dir/summary.json` atomically: into `summary.json.tmp`, synced, then renamed over it,
+/// so that a reader sees the old summary or the new one, never a torn one.
+pub fn write_summary(dir: &Path, summary: &Summary) -> io::Result<()> {
+    let mut text = serde_json::to_string_pretty(summary).map_err(io::Error::other)?;
+    text.push('\n');
+    let tmp = dir.join("summary.json.tmp");
+    let result = std::fs::File::create(&tmp).and_then(|mut f| {
+        f.write_all(text.as_bytes())?;
+        f.sync_all()
+    });
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(e);
+    }
+    std::fs::rename(&tmp, dir.join("summary.json"))
 }

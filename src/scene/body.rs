@@ -3,7 +3,8 @@
 //! (types `circle` with `r`, `ellipse` with `a`, `b`, `rectangle` with `w`, `h`) and
 //! `{"wall": {"point": [x, y], "normal": [nx, ny]}}`.
 
-use super::fields::{FieldError, Obj, index, number, positive, type_of, vec2};
+use super::fields::{FieldError, Obj, index, number, scale, type_of, vec2};
+use super::ranges::{Placed, check_extent};
 use crate::geometry::{Pose, Shape, Vec2, Wall};
 use crate::narrow_phase::Object;
 use serde_json::Value;
@@ -18,15 +19,15 @@ pub fn parse_shape(v: &Value, path: &str) -> Result<Shape, FieldError> {
     })?;
     let shape = match ty.as_str() {
         "circle" => Shape::Circle {
-            r: o.req_with("r", positive)?,
+            r: o.req_with("r", scale)?,
         },
         "ellipse" => Shape::Ellipse {
-            a: o.req_with("a", positive)?,
-            b: o.req_with("b", positive)?,
+            a: o.req_with("a", scale)?,
+            b: o.req_with("b", scale)?,
         },
         "rectangle" => Shape::Rectangle {
-            w: o.req_with("w", positive)?,
-            h: o.req_with("h", positive)?,
+            w: o.req_with("w", scale)?,
+            h: o.req_with("h", scale)?,
         },
         other => {
             return Err(FieldError::new(
@@ -51,8 +52,16 @@ pub fn parse_wall_with<T>(
 ) -> Result<(Wall, T), FieldError> {
     let mut o = Obj::new(v, path)?;
     let point = o.req_with("point", vec2)?;
-    let normal = o.req_with("normal", vec2)?;
-    let wall = Wall::new(Vec2::from(point), Vec2::from(normal))
+    let normal = Vec2::from(o.req_with("normal", vec2)?);
+    // Scaled by its largest component first, so that a tiny non-zero normal such as
+    // [1e-200, 1e-200] (whose squared length underflows) is not taken for zero.
+    let largest = normal.x.abs().max(normal.y.abs());
+    let normal = if largest > 0.0 {
+        normal / largest
+    } else {
+        normal
+    };
+    let wall = Wall::new(Vec2::from(point), normal)
         .ok_or_else(|| FieldError::new(o.field_path("normal"), "must be a non-zero vector"))?;
     let t = extra(&mut o)?;
     o.finish()?;
@@ -103,6 +112,21 @@ pub fn parse_pairs(v: &Value) -> Result<Vec<(Object, Object)>, FieldError> {
         if matches!((i, j), (Object::Wall(_), Object::Wall(_))) {
             return Err(FieldError::new(path, "a pair of two walls has no contact"));
         }
+        let placed: Vec<Placed> = [(&i, "i"), (&j, "j")]
+            .into_iter()
+            .map(|(o, side)| match o {
+                Object::Body { shape, pose } => Placed::Body {
+                    path: format!("{path}.{side}"),
+                    shape,
+                    position: pose.position,
+                },
+                Object::Wall(w) => Placed::Wall {
+                    path: format!("{path}.{side}.wall"),
+                    point: w.point,
+                },
+            })
+            .collect();
+        check_extent(&placed)?;
         pairs.push((i, j));
     }
     Ok(pairs)

@@ -17,7 +17,10 @@
 //! `restitution`, `friction`; T10–T20). A wall may override any contact parameter.
 
 use super::body::{parse_body_with, parse_wall_with};
-use super::fields::{FieldError, Obj, index, join, non_negative, number, positive, type_of, vec2};
+use super::fields::{
+    FieldError, Obj, index, join, non_negative, number, positive, scale, type_of, vec2,
+};
+use super::ranges::{Placed, SpecContext, check_extent, check_spec, check_steps};
 use crate::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
 use crate::dynamics::{BodyInit, WallSpec};
 use crate::geometry::Vec2;
@@ -28,7 +31,8 @@ use serde_json::{Map, Value};
 pub struct Case {
     pub name: String,
     pub description: String,
-    /// The length unit, for labels only (`"cm"` in the paper's cases; default empty).
+    /// The length unit, for the plots' labels only (`"cm"` in every shipped case: dem2d works in
+    /// cgs; default empty).
     pub units: String,
     pub gravity: Vec2,
     pub dt: f64,
@@ -78,8 +82,7 @@ const GROUPS: [&[&str]; 3] = [
 impl Case {
     /// Reads a case from its JSON text. Errors name the field (`bodies[2].shape.a`, …).
     pub fn from_json(text: &str) -> Result<Case, FieldError> {
-        let v = super::fields::parse_lenient(text)
-            .map_err(|e| FieldError::new("", format!("malformed JSON: {e}")))?;
+        let v = super::fields::parse_json(text, "")?;
         Case::from_value(&v)
     }
 
@@ -97,8 +100,8 @@ impl Case {
         let description = o.opt_with("description", string)?.unwrap_or_default();
         let units = o.opt_with("units", string)?.unwrap_or_default();
         let gravity = Vec2::from(o.req_with("gravity", vec2)?);
-        let dt = o.req_with("dt", positive)?;
-        let duration = o.req_with("duration", positive)?;
+        let dt = o.req_with("dt", scale)?;
+        let duration = o.req_with("duration", scale)?;
         let quiescence = o.opt_with("quiescence", positive)?;
         let quiescence_window = o.opt_with("quiescence_window", count)?.unwrap_or(1);
         let output_every = o.opt_with("output_every", count)?.unwrap_or(100);
@@ -142,7 +145,7 @@ impl Case {
             let (shape, pose, (velocity, omega, density)) = parse_body_with(&mut b, |b| {
                 let velocity = b.opt_with("velocity", vec2)?.unwrap_or([0.0, 0.0]);
                 let omega = b.opt_with("omega", number)?.unwrap_or(0.0);
-                let density = b.opt_with("density", positive)?.unwrap_or(1.0);
+                let density = b.opt_with("density", scale)?.unwrap_or(1.0);
                 Ok((velocity, omega, density))
             })?;
             b.finish()?;
@@ -156,6 +159,22 @@ impl Case {
             });
         }
         o.finish()?;
+        check_steps(duration, dt)?;
+        let mut placed: Vec<Placed> = bodies
+            .iter()
+            .enumerate()
+            .map(|(k, b)| Placed::Body {
+                path: index("bodies", k),
+                shape: &b.shape,
+                position: b.position,
+            })
+            .collect();
+        placed.extend(walls.iter().enumerate().map(|(w, ws)| Placed::Wall {
+            path: index("walls", w),
+            point: ws.wall.point,
+        }));
+        check_extent(&placed)?;
+        check_contact_ranges(&contact, &walls, &bodies, gravity)?;
         Ok(Case {
             name,
             description,
@@ -185,6 +204,47 @@ impl Case {
     pub fn steps(&self) -> u64 {
         (self.duration / self.dt).round().max(1.0) as u64
     }
+}
+
+/// Checks every contact law a pair that can meet will use: the scene's (between bodies, and with
+/// walls that do not override it) and each wall's own, for every density of the scene.
+fn check_contact_ranges(
+    contact: &ContactSpec,
+    walls: &[WallSpec],
+    bodies: &[BodyInit],
+    gravity: Vec2,
+) -> Result<(), FieldError> {
+    let by_density = |pick: fn(f64, f64) -> bool| {
+        let (k, b) = bodies
+            .iter()
+            .enumerate()
+            .reduce(|a, b| if pick(b.1.density, a.1.density) { b } else { a })
+            .expect("at least one body");
+        (b.density, format!("bodies[{k}].density"))
+    };
+    let rho = [by_density(|a, b| a < b), by_density(|a, b| a > b)];
+    let g = gravity.norm();
+    let scene_used = bodies.len() >= 2 || walls.iter().any(|w| w.spec == *contact);
+    if scene_used {
+        let ctx = SpecContext {
+            at: "contact",
+            rho: rho.clone(),
+            g,
+        };
+        check_spec(contact, contact, &ctx)?;
+    }
+    for (w, ws) in walls.iter().enumerate() {
+        if ws.spec != *contact {
+            let at = index("walls", w);
+            let ctx = SpecContext {
+                at: &at,
+                rho: rho.clone(),
+                g,
+            };
+            check_spec(&ws.spec, contact, &ctx)?;
+        }
+    }
+    Ok(())
 }
 
 fn string(v: &Value, path: &str) -> Result<String, FieldError> {
@@ -271,14 +331,22 @@ fn parse_contact(
             }
         },
     };
+    // A stiffness is a scale (zero would let bodies pass through each other); a damping may be
+    // zero.
+    type Reader = fn(&Value, &str) -> Result<f64, FieldError>;
     let scaled = |abs: &str, rel: &str| -> Result<Option<Scaled>, FieldError> {
+        let read: Reader = if abs.starts_with('k') {
+            scale
+        } else {
+            non_negative
+        };
         match (get(abs), get(rel)) {
             (Some(_), Some(_)) => Err(FieldError::new(
                 field(rel),
                 format!("give `{abs}` or `{rel}`, not both"),
             )),
-            (Some(v), None) => Ok(Some(Scaled::Absolute(non_negative(v, &field(abs))?))),
-            (None, Some(v)) => Ok(Some(Scaled::OverRhoG(non_negative(v, &field(rel))?))),
+            (Some(v), None) => Ok(Some(Scaled::Absolute(read(v, &field(abs))?))),
+            (None, Some(v)) => Ok(Some(Scaled::OverRhoG(read(v, &field(rel))?))),
             (None, None) => Ok(None),
         }
     };
@@ -375,16 +443,17 @@ fn parse_contact(
                 "hertz_mindlin",
             )?;
             let young = match get("young") {
-                Some(v) => positive(v, &field("young"))?,
+                Some(v) => scale(v, &field("young"))?,
                 None => return Err(FieldError::new(join(missing_at, "young"), "is missing")),
             };
             let poisson = match get("poisson") {
                 Some(v) => {
                     let nu = number(v, &field("poisson"))?;
-                    if !(-1.0..0.5).contains(&nu) {
+                    // At ν = −1 the contact moduli E* and G* (T11, T19) are infinite.
+                    if !(nu > -1.0 && nu < 0.5) {
                         return Err(FieldError::new(
                             field("poisson"),
-                            format!("must be in [-1, 0.5), got {nu}"),
+                            format!("must be in (-1, 0.5), got {nu}"),
                         ));
                     }
                     nu

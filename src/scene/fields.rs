@@ -1,8 +1,12 @@
 //! A small reader over `serde_json::Value` objects that knows its path, so that every error says
 //! which field is wrong, and that rejects fields it was not asked for.
 
+use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde_json::{Map, Value};
+use std::cell::RefCell;
 use std::fmt;
+
+use super::ranges::{MAX_MAGNITUDE, MIN_SCALE};
 
 /// An input error located at a field.
 #[derive(Clone, Debug, PartialEq)]
@@ -34,8 +38,9 @@ impl fmt::Display for FieldError {
 
 impl std::error::Error for FieldError {}
 
-/// `parent.key`, or `key` at the top.
+/// `parent.key`, or `key` at the top; an empty key is written `""` so that it can be seen.
 pub fn join(parent: &str, key: &str) -> String {
+    let key = if key.is_empty() { "\"\"" } else { key };
     if parent.is_empty() {
         key.to_string()
     } else {
@@ -60,13 +65,43 @@ pub fn type_of(v: &Value) -> &'static str {
     }
 }
 
-/// Marks a non-finite literal (`NaN`, `Infinity`) that [`parse_lenient`] turned into a string.
+/// Marks a non-finite literal (`NaN`, `Infinity`) that [`parse_json`] turned into a string.
 const NON_FINITE: &str = "\u{1}non-finite:";
 
 /// Parses JSON, accepting the non-JSON literals `NaN`, `Infinity` and `-Infinity` outside strings
 /// (as some writers emit them) so that they can be refused with the field they stand in
-/// (`must be a finite number, got NaN`) rather than as a syntax error at a column.
-pub fn parse_lenient(text: &str) -> Result<Value, serde_json::Error> {
+/// (`must be a finite number, got NaN`) rather than as a syntax error at a column. A leading
+/// UTF-8 byte-order mark is skipped. A key given twice in one object is refused with its path
+/// (`serde_json::Value` would silently keep the last value). `root` names the document in paths
+/// (`""` for a case file, `"pairs"` for a `dem2d contact` input). Numbers are read exactly (the
+/// double nearest to the decimal text: serde_json's `float_roundtrip`).
+pub fn parse_json(text: &str, root: &str) -> Result<Value, FieldError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let marked = mark_non_finite(text);
+    let duplicate = RefCell::new(None);
+    let mut de = serde_json::Deserializer::from_str(&marked);
+    let parsed = ValueSeed {
+        path: root,
+        duplicate: &duplicate,
+    }
+    .deserialize(&mut de)
+    .and_then(|v| de.end().map(|()| v));
+    parsed.map_err(|e| match duplicate.into_inner() {
+        Some(path) => FieldError::new(
+            path,
+            format!(
+                "duplicate key: given more than once in the same object (line {}, column {})",
+                e.line(),
+                e.column()
+            ),
+        ),
+        None => FieldError::new("", format!("malformed JSON: {e}")),
+    })
+}
+
+/// Replaces the literals `NaN`, `Infinity`, `+Infinity` and `-Infinity` outside strings by marked
+/// strings (see [`number`]).
+fn mark_non_finite(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     let mut in_string = false;
     let mut escaped = false;
@@ -106,10 +141,100 @@ pub fn parse_lenient(text: &str) -> Result<Value, serde_json::Error> {
             }
         }
     }
-    serde_json::from_str(&out)
+    out
 }
 
-/// A finite number.
+/// Builds a [`Value`] like serde_json's own deserializer, but knows the path of what it reads and
+/// records the path of the first key it sees twice in one object (then fails).
+struct ValueSeed<'a> {
+    path: &'a str,
+    duplicate: &'a RefCell<Option<String>>,
+}
+
+impl<'de> DeserializeSeed<'de> for ValueSeed<'_> {
+    type Value = Value;
+
+    fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<Value, D::Error> {
+        d.deserialize_any(self)
+    }
+}
+
+impl<'de> Visitor<'de> for ValueSeed<'_> {
+    type Value = Value;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a JSON value")
+    }
+
+    fn visit_bool<E>(self, v: bool) -> Result<Value, E> {
+        Ok(Value::Bool(v))
+    }
+
+    fn visit_i64<E>(self, v: i64) -> Result<Value, E> {
+        Ok(Value::from(v))
+    }
+
+    fn visit_u64<E>(self, v: u64) -> Result<Value, E> {
+        Ok(Value::from(v))
+    }
+
+    fn visit_f64<E>(self, v: f64) -> Result<Value, E> {
+        // JSON text cannot spell a non-finite number (they arrive as marked strings).
+        Ok(serde_json::Number::from_f64(v).map_or(Value::Null, Value::Number))
+    }
+
+    fn visit_str<E>(self, v: &str) -> Result<Value, E> {
+        Ok(Value::String(v.to_string()))
+    }
+
+    fn visit_string<E>(self, v: String) -> Result<Value, E> {
+        Ok(Value::String(v))
+    }
+
+    fn visit_unit<E>(self) -> Result<Value, E> {
+        Ok(Value::Null)
+    }
+
+    fn visit_none<E>(self) -> Result<Value, E> {
+        Ok(Value::Null)
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Value, A::Error> {
+        let mut items = Vec::new();
+        loop {
+            let path = index(self.path, items.len());
+            let seed = ValueSeed {
+                path: &path,
+                duplicate: self.duplicate,
+            };
+            match seq.next_element_seed(seed)? {
+                Some(v) => items.push(v),
+                None => return Ok(Value::Array(items)),
+            }
+        }
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Value, A::Error> {
+        let mut out = Map::new();
+        while let Some(key) = map.next_key::<String>()? {
+            let path = join(self.path, &key);
+            if out.contains_key(&key) {
+                *self.duplicate.borrow_mut() = Some(path);
+                return Err(de::Error::custom(format!("duplicate key `{key}`")));
+            }
+            let seed = ValueSeed {
+                path: &path,
+                duplicate: self.duplicate,
+            };
+            let value = map.next_value_seed(seed)?;
+            out.insert(key, value);
+        }
+        Ok(Value::Object(out))
+    }
+}
+
+/// A finite number of magnitude at most [`MAX_MAGNITUDE`] (every number a case gives: see
+/// [`super::ranges`]).
 pub fn number(v: &Value, path: &str) -> Result<f64, FieldError> {
     if let Value::String(s) = v
         && let Some(literal) = s.strip_prefix(NON_FINITE)
@@ -120,7 +245,11 @@ pub fn number(v: &Value, path: &str) -> Result<f64, FieldError> {
         ));
     }
     match v.as_f64() {
-        Some(x) if x.is_finite() => Ok(x),
+        Some(x) if x.abs() <= MAX_MAGNITUDE => Ok(x),
+        Some(x) if x.is_finite() => Err(FieldError::new(
+            path,
+            format!("{x:e} is outside the accepted range: magnitudes up to {MAX_MAGNITUDE:e}"),
+        )),
         Some(_) => Err(FieldError::new(path, "must be a finite number")),
         None => Err(FieldError::new(
             path,
@@ -129,7 +258,7 @@ pub fn number(v: &Value, path: &str) -> Result<f64, FieldError> {
     }
 }
 
-/// A positive, finite number.
+/// A positive number (at most [`MAX_MAGNITUDE`]).
 pub fn positive(v: &Value, path: &str) -> Result<f64, FieldError> {
     let x = number(v, path)?;
     if x > 0.0 {
@@ -139,7 +268,21 @@ pub fn positive(v: &Value, path: &str) -> Result<f64, FieldError> {
     }
 }
 
-/// A non-negative, finite number.
+/// A scale — a size, density, time step, stiffness or modulus: positive, within
+/// [`MIN_SCALE`] … [`MAX_MAGNITUDE`].
+pub fn scale(v: &Value, path: &str) -> Result<f64, FieldError> {
+    let x = positive(v, path)?;
+    if x >= MIN_SCALE {
+        Ok(x)
+    } else {
+        Err(FieldError::new(
+            path,
+            format!("{x:e} is outside the accepted range {MIN_SCALE:e} … {MAX_MAGNITUDE:e}"),
+        ))
+    }
+}
+
+/// A non-negative number (at most [`MAX_MAGNITUDE`]).
 pub fn non_negative(v: &Value, path: &str) -> Result<f64, FieldError> {
     let x = number(v, path)?;
     if x >= 0.0 {
@@ -256,9 +399,62 @@ impl<'a> Obj<'a> {
         keys.sort();
         for k in keys {
             if !self.taken.contains(&k.as_str()) {
-                return Err(FieldError::new(join(&self.path, k), "unknown field"));
+                let what = if k.is_empty() {
+                    "unknown field (an empty key)"
+                } else {
+                    "unknown field"
+                };
+                return Err(FieldError::new(join(&self.path, k), what));
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_read_exactly() {
+        // Against Rust's own parse (correctly rounded): 17-digit decimals of random doubles of
+        // every magnitude the ranges accept, and the issue's example.
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        let mut texts = vec!["933.1286246343909".to_string()];
+        while texts.len() < 3000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let x = f64::from_bits(state);
+            if x.is_finite() && x.abs() <= 1e40 && x.abs() >= 1e-40 {
+                texts.push(format!("{x:.16e}"));
+                texts.push(format!("{}", x));
+            }
+        }
+        let json = format!("[{}]", texts.join(","));
+        let v = parse_json(&json, "").unwrap();
+        for (t, v) in texts.iter().zip(v.as_array().unwrap()) {
+            let want: f64 = t.parse().unwrap();
+            assert_eq!(v.as_f64().unwrap().to_bits(), want.to_bits(), "{t}");
+        }
+    }
+
+    #[test]
+    fn a_key_given_twice_is_named_with_its_path() {
+        let e = parse_json(r#"{"a": [{"b": {"c": 1, "c": 2}}]}"#, "top").unwrap_err();
+        assert_eq!(e.path, "top.a[0].b.c");
+        assert!(e.message.starts_with("duplicate key"), "{}", e.message);
+        let e = parse_json(r#"{"dt": -1, "dt": 1e-5}"#, "").unwrap_err();
+        assert_eq!(e.path, "dt");
+        // The same key in two objects is no duplicate.
+        assert!(parse_json(r#"[{"c": 1}, {"c": 2}]"#, "").is_ok());
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_skipped_and_non_finite_literals_are_marked() {
+        let v = parse_json("\u{feff}{\"x\": NaN, \"s\": \"NaN\"}", "").unwrap();
+        let e = number(&v["x"], "x").unwrap_err();
+        assert_eq!(e.message, "must be a finite number, got NaN");
+        assert_eq!(v["s"], "NaN");
     }
 }

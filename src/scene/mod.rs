@@ -5,6 +5,7 @@ pub mod body;
 pub mod case;
 pub mod fields;
 pub mod generate;
+pub mod ranges;
 
 pub use body::{parse_object, parse_pairs, parse_shape};
 pub use case::Case;

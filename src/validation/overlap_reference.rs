@@ -194,7 +194,7 @@ pub fn reference_overlap(i: &RObj, j: &RObj) -> ROverlap {
     }
     let n = xs.len();
     assert!(
-        n % 2 == 0,
+        n.is_multiple_of(2),
         "reference_overlap: odd number of crossings ({n}) for {i:?} / {j:?}: degenerate input"
     );
 

@@ -1,0 +1,175 @@
+//! Watching a run for a blow-up before anything is non-finite, and for bodies that overlap at
+//! the start. Reads the world only (the contact extras it reports are refreshed by the caller,
+//! with [`World::refresh_contact_extras`]).
+//!
+//! # The energy criterion
+//! With `D ≥ 0` the energy the contacts took out, `E = K + P + E_el + D` is constant in exact
+//! arithmetic, up to the work `W` done on the bodies by moving boundaries (none today: walls are
+//! fixed; see [`BlowupWatch::check`] for where that term goes). A stable explicit step does not
+//! conserve `E` exactly but keeps its error bounded: velocity Verlet's measured energy swings by a
+//! factor of at most `1/(1 − (ωΔt)²/4)` during a contact, ×11 only within 5 % of the stability
+//! limit `ωΔt = 2`. An unstable step multiplies the energy at every step. The run therefore
+//! stops when the energy created, `E − E₀ − W`, exceeds [`ENERGY_GROWTH`] times all the energy
+//! that could be in motion: the initial kinetic and elastic energy, plus the most that gravity
+//! has supplied so far (`max (P₀ − P)`), plus the work of the boundaries.
+//!
+//! # The depth criterion
+//! An overlap deeper than the bodies themselves — more than twice the smaller inscribed radius
+//! of the pair, the smaller body's whole thickness — is no contact any law describes: the step
+//! let a body pass into another. The limit is raised to the deepest overlap of the initial
+//! state, which the run reports as a warning and then pushes apart.
+
+use super::contacts::WALL_BASE;
+use super::world::World;
+
+/// How many times the energy that could be in motion may be created before the run counts as
+/// blown up.
+pub const ENERGY_GROWTH: f64 = 10.0;
+
+/// Deepest overlap accepted during a run, in units of the smaller inscribed radius of the pair.
+pub const DEPTH_LIMIT: f64 = 2.0;
+
+/// What a check found.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Trigger {
+    /// An energy is not finite.
+    NonFinite(&'static str),
+    /// Energy created beyond what the initial state, gravity and the boundaries supply.
+    Energy { created: f64, available: f64 },
+    /// An overlap deeper than the bodies (in units of the smaller inscribed radius).
+    Depth { ratio: f64 },
+}
+
+/// The state a run is checked against.
+#[derive(Clone, Debug)]
+pub struct BlowupWatch {
+    kinetic0: f64,
+    elastic0: f64,
+    potential0: f64,
+    total0: f64,
+    /// Most energy gravity has supplied so far, `max (P₀ − P)`.
+    gravity_supplied: f64,
+    depth_limit: f64,
+}
+
+impl BlowupWatch {
+    /// Starts watching from the world's current (initial) state.
+    pub fn new(world: &World) -> Self {
+        let e = world.energies;
+        BlowupWatch {
+            kinetic0: e.kinetic,
+            elastic0: e.elastic,
+            potential0: e.potential,
+            total0: e.total(),
+            gravity_supplied: 0.0,
+            depth_limit: DEPTH_LIMIT.max(world.diagnostics.max_depth_ratio),
+        }
+    }
+
+    /// Checks the world after a step; O(1).
+    pub fn check(&mut self, world: &World) -> Option<Trigger> {
+        let e = world.energies;
+        for (name, v) in [
+            ("kinetic energy", e.kinetic),
+            ("potential energy", e.potential),
+            ("elastic energy", e.elastic),
+            ("dissipated energy", e.dissipated),
+        ] {
+            if !v.is_finite() {
+                return Some(Trigger::NonFinite(name));
+            }
+        }
+        // Work done on the bodies by moving boundaries: zero while walls are fixed. When walls
+        // move, add it here (created energy is `E − E₀ − W`, and `|W|` so far is available).
+        let boundary_work = 0.0;
+        let boundary_available = 0.0;
+        self.gravity_supplied = self.gravity_supplied.max(self.potential0 - e.potential);
+        let available = self.kinetic0 + self.elastic0 + self.gravity_supplied + boundary_available;
+        let created = e.total() - self.total0 - boundary_work;
+        // The rounding of the sums that form the totals (the potential can dwarf the rest).
+        let rounding = 1e-9
+            * (self.potential0.abs()
+                + e.potential.abs()
+                + e.kinetic
+                + e.elastic
+                + e.dissipated.abs()
+                + self.kinetic0
+                + self.elastic0);
+        if created > ENERGY_GROWTH * available + rounding {
+            return Some(Trigger::Energy { created, available });
+        }
+        let ratio = world.diagnostics.max_depth_ratio;
+        if ratio > self.depth_limit || ratio.is_nan() {
+            return Some(Trigger::Depth { ratio });
+        }
+        None
+    }
+}
+
+/// The body with the largest kinetic energy (a non-finite one first).
+pub fn most_energetic_body(world: &World) -> usize {
+    let b = &world.bodies;
+    let energy = |k: usize| {
+        let e = 0.5 * b.mass[k] * b.state[k].vel.norm_squared()
+            + 0.5 * b.inertia[k] * b.state[k].omega * b.state[k].omega;
+        if e.is_finite() { e } else { f64::INFINITY }
+    };
+    (0..b.len())
+        .max_by(|&i, &j| energy(i).total_cmp(&energy(j)))
+        .unwrap_or(0)
+}
+
+/// An overlapping pair: `i` a body, `j` a body or (`wall`) a wall index; the depth and its
+/// ratio to the smaller inscribed radius.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Overlap {
+    pub i: usize,
+    pub j: usize,
+    pub wall: bool,
+    pub depth: f64,
+    pub ratio: f64,
+}
+
+impl Overlap {
+    /// `bodies 3 and 7` or `body 3 and wall 0`.
+    pub fn names(&self) -> String {
+        if self.wall {
+            format!("body {} and wall {}", self.i, self.j)
+        } else {
+            format!("bodies {} and {}", self.i, self.j)
+        }
+    }
+}
+
+/// Every overlapping pair of the last evaluation, deepest (by ratio) first. Needs the contact
+/// extras refreshed ([`World::refresh_contact_extras`]).
+pub fn overlaps(world: &World) -> Vec<Overlap> {
+    let shapes = &world.bodies.shape;
+    let mut out: Vec<Overlap> = world
+        .contacts
+        .active()
+        .filter(|c| c.extra.depth > 0.0)
+        .map(|c| {
+            let i = c.slot.i as usize;
+            let wall = c.is_wall();
+            let j = if wall {
+                (c.slot.j - WALL_BASE) as usize
+            } else {
+                c.slot.j as usize
+            };
+            let mut scale = shapes[i].inscribed_radius();
+            if !wall {
+                scale = scale.min(shapes[j].inscribed_radius());
+            }
+            Overlap {
+                i,
+                j,
+                wall,
+                depth: c.extra.depth,
+                ratio: c.extra.depth / scale,
+            }
+        })
+        .collect();
+    out.sort_by(|a, b| b.ratio.total_cmp(&a.ratio));
+    out
+}
