@@ -127,6 +127,13 @@ enum Command {
         /// What the normal spring acts on: the overlap area (conservative) or the depth (P).
         #[arg(long, value_enum, default_value = "area")]
         normal_force: NormalForceArg,
+        /// Rest criterion: mean increment per step (cm) held for 1000 steps (1e-7 at Δt = 1e-5 s
+        /// is a mean speed of 0.01 cm/s).
+        #[arg(long, default_value_t = 1e-7)]
+        quiescence: f64,
+        /// Longest run (s of simulated time).
+        #[arg(long, default_value_t = 4.0)]
+        duration: f64,
         /// Output file (default: standard output).
         #[arg(long)]
         out: Option<PathBuf>,
@@ -493,6 +500,7 @@ fn generate(
     n: usize,
     seed: u64,
     (aspect, sizes, friction, normal_force): (f64, PileSizesArg, f64, NormalForceArg),
+    (quiescence, duration): (f64, f64),
     out: Option<&std::path::Path>,
 ) -> Result<(), Failure> {
     use dem2d::scene::generate::{PileShape, PileSizes, PileSpec};
@@ -524,6 +532,18 @@ fn generate(
     };
     spec.friction = friction;
     spec.normal_force = normal_force.into();
+    if !(quiescence.is_finite() && quiescence > 0.0) {
+        return Err(Failure::input(format!(
+            "--quiescence: must be positive, got {quiescence}"
+        )));
+    }
+    if !(duration.is_finite() && duration > 0.0 && duration <= 1e4) {
+        return Err(Failure::input(format!(
+            "--duration: must be in (0, 1e4] s, got {duration}"
+        )));
+    }
+    spec.quiescence = quiescence;
+    spec.duration = duration;
     let text = spec.case_json();
     match out {
         Some(path) => std::fs::write(path, text).map_err(|e| Failure {
@@ -658,11 +678,14 @@ fn main() -> ExitCode {
             sizes,
             friction,
             normal_force,
+            quiescence,
+            duration,
         } => generate(
             *shape,
             *n,
             *seed,
             (*aspect, *sizes, *friction, *normal_force),
+            (*quiescence, *duration),
             out.as_deref(),
         ),
         Command::Bench {

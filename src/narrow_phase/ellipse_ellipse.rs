@@ -40,7 +40,7 @@ use super::{
 use crate::geometry::Pose;
 use crate::geometry::conic::EllipseForm;
 use crate::geometry::cubic::{one_real_root, solve_cubic};
-use crate::geometry::overlap_area::ellipse_cap;
+use crate::geometry::overlap_area::ellipse_cap_with;
 use crate::geometry::pencil::{
     LineCut, Pencil, cut_line, mixed_invariant_from_inverse_squares, split_degenerate,
 };
@@ -114,10 +114,10 @@ impl Placed {
     #[inline]
     fn cap(&self, p: [f64; 2], e: [f64; 2], u: [f64; 2]) -> f64 {
         let (c, s) = (self.cos, self.sin);
-        let body = |v: [f64; 2]| [c * v[0] + s * v[1], -s * v[0] + c * v[1]];
+        let body = move |v: [f64; 2]| [c * v[0] + s * v[1], -s * v[0] + c * v[1]];
         let rel = [p[0] - self.x, p[1]];
         let major = u[0] * rel[0] + u[1] * rel[1] < 0.0;
-        ellipse_cap(self.a, self.b, body(rel), body(e), major)
+        ellipse_cap_with(self.a, self.b, || body(rel), body(e), major)
     }
 }
 

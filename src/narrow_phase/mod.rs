@@ -326,16 +326,23 @@ impl LocalFrame {
     /// `∂A/∂x_j`, the others as in [`LocalOverlap`].
     #[inline]
     pub fn overlap(&self, o: &LocalOverlap) -> OverlapArea {
-        let len = (o.grad[0] * o.grad[0] + o.grad[1] * o.grad[1]).sqrt();
-        let normal = if len > 0.0 {
-            self.vector([-o.grad[0] / len, -o.grad[1] / len])
-        } else {
-            self.vector([1.0, 0.0]) // a pure couple (only at an exactly symmetric crossing)
-        };
         let s2 = self.scale * self.scale;
+        let (length, normal) = match o.chord {
+            // Two crossings: the chord's own length and normal, already at hand.
+            Some((len, n)) => (len, self.vector(n)),
+            None => {
+                let len = (o.grad[0] * o.grad[0] + o.grad[1] * o.grad[1]).sqrt();
+                let n = if len > 0.0 {
+                    self.vector([-o.grad[0] / len, -o.grad[1] / len])
+                } else {
+                    self.vector([1.0, 0.0]) // a pure couple (only at an exactly symmetric crossing)
+                };
+                (len, n)
+            }
+        };
         OverlapArea {
             area: o.area * s2,
-            length: len * self.scale,
+            length: length * self.scale,
             normal,
             point: self.point(o.point),
             couple: o.couple * s2,
@@ -351,6 +358,9 @@ pub(crate) struct LocalOverlap {
     pub grad: [f64; 2],
     pub point: [f64; 2],
     pub couple: f64,
+    /// For two crossings, the chord's length and unit normal (so that they need not be
+    /// recovered from `grad`).
+    pub chord: Option<(f64, [f64; 2])>,
 }
 
 impl LocalOverlap {
@@ -363,6 +373,7 @@ impl LocalOverlap {
             grad: [-len * n[0], -len * n[1]],
             point: midpoint(p, q),
             couple: 0.0,
+            chord: Some((len, n)),
         }
     }
 }
@@ -424,6 +435,7 @@ pub(crate) fn deep_overlap(
         grad,
         point: centre,
         couple: -(turn - lever),
+        chord: None,
     }
 }
 

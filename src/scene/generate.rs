@@ -45,6 +45,9 @@ pub struct PileSpec {
     pub friction: f64,
     /// What the normal spring acts on.
     pub normal_force: NormalForce,
+    /// The rest criterion (cm per step; the mean speed is this over Δt) and the longest run (s).
+    pub quiescence: f64,
+    pub duration: f64,
 }
 
 impl PileSpec {
@@ -58,6 +61,8 @@ impl PileSpec {
             sizes: PileSizes::Uniform,
             friction: FRICTION,
             normal_force: NormalForce::Area,
+            quiescence: QUIESCENCE,
+            duration: DURATION,
         }
     }
 }
@@ -258,6 +263,12 @@ impl PileSpec {
         if self.normal_force != NormalForce::Area {
             c += &format!(" --normal-force {}", self.normal_force.as_str());
         }
+        if self.quiescence != QUIESCENCE {
+            c += &format!(" --quiescence {}", self.quiescence);
+        }
+        if self.duration != DURATION {
+            c += &format!(" --duration {}", self.duration);
+        }
         c
     }
 
@@ -278,7 +289,7 @@ impl PileSpec {
             (PileSizes::Uniform, _) => (format!("of radius uniform in [{R_MIN}, {R_MAX}] cm"), ""),
             (PileSizes::Bidisperse, _) => (
                 format!(
-                    "half of radius {:.6} cm and half 1.4 times that, in random order,",
+                    "half of radius {:.6} cm and half 1.4 times that in random order",
                     round6(R_SMALL)
                 ),
                 "",
@@ -296,8 +307,11 @@ impl PileSpec {
              (normal_force): Kn/ρg = Ks/ρg = {KN_OVER_RHO_G} cm, ρ = {DENSITY} g/cm³, friction \
              {friction}, and a constant dashpot η_n = η_s = {eta:.1} (g/s per unit thickness) that \
              gives restitution {RESTITUTION} for a body of r = 1 cm against a wall (T12). Δt = {DT} s. \
-             At rest when the mean increments per step stay below {QUIESCENCE} cm (a mean speed of \
-             0.01 cm/s) for {QUIESCENCE_WINDOW} steps; at most {DURATION} s. Written by `{command}`.",
+             At rest when the mean increments per step stay below {q} cm (a mean speed of {v} cm/s) \
+             for {QUIESCENCE_WINDOW} steps; at most {duration} s. Written by `{command}`.",
+            q = self.quiescence,
+            v = self.quiescence / DT,
+            duration = self.duration,
             n = self.n,
             nf = match self.normal_force {
                 NormalForce::Area => "overlap area",
@@ -324,8 +338,8 @@ impl PileSpec {
             ("units", json!("cm")),
             ("gravity", json!([0.0, -G])),
             ("dt", json!(DT)),
-            ("duration", json!(DURATION)),
-            ("quiescence", json!(QUIESCENCE)),
+            ("duration", json!(self.duration)),
+            ("quiescence", json!(self.quiescence)),
             ("quiescence_window", json!(QUIESCENCE_WINDOW)),
             ("output_every", json!(10000)),
             (
