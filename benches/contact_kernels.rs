@@ -19,10 +19,17 @@
 //! `cargo bench --bench contact_kernels -- --quick` for a faster, noisier run).
 
 use criterion::{BenchmarkId, Criterion};
+use dem2d::contact_law::{
+    AreaKinematics, EquivalentOverlap, History, Kinematics, Linear, NormalForce,
+};
 use dem2d::geometry::cubic::{one_real_root, solve_cubic};
+use dem2d::geometry::overlap_area::DiskLens;
 use dem2d::geometry::support::support_local;
 use dem2d::geometry::{Pose, Shape, Vec2, Wall};
-use dem2d::narrow_phase::{ContactState, Object, contact, contact_bodies_warm};
+use dem2d::narrow_phase::ellipse_ellipse::Warm;
+use dem2d::narrow_phase::{
+    ContactState, Object, contact, contact_bodies_warm, contact_bodies_with,
+};
 use dem2d::validation::rng::Rng;
 use std::hint::black_box;
 use std::time::Duration;
@@ -298,9 +305,69 @@ fn bench_kernels(c: &mut Criterion) {
                     acc
                 })
             });
+            if rname == "lasting" {
+                // Geometry and law together, as a step pays per lasting contact, under each
+                // normal-force law (the area law adds the overlap area and the lens inverse).
+                for nf in [NormalForce::Depth, NormalForce::Area] {
+                    let id = format!("law-{}", nf.as_str());
+                    group.bench_function(BenchmarkId::new(name, &id), |b| {
+                        b.iter(|| {
+                            let mut acc = 0.0;
+                            for (si, pi, sj, pj, w) in &pairs {
+                                acc += geometry_and_law(si, pi, sj, pj, *w, nf);
+                            }
+                            acc
+                        })
+                    });
+                }
+            }
         }
     }
     group.finish();
+}
+
+/// One lasting contact's geometry (from its warm start) and linear law, at rest, under `nf`:
+/// the normal force.
+fn geometry_and_law(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose, w: Warm, nf: NormalForce) -> f64 {
+    let area = nf == NormalForce::Area;
+    let (c, _, _) = contact_bodies_with(
+        black_box(si),
+        black_box(pi),
+        black_box(sj),
+        black_box(pj),
+        Some(w),
+        area,
+    );
+    let Some(g) = c.geometry else {
+        return 0.0;
+    };
+    let law = Linear {
+        kn: 3.6e7,
+        ks: 3.6e7,
+        eta_n: 1e4,
+        eta_s: 1e4,
+        friction: 0.3,
+    };
+    let kin = Kinematics {
+        depth: g.depth,
+        energy_depth: g.depth,
+        vn: 0.0,
+        vt: 0.0,
+        m_eff: 1.0,
+        r_eff: f64::NAN,
+        dt: 1e-5,
+        area: g.area.filter(|_| area).map(|a| AreaKinematics {
+            area: a.area,
+            length: a.length,
+            rate: 0.0,
+            couple: a.couple,
+            equivalent: EquivalentOverlap::Lens(DiskLens::new(
+                si.equal_area_radius(),
+                sj.equal_area_radius(),
+            )),
+        }),
+    };
+    law.force(&kin, &mut History::default()).normal
 }
 
 fn bench_cubic(c: &mut Criterion) {
@@ -405,6 +472,15 @@ fn print_table() {
         )
         .unwrap();
     }
+    writeln!(
+        md,
+        "\nA lasting contact's geometry and linear law together (ns/contact), P's spring on the depth → the area law: circle–ellipse {} → {}, ellipse–ellipse {} → {}",
+        fmt(median("contact", "circle-ellipse/law-depth")),
+        fmt(median("contact", "circle-ellipse/law-area")),
+        fmt(median("contact", "ellipse-ellipse/law-depth")),
+        fmt(median("contact", "ellipse-ellipse/law-area"))
+    )
+    .unwrap();
     writeln!(
         md,
         "\nCubic solve (ns/cubic; half the cubics have one real root, half three): robust, all roots {} | fast single root (declines three-root cubics) {} | bare roots::find_roots_cubic {}",
