@@ -150,7 +150,7 @@ fn trajectories_are_bit_identical_to_the_stored_ones() {
     // The piles: two threads give the bits of one.
     for (k, v) in got.as_object().unwrap() {
         if let Some(base) = k.strip_suffix("/2 threads") {
-            assert_eq!(Some(v), got.get(&format!("{base}/1 threads")), "{base}");
+            assert_eq!(Some(v), got.get(format!("{base}/1 threads")), "{base}");
         }
     }
 }
