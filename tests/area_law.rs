@@ -135,8 +135,14 @@ fn is_rectangle(s: &Side) -> bool {
 }
 
 /// `W(A)` as the law defines it for the pair (see `contact_law`): ½ k_n δ_eq(A)², with δ_eq the
-/// equal-area disks' lens overlap, or A/ℓ between two rectangles.
+/// equal-area disks' lens overlap (its series), or A/ℓ between two rectangles; two disks (or a
+/// disk and a wall) keep the spring on their depth, the exact lens inverse.
 fn potential(i: &Side, j: &Side, area: f64) -> f64 {
+    let disk = |s: &Side| matches!(s, Side::Body(Shape::Circle { .. }, ..) | Side::Wall(_));
+    if disk(i) && disk(j) {
+        let (d, _) = DiskLens::new(equal_area_radius(i), equal_area_radius(j)).depth_for_area(area);
+        return 0.5 * KN * d * d;
+    }
     let face = |s: &Side| match *s {
         Side::Body(Shape::Rectangle { w, h }, ..) => 0.5 * (w + h),
         _ => unreachable!(),

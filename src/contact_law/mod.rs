@@ -75,24 +75,11 @@ pub enum EquivalentOverlap {
 }
 
 impl EquivalentOverlap {
-    /// `(δ_eq, L_eq)` for the overlap area `area`. Past half the smaller disk (δ_eq > r1, far
-    /// beyond any DEM overlap) `L_eq` is kept above 1e-3 r1: it vanishes when one disk covers
-    /// the other wholly, and ρ = L/L_eq must stay finite.
+    /// `(δ_eq, L_eq)` for the overlap area `area`.
     #[inline]
     pub fn depth_for_area(&self, area: f64) -> (f64, f64) {
         match *self {
-            EquivalentOverlap::Lens(lens) => {
-                let (delta, chord) = lens.depth_for_area(area);
-                let r1 = lens.radii().0;
-                (
-                    delta,
-                    if delta > r1 {
-                        chord.max(1e-3 * r1)
-                    } else {
-                        chord
-                    },
-                )
-            }
+            EquivalentOverlap::Lens(lens) => lens.equivalent_depth(area),
             EquivalentOverlap::Flat(ell) => (area / ell, ell),
         }
     }
