@@ -211,7 +211,7 @@ pub fn figures(opts: &FigureOptions) -> Result<Vec<PathBuf>, ReportError> {
             title: "P Fig. 3: equal-area circle, ellipse (a/b = 1.5) and square thrown sideways, first 0.8 s".into(),
             runs: vec![(tc, "circle".into()), (te, "ellipse".into()), (ts, "square".into())],
         }],
-        &SceneOptions { t_max: Some(0.8), outlines: 14, color_by_body: false, ..Default::default() },
+        &SceneOptions { t_max: Some(0.8), outlines: 14, color: plot::ColorBy::Run, ..Default::default() },
     )
     .map_err(e("fig3"))?;
     written.push(f);
@@ -264,7 +264,7 @@ pub fn figures(opts: &FigureOptions) -> Result<Vec<PathBuf>, ReportError> {
         ],
         &SceneOptions {
             outlines: 12,
-            width: 800,
+            width: Some(800),
             ..Default::default()
         },
     )
@@ -425,7 +425,7 @@ fn area_law_figures<'a>(
         &SceneOptions {
             t_max: Some(0.8),
             outlines: 14,
-            color_by_body: false,
+            color: plot::ColorBy::Run,
             ..Default::default()
         },
     )
@@ -466,7 +466,7 @@ fn area_law_figures<'a>(
         ],
         &SceneOptions {
             outlines: 12,
-            width: 800,
+            width: Some(800),
             ..Default::default()
         },
     )

@@ -1,6 +1,8 @@
 //! Output formats. Readers of results only: nothing here changes the world.
 
 pub mod contacts;
+pub mod forces;
+pub mod outline;
 pub mod panels;
 pub mod plot;
 pub mod progress;
