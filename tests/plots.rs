@@ -124,6 +124,58 @@ fn polylines_with(svg: &str, points: usize) -> usize {
         .count()
 }
 
+/// The point lists of every element starting with `tag` (`<polygon`, `<polyline`).
+fn shapes_points(svg: &str, tag: &str) -> Vec<Vec<(f64, f64)>> {
+    svg.split(tag)
+        .skip(1)
+        .filter_map(|p| {
+            let start = p.find("points=\"")? + 8;
+            let rest = &p[start..];
+            let list = &rest[..rest.find('"')?];
+            Some(
+                list.split_whitespace()
+                    .map(|xy| {
+                        let (x, y) = xy.split_once(',').unwrap();
+                        (x.parse().unwrap(), y.parse().unwrap())
+                    })
+                    .collect(),
+            )
+        })
+        .collect()
+}
+
+/// Width and height of a point set.
+fn extent(pts: &[(f64, f64)]) -> (f64, f64) {
+    let f = |g: fn(&(f64, f64)) -> f64| {
+        let (lo, hi) = pts
+            .iter()
+            .map(g)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                (l.min(v), h.max(v))
+            });
+        hi - lo
+    };
+    (f(|p| p.0), f(|p| p.1))
+}
+
+/// Least-squares line `v = s·u + c` through `(u, v)` pairs: `(s, c, worst residual)`.
+fn fit(pts: &[(f64, f64)]) -> (f64, f64, f64) {
+    let n = pts.len() as f64;
+    let (mu, mv) = (
+        pts.iter().map(|p| p.0).sum::<f64>() / n,
+        pts.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let suv: f64 = pts.iter().map(|p| (p.0 - mu) * (p.1 - mv)).sum();
+    let suu: f64 = pts.iter().map(|p| (p.0 - mu).powi(2)).sum();
+    let s = suv / suu;
+    let c = mv - s * mu;
+    let worst = pts
+        .iter()
+        .map(|p| (p.1 - s * p.0 - c).abs())
+        .fold(0.0, f64::max);
+    (s, c, worst)
+}
+
 #[test]
 fn a_many_body_run_plots_as_a_snapshot_and_summarised_series() {
     let dir = scratch("pile300");
@@ -162,6 +214,36 @@ fn a_many_body_run_plots_as_a_snapshot_and_summarised_series() {
     assert_eq!(code, 0, "{err}");
     let svg = std::fs::read_to_string(&scene).unwrap();
     assert_eq!(polylines_with(&svg, 73), 300);
+    // Equal scale: a unit of x is as long as a unit of y. The filled outlines are drawn in body
+    // order; fit drawing = s·world + c on each axis by least squares over every vertex (against
+    // the body's outline computed from the trajectory, independently of the drawing) and
+    // compare the two scales. Before the fix the plot area's height was guessed, and circles
+    // came out 6–9 % taller than wide.
+    let data = dem2d::output::run_data::RunData::load(&run).unwrap();
+    let last = data.frames.last().unwrap();
+    let drawn = shapes_points(&svg, "<polygon");
+    assert_eq!(drawn.len(), 300);
+    let (mut px, mut py) = (Vec::new(), Vec::new());
+    for (k, pts) in drawn.iter().enumerate() {
+        let b = last.bodies[k];
+        let world = dem2d::output::plot::outline(&data.case.bodies[k].shape, b.x, b.y, b.angle);
+        assert_eq!(pts.len() + 1, world.len(), "body {k}");
+        for (p, w) in pts.iter().zip(&world) {
+            px.push((w.0, p.0));
+            py.push((w.1, p.1));
+        }
+        // Each circle's drawn width and height agree to the pixel (coordinates are whole
+        // drawing units, each extreme within one).
+        let (w, h) = extent(pts);
+        assert!((w - h).abs() <= 2.0, "body {k}: {w} × {h}");
+    }
+    let ((sx, _, rx), (sy, _, ry)) = (fit(&px), fit(&py));
+    assert!(
+        (sy / sx + 1.0).abs() < 2e-3,
+        "x scale {sx}, y scale {sy} units per cm"
+    );
+    // The fit is good to the rounding of the drawing's integer coordinates.
+    assert!(rx <= 1.0 && ry <= 1.0, "worst residuals {rx}, {ry}");
     // Series: the summary lines, not 300 legend entries.
     let series = dir.join("series.svg");
     let (code, _, err) = dem2d(&[

@@ -772,7 +772,7 @@ where
                     .draw_series(
                         polygons
                             .iter()
-                            .map(|(k, p)| Polygon::new(p.clone(), pick(*k, o).filled())),
+                            .map(|(k, p)| Polygon::new(&p[..p.len() - 1], pick(*k, o).filled())),
                     )
                     .map_err(err)?;
                 chart
