@@ -19,7 +19,7 @@
 use crate::dynamics::timestep::estimate_critical_dt;
 use crate::dynamics::watch::{self, BlowupWatch, Trigger};
 use crate::dynamics::{Blowup, World};
-use crate::output::progress::Progress;
+use crate::output::progress::{self, Progress};
 use crate::output::summary::{DeepCounts, EnergyReport, FinalBody, Status, Summary, write_summary};
 use crate::output::trace::{IncrementsWriter, TrajectoryWriter, WriteError, time_value};
 use crate::scene::Case;
@@ -403,15 +403,16 @@ fn step_loop(
             break;
         }
         if progress.due() {
-            let rate = s as f64 / start.elapsed().as_secs_f64();
-            progress.show(&format!(
-                "{}: step {s}/{steps} ({:.0} %), t = {:.4}, {:.0} steps/s, {} contacts",
-                case.name,
-                100.0 * s as f64 / steps as f64,
-                world.time,
-                rate,
-                report.contacts
-            ));
+            // The unbalanced ratio costs a pass over the contacts: only when a line is due.
+            progress.show(&progress::line(&progress::Fields {
+                name: &case.name,
+                step: s,
+                steps,
+                time: world.time,
+                elapsed: start.elapsed().as_secs_f64(),
+                contacts: report.contacts,
+                unbalanced: world.unbalanced_ratios().0,
+            }));
         }
     }
     counters.wall_seconds = start.elapsed().as_secs_f64();
