@@ -90,6 +90,15 @@ enum Command {
         /// directory is refused).
         #[arg(long)]
         overwrite: bool,
+        /// Also write VTK files for ParaView: OUT/vtk/frame_NNNNN.vtu at the output frames and
+        /// OUT/run.pvd (the time series to open). The case's "output": {"vtk": true} does the
+        /// same.
+        #[arg(long)]
+        vtk: bool,
+        /// Steps between VTK frames (default: the case's output.vtk_every, else its
+        /// output_every); implies --vtk.
+        #[arg(long)]
+        vtk_every: Option<u64>,
     },
     /// Draw a run (a directory written by `dem2d run`) as an SVG, or a PNG for `--out x.png`.
     Plot {
@@ -378,6 +387,8 @@ struct RunArgs<'a> {
     max_steps: Option<u64>,
     quiet: bool,
     overwrite: bool,
+    vtk: bool,
+    vtk_every: Option<u64>,
 }
 
 fn run(args: RunArgs) -> Result<(), Failure> {
@@ -385,6 +396,14 @@ fn run(args: RunArgs) -> Result<(), Failure> {
     let text = read_input(&name)?;
     let case = Case::from_json(&text).map_err(|e| Failure::input(format!("{name}: {e}")))?;
     let out_dir = args.out.unwrap_or_else(|| default_out_dir(&case));
+    if args.vtk_every == Some(0) {
+        return Err(Failure::input("--vtk-every: must be at least 1".into()));
+    }
+    let vtk_every = (args.vtk || args.vtk_every.is_some() || case.output.vtk).then(|| {
+        args.vtk_every
+            .or(case.output.vtk_every)
+            .unwrap_or(case.output_every)
+    });
     #[cfg(unix)]
     let stop = Some(signals::install());
     #[cfg(not(unix))]
@@ -395,6 +414,7 @@ fn run(args: RunArgs) -> Result<(), Failure> {
         max_steps: args.max_steps,
         overwrite: args.overwrite,
         stop,
+        vtk_every,
     };
     let outcome = run_case(&case, &text, &opts).map_err(|e| match e {
         RunError::Occupied { .. } => Failure::input(e.to_string()),
@@ -745,6 +765,8 @@ fn main() -> ExitCode {
             quiet,
             threads,
             overwrite,
+            vtk,
+            vtk_every,
         } => set_threads(*threads).and_then(|()| {
             run(RunArgs {
                 case,
@@ -752,6 +774,8 @@ fn main() -> ExitCode {
                 max_steps: *max_steps,
                 quiet: *quiet,
                 overwrite: *overwrite,
+                vtk: *vtk,
+                vtk_every: *vtk_every,
             })
         }),
         Command::Plot {

@@ -9,3 +9,4 @@ pub mod progress;
 pub mod run_data;
 pub mod summary;
 pub mod trace;
+pub mod vtk;
