@@ -33,7 +33,7 @@
 //! reader (`tests/vtk.rs`).
 
 use super::plot::clip_line;
-use super::trace::{WriteError, time_text};
+use super::trace::{WriteError, time_text, time_value};
 use crate::dynamics::World;
 use crate::geometry::{Shape, Vec2};
 use std::fmt::Write as _;
@@ -289,7 +289,7 @@ impl VtkWriter {
         x.push_str(
             "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <FieldData>\n",
         );
-        array(&mut x, "Float64", "TIME", 1, &f64s(&[world.time]));
+        array(&mut x, "Float64", "TIME", 1, &f64s(&[time_value(step, world.dt)]));
         array(&mut x, "Int64", "STEP", 1, &i64s(&[step as i64]));
         writeln!(
             x,
@@ -407,9 +407,16 @@ fn i32s(v: impl Iterator<Item = i32>) -> Vec<u8> {
 /// One `DataArray` in VTK's inline binary form: base64 of (the byte count as a little-endian
 /// UInt64, then the bytes).
 fn array(x: &mut String, ty: &str, name: &str, components: usize, bytes: &[u8]) {
+    let size = match ty {
+        "Float64" | "Int64" => 8,
+        "Int32" => 4,
+        _ => 1,
+    };
+    // Field data needs the tuple count (a reader takes none without it).
+    let tuples = bytes.len() / (size * components);
     write!(
         x,
-        "        <DataArray type=\"{ty}\" Name=\"{name}\" NumberOfComponents=\"{components}\" format=\"binary\">\n          "
+        "        <DataArray type=\"{ty}\" Name=\"{name}\" NumberOfComponents=\"{components}\" NumberOfTuples=\"{tuples}\" format=\"binary\">\n          "
     )
     .expect("string");
     let mut raw = Vec::with_capacity(8 + bytes.len());
