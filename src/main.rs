@@ -219,6 +219,9 @@ enum Command {
         /// Fewer sweep points and repetitions (a quick look, not the README's numbers).
         #[arg(long)]
         quick: bool,
+        /// Where every SVG is also rendered as PNG (default: WORK/png).
+        #[arg(long)]
+        png: Option<PathBuf>,
     },
 }
 
@@ -735,7 +738,7 @@ fn figures(
     cases: PathBuf,
     work: PathBuf,
     readme: Option<PathBuf>,
-    quick: bool,
+    (quick, png): (bool, Option<PathBuf>),
 ) -> Result<(), Failure> {
     let opts = dem2d::report::FigureOptions {
         cases,
@@ -743,6 +746,7 @@ fn figures(
         work,
         readme,
         quick,
+        png,
     };
     let written = dem2d::report::figures(&opts).map_err(|e| Failure {
         code: 1,
@@ -844,12 +848,13 @@ fn main() -> ExitCode {
             work,
             readme,
             quick,
+            png,
         } => figures(
             out.clone(),
             cases.clone(),
             work.clone(),
             readme.clone(),
-            *quick,
+            (*quick, png.clone()),
         ),
     };
     match result {
