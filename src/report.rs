@@ -352,7 +352,10 @@ fn paper_figures<'a>(
     let (tc, te, ts) = (by("throw_circle"), by("throw_ellipse"), by("throw_square"));
     let f = file("fig3_throw_comparison");
     let panel = |run: &'a RunData, what: &str| ScenePanel {
-        title: format!("P Fig. 3{note}: {what} thrown sideways at 100 cm/s, first 0.8 s"),
+        title: format!(
+            "P Fig. 3{note}: {what} thrown sideways at {} cm/s, first 0.8 s",
+            run.frames[0].bodies[0].vx
+        ),
         runs: vec![(run, String::new())],
     };
     plot::scene(
