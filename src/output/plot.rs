@@ -945,7 +945,12 @@ fn tick_label(v: f64, log: bool, span: f64) -> String {
     }
     // One digit finer than a tenth of the span (plotters puts up to ~10 ticks at 1-2-5 or
     // 2.5 steps), trailing zeros dropped: `2.25`, `2.5`, `3`, never `2` twice.
-    let decimals = (1.0 - (span / 10.0).log10().floor()).clamp(0.0, 8.0) as usize;
+    let decimals = (1.0 - (span / 10.0).log10().floor()).clamp(0.0, 12.0) as usize;
+    if decimals > 4 {
+        // Small values in exponent form: `4e-6`, `1.2e-5`, not `0.000004`.
+        let scale = 10f64.powi(decimals as i32);
+        return format!("{:e}", (v * scale).round() / scale);
+    }
     let s = format!("{v:.decimals$}");
     if s.contains('.') {
         s.trim_end_matches('0').trim_end_matches('.').to_string()
