@@ -501,7 +501,9 @@ fn plot(run_dir: &std::path::Path, kind: PlotKind, args: PlotArgs) -> Result<(),
         if let Some(v) = v
             && !v.is_finite()
         {
-            return Err(Failure::input(format!("{name}: must be a finite time, got {v}")));
+            return Err(Failure::input(format!(
+                "{name}: must be a finite time, got {v}"
+            )));
         }
     }
     if let (Some(a), Some(b)) = (args.from, args.to)

@@ -239,7 +239,11 @@ pub fn figures(opts: &FigureOptions) -> Result<Vec<PathBuf>, ReportError> {
         .cloned()
         .collect();
     for svg in svgs {
-        let name = svg.file_stem().unwrap_or_default().to_string_lossy().to_string();
+        let name = svg
+            .file_stem()
+            .unwrap_or_default()
+            .to_string_lossy()
+            .to_string();
         let png = png_dir.join(format!("{name}.png"));
         let text = std::fs::read_to_string(&svg).map_err(e(&svg.display().to_string()))?;
         let bytes = plot::png_of_svg(&text, 2.0).map_err(e(&png.display().to_string()))?;

@@ -179,7 +179,7 @@ fn prepare_dir(dir: &Path, overwrite: bool) -> Result<(), RunError> {
             .count();
         let mut files: Vec<String> = present
             .iter()
-            .filter(|p| !p.extension().is_some_and(|e| e == "vtu"))
+            .filter(|p| p.extension().is_none_or(|e| e != "vtu"))
             .map(|p| p.strip_prefix(dir).unwrap_or(p).display().to_string())
             .collect();
         if frames > 0 {

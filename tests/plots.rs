@@ -423,7 +423,13 @@ fn plot_options_png_output_and_bad_options() {
     // outline per body (ellipses a/b = 1.5: 84 vertices, closed).
     let out = run.join("force.svg");
     let (code, _, err) = dem2d(&[
-        "plot", r, "--out", out.to_str().unwrap(), "--color", "speed", "--last",
+        "plot",
+        r,
+        "--out",
+        out.to_str().unwrap(),
+        "--color",
+        "speed",
+        "--last",
     ]);
     assert_eq!(code, 0, "{err}");
     let s = std::fs::read_to_string(&out).unwrap();
@@ -435,22 +441,45 @@ fn plot_options_png_output_and_bad_options() {
     assert_eq!(polylines_with(&s, 85), 3);
     // An outline every 0.01 s over 0.02–0.05 s: 4 outlines per body.
     let (code, _, err) = dem2d(&[
-        "plot", r, "--out", out.to_str().unwrap(), "--from", "0.02", "--to", "0.05", "--every",
+        "plot",
+        r,
+        "--out",
+        out.to_str().unwrap(),
+        "--from",
+        "0.02",
+        "--to",
+        "0.05",
+        "--every",
         "0.01",
     ]);
     assert_eq!(code, 0, "{err}");
-    assert_eq!(polylines_with(&std::fs::read_to_string(&out).unwrap(), 85), 12);
+    assert_eq!(
+        polylines_with(&std::fs::read_to_string(&out).unwrap(), 85),
+        12
+    );
     // Bad options: refused naming the option, exit code 2, nothing written.
     let gone = run.join("never.svg");
     let g = gone.to_str().unwrap();
     for (args, want) in [
         (vec!["--out", "x.pdf"], "dem2d plot writes SVG or PNG"),
-        (vec!["--out", g, "--from", "0.05", "--to", "0.01"], "--from 0.05 is after --to 0.01"),
-        (vec!["--out", g, "--every", "0"], "--every: must be a positive time"),
-        (vec!["--out", g, "--every=-1"], "--every: must be a positive time"),
+        (
+            vec!["--out", g, "--from", "0.05", "--to", "0.01"],
+            "--from 0.05 is after --to 0.01",
+        ),
+        (
+            vec!["--out", g, "--every", "0"],
+            "--every: must be a positive time",
+        ),
+        (
+            vec!["--out", g, "--every=-1"],
+            "--every: must be a positive time",
+        ),
         (vec!["--out", g, "--from", "7"], "no frame of"),
         (vec!["--out", g, "--width", "5"], "--width: must be 200"),
-        (vec!["--out", g, "--kind", "series", "--last"], "apply to --kind scene only"),
+        (
+            vec!["--out", g, "--kind", "series", "--last"],
+            "apply to --kind scene only",
+        ),
         (vec!["--out", g, "--color", "heat"], "invalid value 'heat'"),
     ] {
         let mut all = vec!["plot", r];
@@ -465,7 +494,10 @@ fn plot_options_png_output_and_bad_options() {
     let bad = run.join("no/such/dir/x.png");
     let (code, _, err) = dem2d(&["plot", r, "--out", bad.to_str().unwrap()]);
     assert_eq!(code, 1, "{err}");
-    assert!(err.contains(&format!("{}: cannot write", bad.display())), "{err}");
+    assert!(
+        err.contains(&format!("{}: cannot write", bad.display())),
+        "{err}"
+    );
 }
 
 #[test]

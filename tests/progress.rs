@@ -11,7 +11,9 @@ fn a_long_run_logs_rate_time_left_and_the_unbalanced_ratio() {
     let bin = env!("CARGO_BIN_EXE_dem2d");
     let case = dir.join("pile.json");
     let generated = Command::new(bin)
-        .args(["generate", "--shape", "disks", "--n", "300", "--seed", "7", "--out"])
+        .args([
+            "generate", "--shape", "disks", "--n", "300", "--seed", "7", "--out",
+        ])
         .arg(&case)
         .output()
         .unwrap();
@@ -35,7 +37,10 @@ fn a_long_run_logs_rate_time_left_and_the_unbalanced_ratio() {
     let fields: Vec<&str> = line.split(", ").collect();
     assert_eq!(fields.len(), 6, "{line}");
     assert!(fields[0].contains("/70000 ("), "{line}");
-    assert!(fields[1].starts_with("t = ") && fields[1].ends_with(" s"), "{line}");
+    assert!(
+        fields[1].starts_with("t = ") && fields[1].ends_with(" s"),
+        "{line}"
+    );
     assert!(fields[2].ends_with(" steps/s"), "{line}");
     assert!(fields[3].ends_with(" left (at most)"), "{line}");
     assert!(fields[4].ends_with(" contacts"), "{line}");

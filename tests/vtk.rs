@@ -24,7 +24,9 @@ fn dem2d(args: &[&str]) -> (i32, String, String) {
 }
 
 fn scratch(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join("vtk").join(name);
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("vtk")
+        .join(name);
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     d
@@ -82,7 +84,10 @@ fn vtk_files_read_back_by_vtk_match_the_run() {
     assert_eq!(code, 0, "{err}");
     // Frames at steps 0, 2000, …, 10000, listed in run.pvd in order.
     let pvd = std::fs::read_to_string(run.join("run.pvd")).unwrap();
-    for (k, t) in ["0", "0.02", "0.04", "0.06", "0.08", "0.1"].iter().enumerate() {
+    for (k, t) in ["0", "0.02", "0.04", "0.06", "0.08", "0.1"]
+        .iter()
+        .enumerate()
+    {
         let entry = format!("timestep=\"{t}\" group=\"\" part=\"0\" file=\"vtk/frame_{k:05}.vtu\"");
         assert!(pvd.contains(&entry), "{entry} not in\n{pvd}");
         assert!(run.join(format!("vtk/frame_{k:05}.vtu")).exists());
@@ -163,9 +168,17 @@ fn the_case_file_can_ask_for_vtk_and_bad_vtk_requests_are_refused() {
     assert_eq!(frames, 4);
     // A second run into the same directory is refused, naming the VTK output; --overwrite
     // removes the earlier frames (and only them) first.
-    let (code, _, err) = dem2d(&["run", case.to_str().unwrap(), "--out", run.to_str().unwrap()]);
+    let (code, _, err) = dem2d(&[
+        "run",
+        case.to_str().unwrap(),
+        "--out",
+        run.to_str().unwrap(),
+    ]);
     assert_eq!(code, 2, "{err}");
-    assert!(err.contains("run.pvd") && err.contains("vtk/ (4 frames)"), "{err}");
+    assert!(
+        err.contains("run.pvd") && err.contains("vtk/ (4 frames)"),
+        "{err}"
+    );
     std::fs::write(run.join("vtk/notes.txt"), "mine").unwrap();
     let (code, _, err) = dem2d(&[
         "run",
@@ -185,7 +198,12 @@ fn the_case_file_can_ask_for_vtk_and_bad_vtk_requests_are_refused() {
     names.sort();
     assert_eq!(
         names,
-        ["frame_00000.vtu", "frame_00001.vtu", "frame_00002.vtu", "notes.txt"]
+        [
+            "frame_00000.vtu",
+            "frame_00001.vtu",
+            "frame_00002.vtu",
+            "notes.txt"
+        ]
     );
 
     // Unknown or mistyped fields of "output" are refused with their path.

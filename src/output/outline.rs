@@ -47,7 +47,10 @@ pub fn body_frame_vertices(shape: &Shape) -> Vec<(f64, f64)> {
 fn ellipse_point(a: f64, b: f64, phi: f64) -> ((f64, f64), f64) {
     let (s, c) = phi.sin_cos();
     let h = (a * a * c * c + b * b * s * s).sqrt();
-    ((a * a * c / h, b * b * s / h), (a * b).powi(2) / (h * h * h))
+    (
+        (a * a * c / h, b * b * s / h),
+        (a * b).powi(2) / (h * h * h),
+    )
 }
 
 /// Vertices of the ellipse `(a, b)` spaced as the module documentation says.
@@ -151,7 +154,10 @@ mod tests {
                 let t1 = (q.1 - p.1).atan2(q.0 - p.0);
                 let t2 = (r.1 - q.1).atan2(r.0 - q.0);
                 let turn = (t2 - t1).rem_euclid(TAU);
-                assert!(turn > 0.0 && turn <= 1.05 * TURN_MAX, "{a}/{b} vertex {k}: {turn}");
+                assert!(
+                    turn > 0.0 && turn <= 1.05 * TURN_MAX,
+                    "{a}/{b} vertex {k}: {turn}"
+                );
             }
         }
     }

@@ -251,7 +251,11 @@ pub fn rotation_against_dt(runs: &[(&RunData, &str)], note: &str) -> Vec<LinePan
         });
         angle.series.push(Series {
             label: label.to_string(),
-            points: run.frames.iter().map(|f| (f.t, f.bodies[k].angle)).collect(),
+            points: run
+                .frames
+                .iter()
+                .map(|f| (f.t, f.bodies[k].angle))
+                .collect(),
             color: c,
             line: true,
             ..Default::default()

@@ -5,8 +5,8 @@
 use super::run_data::RunData;
 use crate::geometry::{Shape, Vec2};
 use plotters::coord::Shift;
-use plotters::coord::types::RangedCoordf64;
 use plotters::coord::ranged1d::ValueFormatter;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -298,7 +298,13 @@ fn select<'a>(
     let values = match color {
         ColorBy::Speed => outlines
             .iter()
-            .map(|&i| run.frames[i].bodies.iter().map(|b| b.vx.hypot(b.vy)).collect())
+            .map(|&i| {
+                run.frames[i]
+                    .bodies
+                    .iter()
+                    .map(|b| b.vx.hypot(b.vy))
+                    .collect()
+            })
             .collect(),
         ColorBy::Omega => outlines
             .iter()
@@ -419,6 +425,9 @@ where
         .map_err(err)
 }
 
+/// A panel's plotting area: its pixel spans (x, y) and its top and bottom rows.
+type Measured = ((f64, f64), (i32, i32));
+
 /// The plotting area of a scene panel of `size` drawing units: its pixel spans (the number of
 /// units from the first to the last pixel, as plotters maps a range) and its top and bottom
 /// rows. Measured by laying the panel out on a throw-away SVG: plotters places the caption and
@@ -428,13 +437,16 @@ fn measure(
     size: (u32, u32),
     title: &str,
     l: SceneLayout,
-) -> Result<((f64, f64), (i32, i32)), PlotError> {
+) -> Result<Measured, PlotError> {
     let mut sink = String::new();
     let root = SVGBackend::with_string(&mut sink, size).into_drawing_area();
     let chart = scene_chart(&root, title, l, (0.0, 1.0, 0.0, 1.0))?;
     let (xr, yr) = chart.plotting_area().get_pixel_range();
     Ok((
-        ((xr.end - xr.start - 1) as f64, (yr.end - yr.start - 1) as f64),
+        (
+            (xr.end - xr.start - 1) as f64,
+            (yr.end - yr.start - 1) as f64,
+        ),
         (yr.start, yr.end),
     ))
 }
@@ -661,10 +673,7 @@ where
                 scale.lo + span * k as f64 / steps as f64,
                 scale.lo + span * (k + 1) as f64 / steps as f64,
             );
-            Rectangle::new(
-                [(0.0, a), (0.45, b)],
-                scale.color(0.5 * (a + b)).filled(),
-            )
+            Rectangle::new([(0.0, a), (0.45, b)], scale.color(0.5 * (a + b)).filled())
         }))
         .map_err(err)?;
     Ok(())

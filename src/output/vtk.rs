@@ -145,7 +145,10 @@ impl VtkWriter {
             .expect("string");
         }
         s.push_str("  </Collection>\n</VTKFile>\n");
-        let (tmp, path) = (self.run_dir.join("run.pvd.tmp"), self.run_dir.join("run.pvd"));
+        let (tmp, path) = (
+            self.run_dir.join("run.pvd.tmp"),
+            self.run_dir.join("run.pvd"),
+        );
         std::fs::write(&tmp, s).map_err(io_err(&tmp))?;
         std::fs::rename(&tmp, &path).map_err(io_err(&path))
     }
@@ -193,7 +196,7 @@ impl VtkWriter {
                 body_fn[c.slot.j as usize] += f_n;
             }
         }
-        for k in 0..n {
+        for (k, &fn_sum) in body_fn.iter().enumerate() {
             let s = &b.state[k];
             let angle = s.pose.angle();
             let (x, y) = (s.pose.position.x, s.pose.position.y);
@@ -224,7 +227,7 @@ impl VtkWriter {
                 velocity: [s.vel.x, s.vel.y, 0.0],
                 angular_velocity: s.omega,
                 shape_tensor: [txx, txy, 0.0, txy, tyy, 0.0, 0.0, 0.0, 0.0],
-                body_normal_force: body_fn[k],
+                body_normal_force: fn_sum,
                 ..Cell::default()
             });
         }
@@ -289,7 +292,13 @@ impl VtkWriter {
         x.push_str(
             "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <FieldData>\n",
         );
-        array(&mut x, "Float64", "TIME", 1, &f64s(&[time_value(step, world.dt)]));
+        array(
+            &mut x,
+            "Float64",
+            "TIME",
+            1,
+            &f64s(&[time_value(step, world.dt)]),
+        );
         array(&mut x, "Int64", "STEP", 1, &i64s(&[step as i64]));
         writeln!(
             x,
@@ -305,7 +314,8 @@ impl VtkWriter {
         let c = &cells;
         let ints = |f: fn(&Cell) -> i64| i64s(&c.iter().map(f).collect::<Vec<_>>());
         let floats = |f: fn(&Cell) -> f64| f64s(&c.iter().map(f).collect::<Vec<_>>());
-        let vecs = |f: fn(&Cell) -> &[f64]| f64s(&c.iter().flat_map(f).copied().collect::<Vec<_>>());
+        let vecs =
+            |f: fn(&Cell) -> &[f64]| f64s(&c.iter().flat_map(f).copied().collect::<Vec<_>>());
         array(&mut x, "Int32", "kind", 1, &i32s(c.iter().map(|c| c.kind)));
         array(&mut x, "Int64", "id", 1, &ints(|c| c.id));
         array(
@@ -315,7 +325,13 @@ impl VtkWriter {
             2,
             &i64s(&c.iter().flat_map(|c| c.pair).collect::<Vec<_>>()),
         );
-        array(&mut x, "Int32", "shape", 1, &i32s(c.iter().map(|c| c.shape)));
+        array(
+            &mut x,
+            "Int32",
+            "shape",
+            1,
+            &i32s(c.iter().map(|c| c.shape)),
+        );
         array(&mut x, "Float64", "semi_axes", 2, &vecs(|c| &c.semi_axes));
         array(&mut x, "Float64", "angle", 1, &floats(|c| c.angle));
         array(&mut x, "Float64", "velocity", 3, &vecs(|c| &c.velocity));
@@ -326,7 +342,13 @@ impl VtkWriter {
             1,
             &floats(|c| c.angular_velocity),
         );
-        array(&mut x, "Float64", "shape_tensor", 9, &vecs(|c| &c.shape_tensor));
+        array(
+            &mut x,
+            "Float64",
+            "shape_tensor",
+            9,
+            &vecs(|c| &c.shape_tensor),
+        );
         array(
             &mut x,
             "Float64",
@@ -334,7 +356,13 @@ impl VtkWriter {
             1,
             &floats(|c| c.body_normal_force),
         );
-        array(&mut x, "Float64", "normal_force", 1, &floats(|c| c.normal_force));
+        array(
+            &mut x,
+            "Float64",
+            "normal_force",
+            1,
+            &floats(|c| c.normal_force),
+        );
         array(
             &mut x,
             "Float64",
