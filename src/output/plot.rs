@@ -433,11 +433,7 @@ type Measured = ((f64, f64), (i32, i32));
 /// rows. Measured by laying the panel out on a throw-away SVG: plotters places the caption and
 /// label areas itself, so computing them would be a guess (it was: circles came out 6–9 %
 /// taller than wide).
-fn measure(
-    size: (u32, u32),
-    title: &str,
-    l: SceneLayout,
-) -> Result<Measured, PlotError> {
+fn measure(size: (u32, u32), title: &str, l: SceneLayout) -> Result<Measured, PlotError> {
     let mut sink = String::new();
     let root = SVGBackend::with_string(&mut sink, size).into_drawing_area();
     let chart = scene_chart(&root, title, l, (0.0, 1.0, 0.0, 1.0))?;
