@@ -90,18 +90,48 @@ enum Command {
         /// directory is refused).
         #[arg(long)]
         overwrite: bool,
+        /// Also write VTK files for ParaView: OUT/vtk/frame_NNNNN.vtu at the output frames and
+        /// OUT/run.pvd (the time series to open). The case's "output": {"vtk": true} does the
+        /// same.
+        #[arg(long)]
+        vtk: bool,
+        /// Steps between VTK frames (default: the case's output.vtk_every, else its
+        /// output_every); implies --vtk.
+        #[arg(long)]
+        vtk_every: Option<u64>,
     },
-    /// Draw a run (a directory written by `dem2d run`) as an SVG.
+    /// Draw a run (a directory written by `dem2d run`) as an SVG, or a PNG for `--out x.png`.
     Plot {
         /// The run directory.
         run_dir: PathBuf,
-        /// Output file (default: RUN_DIR/<kind>.svg).
+        /// Output file, `.svg` or `.png` (default: RUN_DIR/<kind>.svg).
         #[arg(long)]
         out: Option<PathBuf>,
         /// What to draw: the scene (outlines along the paths), the time series (height and angle
         /// against time) or P's quiescence measures against the step.
         #[arg(long, value_enum, default_value = "scene")]
         kind: PlotKind,
+        /// Draw from this time on (s).
+        #[arg(long)]
+        from: Option<f64>,
+        /// Draw up to this time (s).
+        #[arg(long)]
+        to: Option<f64>,
+        /// Scene: time between the outlines drawn (s; default: 24 outlines over the time shown).
+        #[arg(long)]
+        every: Option<f64>,
+        /// Scene: the last frame of the time shown only.
+        #[arg(long)]
+        last: bool,
+        /// Scene: what colours the bodies (auto: one colour per body, or the normal contact
+        /// force for a snapshot of more than 100 bodies); speed, omega (angular velocity),
+        /// rotation (since the first frame) and force (normal contact force on each body) come
+        /// with a colour bar.
+        #[arg(long, value_enum, default_value = "auto")]
+        color: ColorArg,
+        /// Scene: figure width in pixels (default: 1000, wider for a snapshot of many bodies).
+        #[arg(long)]
+        width: Option<u32>,
     },
     /// Generate a pile of disks or ellipses on a jittered lattice in a box, as a case file
     /// (`cases/settle_disks_10k.json` is `--shape disks --n 10000 --seed 1`).
@@ -196,6 +226,9 @@ enum Command {
         /// Fewer sweep points and repetitions (a quick look, not the README's numbers).
         #[arg(long)]
         quick: bool,
+        /// Where every SVG is also rendered as PNG (default: WORK/png).
+        #[arg(long)]
+        png: Option<PathBuf>,
     },
 }
 
@@ -224,6 +257,27 @@ impl From<NormalForceArg> for dem2d::contact_law::NormalForce {
             NormalForceArg::Depth => dem2d::contact_law::NormalForce::Depth,
         }
     }
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum ColorArg {
+    Auto,
+    Body,
+    Speed,
+    Omega,
+    Rotation,
+    Force,
+}
+
+/// What `dem2d plot` was asked besides the run and the kind.
+struct PlotArgs {
+    out: Option<PathBuf>,
+    from: Option<f64>,
+    to: Option<f64>,
+    every: Option<f64>,
+    last: bool,
+    color: ColorArg,
+    width: Option<u32>,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -343,6 +397,8 @@ struct RunArgs<'a> {
     max_steps: Option<u64>,
     quiet: bool,
     overwrite: bool,
+    vtk: bool,
+    vtk_every: Option<u64>,
 }
 
 fn run(args: RunArgs) -> Result<(), Failure> {
@@ -350,6 +406,14 @@ fn run(args: RunArgs) -> Result<(), Failure> {
     let text = read_input(&name)?;
     let case = Case::from_json(&text).map_err(|e| Failure::input(format!("{name}: {e}")))?;
     let out_dir = args.out.unwrap_or_else(|| default_out_dir(&case));
+    if args.vtk_every == Some(0) {
+        return Err(Failure::input("--vtk-every: must be at least 1".into()));
+    }
+    let vtk_every = (args.vtk || args.vtk_every.is_some() || case.output.vtk).then(|| {
+        args.vtk_every
+            .or(case.output.vtk_every)
+            .unwrap_or(case.output_every)
+    });
     #[cfg(unix)]
     let stop = Some(signals::install());
     #[cfg(not(unix))]
@@ -360,6 +424,7 @@ fn run(args: RunArgs) -> Result<(), Failure> {
         max_steps: args.max_steps,
         overwrite: args.overwrite,
         stop,
+        vtk_every,
     };
     let outcome = run_case(&case, &text, &opts).map_err(|e| match e {
         RunError::Occupied { .. } => Failure::input(e.to_string()),
@@ -426,18 +491,54 @@ fn run(args: RunArgs) -> Result<(), Failure> {
     ))
 }
 
-fn plot(run_dir: &std::path::Path, out: Option<PathBuf>, kind: PlotKind) -> Result<(), Failure> {
+fn plot(run_dir: &std::path::Path, kind: PlotKind, args: PlotArgs) -> Result<(), Failure> {
     use dem2d::output::panels;
-    use dem2d::output::plot::{self, SceneOptions, ScenePanel};
-    if let Some(out) = &out
+    use dem2d::output::plot::{self, ColorBy, SceneOptions, ScenePanel};
+    if let Some(out) = &args.out
         && !out
             .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("svg"))
+            .is_some_and(|e| e.eq_ignore_ascii_case("svg") || e.eq_ignore_ascii_case("png"))
     {
         return Err(Failure::input(format!(
-            "--out {}: dem2d plot writes SVG only; give a file name ending in .svg",
+            "--out {}: dem2d plot writes SVG or PNG; give a file name ending in .svg or .png",
             out.display()
         )));
+    }
+    for (name, v) in [("--from", args.from), ("--to", args.to)] {
+        if let Some(v) = v
+            && !v.is_finite()
+        {
+            return Err(Failure::input(format!(
+                "{name}: must be a finite time, got {v}"
+            )));
+        }
+    }
+    if let (Some(a), Some(b)) = (args.from, args.to)
+        && a > b
+    {
+        return Err(Failure::input(format!(
+            "--from {a} is after --to {b}: the time window is empty"
+        )));
+    }
+    if let Some(e) = args.every
+        && !(e.is_finite() && e > 0.0)
+    {
+        return Err(Failure::input(format!(
+            "--every: must be a positive time (s), got {e}"
+        )));
+    }
+    if let Some(w) = args.width
+        && !(200..=20_000).contains(&w)
+    {
+        return Err(Failure::input(format!(
+            "--width: must be 200 … 20000 pixels, got {w}"
+        )));
+    }
+    let scene_only = args.every.is_some() || args.last || !matches!(args.color, ColorArg::Auto);
+    if scene_only && !matches!(kind, PlotKind::Scene) {
+        return Err(Failure::input(
+            "--every, --last and --color apply to --kind scene only".into(),
+        ));
     }
     let run = dem2d::output::run_data::RunData::load(run_dir)
         .map_err(|e| Failure::input(e.to_string()))?;
@@ -462,13 +563,28 @@ fn plot(run_dir: &std::path::Path, out: Option<PathBuf>, kind: PlotKind) -> Resu
         PlotKind::Series => "series",
         PlotKind::Quiescence => "quiescence",
     };
-    let out = out.unwrap_or_else(|| run_dir.join(format!("{name}.svg")));
+    let out = args
+        .out
+        .unwrap_or_else(|| run_dir.join(format!("{name}.svg")));
+    let window = |t: f64| args.from.is_none_or(|a| t >= a) && args.to.is_none_or(|b| t <= b);
+    let shown = run.frames.iter().filter(|f| window(f.t)).count();
+    if shown == 0 {
+        let (a, b) = (run.frames[0].t, run.frames[run.frames.len() - 1].t);
+        return Err(Failure::input(format!(
+            "--from/--to: no frame of {} in the time window (its frames are from t = {a} to {b} s)",
+            run_dir.display()
+        )));
+    }
     let title = format!(
         "{} ({} steps, t = {:.4} s)",
         run.case.name,
         run.summary["steps"],
         run.summary["time"].as_f64().unwrap_or(f64::NAN)
     );
+    // The series and quiescence panels take the window as a copy of the run cut to it.
+    let mut cut = run.clone();
+    cut.frames.retain(|f| window(f.t));
+    cut.increments.retain(|i| window(i.t));
     let result = match kind {
         PlotKind::Scene => plot::scene(
             &out,
@@ -476,19 +592,34 @@ fn plot(run_dir: &std::path::Path, out: Option<PathBuf>, kind: PlotKind) -> Resu
                 title,
                 runs: vec![(&run, String::new())],
             }],
-            &SceneOptions::default(),
+            &SceneOptions {
+                t_min: args.from,
+                t_max: args.to,
+                outline_every: args.every,
+                last_only: args.last,
+                width: args.width,
+                color: match args.color {
+                    ColorArg::Auto => ColorBy::Auto,
+                    ColorArg::Body => ColorBy::Body,
+                    ColorArg::Speed => ColorBy::Speed,
+                    ColorArg::Omega => ColorBy::Omega,
+                    ColorArg::Rotation => ColorBy::Rotation,
+                    ColorArg::Force => ColorBy::Force,
+                },
+                ..SceneOptions::default()
+            },
         ),
         PlotKind::Series => plot::line_panels(
             &out,
             (1000, 700),
             (2, 1),
-            &panels::time_series(&[(&run, "")], &title),
+            &panels::time_series(&[(&cut, "")], &title),
         ),
         PlotKind::Quiescence => plot::line_panels(
             &out,
             (1000, 500),
             (1, 1),
-            &[panels::quiescence(&run, &title, None)],
+            &[panels::quiescence(&cut, &title, None)],
         ),
     };
     result.map_err(|e| Failure::failed(format!("{}: {e}", out.display())))?;
@@ -629,7 +760,7 @@ fn figures(
     cases: PathBuf,
     work: PathBuf,
     readme: Option<PathBuf>,
-    quick: bool,
+    (quick, png): (bool, Option<PathBuf>),
 ) -> Result<(), Failure> {
     let opts = dem2d::report::FigureOptions {
         cases,
@@ -637,6 +768,7 @@ fn figures(
         work,
         readme,
         quick,
+        png,
     };
     let written = dem2d::report::figures(&opts).map_err(|e| Failure {
         code: 1,
@@ -659,6 +791,8 @@ fn main() -> ExitCode {
             quiet,
             threads,
             overwrite,
+            vtk,
+            vtk_every,
         } => set_threads(*threads).and_then(|()| {
             run(RunArgs {
                 case,
@@ -666,9 +800,33 @@ fn main() -> ExitCode {
                 max_steps: *max_steps,
                 quiet: *quiet,
                 overwrite: *overwrite,
+                vtk: *vtk,
+                vtk_every: *vtk_every,
             })
         }),
-        Command::Plot { run_dir, out, kind } => plot(run_dir, out.clone(), *kind),
+        Command::Plot {
+            run_dir,
+            out,
+            kind,
+            from,
+            to,
+            every,
+            last,
+            color,
+            width,
+        } => plot(
+            run_dir,
+            *kind,
+            PlotArgs {
+                out: out.clone(),
+                from: *from,
+                to: *to,
+                every: *every,
+                last: *last,
+                color: *color,
+                width: *width,
+            },
+        ),
         Command::Generate {
             shape,
             n,
@@ -715,12 +873,13 @@ fn main() -> ExitCode {
             work,
             readme,
             quick,
+            png,
         } => figures(
             out.clone(),
             cases.clone(),
             work.clone(),
             readme.clone(),
-            *quick,
+            (*quick, png.clone()),
         ),
     };
     match result {

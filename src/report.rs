@@ -61,6 +61,9 @@ pub struct FigureOptions {
     pub readme: Option<PathBuf>,
     /// Fewer repetitions and sweep points (for a quick look; the README's numbers use the full set).
     pub quick: bool,
+    /// Where each SVG is also rendered as PNG (None: `WORK/png`). Not in `out`: the rendering
+    /// depends on the machine's fonts, and `out` holds the same bits on every machine.
+    pub png: Option<PathBuf>,
 }
 
 fn load_case(path: &Path) -> Result<(Case, String), ReportError> {
@@ -149,7 +152,6 @@ pub fn figures(opts: &FigureOptions) -> Result<Vec<PathBuf>, ReportError> {
         .flat_map(|(d, a)| [d.clone(), a.clone()])
         .collect();
     tables.push(("paper_cases", paper_cases_table(&both)));
-    written.extend(area_law_figures(opts, &by_area)?);
     let mut timings = String::from(
         "# Timings of `dem2d figures` (machine-dependent)\n\nMeasured on this machine by the run that wrote this file; they change from run to run and \
          from machine to machine, which is why they are kept out of `figures/`.\n\n## The paper's cases\n\n| case | steps | wall time (s) |\n|---|---:|---:|\n",
@@ -165,73 +167,11 @@ pub fn figures(opts: &FigureOptions) -> Result<Vec<PathBuf>, ReportError> {
         .expect("string");
     }
 
-    // P Fig. 2: the drop at two frictions.
-    let (d1, d5) = (by("drop_rebound_mu01"), by("drop_rebound_mu05"));
-    let f = out("fig2_drop_rebound.svg");
-    plot::scene(
-        &f,
-        &[
-            ScenePanel {
-                title: "P Fig. 2 (a): ellipse a/b = 1.5 dropped tilted, floor friction μ = 0.1"
-                    .into(),
-                runs: vec![(d1, String::new())],
-            },
-            ScenePanel {
-                title: "P Fig. 2 (b): the same, floor friction μ = 0.5".into(),
-                runs: vec![(d5, String::new())],
-            },
-        ],
-        &SceneOptions {
-            t_max: Some(0.6),
-            outlines: 25,
-            ..Default::default()
-        },
-    )
-    .map_err(e("fig2"))?;
-    written.push(f);
-    let f = out("fig2_drop_rebound_series.svg");
-    plot::line_panels(
-        &f,
-        (1000, 700),
-        (2, 1),
-        &panels::time_series(
-            &[(d1, "μ = 0.1"), (d5, "μ = 0.5")],
-            "P Fig. 2: centroid height and angle",
-        ),
-    )
-    .map_err(e("fig2 series"))?;
-    written.push(f);
-
-    // P Fig. 3: circle, ellipse, square overlaid.
+    // P's Figs. 2–4: the depth law as the case files give it, and the area law.
+    written.extend(paper_figures(opts, &by, Law::Depth)?);
+    written.extend(paper_figures(opts, &by_area, Law::Area)?);
     let (tc, te, ts) = (by("throw_circle"), by("throw_ellipse"), by("throw_square"));
-    let f = out("fig3_throw_comparison.svg");
-    plot::scene(
-        &f,
-        &[ScenePanel {
-            title: "P Fig. 3: equal-area circle, ellipse (a/b = 1.5) and square thrown sideways, first 0.8 s".into(),
-            runs: vec![(tc, "circle".into()), (te, "ellipse".into()), (ts, "square".into())],
-        }],
-        &SceneOptions { t_max: Some(0.8), outlines: 14, color_by_body: false, ..Default::default() },
-    )
-    .map_err(e("fig3"))?;
-    written.push(f);
-    let f = out("fig3_throw_series.svg");
-    plot::line_panels(
-        &f,
-        (1000, 700),
-        (2, 1),
-        &panels::time_series(
-            &[(tc, "circle"), (te, "ellipse"), (ts, "square")],
-            "P Fig. 3: centroid height and angle",
-        ),
-    )
-    .map_err(e("fig3 series"))?;
-    written.push(f);
-    let (ac, ae, as_) = (
-        by_area("throw_circle"),
-        by_area("throw_ellipse"),
-        by_area("throw_square"),
-    );
+    let (ae, as_) = (by_area("throw_ellipse"), by_area("throw_square"));
     tables.push((
         "fig3_comparison",
         comparison_table(&[
@@ -242,54 +182,6 @@ pub fn figures(opts: &FigureOptions) -> Result<Vec<PathBuf>, ReportError> {
             (as_, "square, area law (Winkler on a wall: the same)"),
         ]),
     ));
-    let _ = ac;
-
-    // P Fig. 4: the three ellipses at both time steps, and the quiescence measures.
-    let (s5, s4) = (by("settle3_dt1e-5"), by("settle3_dt1e-4"));
-    let f = out("fig4_settle3.svg");
-    plot::scene(
-        &f,
-        &[
-            ScenePanel {
-                title: format!(
-                    "P Fig. 4: three ellipses from first contact, Δt = 1e-5 s: at rest at step {}",
-                    s5.summary["quiescent_step"]
-                ),
-                runs: vec![(s5, String::new())],
-            },
-            ScenePanel {
-                title: "the same at Δt = 1e-4 s: never at rest (0.5 s shown)".into(),
-                runs: vec![(s4, String::new())],
-            },
-        ],
-        &SceneOptions {
-            outlines: 12,
-            width: 800,
-            ..Default::default()
-        },
-    )
-    .map_err(e("fig4"))?;
-    written.push(f);
-    let f = out("fig4_quiescence.svg");
-    plot::line_panels(
-        &f,
-        (1200, 500),
-        (1, 2),
-        &[
-            panels::quiescence(
-                s5,
-                "P's quiescence measures, Δt = 1e-5 s",
-                Some((1e-14, 1e-3)),
-            ),
-            panels::quiescence(
-                s4,
-                "P's quiescence measures, Δt = 1e-4 s",
-                Some((1e-14, 1e-3)),
-            ),
-        ],
-    )
-    .map_err(e("fig4 quiescence"))?;
-    written.push(f);
 
     // Speed vs error, and stability.
     let sve = speed_vs_error(opts)?;
@@ -304,11 +196,11 @@ pub fn figures(opts: &FigureOptions) -> Result<Vec<PathBuf>, ReportError> {
     let f = opts.work.join("speed_vs_error_time.svg");
     plot::line_panels(&f, (800, 520), (1, 1), &[sve.by_wall]).map_err(e("speed vs error"))?;
     written.push(f);
-    let (st_md, st_csv, st_panel) = stability(opts)?;
+    let (st_md, st_csv, st_panels) = stability(opts)?;
     std::fs::write(out("stability.csv"), st_csv).map_err(e("stability.csv"))?;
     written.push(out("stability.csv"));
     let f = out("stability.svg");
-    plot::line_panels(&f, (900, 560), (1, 1), &[st_panel]).map_err(e("stability"))?;
+    plot::line_panels(&f, (900, 900), (2, 1), &st_panels).map_err(e("stability"))?;
     written.push(f);
     tables.push(("stability", st_md));
 
@@ -337,6 +229,26 @@ pub fn figures(opts: &FigureOptions) -> Result<Vec<PathBuf>, ReportError> {
     written.push(f);
     if let Some(readme) = &opts.readme {
         update_readme(readme, &tables)?;
+    }
+    // Every SVG also as PNG, at twice its displayed size (print resolution).
+    let png_dir = opts.png.clone().unwrap_or_else(|| opts.work.join("png"));
+    std::fs::create_dir_all(&png_dir).map_err(e(&png_dir.display().to_string()))?;
+    let svgs: Vec<PathBuf> = written
+        .iter()
+        .filter(|f| f.extension().is_some_and(|x| x == "svg"))
+        .cloned()
+        .collect();
+    for svg in svgs {
+        let name = svg
+            .file_stem()
+            .unwrap_or_default()
+            .to_string_lossy()
+            .to_string();
+        let png = png_dir.join(format!("{name}.png"));
+        let text = std::fs::read_to_string(&svg).map_err(e(&svg.display().to_string()))?;
+        let bytes = plot::png_of_svg(&text, 2.0).map_err(e(&png.display().to_string()))?;
+        std::fs::write(&png, bytes).map_err(e(&png.display().to_string()))?;
+        written.push(png);
     }
     Ok(written)
 }
@@ -368,24 +280,54 @@ fn paper_cases_table(runs: &[RunData]) -> String {
     t
 }
 
-/// P's Figs. 2–4 again under the area law (`*_area.svg`).
-fn area_law_figures<'a>(
+/// Which law a set of paper figures shows: the file names' suffix and the titles' note.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Law {
+    Depth,
+    Area,
+}
+
+impl Law {
+    fn suffix(self) -> &'static str {
+        match self {
+            Law::Depth => "",
+            Law::Area => "_area",
+        }
+    }
+
+    /// Inserted after "P Fig. N" in titles.
+    fn note(self) -> &'static str {
+        match self {
+            Law::Depth => "",
+            Law::Area => ", area law",
+        }
+    }
+}
+
+/// P's Figs. 2–4 from the runs `by` gives (`*.svg`, or `*_area.svg` under the area law).
+fn paper_figures<'a>(
     opts: &FigureOptions,
     by: &dyn Fn(&str) -> &'a RunData,
+    law: Law,
 ) -> Result<Vec<PathBuf>, ReportError> {
-    let out = |f: &str| opts.out.join(f);
+    let file = |name: &str| opts.out.join(format!("{name}{}.svg", law.suffix()));
+    let note = law.note();
     let mut written = Vec::new();
+
+    // P Fig. 2: the drop at two frictions.
     let (d1, d5) = (by("drop_rebound_mu01"), by("drop_rebound_mu05"));
-    let f = out("fig2_drop_rebound_area.svg");
+    let f = file("fig2_drop_rebound");
     plot::scene(
         &f,
         &[
             ScenePanel {
-                title: "P Fig. 2 (a), area law: floor friction μ = 0.1".into(),
+                title: format!(
+                    "P Fig. 2 (a){note}: ellipse a/b = 1.5 dropped tilted, floor friction μ = 0.1"
+                ),
                 runs: vec![(d1, String::new())],
             },
             ScenePanel {
-                title: "P Fig. 2 (b), area law: floor friction μ = 0.5".into(),
+                title: format!("P Fig. 2 (b){note}: the same, floor friction μ = 0.5"),
                 runs: vec![(d5, String::new())],
             },
         ],
@@ -395,54 +337,61 @@ fn area_law_figures<'a>(
             ..Default::default()
         },
     )
-    .map_err(e("fig2 area"))?;
+    .map_err(e("fig2"))?;
     written.push(f);
-    let f = out("fig2_drop_rebound_series_area.svg");
+    let f = file("fig2_drop_rebound_series");
     plot::line_panels(
         &f,
         (1000, 700),
         (2, 1),
         &panels::time_series(
             &[(d1, "μ = 0.1"), (d5, "μ = 0.5")],
-            "P Fig. 2, area law: centroid height and angle",
+            &format!("P Fig. 2{note}: centroid height and angle"),
         ),
     )
-    .map_err(e("fig2 series area"))?;
+    .map_err(e("fig2 series"))?;
     written.push(f);
+
+    // P Fig. 3: circle, ellipse and square, one panel each on common axes, as P draws them.
     let (tc, te, ts) = (by("throw_circle"), by("throw_ellipse"), by("throw_square"));
-    let f = out("fig3_throw_comparison_area.svg");
+    let f = file("fig3_throw_comparison");
+    let panel = |run: &'a RunData, what: &str| ScenePanel {
+        title: format!(
+            "P Fig. 3{note}: {what} thrown sideways at {} cm/s, first 0.8 s",
+            run.frames[0].bodies[0].vx
+        ),
+        runs: vec![(run, String::new())],
+    };
     plot::scene(
         &f,
-        &[ScenePanel {
-            title: "P Fig. 3, area law: circle, ellipse and square thrown sideways, first 0.8 s"
-                .into(),
-            runs: vec![
-                (tc, "circle".into()),
-                (te, "ellipse".into()),
-                (ts, "square".into()),
-            ],
-        }],
+        &[
+            panel(tc, "(a) circle"),
+            panel(te, "(b) ellipse a/b = 1.5 of the same area"),
+            panel(ts, "(c) square of the same area"),
+        ],
         &SceneOptions {
             t_max: Some(0.8),
             outlines: 14,
-            color_by_body: false,
             ..Default::default()
         },
     )
-    .map_err(e("fig3 area"))?;
+    .map_err(e("fig3"))?;
     written.push(f);
-    let f = out("fig3_throw_series_area.svg");
+    let f = file("fig3_throw_series");
     plot::line_panels(
         &f,
         (1000, 700),
         (2, 1),
         &panels::time_series(
             &[(tc, "circle"), (te, "ellipse"), (ts, "square")],
-            "P Fig. 3, area law: centroid height and angle",
+            &format!("P Fig. 3{note}: centroid height and angle"),
         ),
     )
-    .map_err(e("fig3 series area"))?;
+    .map_err(e("fig3 series"))?;
     written.push(f);
+
+    // P Fig. 4: the three ellipses at Δt = 1e-5 s; at 1e-4 s the scene looks the same, so
+    // what differs — the rotation that never stops — gets its own figure.
     let (s5, s4) = (by("settle3_dt1e-5"), by("settle3_dt1e-4"));
     let rest = |r: &RunData| {
         r.summary["quiescent_step"]
@@ -451,28 +400,34 @@ fn area_law_figures<'a>(
                 format!("at rest at step {s}")
             })
     };
-    let f = out("fig4_settle3_area.svg");
+    let f = file("fig4_settle3");
     plot::scene(
         &f,
-        &[
-            ScenePanel {
-                title: format!("P Fig. 4, area law, Δt = 1e-5 s: {}", rest(s5)),
-                runs: vec![(s5, String::new())],
-            },
-            ScenePanel {
-                title: format!("the same at Δt = 1e-4 s: {}", rest(s4)),
-                runs: vec![(s4, String::new())],
-            },
-        ],
+        &[ScenePanel {
+            title: format!(
+                "P Fig. 4{note}: three ellipses from first contact, Δt = 1e-5 s: {}",
+                rest(s5)
+            ),
+            runs: vec![(s5, String::new())],
+        }],
         &SceneOptions {
             outlines: 12,
-            width: 800,
+            width: Some(800),
             ..Default::default()
         },
     )
-    .map_err(e("fig4 area"))?;
+    .map_err(e("fig4"))?;
     written.push(f);
-    let f = out("fig4_quiescence_area.svg");
+    let f = file("fig4_dt1e-4");
+    plot::line_panels(
+        &f,
+        (1200, 520),
+        (1, 2),
+        &panels::rotation_against_dt(&[(s5, "Δt = 1e-5 s"), (s4, "Δt = 1e-4 s")], note),
+    )
+    .map_err(e("fig4 rotation"))?;
+    written.push(f);
+    let f = file("fig4_quiescence");
     plot::line_panels(
         &f,
         (1200, 500),
@@ -480,17 +435,17 @@ fn area_law_figures<'a>(
         &[
             panels::quiescence(
                 s5,
-                "P's quiescence measures, area law, Δt = 1e-5 s",
-                Some((1e-14, 1e-3)),
+                &format!("P's quiescence measures{note}, Δt = 1e-5 s: {}", rest(s5)),
+                Some((1e-12, 1e-3)),
             ),
             panels::quiescence(
                 s4,
-                "P's quiescence measures, area law, Δt = 1e-4 s",
-                Some((1e-14, 1e-3)),
+                &format!("P's quiescence measures{note}, Δt = 1e-4 s: {}", rest(s4)),
+                Some((1e-12, 1e-3)),
             ),
         ],
     )
-    .map_err(e("fig4 quiescence area"))?;
+    .map_err(e("fig4 quiescence"))?;
     written.push(f);
     Ok(written)
 }
@@ -688,6 +643,8 @@ struct SettleResult {
     state: Vec<(f64, f64, f64)>,
     /// Smallest critical step of the contact network, sampled every 1e-5 s.
     dt_network: f64,
+    /// The largest of P's three measures over the last step run.
+    final_increment: f64,
 }
 
 fn settle_run(case: &Case, dt: f64, t_max: f64, to_rest: bool) -> SettleResult {
@@ -735,6 +692,7 @@ fn settle_run(case: &Case, dt: f64, t_max: f64, to_rest: bool) -> SettleResult {
         rest_step,
         state,
         dt_network: w.diagnostics.dt_critical_observed,
+        final_increment: w.last_increments.iter().copied().fold(0.0, f64::max),
     }
 }
 
@@ -1029,7 +987,7 @@ fn speed_vs_error(opts: &FigureOptions) -> Result<SpeedVsError, ReportError> {
     })
 }
 
-fn stability(opts: &FigureOptions) -> Result<(String, String, LinePanel), ReportError> {
+fn stability(opts: &FigureOptions) -> Result<(String, String, Vec<LinePanel>), ReportError> {
     note("figures: stability sweep");
     let (settle, _) = load_case(&opts.cases.join("settle3_dt1e-5.json"))?;
     let bodies = crate::dynamics::Bodies::new(&settle.bodies);
@@ -1065,13 +1023,14 @@ fn stability(opts: &FigureOptions) -> Result<(String, String, LinePanel), Report
          from the stiffest mode of the actual contact network (the smallest seen along the runs that reached rest, sampled every 1e-5 s), {dt_net:.3e} s. Runs of at most 0.5 s.\n\n\
          | Δt (s) | Δt / Δt_crit (single contact) | Δt / Δt_crit (network) | network Δt_crit seen in this run (s) | steps to rest | time to rest (s) |\n|---:|---:|---:|---:|---:|---:|\n"
     );
-    let (mut rest, mut never) = (Vec::new(), Vec::new());
+    let (mut rest, mut final_rest, mut final_never) = (Vec::new(), Vec::new(), Vec::new());
     let (mut last_rest, mut first_failure) = (None, None);
     for r in &runs {
         let dt = r.dt;
         match r.rest_step {
             Some(s) => {
                 rest.push((dt, s as f64));
+                final_rest.push((dt, r.final_increment));
                 last_rest = Some(dt);
                 writeln!(
                     md,
@@ -1084,7 +1043,7 @@ fn stability(opts: &FigureOptions) -> Result<(String, String, LinePanel), Report
                 .expect("string");
             }
             None => {
-                never.push((dt, 0.5 / dt));
+                final_never.push((dt, r.final_increment));
                 first_failure.get_or_insert(dt);
                 writeln!(
                     md,
@@ -1108,39 +1067,65 @@ fn stability(opts: &FigureOptions) -> Result<(String, String, LinePanel), Report
     if let Some(d) = last_rest {
         writeln!(md, "Largest Δt that reached rest: {d:e} s (near the limit the outcome is not monotone in Δt: a weakly unstable mode may or may not lock into a sustained oscillation before the scene settles).").expect("string");
     }
-    let panel = LinePanel {
-        title: "P Fig. 4 scene: steps to rest against Δt".into(),
+    let vlines = vec![
+        (dt_net, format!("network critical Δt = {dt_net:.2e} s")),
+        (
+            dt_crit,
+            format!("single-contact critical Δt = {dt_crit:.2e} s"),
+        ),
+    ];
+    // Two quantities, two panels: the steps to rest of the runs that rested, and for every
+    // run where its increments ended (the runs that never rested stop at 0.5 s).
+    let x_range = Some((dts[0] / 2.0, dts[dts.len() - 1] * 2.0));
+    let steps = LinePanel {
+        title: "(a) P Fig. 4 scene: steps to rest against Δt (runs that reached rest)".into(),
         x_label: "Δt (s)".into(),
         y_label: "steps to rest".into(),
         log_x: true,
         log_y: true,
+        x_range,
+        series: vec![Series {
+            label: "at rest (P's criterion)".into(),
+            points: rest,
+            color: 0,
+            line: true,
+            markers: true,
+            hollow: false,
+        }],
+        vlines: vlines.clone(),
+        ..Default::default()
+    };
+    let q = settle.quiescence.unwrap_or(1e-10);
+    let ends = LinePanel {
+        title: "(b) the largest of P's three measures at the last step (at rest, or after 0.5 s)"
+            .into(),
+        x_label: "Δt (s)".into(),
+        y_label: "max(|Δx|, |Δy|, |Δθ|) per step (cm; rad)".into(),
+        log_x: true,
+        log_y: true,
+        x_range,
         series: vec![
             Series {
-                label: "at rest (P's criterion)".into(),
-                points: rest,
+                label: "reached rest".into(),
+                points: final_rest,
                 color: 0,
-                line: true,
+                line: false,
                 markers: true,
                 hollow: false,
             },
             Series {
-                label: "never at rest in 0.5 s (steps run)".into(),
-                points: never,
+                label: "never at rest in 0.5 s".into(),
+                points: final_never,
                 color: 1,
                 line: false,
                 markers: true,
                 hollow: true,
             },
         ],
-        vlines: vec![
-            (dt_net, format!("network critical Δt = {dt_net:.2e} s")),
-            (
-                dt_crit,
-                format!("single-contact critical Δt = {dt_crit:.2e} s"),
-            ),
-        ],
+        hlines: vec![(q, format!("threshold {q:e}"))],
         ..Default::default()
     };
+    let panel = vec![steps, ends];
     Ok((md, csv, panel))
 }
 

@@ -19,9 +19,10 @@
 use crate::dynamics::timestep::estimate_critical_dt;
 use crate::dynamics::watch::{self, BlowupWatch, Trigger};
 use crate::dynamics::{Blowup, World};
-use crate::output::progress::Progress;
+use crate::output::progress::{self, Progress};
 use crate::output::summary::{DeepCounts, EnergyReport, FinalBody, Status, Summary, write_summary};
 use crate::output::trace::{IncrementsWriter, TrajectoryWriter, WriteError, time_value};
+use crate::output::vtk::VtkWriter;
 use crate::scene::Case;
 use std::fmt;
 use std::io;
@@ -43,6 +44,9 @@ pub struct RunOptions {
     /// Set to a signal number (non-zero) to stop the run after the current step, with status
     /// `interrupted` (the command line's SIGINT and SIGTERM handlers set it).
     pub stop: Option<&'static AtomicI32>,
+    /// Write VTK frames (`vtk/frame_NNNNN.vtu`) every this many steps, at the start and at the
+    /// end, and `run.pvd` (see [`crate::output::vtk`]); `None`: no VTK output.
+    pub vtk_every: Option<u64>,
 }
 
 /// The files a run writes (and `dem2d plot`'s default outputs, drawn from them): what is
@@ -158,21 +162,35 @@ pub fn default_out_dir(case: &Case) -> PathBuf {
 /// Refuses a directory holding an earlier run's outputs, or (with `overwrite`) removes them,
 /// the summary first.
 fn prepare_dir(dir: &Path, overwrite: bool) -> Result<(), RunError> {
-    let present: Vec<&str> = OUTPUT_FILES
+    let mut present: Vec<PathBuf> = OUTPUT_FILES
         .into_iter()
-        .filter(|f| dir.join(f).symlink_metadata().is_ok())
+        .map(|f| dir.join(f))
+        .filter(|p| p.symlink_metadata().is_ok())
         .collect();
+    // An earlier run's VTK output: `run.pvd` and `vtk/frame_*.vtu` (nothing else in `vtk/`).
+    present.extend(crate::output::vtk::existing_outputs(dir));
     if present.is_empty() {
         return Ok(());
     }
     if !overwrite {
+        let frames = present
+            .iter()
+            .filter(|p| p.extension().is_some_and(|e| e == "vtu"))
+            .count();
+        let mut files: Vec<String> = present
+            .iter()
+            .filter(|p| p.extension().is_none_or(|e| e != "vtu"))
+            .map(|p| p.strip_prefix(dir).unwrap_or(p).display().to_string())
+            .collect();
+        if frames > 0 {
+            files.push(format!("vtk/ ({frames} frames)"));
+        }
         return Err(RunError::Occupied {
             dir: dir.to_path_buf(),
-            files: present.iter().map(|f| f.to_string()).collect(),
+            files,
         });
     }
-    for f in present {
-        let path = dir.join(f);
+    for path in present {
         std::fs::remove_file(&path).map_err(io_at(&path))?;
     }
     Ok(())
@@ -250,14 +268,20 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
     let incs_file = dir.join("increments.csv");
     let result = match TrajectoryWriter::create(&traj_file)
         .and_then(|t| Ok((t, IncrementsWriter::create(&incs_file)?)))
-    {
+        .and_then(|(t, i)| {
+            let vtk = match opts.vtk_every {
+                Some(_) => Some(VtkWriter::create(dir, &world)?),
+                None => None,
+            };
+            Ok((t, i, vtk))
+        }) {
         Err(e) => Err(e),
-        Ok((mut traj, mut incs)) => {
+        Ok((mut traj, mut incs, mut vtk)) => {
             let stopped = step_loop(
                 case,
                 opts,
                 &mut world,
-                (&mut traj, &mut incs),
+                (&mut traj, &mut incs, vtk.as_mut()),
                 &mut counters,
                 &mut last_label,
             );
@@ -268,7 +292,13 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
                 .write_labelled(&world, label)
                 .and_then(|()| traj.flush());
             let incs_done = incs.flush();
-            stopped.and_then(|stop| traj_done.and(incs_done).map(|()| stop))
+            let vtk_done = match &mut vtk {
+                // A non-finite state is not drawn (VTK readers choke on it); the trajectory
+                // has it.
+                Some(v) if last_label.is_none() => v.write_labelled(&mut world, label),
+                _ => Ok(()),
+            };
+            stopped.and_then(|stop| traj_done.and(incs_done).and(vtk_done).map(|()| stop))
         }
     };
     world.network_critical_dt();
@@ -335,14 +365,22 @@ fn step_loop(
     case: &Case,
     opts: &RunOptions,
     world: &mut World,
-    (traj, incs): (&mut TrajectoryWriter, &mut IncrementsWriter),
+    (traj, incs, mut vtk): (
+        &mut TrajectoryWriter,
+        &mut IncrementsWriter,
+        Option<&mut VtkWriter>,
+    ),
     counters: &mut Counters,
     last_label: &mut Option<u64>,
 ) -> Result<Stop, WriteError> {
     let case_steps = case.steps();
     let steps = opts.max_steps.map_or(case_steps, |m| m.min(case_steps));
     let thin = steps.div_ceil(MAX_INCREMENT_ROWS).max(1);
+    let vtk_every = opts.vtk_every.unwrap_or(u64::MAX).max(1);
     traj.write(world)?;
+    if let Some(v) = vtk.as_deref_mut() {
+        v.write(world)?;
+    }
     let mut watch = BlowupWatch::new(world);
     let start = Instant::now();
     let mut progress = Progress::new(opts.progress, Duration::from_secs(2));
@@ -377,6 +415,11 @@ fn step_loop(
             traj.write(world)?;
             world.network_critical_dt();
         }
+        if s % vtk_every == 0
+            && let Some(v) = vtk.as_deref_mut()
+        {
+            v.write(world)?;
+        }
         if let Some(q) = case.quiescence {
             if report.increments.iter().all(|&d| d <= q) {
                 streak += 1;
@@ -403,15 +446,16 @@ fn step_loop(
             break;
         }
         if progress.due() {
-            let rate = s as f64 / start.elapsed().as_secs_f64();
-            progress.show(&format!(
-                "{}: step {s}/{steps} ({:.0} %), t = {:.4}, {:.0} steps/s, {} contacts",
-                case.name,
-                100.0 * s as f64 / steps as f64,
-                world.time,
-                rate,
-                report.contacts
-            ));
+            // The unbalanced ratio costs a pass over the contacts: only when a line is due.
+            progress.show(&progress::line(&progress::Fields {
+                name: &case.name,
+                step: s,
+                steps,
+                time: world.time,
+                elapsed: start.elapsed().as_secs_f64(),
+                contacts: report.contacts,
+                unbalanced: world.unbalanced_ratios().0,
+            }));
         }
     }
     counters.wall_seconds = start.elapsed().as_secs_f64();

@@ -68,7 +68,7 @@ fn every_plot_kind_writes_an_svg_with_title_axes_and_units() {
             &[
                 "settle3",
                 "step",
-                "mean increment per step (cm)",
+                "mean increment per step (|Δx|, |Δy| in cm; |Δθ| in rad)",
                 "threshold 1e-10",
                 "mean |Δθ| (rad)",
             ],
@@ -124,6 +124,58 @@ fn polylines_with(svg: &str, points: usize) -> usize {
         .count()
 }
 
+/// The point lists of every element starting with `tag` (`<polygon`, `<polyline`).
+fn shapes_points(svg: &str, tag: &str) -> Vec<Vec<(f64, f64)>> {
+    svg.split(tag)
+        .skip(1)
+        .filter_map(|p| {
+            let start = p.find("points=\"")? + 8;
+            let rest = &p[start..];
+            let list = &rest[..rest.find('"')?];
+            Some(
+                list.split_whitespace()
+                    .map(|xy| {
+                        let (x, y) = xy.split_once(',').unwrap();
+                        (x.parse().unwrap(), y.parse().unwrap())
+                    })
+                    .collect(),
+            )
+        })
+        .collect()
+}
+
+/// Width and height of a point set.
+fn extent(pts: &[(f64, f64)]) -> (f64, f64) {
+    let f = |g: fn(&(f64, f64)) -> f64| {
+        let (lo, hi) = pts
+            .iter()
+            .map(g)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                (l.min(v), h.max(v))
+            });
+        hi - lo
+    };
+    (f(|p| p.0), f(|p| p.1))
+}
+
+/// Least-squares line `v = s·u + c` through `(u, v)` pairs: `(s, c, worst residual)`.
+fn fit(pts: &[(f64, f64)]) -> (f64, f64, f64) {
+    let n = pts.len() as f64;
+    let (mu, mv) = (
+        pts.iter().map(|p| p.0).sum::<f64>() / n,
+        pts.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let suv: f64 = pts.iter().map(|p| (p.0 - mu) * (p.1 - mv)).sum();
+    let suu: f64 = pts.iter().map(|p| (p.0 - mu).powi(2)).sum();
+    let s = suv / suu;
+    let c = mv - s * mu;
+    let worst = pts
+        .iter()
+        .map(|p| (p.1 - s * p.0 - c).abs())
+        .fold(0.0, f64::max);
+    (s, c, worst)
+}
+
 #[test]
 fn a_many_body_run_plots_as_a_snapshot_and_summarised_series() {
     let dir = scratch("pile300");
@@ -162,6 +214,36 @@ fn a_many_body_run_plots_as_a_snapshot_and_summarised_series() {
     assert_eq!(code, 0, "{err}");
     let svg = std::fs::read_to_string(&scene).unwrap();
     assert_eq!(polylines_with(&svg, 73), 300);
+    // Equal scale: a unit of x is as long as a unit of y. The filled outlines are drawn in body
+    // order; fit drawing = s·world + c on each axis by least squares over every vertex (against
+    // the body's outline computed from the trajectory, independently of the drawing) and
+    // compare the two scales. Before the fix the plot area's height was guessed, and circles
+    // came out 6–9 % taller than wide.
+    let data = dem2d::output::run_data::RunData::load(&run).unwrap();
+    let last = data.frames.last().unwrap();
+    let drawn = shapes_points(&svg, "<polygon");
+    assert_eq!(drawn.len(), 300);
+    let (mut px, mut py) = (Vec::new(), Vec::new());
+    for (k, pts) in drawn.iter().enumerate() {
+        let b = last.bodies[k];
+        let world = dem2d::output::plot::outline(&data.case.bodies[k].shape, b.x, b.y, b.angle);
+        assert_eq!(pts.len() + 1, world.len(), "body {k}");
+        for (p, w) in pts.iter().zip(&world) {
+            px.push((w.0, p.0));
+            py.push((w.1, p.1));
+        }
+        // Each circle's drawn width and height agree to the pixel (coordinates are whole
+        // drawing units, each extreme within one).
+        let (w, h) = extent(pts);
+        assert!((w - h).abs() <= 2.0, "body {k}: {w} × {h}");
+    }
+    let ((sx, _, rx), (sy, _, ry)) = (fit(&px), fit(&py));
+    assert!(
+        (sy / sx + 1.0).abs() < 2e-3,
+        "x scale {sx}, y scale {sy} units per cm"
+    );
+    // The fit is good to the rounding of the drawing's integer coordinates.
+    assert!(rx <= 1.0 && ry <= 1.0, "worst residuals {rx}, {ry}");
     // Series: the summary lines, not 300 legend entries.
     let series = dir.join("series.svg");
     let (code, _, err) = dem2d(&[
@@ -256,7 +338,11 @@ fn figures_quick_writes_every_figure_and_table_of_the_readme() {
     // Every figure the README embeds and every table it includes.
     let mut wanted = Vec::new();
     for part in readme.split("](figures/").skip(1) {
-        wanted.push(part.split(')').next().unwrap().to_string());
+        let name = part.split(')').next().unwrap().to_string();
+        // The ParaView picture is pvpython's (figures/scripts/paraview_render.py).
+        if !name.starts_with("paraview_") {
+            wanted.push(name);
+        }
     }
     for part in readme.split("<!-- figures:").skip(1) {
         let name = part.split(" -->").next().unwrap();
@@ -296,8 +382,126 @@ fn figures_quick_writes_every_figure_and_table_of_the_readme() {
     assert!(files >= 12);
 }
 
+/// Width and height of a PNG, from its IHDR chunk (after checking the signature).
+fn png_size(bytes: &[u8]) -> (u32, u32) {
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "not a PNG");
+    assert_eq!(&bytes[12..16], b"IHDR");
+    let be = |k: usize| u32::from_be_bytes(bytes[k..k + 4].try_into().unwrap());
+    (be(16), be(20))
+}
+
+/// The displayed size an SVG declares.
+fn svg_size(svg: &str) -> (u32, u32) {
+    let num = |key: &str| {
+        let start = svg.find(key).unwrap() + key.len();
+        svg[start..].split('"').next().unwrap().parse().unwrap()
+    };
+    (num("width=\""), num("height=\""))
+}
+
 #[test]
-fn plot_refuses_what_it_cannot_draw_and_writes_svg_only() {
+fn plot_options_png_output_and_bad_options() {
+    let run = scratch("options");
+    let (code, _, err) = dem2d(&[
+        "run",
+        "cases/settle3_dt1e-5.json",
+        "--out",
+        run.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let r = run.to_str().unwrap();
+    // `--out x.png` writes a real PNG, at twice the SVG's displayed size.
+    let (svg, png) = (run.join("s.svg"), run.join("s.png"));
+    for out in [&svg, &png] {
+        let (code, _, err) = dem2d(&["plot", r, "--out", out.to_str().unwrap()]);
+        assert_eq!(code, 0, "{err}");
+    }
+    let (w, h) = svg_size(&std::fs::read_to_string(&svg).unwrap());
+    assert_eq!(png_size(&std::fs::read(&png).unwrap()), (2 * w, 2 * h));
+    // Colour by a quantity: a colour bar with its label and units; the last frame only: one
+    // outline per body (ellipses a/b = 1.5: 84 vertices, closed).
+    let out = run.join("force.svg");
+    let (code, _, err) = dem2d(&[
+        "plot",
+        r,
+        "--out",
+        out.to_str().unwrap(),
+        "--color",
+        "speed",
+        "--last",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let s = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        texts(&s).iter().any(|t| t.trim() == "speed |v| (cm/s)"),
+        "{:?}",
+        texts(&s)
+    );
+    assert_eq!(polylines_with(&s, 85), 3);
+    // An outline every 0.01 s over 0.02–0.05 s: 4 outlines per body.
+    let (code, _, err) = dem2d(&[
+        "plot",
+        r,
+        "--out",
+        out.to_str().unwrap(),
+        "--from",
+        "0.02",
+        "--to",
+        "0.05",
+        "--every",
+        "0.01",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(
+        polylines_with(&std::fs::read_to_string(&out).unwrap(), 85),
+        12
+    );
+    // Bad options: refused naming the option, exit code 2, nothing written.
+    let gone = run.join("never.svg");
+    let g = gone.to_str().unwrap();
+    for (args, want) in [
+        (vec!["--out", "x.pdf"], "dem2d plot writes SVG or PNG"),
+        (
+            vec!["--out", g, "--from", "0.05", "--to", "0.01"],
+            "--from 0.05 is after --to 0.01",
+        ),
+        (
+            vec!["--out", g, "--every", "0"],
+            "--every: must be a positive time",
+        ),
+        (
+            vec!["--out", g, "--every=-1"],
+            "--every: must be a positive time",
+        ),
+        (vec!["--out", g, "--from", "7"], "no frame of"),
+        (vec!["--out", g, "--width", "5"], "--width: must be 200"),
+        (
+            vec!["--out", g, "--kind", "series", "--last"],
+            "apply to --kind scene only",
+        ),
+        (vec!["--out", g, "--color", "heat"], "invalid value 'heat'"),
+    ] {
+        let mut all = vec!["plot", r];
+        all.extend(args);
+        let (code, _, err) = dem2d(&all);
+        assert_eq!(code, 2, "{all:?}: {err}");
+        assert!(err.contains(want), "{all:?}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+    assert!(!gone.exists());
+    // An unwritable output: exit code 1, the file named.
+    let bad = run.join("no/such/dir/x.png");
+    let (code, _, err) = dem2d(&["plot", r, "--out", bad.to_str().unwrap()]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains(&format!("{}: cannot write", bad.display())),
+        "{err}"
+    );
+}
+
+#[test]
+fn plot_refuses_what_it_cannot_draw() {
     let run = scratch("huge");
     let (code, _, err) = dem2d(&[
         "run",
@@ -307,17 +511,6 @@ fn plot_refuses_what_it_cannot_draw_and_writes_svg_only() {
         "--quiet",
     ]);
     assert_eq!(code, 0, "{err}");
-    // `--out x.png` would have been an SVG in a .png file.
-    let png = run.join("x.png");
-    let (code, _, err) = dem2d(&[
-        "plot",
-        run.to_str().unwrap(),
-        "--out",
-        png.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 2, "{err}");
-    assert!(err.contains("SVG only"), "{err}");
-    assert!(!png.exists());
     // A coordinate of 1e155 (a run that blew up) made the scene plot grow without end: it must
     // return, promptly, with the range named.
     let traj = run.join("trajectory.csv");

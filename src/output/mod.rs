@@ -1,9 +1,12 @@
 //! Output formats. Readers of results only: nothing here changes the world.
 
 pub mod contacts;
+pub mod forces;
+pub mod outline;
 pub mod panels;
 pub mod plot;
 pub mod progress;
 pub mod run_data;
 pub mod summary;
 pub mod trace;
+pub mod vtk;

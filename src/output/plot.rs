@@ -6,6 +6,7 @@ use super::run_data::RunData;
 use crate::geometry::{Shape, Vec2};
 use plotters::coord::Shift;
 use plotters::coord::ranged1d::ValueFormatter;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -65,38 +66,80 @@ fn color(k: usize) -> RGBColor {
 /// staircase) while text and lines keep their displayed sizes.
 const S: u32 = 2;
 
-/// Rewrites the SVG header to display the `size`-unit drawing at `size / S` pixels.
-fn downscale_header(path: &Path, size: (u32, u32)) -> Result<(), PlotError> {
-    let text = std::fs::read_to_string(path).map_err(err)?;
+/// Writes a drawing of `size` units, as plotters left it in `svg`, to `path` (errors do not
+/// repeat the file name: the caller names it): the header rewritten
+/// to display it at `size / S` pixels; as SVG, or rendered to PNG when the name ends in `.png`
+/// (at the drawing's own resolution, `S` pixels per displayed pixel, fit for print).
+fn save(path: &Path, svg: &str, size: (u32, u32)) -> Result<(), PlotError> {
     let from = format!("width=\"{}\" height=\"{}\"", size.0, size.1);
     let to = format!("width=\"{}\" height=\"{}\"", size.0 / S, size.1 / S);
-    if !text.contains(&from) {
-        return Err(PlotError(format!(
-            "{}: unexpected SVG header",
-            path.display()
-        )));
+    if !svg.contains(&from) {
+        return Err(PlotError("unexpected SVG header".into()));
     }
-    std::fs::write(path, text.replacen(&from, &to, 1)).map_err(err)
+    let svg = svg.replacen(&from, &to, 1);
+    let bytes = if is_png(path) {
+        png_of_svg(&svg, S as f32).map_err(PlotError)?
+    } else {
+        svg.into_bytes()
+    };
+    std::fs::write(path, bytes).map_err(|e| PlotError(format!("cannot write: {e}")))
 }
 
-/// The outline of a shape placed at `(x, y)` with angle `angle`, as a closed polygon.
+/// True when `path` names a PNG file (`.png`, any case).
+pub fn is_png(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"))
+}
+
+/// Renders an SVG to PNG bytes at `zoom` pixels per SVG pixel (resvg), on white, with the
+/// system's fonts (the SVG's `sans-serif` is the first of DejaVu Sans, Liberation Sans, Arial,
+/// Noto Sans that is installed). No font at all is an error: the picture would have no text.
+pub fn png_of_svg(svg: &str, zoom: f32) -> Result<Vec<u8>, String> {
+    use resvg::{tiny_skia, usvg};
+    let mut opt = usvg::Options::default();
+    let db = opt.fontdb_mut();
+    db.load_system_fonts();
+    if db.is_empty() {
+        return Err(
+            "no font found to render the text (install one, e.g. Debian's fonts-dejavu-core)"
+                .into(),
+        );
+    }
+    let families: Vec<String> = db
+        .faces()
+        .flat_map(|f| f.families.iter().map(|(name, _)| name.clone()))
+        .collect();
+    if let Some(sans) = ["DejaVu Sans", "Liberation Sans", "Arial", "Noto Sans"]
+        .into_iter()
+        .find(|want| families.iter().any(|f| f == want))
+        .or_else(|| families.first().map(String::as_str))
+    {
+        let sans = sans.to_string();
+        db.set_sans_serif_family(sans);
+    }
+    let tree = usvg::Tree::from_str(svg, &opt).map_err(|e| format!("cannot read the SVG: {e}"))?;
+    let size = tree.size();
+    let (w, h) = (
+        (size.width() * zoom).ceil() as u32,
+        (size.height() * zoom).ceil() as u32,
+    );
+    let mut pixmap =
+        tiny_skia::Pixmap::new(w, h).ok_or_else(|| format!("cannot make a {w}×{h} image"))?;
+    pixmap.fill(tiny_skia::Color::WHITE);
+    resvg::render(
+        &tree,
+        tiny_skia::Transform::from_scale(zoom, zoom),
+        &mut pixmap.as_mut(),
+    );
+    pixmap
+        .encode_png()
+        .map_err(|e| format!("cannot encode the PNG: {e}"))
+}
+
+/// The outline of a shape placed at `(x, y)` with angle `angle`, as a closed polygon (vertices
+/// as [`super::outline`] places them).
 pub fn outline(shape: &Shape, x: f64, y: f64, angle: f64) -> Vec<(f64, f64)> {
-    let (s, c) = angle.sin_cos();
-    let place = |u: f64, v: f64| (x + c * u - s * v, y + s * u + c * v);
-    let mut pts: Vec<(f64, f64)> = match *shape {
-        Shape::Circle { r } => (0..72)
-            .map(|k| k as f64 * std::f64::consts::TAU / 72.0)
-            .map(|t| place(r * t.cos(), r * t.sin()))
-            .collect(),
-        Shape::Ellipse { a, b } => (0..72)
-            .map(|k| k as f64 * std::f64::consts::TAU / 72.0)
-            .map(|t| place(a * t.cos(), b * t.sin()))
-            .collect(),
-        Shape::Rectangle { w, h } => {
-            let (u, v) = (0.5 * w, 0.5 * h);
-            vec![place(-u, -v), place(u, -v), place(u, v), place(-u, v)]
-        }
-    };
+    let mut pts = super::outline::polygon(shape, x, y, angle);
     pts.push(pts[0]);
     pts
 }
@@ -108,16 +151,73 @@ pub struct ScenePanel<'a> {
     pub runs: Vec<(&'a RunData, String)>,
 }
 
+/// What colours the bodies of a scene.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ColorBy {
+    /// One colour per body when a panel shows one run of few bodies, one per run when it shows
+    /// several, and the normal contact force for a snapshot of many bodies.
+    #[default]
+    Auto,
+    /// One colour per body.
+    Body,
+    /// One colour per run.
+    Run,
+    /// Speed |v| (a colour scale with its bar).
+    Speed,
+    /// Angular velocity ω, signed (a diverging scale).
+    Omega,
+    /// Rotation since the run's first frame, θ − θ₀, signed (a diverging scale).
+    Rotation,
+    /// The normal contact force on the body, Σ F_n over its contacts, recomputed from the
+    /// frame's state ([`super::forces::normal_force_per_body`]).
+    Force,
+}
+
+impl ColorBy {
+    /// The colour-bar label, and whether the quantity is signed (diverging scale); `None` for
+    /// the categorical colourings.
+    fn quantity(self, units: &str) -> Option<(String, bool)> {
+        let speed = if units.is_empty() {
+            "speed |v|".to_string()
+        } else {
+            format!("speed |v| ({units}/s)")
+        };
+        match self {
+            ColorBy::Auto | ColorBy::Body | ColorBy::Run => None,
+            ColorBy::Speed => Some((speed, false)),
+            ColorBy::Omega => Some(("angular velocity ω (rad/s)".into(), true)),
+            ColorBy::Rotation => Some(("rotation θ − θ₀ (rad)".into(), true)),
+            // Per unit thickness; dyn when the case is in cgs.
+            ColorBy::Force => Some((
+                if units == "cm" {
+                    "normal contact force ΣFₙ (dyn)".into()
+                } else {
+                    "normal contact force ΣFₙ".into()
+                },
+                false,
+            )),
+        }
+    }
+}
+
 /// Options of a scene figure.
+#[derive(Clone, Debug)]
 pub struct SceneOptions {
+    /// Draw from this time on (default: the start).
+    pub t_min: Option<f64>,
     /// Draw up to this time (default: the whole run).
     pub t_max: Option<f64>,
-    /// Number of outlines per body over the time shown.
+    /// Number of outlines per body over the time shown (unless `outline_every` is given).
     pub outlines: usize,
-    /// Figure width in pixels.
-    pub width: u32,
-    /// Colour by body (one run per panel) rather than by run.
-    pub color_by_body: bool,
+    /// Time between outlines (overrides `outlines`).
+    pub outline_every: Option<f64>,
+    /// Only the last frame of the time shown: outlines, no paths.
+    pub last_only: bool,
+    /// Figure width in pixels; `None`: 1000, or wider for a snapshot of many small bodies (about
+    /// 8 pixels across the smallest body, at most 3000).
+    pub width: Option<u32>,
+    /// What colours the bodies.
+    pub color: ColorBy,
     /// Runs with more bodies than this are drawn as a snapshot: each body's outline at the last
     /// time shown, without paths or earlier outlines (which would bury a pile and make the file
     /// hundreds of megabytes).
@@ -127,58 +227,145 @@ pub struct SceneOptions {
 impl Default for SceneOptions {
     fn default() -> Self {
         SceneOptions {
+            t_min: None,
             t_max: None,
             outlines: 24,
-            width: 1000,
-            color_by_body: true,
+            outline_every: None,
+            last_only: false,
+            width: None,
+            color: ColorBy::Auto,
             snapshot_above: 100,
         }
     }
 }
 
-/// The box that holds every body of every panel over the time shown (at its last time only for a
-/// snapshot run), extended to axis-aligned walls nearby; equal aspect is applied later.
-fn scene_bounds(panels: &[ScenePanel], opts: &SceneOptions, t_max: f64) -> (f64, f64, f64, f64) {
+/// What is drawn of one run: the frames whose outlines are drawn, the frames its centroid paths
+/// run through (empty for a snapshot), and each outline's colour value.
+struct Drawn<'a> {
+    run: &'a RunData,
+    label: String,
+    outlines: Vec<usize>,
+    path: Vec<usize>,
+    /// Per outline frame, per body (empty for categorical colours).
+    values: Vec<Vec<f64>>,
+    snapshot: bool,
+}
+
+/// The frames of `run` to draw under `opts`.
+fn select<'a>(
+    run: &'a RunData,
+    label: &str,
+    opts: &SceneOptions,
+    color: ColorBy,
+) -> Result<Drawn<'a>, PlotError> {
+    let (t0, t1) = (
+        opts.t_min.unwrap_or(f64::NEG_INFINITY),
+        opts.t_max.unwrap_or(f64::INFINITY),
+    );
+    let window: Vec<usize> = (0..run.frames.len())
+        .filter(|&i| (t0..=t1).contains(&run.frames[i].t))
+        .collect();
+    let (Some(&first), Some(&last)) = (window.first(), window.last()) else {
+        let (a, b) = (run.frames[0].t, run.frames[run.frames.len() - 1].t);
+        return Err(PlotError(format!(
+            "{}: no frame between t = {t0} and t = {t1} s (the run's frames are from {a} to {b} s)",
+            run.dir.display()
+        )));
+    };
+    let snapshot = opts.last_only || run.case.bodies.len() > opts.snapshot_above;
+    let outlines = if snapshot {
+        vec![last]
+    } else {
+        // Outlines at regular times from the window's first frame, and always its last.
+        let span = run.frames[last].t - run.frames[first].t;
+        let every = opts
+            .outline_every
+            .unwrap_or(span / (opts.outlines.max(2) - 1) as f64);
+        let mut chosen = Vec::new();
+        let mut next = run.frames[first].t;
+        for &i in &window {
+            if run.frames[i].t + 1e-12 * span.max(1e-300) >= next {
+                chosen.push(i);
+                next += every.max(1e-300);
+            }
+        }
+        if chosen.last() != Some(&last) {
+            chosen.push(last);
+        }
+        chosen
+    };
+    let n = run.case.bodies.len();
+    let values = match color {
+        ColorBy::Speed => outlines
+            .iter()
+            .map(|&i| {
+                run.frames[i]
+                    .bodies
+                    .iter()
+                    .map(|b| b.vx.hypot(b.vy))
+                    .collect()
+            })
+            .collect(),
+        ColorBy::Omega => outlines
+            .iter()
+            .map(|&i| run.frames[i].bodies.iter().map(|b| b.omega).collect())
+            .collect(),
+        ColorBy::Rotation => outlines
+            .iter()
+            .map(|&i| {
+                (0..n)
+                    .map(|k| run.frames[i].bodies[k].angle - run.frames[0].bodies[k].angle)
+                    .collect()
+            })
+            .collect(),
+        ColorBy::Force => outlines
+            .iter()
+            .map(|&i| super::forces::normal_force_per_body(&run.case, &run.frames[i]))
+            .collect(),
+        ColorBy::Auto | ColorBy::Body | ColorBy::Run => Vec::new(),
+    };
+    Ok(Drawn {
+        run,
+        label: label.to_string(),
+        outlines,
+        path: if snapshot { Vec::new() } else { window },
+        values,
+        snapshot,
+    })
+}
+
+/// The box that holds every outline drawn, extended to axis-aligned walls nearby; equal aspect
+/// is applied later.
+fn scene_bounds(panels: &[Vec<(Drawn, ColorBy)>]) -> (f64, f64, f64, f64) {
     let (mut x0, mut x1, mut y0, mut y1) = (
         f64::INFINITY,
         f64::NEG_INFINITY,
         f64::INFINITY,
         f64::NEG_INFINITY,
     );
-    for p in panels {
-        for (run, _) in &p.runs {
-            let shown: Vec<_> = run.frames.iter().filter(|f| f.t <= t_max).collect();
-            let snapshot = run.case.bodies.len() > opts.snapshot_above;
-            let from = if snapshot {
-                shown.len().saturating_sub(1)
-            } else {
-                0
-            };
-            for f in &shown[from..] {
-                for (b, init) in f.bodies.iter().zip(&run.case.bodies) {
-                    for (x, y) in outline(&init.shape, b.x, b.y, b.angle) {
-                        x0 = x0.min(x);
-                        x1 = x1.max(x);
-                        y0 = y0.min(y);
-                        y1 = y1.max(y);
-                    }
+    for (d, _) in panels.iter().flatten() {
+        for &i in d.outlines.iter().chain(&d.path) {
+            for (b, init) in d.run.frames[i].bodies.iter().zip(&d.run.case.bodies) {
+                for (x, y) in super::outline::polygon(&init.shape, b.x, b.y, b.angle) {
+                    x0 = x0.min(x);
+                    x1 = x1.max(x);
+                    y0 = y0.min(y);
+                    y1 = y1.max(y);
                 }
             }
         }
     }
     let (w, h) = (x1 - x0, y1 - y0);
-    for p in panels {
-        for (run, _) in &p.runs {
-            for wall in &run.case.walls {
-                let (pt, n) = (wall.wall.point, wall.wall.normal);
-                if n.x.abs() < 1e-12 && (pt.y - y0).abs() < 0.5 * h.max(w) {
-                    y0 = y0.min(pt.y);
-                    y1 = y1.max(pt.y);
-                }
-                if n.y.abs() < 1e-12 && (pt.x - x0).abs().min((pt.x - x1).abs()) < 0.5 * w.max(h) {
-                    x0 = x0.min(pt.x);
-                    x1 = x1.max(pt.x);
-                }
+    for (d, _) in panels.iter().flatten() {
+        for wall in &d.run.case.walls {
+            let (pt, n) = (wall.wall.point, wall.wall.normal);
+            if n.x.abs() < 1e-12 && (pt.y - y0).abs() < 0.5 * h.max(w) {
+                y0 = y0.min(pt.y);
+                y1 = y1.max(pt.y);
+            }
+            if n.y.abs() < 1e-12 && (pt.x - x0).abs().min((pt.x - x1).abs()) < 0.5 * w.max(h) {
+                x0 = x0.min(pt.x);
+                x1 = x1.max(pt.x);
             }
         }
     }
@@ -187,7 +374,7 @@ fn scene_bounds(panels: &[ScenePanel], opts: &SceneOptions, t_max: f64) -> (f64,
 }
 
 /// The part of the line through `p` with direction `d` inside the box, if any (Liang–Barsky).
-fn clip_line(p: Vec2, d: Vec2, b: (f64, f64, f64, f64)) -> Option<(Vec2, Vec2)> {
+pub fn clip_line(p: Vec2, d: Vec2, b: (f64, f64, f64, f64)) -> Option<(Vec2, Vec2)> {
     let (mut t0, mut t1) = (f64::NEG_INFINITY, f64::INFINITY);
     for (pv, dv, lo, hi) in [(p.x, d.x, b.0, b.1), (p.y, d.y, b.2, b.3)] {
         if dv.abs() < 1e-300 {
@@ -203,58 +390,303 @@ fn clip_line(p: Vec2, d: Vec2, b: (f64, f64, f64, f64)) -> Option<(Vec2, Vec2)> 
     (t0 < t1).then(|| (p + d * t0, p + d * t1))
 }
 
-/// Draws a scene figure: panels stacked vertically on common, equal-aspect axes.
-pub fn scene(path: &Path, panels: &[ScenePanel], opts: &SceneOptions) -> Result<(), PlotError> {
-    let t_max = opts.t_max.unwrap_or(f64::INFINITY);
-    let (mut x0, mut x1, mut y0, mut y1) = scene_bounds(panels, opts, t_max);
-    check_range("the scene's x", x0, x1)?;
-    check_range("the scene's y", y0, y1)?;
-    let (left, bottom, title_h, margin) = (60 * S, 45 * S, 30 * S, 12 * S);
-    let width = opts.width * S;
-    let plot_w = (width - left - 2 * margin) as f64;
-    // Equal aspect: pixels per unit the same on both axes, within sensible panel heights.
-    let mut plot_h = plot_w * (y1 - y0) / (x1 - x0);
-    let (min_h, max_h) = (150.0 * S as f64, 600.0 * S as f64);
-    if plot_h < min_h {
-        // Grow upwards mostly: scenes usually stand on a floor.
-        let grow = (min_h / plot_h - 1.0) * (y1 - y0);
-        (y0, y1) = (y0 - 0.1 * grow, y1 + 0.9 * grow);
-        plot_h = min_h;
-    } else if plot_h > max_h {
-        let grow = (plot_h / max_h - 1.0) * (x1 - x0) / 2.0;
-        (x0, x1) = (x0 - grow, x1 + grow);
-        plot_h = max_h;
-    }
-    let panel_h = plot_h as u32 + bottom + title_h + 2 * margin;
-    let height = panel_h * panels.len() as u32;
-    let root = SVGBackend::new(path, (width, height)).into_drawing_area();
-    root.fill(&WHITE).map_err(err)?;
-    let areas = root.split_evenly((panels.len(), 1));
-    let bounds = (x0, x1, y0, y1);
-    for (area, panel) in areas.iter().zip(panels) {
-        draw_scene_panel(area, panel, opts, bounds, t_max, (left, bottom, margin))?;
-    }
-    root.present().map_err(err)?;
-    drop(root);
-    downscale_header(path, (width, height))
+/// The fixed parts of a scene panel's layout, in drawing units.
+#[derive(Clone, Copy)]
+struct SceneLayout {
+    left: u32,
+    bottom: u32,
+    margin: u32,
+    /// Width of the colour bar's area on the right (0: none).
+    bar: u32,
 }
 
-fn draw_scene_panel<DB: DrawingBackend>(
+/// The chart of a scene panel on `area` (its left part when there is a colour bar).
+fn scene_chart<'a, DB: DrawingBackend + 'a>(
     area: &DrawingArea<DB, Shift>,
-    panel: &ScenePanel,
-    opts: &SceneOptions,
+    title: &str,
+    l: SceneLayout,
     (x0, x1, y0, y1): (f64, f64, f64, f64),
-    t_max: f64,
-    (left, bottom, margin): (u32, u32, u32),
+) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>, PlotError>
+where
+    DB::ErrorType: 'static,
+{
+    let (w, _) = area.dim_in_pixel();
+    let chart_area = if l.bar > 0 {
+        area.split_horizontally(w.saturating_sub(l.bar)).0
+    } else {
+        area.clone()
+    };
+    ChartBuilder::on(&chart_area)
+        .caption(title, ("sans-serif", 17 * S))
+        .margin(l.margin)
+        .x_label_area_size(l.bottom)
+        .y_label_area_size(l.left)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(err)
+}
+
+/// A panel's plotting area: its pixel spans (x, y) and its top and bottom rows.
+type Measured = ((f64, f64), (i32, i32));
+
+/// The plotting area of a scene panel of `size` drawing units: its pixel spans (the number of
+/// units from the first to the last pixel, as plotters maps a range) and its top and bottom
+/// rows. Measured by laying the panel out on a throw-away SVG: plotters places the caption and
+/// label areas itself, so computing them would be a guess (it was: circles came out 6–9 %
+/// taller than wide).
+fn measure(size: (u32, u32), title: &str, l: SceneLayout) -> Result<Measured, PlotError> {
+    let mut sink = String::new();
+    let root = SVGBackend::with_string(&mut sink, size).into_drawing_area();
+    let chart = scene_chart(&root, title, l, (0.0, 1.0, 0.0, 1.0))?;
+    let (xr, yr) = chart.plotting_area().get_pixel_range();
+    Ok((
+        (
+            (xr.end - xr.start - 1) as f64,
+            (yr.end - yr.start - 1) as f64,
+        ),
+        (yr.start, yr.end),
+    ))
+}
+
+/// Draws a scene figure: panels stacked vertically on common axes at equal scale (a unit of x
+/// is as long as a unit of y, to the pixel), into `path` (SVG, or PNG for a `.png` name).
+pub fn scene(path: &Path, panels: &[ScenePanel], opts: &SceneOptions) -> Result<(), PlotError> {
+    // What is drawn, and how it is coloured.
+    let mut drawn = Vec::new();
+    for p in panels {
+        let mut runs = Vec::new();
+        for (run, label) in &p.runs {
+            let snapshot = opts.last_only || run.case.bodies.len() > opts.snapshot_above;
+            let color = match opts.color {
+                ColorBy::Auto if snapshot && run.case.bodies.len() > opts.snapshot_above => {
+                    ColorBy::Force
+                }
+                ColorBy::Auto if p.runs.len() > 1 => ColorBy::Run,
+                ColorBy::Auto => ColorBy::Body,
+                c => c,
+            };
+            runs.push((select(run, label, opts, color)?, color));
+        }
+        drawn.push(runs);
+    }
+    let color = drawn
+        .iter()
+        .flatten()
+        .map(|d: &(Drawn, ColorBy)| d.1)
+        .find(|c| c.quantity("").is_some())
+        .unwrap_or(ColorBy::Body);
+    let units = panels
+        .iter()
+        .flat_map(|p| p.runs.first())
+        .map(|(r, _)| r.case.units.clone())
+        .next()
+        .unwrap_or_default();
+    let scale = color.quantity(&units).map(|(label, signed)| {
+        let vals = drawn
+            .iter()
+            .flatten()
+            .flat_map(|d| d.0.values.iter().flatten().copied());
+        ColorScale::new(label, signed, vals)
+    });
+
+    let (mut x0, mut x1, mut y0, mut y1) = scene_bounds(&drawn);
+    check_range("the scene's x", x0, x1)?;
+    check_range("the scene's y", y0, y1)?;
+    let layout = SceneLayout {
+        left: 60 * S,
+        bottom: 45 * S,
+        margin: 12 * S,
+        bar: if scale.is_some() { 130 * S } else { 0 },
+    };
+    let width = S * opts.width.unwrap_or_else(|| {
+        // A snapshot: about 8 pixels across the smallest body.
+        let smallest = drawn
+            .iter()
+            .flatten()
+            .filter(|d| d.0.snapshot)
+            .flat_map(|d| d.0.run.case.bodies.iter())
+            .map(|b| 2.0 * b.shape.inscribed_radius())
+            .fold(f64::INFINITY, f64::min);
+        let want = 8.0 * (x1 - x0) / smallest + 100.0;
+        if want.is_finite() {
+            want.clamp(1000.0, 3000.0) as u32
+        } else {
+            1000
+        }
+    });
+    let title0 = panels.first().map_or("", |p| p.title.as_str());
+    // The panel height that gives the plotting area the data's aspect: measure the layout's
+    // fixed parts once, then size the panel so the plot fits, within sensible heights.
+    let guess = 600 * S;
+    let ((pw, ph), _) = measure((width, guess), title0, layout)?;
+    let fixed_h = guess as f64 - ph;
+    let mut want_h = pw * (y1 - y0) / (x1 - x0);
+    let (min_h, max_h) = (150.0 * S as f64, 900.0 * S as f64);
+    if want_h < min_h {
+        // Grow upwards mostly: scenes usually stand on a floor.
+        let grow = (min_h / want_h - 1.0) * (y1 - y0);
+        (y0, y1) = (y0 - 0.1 * grow, y1 + 0.9 * grow);
+        want_h = min_h;
+    } else if want_h > max_h {
+        let grow = (want_h / max_h - 1.0) * (x1 - x0) / 2.0;
+        (x0, x1) = (x0 - grow, x1 + grow);
+        want_h = max_h;
+    }
+    let panel_h = (want_h + fixed_h).round() as u32;
+    // Equal scale to the pixel: the plotting area as it will be, and the ranges widened (x
+    // about its centre, y upwards) until both axes have the same units per pixel.
+    let ((pw, ph), _) = measure((width, panel_h), title0, layout)?;
+    let per_px = ((x1 - x0) / pw).max((y1 - y0) / ph);
+    let xc = 0.5 * (x0 + x1);
+    (x0, x1) = (xc - 0.5 * per_px * pw, xc + 0.5 * per_px * pw);
+    y1 = y0 + per_px * ph;
+    let bounds = (x0, x1, y0, y1);
+
+    let height = panel_h * panels.len() as u32;
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
+        root.fill(&WHITE).map_err(err)?;
+        let areas = root.split_evenly((panels.len(), 1));
+        for ((area, panel), runs) in areas.iter().zip(panels).zip(&drawn) {
+            let (_, (top, bottom)) = measure((width, panel_h), &panel.title, layout)?;
+            let mut chart = scene_chart(area, &panel.title, layout, bounds)?;
+            draw_scene_panel(&mut chart, runs, scale.as_ref(), &units, bounds)?;
+            if let Some(scale) = &scale {
+                let (w, _) = area.dim_in_pixel();
+                let bar_area = area.split_horizontally(w - layout.bar).1;
+                draw_color_bar(&bar_area, scale, (top, bottom))?;
+            }
+        }
+        root.present().map_err(err)?;
+    }
+    save(path, &svg, (width, height))
+}
+
+/// A colour scale: sequential (viridis, from the smallest value to the largest) or, for a
+/// signed quantity, diverging (blue–white–red, symmetric about zero).
+struct ColorScale {
+    label: String,
+    signed: bool,
+    lo: f64,
+    hi: f64,
+}
+
+impl ColorScale {
+    fn new(label: String, signed: bool, values: impl Iterator<Item = f64>) -> ColorScale {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for v in values.filter(|v| v.is_finite()) {
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+        if !lo.is_finite() {
+            (lo, hi) = (0.0, 1.0);
+        }
+        if signed {
+            let m = lo.abs().max(hi.abs());
+            (lo, hi) = (-m, m);
+        }
+        if hi - lo <= 1e-12 * hi.abs().max(lo.abs()) {
+            // A constant (e.g. no contact at all): a unit-wide scale around it.
+            (lo, hi) = (lo - 0.5, hi + 0.5);
+        }
+        ColorScale {
+            label,
+            signed,
+            lo,
+            hi,
+        }
+    }
+
+    fn color(&self, v: f64) -> RGBColor {
+        let f = ((v - self.lo) / (self.hi - self.lo)).clamp(0.0, 1.0);
+        let stops: &[(f64, (u8, u8, u8))] = if self.signed {
+            // Moreland's cool–warm diverging map (blue, light grey, red).
+            &[
+                (0.0, (59, 76, 192)),
+                (0.25, (141, 176, 254)),
+                (0.5, (221, 221, 221)),
+                (0.75, (244, 154, 123)),
+                (1.0, (180, 4, 38)),
+            ]
+        } else {
+            // Viridis at eight stops.
+            &[
+                (0.0, (68, 1, 84)),
+                (0.143, (70, 50, 127)),
+                (0.286, (54, 92, 141)),
+                (0.429, (39, 127, 142)),
+                (0.571, (31, 161, 135)),
+                (0.714, (74, 193, 109)),
+                (0.857, (160, 218, 57)),
+                (1.0, (253, 231, 37)),
+            ]
+        };
+        let k = stops
+            .windows(2)
+            .position(|w| f <= w[1].0)
+            .unwrap_or(stops.len() - 2);
+        let ((fa, a), (fb, b)) = (stops[k], stops[k + 1]);
+        let t = ((f - fa) / (fb - fa)).clamp(0.0, 1.0);
+        let mix = |p: u8, q: u8| (p as f64 + t * (q as f64 - p as f64)).round() as u8;
+        RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+    }
+}
+
+/// A vertical colour bar with its ticks and label, spanning the rows `top..bottom` of `area`.
+fn draw_color_bar<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    scale: &ColorScale,
+    (top, bottom): (i32, i32),
 ) -> Result<(), PlotError>
 where
     DB::ErrorType: 'static,
 {
-    let units = panel
-        .runs
-        .first()
-        .map(|(r, _)| r.case.units.clone())
-        .unwrap_or_default();
+    let (_, h) = area.dim_in_pixel();
+    let mut chart = ChartBuilder::on(area)
+        .margin_top(top.max(0) as u32)
+        .margin_bottom((h as i32 - bottom).max(0) as u32)
+        .margin_left(10 * S)
+        .margin_right(16 * S)
+        .set_label_area_size(LabelAreaPosition::Right, 65 * S)
+        .build_cartesian_2d(0f64..1f64, scale.lo..scale.hi)
+        .map_err(err)?;
+    let span = scale.hi - scale.lo;
+    let fy = move |v: &f64| tick_label(*v, false, span);
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .disable_x_axis()
+        .y_label_formatter(&fy)
+        .y_desc(scale.label.as_str())
+        .label_style(("sans-serif", 13 * S))
+        .axis_desc_style(("sans-serif", 14 * S))
+        .draw()
+        .map_err(err)?;
+    let steps = 128;
+    chart
+        .draw_series((0..steps).map(|k| {
+            let (a, b) = (
+                scale.lo + span * k as f64 / steps as f64,
+                scale.lo + span * (k + 1) as f64 / steps as f64,
+            );
+            Rectangle::new([(0.0, a), (0.45, b)], scale.color(0.5 * (a + b)).filled())
+        }))
+        .map_err(err)?;
+    Ok(())
+}
+
+type SceneChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+fn draw_scene_panel<'a, DB: DrawingBackend + 'a>(
+    chart: &mut SceneChart<'a, DB>,
+    runs: &[(Drawn, ColorBy)],
+    scale: Option<&ColorScale>,
+    units: &str,
+    (x0, x1, y0, y1): (f64, f64, f64, f64),
+) -> Result<(), PlotError>
+where
+    DB::ErrorType: 'static,
+{
     let unit = |axis: &str| {
         if units.is_empty() {
             axis.to_string()
@@ -262,13 +694,6 @@ where
             format!("{axis} ({units})")
         }
     };
-    let mut chart = ChartBuilder::on(area)
-        .caption(&panel.title, ("sans-serif", 17 * S))
-        .margin(margin)
-        .x_label_area_size(bottom)
-        .y_label_area_size(left)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(err)?;
     let (sx, sy) = (x1 - x0, y1 - y0);
     let fx = move |v: &f64| tick_label(*v, false, sx);
     let fy = move |v: &f64| tick_label(*v, false, sy);
@@ -286,8 +711,8 @@ where
     let bounds = (x0, x1, y0, y1);
     let size = (x1 - x0).max(y1 - y0);
     // Walls: a thick line with hatching on the solid side.
-    if let Some((run, _)) = panel.runs.first() {
-        for w in &run.case.walls {
+    if let Some((d, _)) = runs.first() {
+        for w in &d.run.case.walls {
             let (n, t) = (w.wall.normal, Vec2::new(-w.wall.normal.y, w.wall.normal.x));
             if let Some((a, b)) = clip_line(w.wall.point, t, bounds) {
                 chart
@@ -313,66 +738,110 @@ where
             }
         }
     }
-    let several = panel.runs.len() > 1;
-    for (ri, (run, label)) in panel.runs.iter().enumerate() {
-        let frames: Vec<_> = run.frames.iter().filter(|f| f.t <= t_max).collect();
-        let (Some(first), Some(last)) = (frames.first(), frames.last()) else {
+    let several = runs.len() > 1;
+    let mut legend = false;
+    for (ri, (d, by)) in runs.iter().enumerate() {
+        let run = d.run;
+        // The colour of body k's outline number `o`.
+        let pick = |k: usize, o: usize| match (scale, d.values.get(o)) {
+            (Some(s), Some(v)) => s.color(v[k]),
+            _ if *by == ColorBy::Body => color(k),
+            _ => color(ri),
+        };
+        let key = if d.values.is_empty() && *by != ColorBy::Body {
+            Some(color(ri))
+        } else {
+            None
+        };
+        let (Some(&first), Some(&last)) = (d.outlines.first(), d.outlines.last()) else {
             continue;
         };
-        let span = (last.t - first.t).max(1e-300);
-        if run.case.bodies.len() > opts.snapshot_above {
-            let col = color(ri);
-            chart
-                .draw_series(run.case.bodies.iter().enumerate().map(|(k, init)| {
-                    let b = last.bodies[k];
-                    PathElement::new(outline(&init.shape, b.x, b.y, b.angle), col.stroke_width(S))
-                }))
-                .map_err(err)?;
+        if d.snapshot {
+            let f = &run.frames[last];
+            let o = d.outlines.len() - 1;
+            let polygons = run.case.bodies.iter().enumerate().map(|(k, init)| {
+                let b = f.bodies[k];
+                (k, outline(&init.shape, b.x, b.y, b.angle))
+            });
+            if d.values.is_empty() {
+                chart
+                    .draw_series(
+                        polygons.map(|(k, p)| PathElement::new(p, pick(k, o).stroke_width(S))),
+                    )
+                    .map_err(err)?;
+            } else {
+                // Filled by the value, each with a thin dark rim so that neighbours of one
+                // colour stay apart.
+                let polygons: Vec<_> = polygons.collect();
+                chart
+                    .draw_series(
+                        polygons
+                            .iter()
+                            .map(|(k, p)| Polygon::new(&p[..p.len() - 1], pick(*k, o).filled())),
+                    )
+                    .map_err(err)?;
+                chart
+                    .draw_series(polygons.into_iter().map(|(_, p)| {
+                        PathElement::new(p, RGBColor(40, 40, 40).mix(0.7).stroke_width(1))
+                    }))
+                    .map_err(err)?;
+            }
+            if let (true, Some(col)) = (several && !d.label.is_empty(), key) {
+                chart
+                    .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
+                    .map_err(err)?
+                    .label(d.label.clone())
+                    .legend(move |(x, y)| {
+                        PathElement::new(
+                            vec![(x, y), (x + 18 * S as i32, y)],
+                            col.stroke_width(2 * S),
+                        )
+                    });
+                legend = true;
+            }
             continue;
         }
+        let (t_first, t_last) = (run.frames[first].t, run.frames[last].t);
+        let span = (t_last - t_first).max(1e-300);
         for (k, init) in run.case.bodies.iter().enumerate() {
-            let col = if opts.color_by_body && !several {
-                color(k)
+            // Centroid path: the body's or run's colour; dark grey under a colour scale.
+            let path_col = if d.values.is_empty() {
+                pick(k, 0)
             } else {
-                color(ri)
+                RGBColor(90, 90, 90)
             };
-            // Centroid path.
-            let path: Vec<(f64, f64)> = frames
+            let path: Vec<(f64, f64)> = d
+                .path
                 .iter()
-                .map(|f| (f.bodies[k].x, f.bodies[k].y))
+                .map(|&i| (run.frames[i].bodies[k].x, run.frames[i].bodies[k].y))
                 .collect();
             let series = chart
-                .draw_series(LineSeries::new(path, col.mix(0.9).stroke_width(S)))
+                .draw_series(LineSeries::new(path, path_col.mix(0.9).stroke_width(S)))
                 .map_err(err)?;
-            if several && k == 0 && !label.is_empty() {
-                series.label(label.clone()).legend(move |(x, y)| {
+            if let (true, 0, Some(col)) = (several && !d.label.is_empty(), k, key) {
+                series.label(d.label.clone()).legend(move |(x, y)| {
                     PathElement::new(
                         vec![(x, y), (x + 18 * S as i32, y)],
                         col.stroke_width(2 * S),
                     )
                 });
+                legend = true;
             }
-            // Outlines at regular times, older ones fainter, with an orientation mark.
-            let count = opts.outlines.max(2);
-            let mut next = first.t;
-            let mut chosen = Vec::new();
-            for f in &frames {
-                if f.t + 1e-12 >= next {
-                    chosen.push(*f);
-                    next += span / (count - 1) as f64;
-                }
-            }
-            if chosen.last().map(|f| f.step) != Some(last.step) {
-                chosen.push(last);
-            }
+            // Outlines at the chosen times, older ones fainter, with an orientation mark.
             let r = init.shape.bounding_radius();
-            for f in chosen {
+            for (o, &fi) in d.outlines.iter().enumerate() {
+                let f = &run.frames[fi];
                 let b = f.bodies[k];
-                let age = (f.t - first.t) / span;
-                let alpha = 0.15 + 0.85 * age;
-                let style =
-                    col.mix(alpha)
-                        .stroke_width(if f.step == last.step { 2 * S } else { S });
+                let age = (f.t - t_first) / span;
+                let alpha = if d.values.is_empty() {
+                    0.15 + 0.85 * age
+                } else {
+                    // The colour carries the value: fading would change it.
+                    1.0
+                };
+                let style = pick(k, o)
+                    .mix(alpha)
+                    .stroke_width(if fi == last { 2 * S } else { S });
                 chart
                     .draw_series(std::iter::once(PathElement::new(
                         outline(&init.shape, b.x, b.y, b.angle),
@@ -389,8 +858,8 @@ where
             }
         }
     }
-    if several {
-        draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+    if legend {
+        draw_legend(chart, SeriesLabelPosition::UpperRight)?;
     }
     Ok(())
 }
@@ -481,7 +950,12 @@ fn tick_label(v: f64, log: bool, span: f64) -> String {
     }
     // One digit finer than a tenth of the span (plotters puts up to ~10 ticks at 1-2-5 or
     // 2.5 steps), trailing zeros dropped: `2.25`, `2.5`, `3`, never `2` twice.
-    let decimals = (1.0 - (span / 10.0).log10().floor()).clamp(0.0, 8.0) as usize;
+    let decimals = (1.0 - (span / 10.0).log10().floor()).clamp(0.0, 12.0) as usize;
+    if decimals > 4 {
+        // Small values in exponent form: `4e-6`, `1.2e-5`, not `0.000004`.
+        let scale = 10f64.powi(decimals as i32);
+        return format!("{:e}", (v * scale).round() / scale);
+    }
     let s = format!("{v:.decimals$}");
     if s.contains('.') {
         s.trim_end_matches('0').trim_end_matches('.').to_string()
@@ -598,14 +1072,16 @@ pub fn line_panels(
     panels: &[LinePanel],
 ) -> Result<(), PlotError> {
     let size = (size.0 * S, size.1 * S);
-    let root = SVGBackend::new(path, size).into_drawing_area();
-    root.fill(&WHITE).map_err(err)?;
-    for (area, panel) in root.split_evenly((rows, cols)).iter().zip(panels) {
-        draw_line_panel(area, panel)?;
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+        root.fill(&WHITE).map_err(err)?;
+        for (area, panel) in root.split_evenly((rows, cols)).iter().zip(panels) {
+            draw_line_panel(area, panel)?;
+        }
+        root.present().map_err(err)?;
     }
-    root.present().map_err(err)?;
-    drop(root);
-    downscale_header(path, size)
+    save(path, &svg, size)
 }
 
 fn draw_line_panel<DB: DrawingBackend>(

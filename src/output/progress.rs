@@ -1,5 +1,8 @@
 //! Progress lines on stderr for long runs: rewritten in place about once a second on a terminal;
-//! in a log (stderr not a terminal) one full line every 30 s, so logs stay readable.
+//! in a log (stderr not a terminal) one full line every 30 s, so logs stay readable. A line
+//! ([`line`]) gives the step, the simulated time, steps per second, the estimated time left (to
+//! the end of the duration: a run that comes to rest stops sooner) and the unbalanced-force
+//! ratio, PFC's and Yade's measure of how far the pile is from equilibrium.
 
 use std::io::{IsTerminal, Write};
 use std::time::{Duration, Instant};
@@ -59,5 +62,91 @@ impl Progress {
         if self.shown && self.tty {
             let _ = writeln!(std::io::stderr());
         }
+    }
+}
+
+/// What a progress line reports.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fields<'a> {
+    pub name: &'a str,
+    pub step: u64,
+    pub steps: u64,
+    /// Simulated time (s).
+    pub time: f64,
+    /// Wall time since the first step (s).
+    pub elapsed: f64,
+    pub contacts: usize,
+    /// Mean net force on a body over the mean contact force (0 without contacts).
+    pub unbalanced: f64,
+}
+
+/// One progress line, e.g. `pile: step 12000/400000 (3 %), t = 0.1200 s, 5210 steps/s, 1:14 left
+/// (at most), 1803 contacts, unbalanced force ratio 2.1e-2`.
+pub fn line(f: &Fields) -> String {
+    let rate = if f.elapsed > 0.0 {
+        f.step as f64 / f.elapsed
+    } else {
+        0.0
+    };
+    let left = if rate > 0.0 {
+        format!(
+            "{} left (at most)",
+            duration((f.steps - f.step.min(f.steps)) as f64 / rate)
+        )
+    } else {
+        "time left unknown".into()
+    };
+    format!(
+        "{}: step {}/{} ({:.0} %), t = {:.4} s, {:.0} steps/s, {left}, {} contacts, unbalanced force ratio {:.1e}",
+        f.name,
+        f.step,
+        f.steps,
+        100.0 * f.step as f64 / f.steps.max(1) as f64,
+        f.time,
+        rate,
+        f.contacts,
+        f.unbalanced
+    )
+}
+
+/// A wall-clock duration as `m:ss` or `h:mm:ss` (rounded to the second).
+pub fn duration(seconds: f64) -> String {
+    let s = if seconds.is_finite() {
+        seconds.max(0.0).round() as u64
+    } else {
+        u64::MAX / 2
+    };
+    let (h, m, s) = (s / 3600, s / 60 % 60, s % 60);
+    if h > 0 {
+        format!("{h}:{m:02}:{s:02}")
+    } else {
+        format!("{m}:{s:02}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_progress_line_gives_rate_time_left_and_the_unbalanced_ratio() {
+        assert_eq!(duration(0.4), "0:00");
+        assert_eq!(duration(74.0), "1:14");
+        assert_eq!(duration(3725.0), "1:02:05");
+        let l = line(&Fields {
+            name: "pile",
+            step: 12_000,
+            steps: 400_000,
+            time: 0.12,
+            elapsed: 2.0,
+            contacts: 1803,
+            unbalanced: 0.0213,
+        });
+        // 6000 steps/s; 388 000 steps left take 64.7 s.
+        assert_eq!(
+            l,
+            "pile: step 12000/400000 (3 %), t = 0.1200 s, 6000 steps/s, 1:05 left (at most), \
+             1803 contacts, unbalanced force ratio 2.1e-2"
+        );
     }
 }

@@ -44,9 +44,20 @@ pub struct Case {
     /// can satisfy the criterion; a window of a few hundred steps tells that from rest.
     pub quiescence_window: u64,
     pub output_every: u64,
+    /// Optional outputs (`"output": {"vtk": true, "vtk_every": N}`).
+    pub output: OutputSpec,
     pub contact: ContactSpec,
     pub walls: Vec<WallSpec>,
     pub bodies: Vec<BodyInit>,
+}
+
+/// The case's optional outputs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct OutputSpec {
+    /// Write VTK frames and `run.pvd` for ParaView (as `dem2d run --vtk`).
+    pub vtk: bool,
+    /// Steps between VTK frames (default: `output_every`).
+    pub vtk_every: Option<u64>,
 }
 
 const CONTACT_KEYS: [&str; 14] = [
@@ -105,6 +116,16 @@ impl Case {
         let quiescence = o.opt_with("quiescence", positive)?;
         let quiescence_window = o.opt_with("quiescence_window", count)?.unwrap_or(1);
         let output_every = o.opt_with("output_every", count)?.unwrap_or(100);
+        let output = match o.get("output") {
+            None => OutputSpec::default(),
+            Some(v) => {
+                let mut out = Obj::new(v, "output")?;
+                let vtk = out.opt_with("vtk", boolean)?.unwrap_or(false);
+                let vtk_every = out.opt_with("vtk_every", count)?;
+                out.finish()?;
+                OutputSpec { vtk, vtk_every }
+            }
+        };
         let contact_value = o.req("contact")?;
         let contact_map = contact_value
             .as_object()
@@ -185,6 +206,7 @@ impl Case {
             quiescence,
             quiescence_window,
             output_every,
+            output,
             contact,
             walls,
             bodies,
@@ -251,6 +273,11 @@ fn string(v: &Value, path: &str) -> Result<String, FieldError> {
     v.as_str()
         .map(str::to_string)
         .ok_or_else(|| FieldError::new(path, format!("must be a string, got {}", type_of(v))))
+}
+
+fn boolean(v: &Value, path: &str) -> Result<bool, FieldError> {
+    v.as_bool()
+        .ok_or_else(|| FieldError::new(path, format!("must be true or false, got {}", type_of(v))))
 }
 
 fn count(v: &Value, path: &str) -> Result<u64, FieldError> {

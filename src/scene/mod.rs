@@ -8,5 +8,5 @@ pub mod generate;
 pub mod ranges;
 
 pub use body::{parse_object, parse_pairs, parse_shape};
-pub use case::Case;
+pub use case::{Case, OutputSpec};
 pub use fields::FieldError;

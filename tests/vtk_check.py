@@ -1,0 +1,215 @@
+"""Reads a dem2d run's VTK output with VTK's own readers and checks it against the run's other
+files (case.json, trajectory.csv, increments.csv), which are written independently of the VTK
+writer. Used by tests/vtk.rs; needs VTK's Python module (Debian: python3-vtk9).
+
+    python3 tests/vtk_check.py RUN_DIR
+
+Checks, for every frame listed in run.pvd:
+- the frame's TIME equals the pvd's timestep and the trajectory's t at that step;
+- cell counts: one polygon per body, one line per wall, one line per contact (the number of
+  contacts of that step from increments.csv, for frames after step 0);
+- each body polygon's area, as VTK computes it (vtkCellSizeFilter), against the body's exact
+  area (pi a b, pi r^2, w h): inscribed, so smaller, by at most eps * b * perimeter with
+  eps = 1e-3 (the outline's chord bound, src/output/outline.rs); rectangles exact to 1e-12;
+- each polygon's area centroid against the body's position (within 1e-3 b);
+- ids, velocities, angular velocities and angles equal to the trajectory's (to the bit: both
+  are the same doubles, the CSV in shortest round-trip form);
+- the shape tensor against R diag(a^2, b^2) R^T computed here from the case's semi-axes and
+  the trajectory's angle (1e-12 relative), and its eigenvalues a^2, b^2 (semi-axes, not
+  diameters);
+- contact lines join the centroids of the pair's bodies (or a body's centroid and a point on
+  the wall); normals are unit; F_n = F.n >= 0 and F = F_n n + F_t t;
+- wall lines run along the wall (perpendicular to its normal, through its point).
+Prints one line per frame and exits 1 at the first failure.
+"""
+
+import csv
+import json
+import math
+import os
+import sys
+import xml.etree.ElementTree as ET
+
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy
+
+EPS = 1e-3  # the outline's largest chord distance, relative to the smaller semi-axis
+
+
+def fail(msg):
+    print(f"vtk check FAILED: {msg}")
+    sys.exit(1)
+
+
+def check(cond, msg):
+    if not cond:
+        fail(msg)
+
+
+def perimeter(a, b):
+    # Ramanujan's second approximation (relative error below 1e-9 at a/b = 10): only a bound's
+    # factor.
+    h = ((a - b) / (a + b)) ** 2
+    return math.pi * (a + b) * (1 + 3 * h / (10 + math.sqrt(4 - 3 * h)))
+
+
+def main(run):
+    case = json.load(open(os.path.join(run, "case.json")))
+    bodies = case["bodies"]
+    walls = case.get("walls", [])
+    nb, nw = len(bodies), len(walls)
+    traj = {}
+    with open(os.path.join(run, "trajectory.csv")) as f:
+        for row in csv.DictReader(f):
+            traj.setdefault(int(row["step"]), []).append(row)
+    contacts_at = {}
+    with open(os.path.join(run, "increments.csv")) as f:
+        for row in csv.DictReader(f):
+            contacts_at[int(row["step"])] = int(row["contacts"])
+
+    pvd = ET.parse(os.path.join(run, "run.pvd")).getroot()
+    datasets = pvd.findall("./Collection/DataSet")
+    check(len(datasets) >= 2, f"run.pvd lists {len(datasets)} frames")
+    total_cells = 0
+    for ds in datasets:
+        path = os.path.join(run, ds.get("file"))
+        reader = vtk.vtkXMLUnstructuredGridReader()
+        reader.SetFileName(path)
+        reader.Update()
+        check(reader.GetErrorCode() == 0, f"{path}: VTK reader error {reader.GetErrorCode()}")
+        grid = reader.GetOutput()
+        fd = grid.GetFieldData()
+        t = vtk_to_numpy(fd.GetArray("TIME"))[0]
+        step = int(vtk_to_numpy(fd.GetArray("STEP"))[0])
+        check(t == float(ds.get("timestep")), f"{path}: TIME {t} != pvd timestep {ds.get('timestep')}")
+        rows = traj.get(step)
+        check(rows is not None, f"{path}: step {step} is not a trajectory frame")
+        check(float(rows[0]["t"]) == t, f"{path}: TIME {t} != trajectory t {rows[0]['t']}")
+
+        cd = grid.GetCellData()
+        arr = {cd.GetArrayName(i): vtk_to_numpy(cd.GetArray(i)) for i in range(cd.GetNumberOfArrays())}
+        kind = arr["kind"]
+        n_body, n_contact, n_wall = (int((kind == k).sum()) for k in (0, 1, 2))
+        check(n_body == nb, f"{path}: {n_body} body cells, case has {nb} bodies")
+        check(n_wall == nw, f"{path}: {n_wall} wall cells, case has {nw} walls")
+        if step > 0:
+            want = contacts_at[step]
+            check(n_contact == want, f"{path}: {n_contact} contact cells, increments.csv says {want}")
+        check(grid.GetNumberOfCells() == nb + n_contact + nw, f"{path}: cell count")
+        total_cells += grid.GetNumberOfCells()
+
+        sizes = vtk.vtkCellSizeFilter()
+        sizes.SetInputData(grid)
+        sizes.ComputeAreaOn()
+        sizes.Update()
+        area = vtk_to_numpy(sizes.GetOutput().GetCellData().GetArray("Area"))
+        pts = vtk_to_numpy(grid.GetPoints().GetData())
+
+        worst_area = 0.0
+        for k in range(nb):
+            c = k  # bodies come first, in order
+            check(grid.GetCellType(c) == vtk.VTK_POLYGON, f"{path}: cell {c} is not a polygon")
+            check(arr["id"][c] == k, f"{path}: body cell {c} has id {arr['id'][c]}")
+            row = rows[k]
+            check(int(row["body"]) == k, "trajectory order")
+            x, y, ang = float(row["x"]), float(row["y"]), float(row["angle"])
+            for name, col in (("angle", "angle"), ("angular_velocity", "omega")):
+                check(arr[name][c] == float(row[col]), f"{path}: body {k} {name} {arr[name][c]} != {row[col]}")
+            v = arr["velocity"][c]
+            check(v[0] == float(row["vx"]) and v[1] == float(row["vy"]) and v[2] == 0.0,
+                  f"{path}: body {k} velocity {v} != ({row['vx']}, {row['vy']})")
+            shape = bodies[k]["shape"]
+            kind_name = shape["type"]
+            if kind_name == "circle":
+                a = b = shape["r"]
+                exact = math.pi * a * a
+            elif kind_name == "ellipse":
+                a, b = shape["a"], shape["b"]
+                exact = math.pi * a * b
+            else:
+                a, b = shape["w"] / 2, shape["h"] / 2
+                exact = 4 * a * b
+            want_kind = {"circle": 0, "ellipse": 1, "rectangle": 2}[kind_name]
+            check(arr["shape"][c] == want_kind, f"{path}: body {k} shape {arr['shape'][c]}")
+            check(tuple(arr["semi_axes"][c]) == (a, b), f"{path}: body {k} semi_axes {arr['semi_axes'][c]}")
+            # Area: inscribed polygon, within the chord bound.
+            err = exact - area[c]
+            if kind_name == "rectangle":
+                check(abs(err) <= 1e-12 * exact, f"{path}: rectangle {k} area {area[c]} != {exact}")
+            else:
+                bound = EPS * min(a, b) * perimeter(a, b)
+                check(0 < err <= bound, f"{path}: body {k} ({kind_name} {a}x{b}) polygon area {area[c]}, "
+                      f"body {exact}: short by {err:e}, bound {bound:e}")
+            worst_area = max(worst_area, abs(err) / exact)
+            # Area centroid of the polygon (shoelace) at the body's position.
+            cell = grid.GetCell(c)
+            ids = [cell.GetPointId(i) for i in range(cell.GetNumberOfPoints())]
+            P = pts[ids]
+            xs, ys = P[:, 0], P[:, 1]
+            xn, yn = list(xs[1:]) + [xs[0]], list(ys[1:]) + [ys[0]]
+            cr = [xs[i] * yn[i] - xn[i] * ys[i] for i in range(len(xs))]
+            A = sum(cr) / 2
+            cx = sum((xs[i] + xn[i]) * cr[i] for i in range(len(xs))) / (6 * A)
+            cy = sum((ys[i] + yn[i]) * cr[i] for i in range(len(xs))) / (6 * A)
+            check(abs(A - area[c]) <= 1e-9 * exact, f"{path}: shoelace {A} != VTK area {area[c]}")
+            check(math.hypot(cx - x, cy - y) <= 1e-3 * min(a, b), f"{path}: body {k} polygon centroid "
+                  f"({cx}, {cy}) far from ({x}, {y})")
+            # Shape tensor R diag(a^2, b^2) R^T, semi-axes.
+            T = arr["shape_tensor"][c].reshape(3, 3)
+            cs, sn = math.cos(ang), math.sin(ang)
+            want = [[a * a * cs * cs + b * b * sn * sn, (a * a - b * b) * cs * sn, 0],
+                    [(a * a - b * b) * cs * sn, a * a * sn * sn + b * b * cs * cs, 0],
+                    [0, 0, 0]]
+            for i in range(3):
+                for j in range(3):
+                    check(abs(T[i][j] - want[i][j]) <= 1e-12 * a * a,
+                          f"{path}: body {k} shape tensor {T.tolist()} != {want}")
+            tr, det = T[0][0] + T[1][1], T[0][0] * T[1][1] - T[0][1] * T[1][0]
+            disc = math.sqrt(max(tr * tr / 4 - det, 0))
+            ev = sorted([tr / 2 - disc, tr / 2 + disc])
+            check(abs(ev[0] - min(a, b) ** 2) <= 1e-9 * a * a and abs(ev[1] - max(a, b) ** 2) <= 1e-9 * a * a,
+                  f"{path}: body {k} tensor eigenvalues {ev}, semi-axes {a}, {b}")
+
+        centroid = {k: (float(rows[k]["x"]), float(rows[k]["y"])) for k in range(nb)}
+        for c in range(grid.GetNumberOfCells()):
+            if kind[c] == 1:
+                check(grid.GetCellType(c) == vtk.VTK_LINE, f"{path}: contact cell {c} is not a line")
+                cell = grid.GetCell(c)
+                p0, p1 = pts[cell.GetPointId(0)], pts[cell.GetPointId(1)]
+                i, j = arr["pair"][c]
+                check(0 <= i < nb, f"{path}: contact {c} pair {i}, {j}")
+                check(tuple(p0[:2]) == centroid[i], f"{path}: contact {c} starts at {p0}, not body {i}'s centroid")
+                n = arr["normal"][c]
+                check(abs(math.hypot(n[0], n[1]) - 1) < 1e-12, f"{path}: contact {c} normal {n}")
+                if j >= 0:
+                    check(tuple(p1[:2]) == centroid[j], f"{path}: contact {c} ends at {p1}, not body {j}'s centroid")
+                else:
+                    w = walls[-1 - j]
+                    wp, wn = w["point"], w["normal"]
+                    norm = math.hypot(*wn)
+                    dist = ((p1[0] - wp[0]) * wn[0] + (p1[1] - wp[1]) * wn[1]) / norm
+                    check(abs(dist) <= 0.05 * max(bodies[i]["shape"].get(s, 0) for s in "rabwh"),
+                          f"{path}: wall contact {c} point {p1} is {dist} from wall {-1 - j}")
+                fn, ft, F = arr["normal_force"][c], arr["tangential_force"][c], arr["force"][c]
+                check(fn >= 0, f"{path}: contact {c} pulls: F_n = {fn}")
+                tan = (-n[1], n[0])
+                rx, ry = fn * n[0] + ft * tan[0] - F[0], fn * n[1] + ft * tan[1] - F[1]
+                check(math.hypot(rx, ry) <= 1e-12 * max(math.hypot(F[0], F[1]), 1e-300),
+                      f"{path}: contact {c} F != F_n n + F_t t")
+            elif kind[c] == 2:
+                check(grid.GetCellType(c) == vtk.VTK_LINE, f"{path}: wall cell {c} is not a line")
+                cell = grid.GetCell(c)
+                p0, p1 = pts[cell.GetPointId(0)], pts[cell.GetPointId(1)]
+                w = walls[arr["id"][c]]
+                wp, wn = w["point"], w["normal"]
+                norm = math.hypot(*wn)
+                for p in (p0, p1):
+                    d = ((p[0] - wp[0]) * wn[0] + (p[1] - wp[1]) * wn[1]) / norm
+                    check(abs(d) <= 1e-9 * max(1.0, abs(p[0]), abs(p[1])), f"{path}: wall {arr['id'][c]} line point {p} off the wall by {d}")
+        print(f"{ds.get('file')}: step {step}, t = {t}: {nb} bodies, {n_contact} contacts, {nw} walls; "
+              f"largest polygon area deficit {worst_area:.2e} of the body's")
+    print(f"vtk check passed: {len(datasets)} frames, {total_cells} cells")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1])
