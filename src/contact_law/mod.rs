@@ -177,8 +177,8 @@ impl Kinematics {
                 let (delta, chord) = a.equivalent.depth_for_area(a.area);
                 SpringOverlap {
                     depth: delta,
-                    rate: a.rate / chord,
-                    rho: a.length / chord,
+                    rate: a.rate * (1.0 / chord),
+                    rho: a.length * (1.0 / chord),
                     energy_depth: delta,
                     chord,
                     couple: a.couple,

@@ -199,15 +199,36 @@ pub fn polygon_area(vertices: &[[f64; 2]]) -> f64 {
 pub struct DiskLens {
     r1: f64,
     r2: f64,
+    /// `1/r1`, `1/r2` (0 for a half-plane): the series needs the inverses.
+    i1: f64,
+    i2: f64,
 }
 
 impl DiskLens {
     /// The lens of disks of radii `ra`, `rb` (either may be `f64::INFINITY`, not both).
     #[inline]
     pub fn new(ra: f64, rb: f64) -> Self {
-        DiskLens {
-            r1: ra.min(rb),
-            r2: ra.max(rb),
+        Self::with_inverses(ra, 1.0 / ra, rb, 1.0 / rb)
+    }
+
+    /// [`DiskLens::new`] from radii whose inverses are already known (`ia = 1/ra`, `ib = 1/rb`;
+    /// 0 for ∞): a body can keep its own, sparing two divisions per contact.
+    #[inline]
+    pub fn with_inverses(ra: f64, ia: f64, rb: f64, ib: f64) -> Self {
+        if ra <= rb {
+            DiskLens {
+                r1: ra,
+                r2: rb,
+                i1: ia,
+                i2: ib,
+            }
+        } else {
+            DiskLens {
+                r1: rb,
+                r2: ra,
+                i1: ib,
+                i2: ia,
+            }
         }
     }
 
@@ -235,9 +256,7 @@ impl DiskLens {
         if area.is_nan() || area <= 0.0 {
             return (0.0, 0.0);
         }
-        let (r1, r2) = (self.r1, self.r2);
-        let i1 = 1.0 / r1;
-        let i2 = if r2.is_finite() { 1.0 / r2 } else { 0.0 };
+        let (i1, i2) = (self.i1, self.i2);
         let (q1, q2) = (i1 * i1, i2 * i2);
         let s1 = i1 + i2;
         let (p1, p2) = (i1 * q1, i2 * q2);
