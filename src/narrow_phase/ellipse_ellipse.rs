@@ -71,6 +71,28 @@ pub enum Warm {
     Axis([f64; 2]),
 }
 
+impl Warm {
+    /// The same warm start carried by the pair seen the other way round: given relative to the
+    /// body at `from`, returned relative to the body at `to` (the other body of the pair).
+    /// Crossings are re-expressed in the other body's frame; a separating axis, an angle from
+    /// the line of centres with both the line and the axis pointing from the first body to the
+    /// second, is the same for either order.
+    #[inline]
+    pub(crate) fn seen_from(self, from: &Pose, to: &Pose) -> Warm {
+        match self {
+            Warm::Crossings(ps) => {
+                let offset = from.position - to.position;
+                Warm::Crossings(ps.map(|p| {
+                    let w = from.to_world_vector(crate::geometry::Vec2::new(p[0], p[1])) + offset;
+                    let q = to.to_body_vector(w);
+                    [q.x, q.y]
+                }))
+            }
+            Warm::Axis(a) => Warm::Axis(a),
+        }
+    }
+}
+
 /// Contact between ellipse i (semi-axes `ai` along its x axis, `bi`) and ellipse j, with the
 /// overlap area.
 #[inline]
@@ -513,7 +535,19 @@ fn conic_pair_inner(
     };
     if let Some(cut) = candidate {
         let (n, dpt) = oriented(cut.normal);
-        if dpt >= -tol {
+        // A nearly tangent line with no crossing found is an external tangency (a tiny lens, or
+        // a tiny gap) only if, along its normal, neither ellipse's extent lies within the
+        // other's: the depth is then below the smaller width `2 s(n)`. One inside the other, a
+        // line of the pencil can still pass within rounding of tangency to i (near where j
+        // almost touches i from inside) and the depth along it is large and positive: that is
+        // nesting, decided below, not an overlap with a zero-length chord.
+        let nested = n_cross == 0 && {
+            let s_min = placed_i.support(n).min(placed_j.support(n));
+            dpt >= 2.0 * s_min - tol
+        };
+        if nested {
+            // Fall through to the containment test.
+        } else if dpt >= -tol {
             let [p, q] = cut.points();
             let state = if dpt <= tol {
                 ContactState::Touching
@@ -536,19 +570,27 @@ fn conic_pair_inner(
                 },
                 warm,
             );
+        } else {
+            return (Contact::SEPARATED, None);
         }
-        return (Contact::SEPARATED, None);
     }
-    // No crossing: nested or apart. Test one boundary point of each against the other.
-    let j_point = [d + aj * ctj, aj * stj];
-    let i_point = [ai * cti, ai * sti];
-    let j_in_i = coincident || pencil.i.quad(j_point[0], j_point[1]) < 1.0;
-    let i_in_j = pencil.j.quad(i_point[0] - d, i_point[1]) < 1.0;
-    if !(j_in_i || i_in_j) {
+    // No crossing: nested or apart. With no crossing, the two solids meet only if one lies
+    // inside the other, and then the inner one's centre lies inside the outer one — by at
+    // least the inner one's smaller semi-axis, so the test is robust where a boundary point of
+    // the inner one (which may touch the outer boundary) would not be. The inner one is the
+    // smaller in area.
+    let nested = coincident
+        || pencil.i.quad(d, 0.0) < 1.0 // c_j in i
+        || pencil.j.quad(-d, 0.0) < 1.0; // c_i in j
+    if !nested {
         return (Contact::SEPARATED, None);
     }
     let (n, dpt) = oriented([1.0, 0.0]);
-    let inner = if j_in_i { [d, 0.0] } else { [0.0, 0.0] };
+    let inner = if aj * bj <= ai * bi {
+        [d, 0.0]
+    } else {
+        [0.0, 0.0]
+    };
     (
         Contact {
             state: ContactState::Contained,
