@@ -22,7 +22,7 @@
 //!
 //! # Warm start (the dynamics' path)
 //! A contact that lasts moves little from one step to the next. Given last step's two crossings
-//! ([`Warm`]), [`conic_pair_warm`] first refines them by Newton's method on the two boundary
+//! ([`Warm`]), [`conic_pair_traced`] first refines them by Newton's method on the two boundary
 //! equations `Q_i(p) = 1`, `Q_j(p) = 1` — a few flops per iteration, two iterations from a
 //! guess of the last step — and applies the chord definition to them. It accepts the result
 //! only when it is certain to be the one the pencil would give, to rounding: Newton converged

@@ -10,8 +10,31 @@
 //!   normal, positive when penetrating. (`δ = h_i(n) − n·p1 + h_j(−n) + n·p1`: the `n·p1` cancel.)
 //!   The sign of `n` is the one with the smaller depth (for bodies: `n·(c_j − c_i) ≥ 0`).
 //! - Every pair is computed in a frame centred on a body (never in world coordinates), so the
-//!   relative accuracy does not depend on where the pair sits.
-//! - Swapping i and j flips the normal and keeps everything else.
+//!   relative accuracy does not depend on where the pair sits. A wall's distance to a body is
+//!   taken at world scale, but compensated ([`Wall::signed_distance`]): exact to rounding of the
+//!   distance itself, however far the wall's point lies along the line.
+//!
+//! # Swap symmetry
+//! Swapping i and j gives the same state, depth, point, chord (its ends possibly exchanged) and
+//! flat overlap, and the normal negated; for the overlap area ([`OverlapArea`]) the same area,
+//! length and point, with the normal and the couple negated ([`Contact::swapped`]). This holds
+//! **bit for bit**, by construction: every pair is computed in one order only, and the other
+//! order is that result swapped —
+//! - a wall and a body: the wall as i ([`contact`]);
+//! - a circle and an ellipse: the circle as i; a rectangle and a conic: the rectangle as i;
+//! - two bodies of the same kind (ellipses, rectangles): the order of [`computed_first`], a
+//!   total order on (sizes, position, orientation) that depends on the pair alone. The kernels
+//!   compute in a frame centred on their first body and decide states on quantities rounded in
+//!   that frame, so two orders could otherwise differ in the last bits — and at a decision's
+//!   threshold in the state (a concentric pair's fallback normal was even i's own x axis);
+//! - two circles: a closed form whose every term is exactly symmetric (`r_i + r_j`,
+//!   `c_i + c_j`, `|c_j − c_i|`) or antisymmetric (`c_j − c_i`, `r_i − r_j`), so no order is
+//!   chosen ([`circle_circle`]; also the dynamics' lean path).
+//!
+//! The one exception is a pair of two *identical* objects (same shape in the same pose; two
+//! equal circles with one centre): i and j cannot be told apart, both orders are the same
+//! computation, and the normal cannot be both `n` and `−n`. `tests/swap_symmetry.rs` checks all
+//! of this over every pair kind, state and place.
 //!
 //! Overlaps whose boundaries cross four times, or where one body contains the other, have no
 //! single chord. They are never dropped: they get a defined fallback geometry and the state
