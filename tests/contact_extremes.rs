@@ -11,7 +11,9 @@
 //! with the bars of the hard-case families: the right state whenever the true depth or gap is at
 //! least 1e-12·a_max (deep and contained always), |depth error| ≤ 1e-12·a_max, normal within
 //! 1e-8 rad, point within 1e-9·a_max plus two ulps of the coordinates; for containment the
-//! depth along the fallback's own normal. Swapping i and j must give the same result exactly.
+//! depth along the fallback's own normal (within 1e-12·a_max plus two ulps of itself: a body
+//! 1e9 sizes deep in a wall has a depth of 1e9 sizes). Swapping i and j must give the same
+//! result exactly.
 //!
 //! The reference is evaluated at sizes of order one and its lengths scaled by the same power of
 //! two: the scaling is exact on every input, so the true geometry scales exactly too, while the
@@ -175,19 +177,25 @@ fn unit_pair(
             p[0] * n[0] + p[1] * n[1]
         };
         let small = sb.inscribed_radius();
+        let far = at[0].hypot(at[1]);
+        // "Concentric" against a wall: the body deep in the wall's solid, as far from the line
+        // as the ranges allow (`far`); "separated" as far on the free side every other time.
         let depth = match cfg {
-            Config::Concentric => 2.0 * h + 1.0 / ratio, // the body well inside the wall
+            Config::Concentric => 2.0 * h + 1.0 / ratio + far,
             Config::Contained => 2.0 * h + small * 1e-6,
             Config::Overlap => nu * small,
+            Config::Separated if rng.uniform() < 0.5 => -nu * small - far,
             Config::Separated => -nu * small,
             Config::Touching => 0.0,
         };
-        // The wall's foot under the body, then slid along the line to the far point `at`
-        // (the body stays near the origin, or the reverse every other time).
-        // Body and foot straddle the chosen place (so that at the largest sizes neither
-        // coordinate leaves the range).
-        let (centre, slide) = if rng.uniform() < 0.5 {
-            ([0.0, 0.0], at[0].hypot(at[1]))
+        // The wall's foot under the body, and either the pair at the far point `at` or the
+        // wall's point slid along the line by that much (the body near the origin). Body and
+        // foot straddle the chosen place, so that at the largest sizes no coordinate leaves the
+        // range.
+        let (centre, slide) = if (depth - h).abs() > far {
+            ([0.0, 0.0], 0.0) // already far apart across the line
+        } else if rng.uniform() < 0.5 {
+            ([0.0, 0.0], far)
         } else {
             (at, 0.0)
         };
@@ -383,7 +391,9 @@ fn check(i: &Spec, j: &Spec, along: [f64; 2], k: f64) -> Result<ContactState, St
         }
         ContactState::Deep | ContactState::Contained => {
             let rd = depth_along(&ri, &rj, [g.normal.x, g.normal.y]);
-            let de = (depth - rd).abs() / a_max;
+            // A body 1e9 sizes deep in a wall has a depth of 1e9 sizes, which a double holds
+            // only to its own last bits: the bar is 1e-12·a_max beyond two ulps of the depth.
+            let de = ((depth - rd).abs() - 2.0 * ulp(rd)).max(0.0) / a_max;
             if de > DEPTH_BAR {
                 return Err(format!("fallback depth err {de:.2e} ({:?})", kc.state));
             }
