@@ -305,8 +305,8 @@ fn every_pair_kind_is_swap_symmetric() {
     let mut failures = Vec::new();
     let mut seen = std::collections::BTreeMap::new();
     let mut total = 0;
-    for ki in 0..4 {
-        for kj in 0..4 {
+    for (ki, name_i) in KINDS.iter().enumerate() {
+        for (kj, name_j) in KINDS.iter().enumerate() {
             if ki == 3 && kj == 3 {
                 continue;
             }
@@ -321,13 +321,11 @@ fn every_pair_kind_is_swap_symmetric() {
                         contact(&pair.j, &pair.i).unwrap(),
                     );
                     total += 1;
-                    *seen
-                        .entry((KINDS[ki], KINDS[kj], a.state.as_str()))
-                        .or_insert(0) += 1;
+                    *seen.entry((name_i, name_j, a.state.as_str())).or_insert(0) += 1;
                     if let Err(e) = compare(&a, &b, pair.identical) {
                         failures.push(format!(
                             "{}–{} {cfg:?} (#{c}.{k}): {e}\n    i = {:?}\n    j = {:?}",
-                            KINDS[ki], KINDS[kj], pair.i, pair.j
+                            name_i, name_j, pair.i, pair.j
                         ));
                     }
                     // The dynamics' lean path for two circles.
@@ -368,8 +366,8 @@ fn every_pair_kind_is_swap_symmetric() {
         println!("{i:>9}–{j:<9} {s:<10} {n}");
     }
     // Every kind pair meets every state it can have (touching is a thin set for corners).
-    for ki in 0..4 {
-        for kj in 0..4 {
+    for (ki, name_i) in KINDS.iter().enumerate() {
+        for (kj, name_j) in KINDS.iter().enumerate() {
             if ki == 3 && kj == 3 {
                 continue;
             }
@@ -379,10 +377,10 @@ fn every_pair_kind_is_swap_symmetric() {
             }
             for s in wanted {
                 assert!(
-                    seen.get(&(KINDS[ki], KINDS[kj], s)).copied().unwrap_or(0) > 0,
+                    seen.get(&(name_i, name_j, s)).copied().unwrap_or(0) > 0,
                     "{}–{} never {s}: the generator misses a state",
-                    KINDS[ki],
-                    KINDS[kj]
+                    name_i,
+                    name_j
                 );
             }
         }

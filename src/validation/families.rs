@@ -650,7 +650,7 @@ pub fn run_families() -> Vec<FamilyReport> {
         };
         let nu = DEPTHS[k % DEPTHS.len()] / aspect;
         let c = place(sc, 0.0, se, rng.angle(), unit(rng.angle()), nu, [0.0, 0.0]);
-        Some(if k % 2 == 0 { c } else { c.swapped() })
+        Some(if k.is_multiple_of(2) { c } else { c.swapped() })
     };
     family("circle–ellipse", &mut reports, &circle_ellipse, 450);
     let circle_circle = |rng: &mut Rng, k: usize| -> Option<Case> {
@@ -660,7 +660,7 @@ pub fn run_families() -> Vec<FamilyReport> {
         let sj = Shape::Circle {
             r: rng.range(0.3, 2.0),
         };
-        let nu = DEPTHS[k % DEPTHS.len()] * if k % 2 == 0 { 0.3 } else { -0.3 };
+        let nu = DEPTHS[k % DEPTHS.len()] * if k.is_multiple_of(2) { 0.3 } else { -0.3 };
         Some(place(si, 0.0, sj, 0.0, unit(rng.angle()), nu, [0.0, 0.0]))
     };
     family("circle–circle", &mut reports, &circle_circle, 360);
@@ -701,7 +701,7 @@ pub fn run_families() -> Vec<FamilyReport> {
                 a: 1.0,
                 b: 1.0 / aspect,
             };
-            let sj = if k % 3 == 0 {
+            let sj = if k.is_multiple_of(3) {
                 Shape::Circle { r: 0.7 }
             } else {
                 Shape::Ellipse {
@@ -754,7 +754,7 @@ pub fn run_families() -> Vec<FamilyReport> {
             b: 2.0 / aspect,
         };
         let small = 0.2 / aspect;
-        let sj = if k % 2 == 0 {
+        let sj = if k.is_multiple_of(2) {
             Shape::Circle { r: small }
         } else {
             Shape::Ellipse {
@@ -784,7 +784,7 @@ pub fn run_families() -> Vec<FamilyReport> {
     // Walls and rectangles.
     let wall_conic = |rng: &mut Rng, k: usize| -> Option<Case> {
         let aspect = ASPECTS[k % ASPECTS.len()];
-        let s = if k % 4 == 0 {
+        let s = if k.is_multiple_of(4) {
             Shape::Circle { r: 1.0 }
         } else {
             Shape::Ellipse {
@@ -793,7 +793,7 @@ pub fn run_families() -> Vec<FamilyReport> {
             }
         };
         let nu = DEPTHS[(k / 5) % DEPTHS.len()] / aspect * alternate(k);
-        let far = if k % 3 == 0 { 1e6 } else { 0.0 };
+        let far = if k.is_multiple_of(3) { 1e6 } else { 0.0 };
         let c = place_wall(s, rng.angle(), unit(rng.angle()), nu, [far, -far]);
         Some(if k % 5 == 2 { c.swapped() } else { c })
     };
@@ -809,7 +809,11 @@ pub fn run_families() -> Vec<FamilyReport> {
             h: rng.range(0.1, 1.0),
         };
         let nu = DEPTHS[k % DEPTHS.len()] * 0.1 * alternate(k);
-        let th = if k % 7 == 0 { 0.0 } else { rng.angle() };
+        let th = if k.is_multiple_of(7) {
+            0.0
+        } else {
+            rng.angle()
+        };
         Some(place_wall(s, th, unit(rng.angle()), nu, [0.0, 0.0]))
     };
     family("wall–rectangle", &mut reports, &wall_rectangle, 360);
@@ -819,7 +823,7 @@ pub fn run_families() -> Vec<FamilyReport> {
             h: rng.range(0.2, 1.0),
         };
         let aspect = ASPECTS[k % ASPECTS.len()].min(10.0);
-        let se = if k % 3 == 0 {
+        let se = if k.is_multiple_of(3) {
             Shape::Circle {
                 r: rng.range(0.2, 1.0),
             }
@@ -862,7 +866,7 @@ pub fn run_families() -> Vec<FamilyReport> {
         // when j is aligned, every fifth case: stacked boxes with collinear sides).
         let face = (k / 2 % 4) as f64 * std::f64::consts::FRAC_PI_2;
         let dir = unit(ti + face);
-        let tj = if k % 5 == 0 { ti } else { rng.angle() };
+        let tj = if k.is_multiple_of(5) { ti } else { rng.angle() };
         let mut c = place(si, ti, sj, tj, dir, nu, [0.0, 0.0]);
         if let Spec::Body(s, p, t) = c.j {
             // Slide j along the face so that aligned boxes are offset (not corner on corner).
