@@ -18,6 +18,7 @@
 
 use dem2d::geometry::{Pose, Shape, Vec2, Wall};
 use dem2d::narrow_phase::circle_circle::overlap_circle_circle;
+use dem2d::narrow_phase::ellipse_ellipse::Warm;
 use dem2d::narrow_phase::{Contact, ContactState, Object, contact};
 use dem2d::validation::rng::Rng;
 
@@ -448,5 +449,58 @@ fn concentric_rectangles_are_swap_symmetric() {
     ] {
         let (a, b) = (contact(&i, &j).unwrap(), contact(&j, &i).unwrap());
         compare(&a, &b, false).unwrap_or_else(|e| panic!("{e}: {i:?} / {j:?}"));
+    }
+}
+
+/// The warm start of a lasting contact survives the canonical order, also when that order flips
+/// from one step to the next: a pair of equal ellipses is computed with the one of smaller x
+/// first, so a pair stacked almost vertically flips its order as the upper one drifts across
+/// the lower one's x. The crossings it carries to the next step are always handed back
+/// relative to the caller's i (re-expressed when the pair was computed the other way round):
+/// the next step takes them (the Newton refinement answers) and gives the cold result to
+/// rounding, whichever order each step computes in.
+#[test]
+fn warm_start_survives_the_canonical_order_flipping_between_steps() {
+    use dem2d::narrow_phase::{computed_first, contact_bodies_traced};
+    let s = Shape::Ellipse { a: 1.5, b: 1.0 };
+    let pa = Pose::new(Vec2::new(0.0, 0.0), 0.1);
+    // B above A at a horizontal offset x, at the height where they first touch (bisection on
+    // the state), then 1e-3 of b lower: a shallow, lasting contact the warm path takes.
+    let above = |x: f64| {
+        let at = |y: f64| Pose::new(Vec2::new(x, y), -0.2);
+        let (mut lo, mut hi) = (0.0, 2.5);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if contact_bodies_traced(&s, &pa, &s, &at(mid), None).0.state == ContactState::Separated
+            {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        at(hi - 1e-3)
+    };
+    let (before, after) = (above(1e-4), above(-1e-4));
+    // A first before the step, B first after it.
+    assert!(computed_first(&s, &pa, &s, &before) && !computed_first(&s, &pa, &s, &after));
+    for (from, to) in [(before, after), (after, before)] {
+        for swap in [false, true] {
+            let call = |pb: &Pose, guess| {
+                if swap {
+                    contact_bodies_traced(&s, pb, &s, &pa, guess)
+                } else {
+                    contact_bodies_traced(&s, &pa, &s, pb, guess)
+                }
+            };
+            let (_, warm, _) = call(&from, None);
+            assert!(matches!(warm, Some(Warm::Crossings(_))), "{warm:?}");
+            let (cold, _, _) = call(&to, None);
+            let (again, _, used) = call(&to, warm);
+            assert_eq!(cold.state, ContactState::Overlap);
+            assert!(used, "last step's crossings were not taken (swap {swap})");
+            let (g, h) = (cold.geometry.unwrap(), again.geometry.unwrap());
+            assert!((g.depth - h.depth).abs() <= 1e-14, "{g:?} vs {h:?}");
+            assert!((g.normal - h.normal).norm() <= 1e-12, "{g:?} vs {h:?}");
+        }
     }
 }
