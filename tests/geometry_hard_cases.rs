@@ -14,7 +14,11 @@ use dem2d::validation::families::{markdown_table, run_families};
 #[test]
 fn contact_geometry_matches_high_precision_reference() {
     let reports = run_families();
-    println!("{}", markdown_table(&reports, None));
+    let table = markdown_table(&reports, None);
+    println!("{table}");
+    // The README's accuracy table is this file.
+    let out = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("kernel_accuracy.md");
+    std::fs::write(&out, &table).expect("write target/tmp/kernel_accuracy.md");
     let failures: Vec<&String> = reports
         .iter()
         .flat_map(|r| r.failures.iter().take(5))

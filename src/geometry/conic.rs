@@ -128,6 +128,15 @@ impl EllipseForm {
     /// [`EllipseForm::new`] from `1/a²` and `1/b²` (computed once per pair and reused).
     #[inline]
     pub fn from_inverse_squares(ia2: f64, ib2: f64, cos: f64, sin: f64) -> Self {
+        if ia2 == ib2 {
+            // A circle: the same in every frame, exactly (cos² + sin² is one only to rounding).
+            return EllipseForm {
+                a_coef: ia2,
+                b_coef: 0.0,
+                c_coef: ia2,
+                k: ia2 * ib2,
+            };
+        }
         EllipseForm {
             a_coef: cos * cos * ia2 + sin * sin * ib2, // P(7) A_n / D_n
             b_coef: (ia2 - ib2) * cos * sin,           // P(7) B_n / D_n

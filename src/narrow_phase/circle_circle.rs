@@ -11,6 +11,11 @@ use crate::geometry::{Pose, Vec2};
 /// What the dynamics needs of a circle pair — state, contact point, normal, depth — without
 /// the chord (whose half-length costs a square root nobody then reads). `None` when separated.
 /// [`contact_circle_circle`] is this plus the chord.
+///
+/// Swap-symmetric by construction (bit for bit): every quantity is formed from expressions
+/// that are exactly symmetric in i and j (`r_i + r_j`, `c_i + c_j`, `|c_j − c_i|`) or exactly
+/// antisymmetric (`c_j − c_i`, `r_i − r_j`), so exchanging the circles negates the normal and
+/// keeps the rest.
 #[inline]
 pub fn overlap_circle_circle(
     ri: f64,
@@ -27,21 +32,31 @@ pub fn overlap_circle_circle(
     let d = d2.sqrt();
     let depth = sum - d;
     if d <= (ri - rj).abs() {
-        // One circle inside the other (or concentric): normal along the line of centres.
-        let n = if d > 0.0 { dv / d } else { Vec2::x() };
+        // One circle inside the other: normal along the line of centres; for concentric
+        // circles the x axis, from the larger to the smaller (so that it flips with the pair;
+        // two equal concentric circles are one and the same object, whichever is i).
+        let n = if d > 0.0 {
+            dv / d
+        } else if ri >= rj {
+            Vec2::x()
+        } else {
+            -Vec2::x()
+        };
         let inner = if ri >= rj { pj.position } else { pi.position };
         return Some((ContactState::Contained, inner, n, depth));
     }
-    let inv_d = 1.0 / d;
-    let n = dv * inv_d;
-    // The radical line (the chord's line) is at x from c_i; its midpoint is the contact point.
-    let x = 0.5 * (d + (ri - rj) * (ri + rj) * inv_d);
+    let n = dv * (1.0 / d);
+    // The radical line (the chord's line) is at (d² + r_i² − r_j²)/(2d) from c_i along n, i.e.
+    // at (r_i − r_j)(r_i + r_j)/(2d) from the midpoint of the centres: its midpoint is the
+    // contact point.
+    let shift = 0.5 * ((ri - rj) * sum / d);
+    let point = (pi.position + pj.position) * 0.5 + n * shift;
     let state = if depth <= TOUCH_TOL * ri.max(rj) {
         ContactState::Touching
     } else {
         ContactState::Overlap
     };
-    Some((state, pi.position + n * x, n, depth))
+    Some((state, point, n, depth))
 }
 
 /// Contact between circle i (radius `ri`) and circle j (radius `rj`), with the overlap area.
@@ -50,7 +65,8 @@ pub fn contact_circle_circle(ri: f64, pi: &Pose, rj: f64, pj: &Pose) -> Contact 
     contact_circle_circle_with(ri, pi, rj, pj, true)
 }
 
-/// [`contact_circle_circle`], with the overlap area only when `area` is set.
+/// [`contact_circle_circle`], with the overlap area only when `area` is set. Swap-symmetric bit
+/// for bit, as [`overlap_circle_circle`] (the chord's two ends exchange).
 #[inline]
 pub fn contact_circle_circle_with(ri: f64, pi: &Pose, rj: f64, pj: &Pose, area: bool) -> Contact {
     let Some((state, point, n, depth)) = overlap_circle_circle(ri, pi, rj, pj) else {
@@ -60,22 +76,23 @@ pub fn contact_circle_circle_with(ri: f64, pi: &Pose, rj: f64, pj: &Pose, area: 
     let chord = if state == ContactState::Contained {
         (point, point)
     } else {
-        // Sagittas of the two caps, h_i = δ(2r_j − δ)/(2d) and h_j = δ(2r_i − δ)/(2d): no
-        // cancellation at small overlaps (r_i − x would cancel).
+        // Half the chord is twice the area of the triangle of sides r_i, r_j, d over d (Heron),
+        // written with δ = r_i + r_j − d: no cancellation at small overlaps, and symmetric.
         let d = ri + rj - depth;
-        let (hi, hj) = (
-            depth * (2.0 * rj - depth) / (2.0 * d),
-            depth * (2.0 * ri - depth) / (2.0 * d),
-        );
-        let half = (hi * (2.0 * ri - hi)).max(0.0).sqrt();
+        let heron = depth * ((2.0 * ri - depth) * (2.0 * rj - depth)) * (2.0 * (ri + rj) - depth);
+        let half = heron.max(0.0).sqrt() / (2.0 * d);
         let t = Vec2::new(-n.y, n.x);
         if area && state == ContactState::Overlap {
-            // Both caps, in the frame (t, n) about each centre: the chord is at ri − hi from c_i.
-            let e = [2.0 * half, 0.0];
-            let cap_i = ellipse_cap(ri, ri, [-half, ri - hi], e, hi > ri);
-            let cap_j = ellipse_cap(rj, rj, [-half, hj - rj], e, hj > rj);
+            // The cap of each circle beyond the chord, from its sagitta — h_i = δ(2r_j − δ)/(2d)
+            // for i, h_j = δ(2r_i − δ)/(2d) for j (r − h would cancel at small overlaps) — in
+            // the frame (t, n) about its centre.
+            let cap = |r: f64, h: f64| ellipse_cap(r, r, [-half, r - h], [2.0 * half, 0.0], h > r);
+            let (hi, hj) = (
+                depth * (2.0 * rj - depth) / (2.0 * d),
+                depth * (2.0 * ri - depth) / (2.0 * d),
+            );
             overlap = Some(OverlapArea {
-                area: cap_i + cap_j,
+                area: cap(ri, hi) + cap(rj, hj),
                 length: 2.0 * half,
                 normal: n,
                 point,

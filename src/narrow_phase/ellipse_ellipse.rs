@@ -22,7 +22,7 @@
 //!
 //! # Warm start (the dynamics' path)
 //! A contact that lasts moves little from one step to the next. Given last step's two crossings
-//! ([`Warm`]), [`conic_pair_warm`] first refines them by Newton's method on the two boundary
+//! ([`Warm`]), [`conic_pair_traced`] first refines them by Newton's method on the two boundary
 //! equations `Q_i(p) = 1`, `Q_j(p) = 1` — a few flops per iteration, two iterations from a
 //! guess of the last step — and applies the chord definition to them. It accepts the result
 //! only when it is certain to be the one the pencil would give, to rounding: Newton converged
@@ -69,6 +69,28 @@ pub enum Warm {
     /// A separated pair's separating axis, as `(cos ψ, sin ψ)` of its angle ψ from the line of
     /// centres (so that it turns with the pair).
     Axis([f64; 2]),
+}
+
+impl Warm {
+    /// The same warm start carried by the pair seen the other way round: given relative to the
+    /// body at `from`, returned relative to the body at `to` (the other body of the pair).
+    /// Crossings are re-expressed in the other body's frame; a separating axis, an angle from
+    /// the line of centres with both the line and the axis pointing from the first body to the
+    /// second, is the same for either order.
+    #[inline]
+    pub(crate) fn seen_from(self, from: &Pose, to: &Pose) -> Warm {
+        match self {
+            Warm::Crossings(ps) => {
+                let offset = from.position - to.position;
+                Warm::Crossings(ps.map(|p| {
+                    let w = from.to_world_vector(crate::geometry::Vec2::new(p[0], p[1])) + offset;
+                    let q = to.to_body_vector(w);
+                    [q.x, q.y]
+                }))
+            }
+            Warm::Axis(a) => Warm::Axis(a),
+        }
+    }
 }
 
 /// Contact between ellipse i (semi-axes `ai` along its x axis, `bi`) and ellipse j, with the
@@ -413,27 +435,6 @@ fn conic_pair_inner(
         }
     }
 
-    let pencil = Pencil {
-        i: form_i,
-        j: form_j,
-        d,
-        x_mixed: mixed_invariant_from_inverse_squares(inv_i, inv_j, cphi, sphi),
-    };
-    let [t1, t2, t3, t4] = pencil.cubic(); // P(10)
-    // Every real root is tried in turn. When the cubic certainly has a single real root (every
-    // two-crossing overlap) the fast solver finds it and there is nothing else to try; otherwise
-    // the robust solver gives them all.
-    let single = one_real_root(t1, t2, t3, t4);
-    let all;
-    let roots: &[f64] = match &single {
-        Some(lambda) => std::slice::from_ref(lambda),
-        None => {
-            all = solve_cubic(t1, t2, t3, t4);
-            all.as_slice()
-        }
-    };
-
-    let reach = ri * inv * (1.0 + 1e-9);
     let mut crossings = [[0.0f64; 2]; 4];
     let mut n_cross = 0;
     let mut chord: Option<LineCut> = None;
@@ -443,39 +444,76 @@ fn conic_pair_inner(
     // and the depth along it is first-order insensitive to that direction: decide by δ(n).
     let mut near_tangent: Option<LineCut> = None;
     let mut coincident = false;
-    for &lambda in roots {
-        let member = pencil.member(lambda);
-        let Some(lines) = split_degenerate(&member) else {
-            // Imaginary lines (a point-ellipse member) — or no member at all: f + λg ≡ 0 means
-            // the two conics are one and the same curve.
-            let size = [member.a, member.h, member.b, member.g, member.f, member.c]
-                .iter()
-                .fold(0.0f64, |m, v| m.max(v.abs()));
-            coincident |= size <= 1e-12 * (pencil.i.a_coef + pencil.i.c_coef);
-            continue;
+    if d == 0.0 {
+        // One centre: no pencil needed (and its cubic has a double or triple root here). The
+        // boundaries cross where the forms agree, on the lines xᵀ(Q_j − Q_i)x = 0, real when
+        // Q_j − Q_i is indefinite (four crossings); otherwise one ellipse lies in the other,
+        // or they are the same curve.
+        match concentric_crossings(&form_i, &form_j) {
+            Some(points) => {
+                crossings = points;
+                n_cross = 4;
+            }
+            None => coincident = true, // nested or coincident: the containment test below
+        }
+    } else {
+        let pencil = Pencil {
+            i: form_i,
+            j: form_j,
+            d,
+            x_mixed: mixed_invariant_from_inverse_squares(inv_i, inv_j, cphi, sphi),
         };
-        let mut found = 0;
-        let distinct = if lines[0] == lines[1] { 1 } else { 2 }; // a double line counts once
-        for line in &lines[..distinct] {
-            let Some(cut) = cut_line(&pencil.i, line, reach) else {
+        let [t1, t2, t3, t4] = pencil.cubic(); // P(10)
+        // Every real root is tried in turn. When the cubic certainly has a single real root (every
+        // two-crossing overlap) the fast solver finds it and there is nothing else to try; otherwise
+        // the robust solver gives them all.
+        let single = one_real_root(t1, t2, t3, t4);
+        let all;
+        let roots: &[f64] = match &single {
+            Some(lambda) => std::slice::from_ref(lambda),
+            None => {
+                all = solve_cubic(t1, t2, t3, t4);
+                all.as_slice()
+            }
+        };
+
+        let reach = ri * inv * (1.0 + 1e-9);
+        for &lambda in roots {
+            let member = pencil.member(lambda);
+            let Some(lines) = split_degenerate(&member) else {
+                // Imaginary lines (a point-ellipse member) — or no member at all: f + λg ≡ 0 means
+                // the two conics are one and the same curve.
+                let size = [member.a, member.h, member.b, member.g, member.f, member.c]
+                    .iter()
+                    .fold(0.0f64, |m, v| m.max(v.abs()));
+                coincident |= size <= 1e-12 * (pencil.i.a_coef + pencil.i.c_coef);
                 continue;
             };
-            if cut.half_sq > cut.half_sq_err {
-                let [p, q] = cut.points();
-                crossings[found] = p;
-                crossings[found + 1] = q;
-                found += 2;
-                chord = Some(cut);
-                if single.is_some() {
-                    break; // one real root: two crossings at most, and here they are
+            let mut found = 0;
+            let distinct = if lines[0] == lines[1] { 1 } else { 2 }; // a double line counts once
+            for line in &lines[..distinct] {
+                let Some(cut) = cut_line(&pencil.i, line, reach) else {
+                    continue;
+                };
+                if cut.half_sq > cut.half_sq_err {
+                    let [p, q] = cut.points();
+                    crossings[found] = p;
+                    crossings[found + 1] = q;
+                    found += 2;
+                    chord = Some(cut);
+                    if single.is_some() {
+                        break; // one real root: two crossings at most, and here they are
+                    }
+                } else if cut.half_sq >= -NEAR_TANGENT.max(cut.half_sq_err)
+                    && near_tangent.is_none()
+                {
+                    near_tangent = Some(cut);
                 }
-            } else if cut.half_sq >= -NEAR_TANGENT.max(cut.half_sq_err) && near_tangent.is_none() {
-                near_tangent = Some(cut);
             }
-        }
-        if found > 0 {
-            n_cross = found;
-            break;
+            if found > 0 {
+                n_cross = found;
+                break;
+            }
         }
     }
 
@@ -513,7 +551,19 @@ fn conic_pair_inner(
     };
     if let Some(cut) = candidate {
         let (n, dpt) = oriented(cut.normal);
-        if dpt >= -tol {
+        // A nearly tangent line with no crossing found is an external tangency (a tiny lens, or
+        // a tiny gap) only if, along its normal, neither ellipse's extent lies within the
+        // other's: the depth is then below the smaller width `2 s(n)`. One inside the other, a
+        // line of the pencil can still pass within rounding of tangency to i (near where j
+        // almost touches i from inside) and the depth along it is large and positive: that is
+        // nesting, decided below, not an overlap with a zero-length chord.
+        let nested = n_cross == 0 && {
+            let s_min = placed_i.support(n).min(placed_j.support(n));
+            dpt >= 2.0 * s_min - tol
+        };
+        if nested {
+            // Fall through to the containment test.
+        } else if dpt >= -tol {
             let [p, q] = cut.points();
             let state = if dpt <= tol {
                 ContactState::Touching
@@ -524,9 +574,21 @@ fn conic_pair_inner(
                 .then(|| Warm::Crossings([to_warm(p), to_warm(q)]));
             let mut g = frame.geometry(p, q, cut.mid, n, dpt);
             if want_area && state == ContactState::Overlap {
-                // The chord vector from the half-length, not from two rounded end points.
-                let s = 2.0 * cut.half_sq.max(0.0).sqrt();
-                let o = chord_overlap(&placed_i, &placed_j, p, [s * cut.dir[0], s * cut.dir[1]], n);
+                // The caps follow the crossings to first order (A changes by L × their shift), and
+                // the pencil's crossings carry the rounding of λ and of the splitting (up to
+                // ~1e-13 of the size, more in one order of the pair than in the other): polished
+                // by Newton's method on both boundaries, as the warm path does, they are accurate
+                // to ε/sin(crossing angle). Grazing crossings, where Newton is ill-conditioned,
+                // keep the pencil's, with the chord vector from the half-length rather than from
+                // two rounded end points.
+                let (p0, e) = match newton_crossings(&form_i, &form_j, d, [p, q]) {
+                    Some([a, b]) => (a, [b[0] - a[0], b[1] - a[1]]),
+                    None => {
+                        let s = 2.0 * cut.half_sq.max(0.0).sqrt();
+                        (p, [s * cut.dir[0], s * cut.dir[1]])
+                    }
+                };
+                let o = chord_overlap(&placed_i, &placed_j, p0, e, n);
                 g.area = Some(frame.overlap(&o));
             }
             return (
@@ -536,19 +598,27 @@ fn conic_pair_inner(
                 },
                 warm,
             );
+        } else {
+            return (Contact::SEPARATED, None);
         }
-        return (Contact::SEPARATED, None);
     }
-    // No crossing: nested or apart. Test one boundary point of each against the other.
-    let j_point = [d + aj * ctj, aj * stj];
-    let i_point = [ai * cti, ai * sti];
-    let j_in_i = coincident || pencil.i.quad(j_point[0], j_point[1]) < 1.0;
-    let i_in_j = pencil.j.quad(i_point[0] - d, i_point[1]) < 1.0;
-    if !(j_in_i || i_in_j) {
+    // No crossing: nested or apart. With no crossing, the two solids meet only if one lies
+    // inside the other, and then the inner one's centre lies inside the outer one — by at
+    // least the inner one's smaller semi-axis, so the test is robust where a boundary point of
+    // the inner one (which may touch the outer boundary) would not be. The inner one is the
+    // smaller in area.
+    let nested = coincident
+        || form_i.quad(d, 0.0) < 1.0 // c_j in i
+        || form_j.quad(-d, 0.0) < 1.0; // c_i in j
+    if !nested {
         return (Contact::SEPARATED, None);
     }
     let (n, dpt) = oriented([1.0, 0.0]);
-    let inner = if j_in_i { [d, 0.0] } else { [0.0, 0.0] };
+    let inner = if aj * bj <= ai * bi {
+        [d, 0.0]
+    } else {
+        [0.0, 0.0]
+    };
     (
         Contact {
             state: ContactState::Contained,
@@ -556,4 +626,42 @@ fn conic_pair_inner(
         },
         None,
     )
+}
+
+/// The crossings of two ellipses with one centre (the origin), given by their forms in one
+/// frame: the four points where the lines `xᵀ(Q_j − Q_i)x = 0` meet ellipse i, when
+/// `Q_j − Q_i` is indefinite; `None` when it is semi-definite (one inside the other, touching
+/// from inside at most) or zero to rounding (one and the same ellipse).
+fn concentric_crossings(fi: &EllipseForm, fj: &EllipseForm) -> Option<[[f64; 2]; 4]> {
+    let m = [
+        fj.a_coef - fi.a_coef,
+        fj.b_coef - fi.b_coef,
+        fj.c_coef - fi.c_coef,
+    ];
+    let size = fi.a_coef.max(fi.c_coef).max(fj.a_coef).max(fj.c_coef);
+    if m.iter().all(|v| v.abs() <= 8.0 * f64::EPSILON * size) {
+        return None; // the same ellipse, to the rounding of the forms
+    }
+    let neg_det = m[1] * m[1] - m[0] * m[2];
+    if neg_det <= 0.0 {
+        return None;
+    }
+    // The two directions (x, y) with m0 x² + 2 m1 xy + m2 y² = 0, by the stable quadratic
+    // formula in the ratio of the smaller coefficient's variable.
+    let root = neg_det.sqrt();
+    let q = -(m[1] + root.copysign(m[1]));
+    let dirs = if m[0].abs() >= m[2].abs() {
+        // x/y = q/m0 or m2/q.
+        [[q / m[0], 1.0], [m[2] / q, 1.0]]
+    } else {
+        // y/x = q/m2 or m0/q.
+        [[1.0, q / m[2]], [1.0, m[0] / q]]
+    };
+    let mut out = [[0.0; 2]; 4];
+    for (k, u) in dirs.iter().enumerate() {
+        let t = 1.0 / fi.quad(u[0], u[1]).sqrt();
+        out[2 * k] = [t * u[0], t * u[1]];
+        out[2 * k + 1] = [-t * u[0], -t * u[1]];
+    }
+    Some(out)
 }

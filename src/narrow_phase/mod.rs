@@ -10,8 +10,31 @@
 //!   normal, positive when penetrating. (`δ = h_i(n) − n·p1 + h_j(−n) + n·p1`: the `n·p1` cancel.)
 //!   The sign of `n` is the one with the smaller depth (for bodies: `n·(c_j − c_i) ≥ 0`).
 //! - Every pair is computed in a frame centred on a body (never in world coordinates), so the
-//!   relative accuracy does not depend on where the pair sits.
-//! - Swapping i and j flips the normal and keeps everything else.
+//!   relative accuracy does not depend on where the pair sits. A wall's distance to a body is
+//!   taken at world scale, but compensated ([`Wall::signed_distance`]): exact to rounding of the
+//!   distance itself, however far the wall's point lies along the line.
+//!
+//! # Swap symmetry
+//! Swapping i and j gives the same state, depth, point, chord (its ends possibly exchanged) and
+//! flat overlap, and the normal negated; for the overlap area ([`OverlapArea`]) the same area,
+//! length and point, with the normal and the couple negated ([`Contact::swapped`]). This holds
+//! **bit for bit**, by construction: every pair is computed in one order only, and the other
+//! order is that result swapped —
+//! - a wall and a body: the wall as i ([`contact`]);
+//! - a circle and an ellipse: the circle as i; a rectangle and a conic: the rectangle as i;
+//! - two bodies of the same kind (ellipses, rectangles): the order of [`computed_first`], a
+//!   total order on (sizes, position, orientation) that depends on the pair alone. The kernels
+//!   compute in a frame centred on their first body and decide states on quantities rounded in
+//!   that frame, so two orders could otherwise differ in the last bits — and at a decision's
+//!   threshold in the state (a concentric pair's fallback normal was even i's own x axis);
+//! - two circles: a closed form whose every term is exactly symmetric (`r_i + r_j`,
+//!   `c_i + c_j`, `|c_j − c_i|`) or antisymmetric (`c_j − c_i`, `r_i − r_j`), so no order is
+//!   chosen ([`circle_circle`]; also the dynamics' lean path).
+//!
+//! The one exception is a pair of two *identical* objects (same shape in the same pose; two
+//! equal circles with one centre): i and j cannot be told apart, both orders are the same
+//! computation, and the normal cannot be both `n` and `−n`. `tests/swap_symmetry.rs` checks all
+//! of this over every pair kind, state and place.
 //!
 //! Overlaps whose boundaries cross four times, or where one body contains the other, have no
 //! single chord. They are never dropped: they get a defined fallback geometry and the state
@@ -222,6 +245,12 @@ pub fn contact_bodies_traced(
 /// ellipse–ellipse; see [`ellipse_ellipse`]) start from `guess`, what the last step returned for
 /// this pair (None for a new contact), and return the guess for the next step; other pairs
 /// ignore it and return none. The last value tells whether the warm start gave the result.
+///
+/// Each pair is computed in one order only and the other order is its [`Contact::swapped`]
+/// (see the module documentation): a circle before an ellipse, a rectangle before a conic, and
+/// for two shapes of the same kind the order of [`computed_first`]. A guess and the returned
+/// warm start are always relative to the caller's i (re-expressed when the pair is computed the
+/// other way round), so a pair whose order flips from one step to the next keeps its warm start.
 #[inline]
 pub fn contact_bodies_with(
     si: &Shape,
@@ -234,17 +263,27 @@ pub fn contact_bodies_with(
     use Shape::*;
     use ellipse_ellipse::conic_pair_traced;
     let plain = |c: Contact| (c, None, false);
+    // The pair computed as (j, i): the guess handed over relative to j, the next one handed
+    // back relative to i, the contact swapped.
+    let reversed = |(c, warm, used): (Contact, Option<ellipse_ellipse::Warm>, bool)| {
+        (c.swapped(), warm.map(|w| w.seen_from(pj, pi)), used)
+    };
+    let guess_ji = || guess.map(|w| w.seen_from(pi, pj));
     match (*si, *sj) {
+        // Symmetric closed form: no order to choose.
         (Circle { r: ri }, Circle { r: rj }) => plain(circle_circle::contact_circle_circle_with(
             ri, pi, rj, pj, area,
         )),
         (Circle { r }, Ellipse { a, b }) => conic_pair_traced(r, r, pi, a, b, pj, guess, area),
         (Ellipse { a, b }, Circle { r }) => {
-            let (c, warm, used) = conic_pair_traced(r, r, pj, a, b, pi, guess, area);
-            (c.swapped(), warm, used)
+            reversed(conic_pair_traced(r, r, pj, a, b, pi, guess_ji(), area))
         }
         (Ellipse { a: ai, b: bi }, Ellipse { a: aj, b: bj }) => {
-            conic_pair_traced(ai, bi, pi, aj, bj, pj, guess, area)
+            if computed_first(si, pi, sj, pj) {
+                conic_pair_traced(ai, bi, pi, aj, bj, pj, guess, area)
+            } else {
+                reversed(conic_pair_traced(aj, bj, pj, ai, bi, pi, guess_ji(), area))
+            }
         }
         (Rectangle { w, h }, Circle { .. } | Ellipse { .. }) => plain(
             rectangle_conic::rectangle_conic_with(w, h, pi, sj, pj, area),
@@ -252,10 +291,49 @@ pub fn contact_bodies_with(
         (Circle { .. } | Ellipse { .. }, Rectangle { w, h }) => {
             plain(rectangle_conic::rectangle_conic_with(w, h, pj, si, pi, area).swapped())
         }
-        (Rectangle { w: wi, h: hi }, Rectangle { w: wj, h: hj }) => plain(
-            rectangle_rectangle::rectangle_rectangle_with(wi, hi, pi, wj, hj, pj, area),
-        ),
+        (Rectangle { w: wi, h: hi }, Rectangle { w: wj, h: hj }) => {
+            if computed_first(si, pi, sj, pj) {
+                plain(rectangle_rectangle::rectangle_rectangle_with(
+                    wi, hi, pi, wj, hj, pj, area,
+                ))
+            } else {
+                plain(
+                    rectangle_rectangle::rectangle_rectangle_with(wj, hj, pj, wi, hi, pi, area)
+                        .swapped(),
+                )
+            }
+        }
     }
+}
+
+/// Whether a pair of two bodies of the same kind is computed in the order given (i first),
+/// rather than as (j, i) and swapped: the canonical order, by the sizes (`a` then `b`, or `w`
+/// then `h`), then the position (x then y), then the orientation (cos then sin), i before j when
+/// its key is not greater. Every kernel computes in a frame centred on its first body and decides
+/// on quantities rounded in that frame, so only one order per pair makes the swap exact, in the
+/// state as in the last bit. The order depends on the pair alone (never on how it was called);
+/// two bodies with equal keys are the same object in the same place, and either order computes
+/// the same thing.
+#[inline]
+pub fn computed_first(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose) -> bool {
+    let key = |s: &Shape, p: &Pose| {
+        let (u, v) = match *s {
+            Shape::Circle { r } => (r, r),
+            Shape::Ellipse { a, b } => (a, b),
+            Shape::Rectangle { w, h } => (w, h),
+        };
+        let (c, sn) = p.cos_sin();
+        [u, v, p.position.x, p.position.y, c, sn]
+    };
+    let (ki, kj) = (key(si, pi), key(sj, pj));
+    for (x, y) in ki.iter().zip(&kj) {
+        match x.total_cmp(y) {
+            std::cmp::Ordering::Less => return true,
+            std::cmp::Ordering::Greater => return false,
+            std::cmp::Ordering::Equal => {}
+        }
+    }
+    true
 }
 
 /// Contact between a wall (as i) and a body (as j), with the overlap area: the normal is the

@@ -71,6 +71,14 @@ pub fn rectangle_conic_with(
     let mut cross = [Crossing::default(); 8];
     let mut n = 0;
     let mut tangent: Option<([f64; 2], [f64; 2])> = None;
+    // Along edge k, from corner k by `e` to corner k+1, the conic reads α s² + 2β s + γ_k = 0.
+    // Which edges cross is decided by the corners' sides, each known to rounding (γ is the
+    // corner's own implicit value): an edge whose ends lie on opposite sides crosses once; an
+    // edge with both ends inside, never (the conic is convex); an edge with both ends outside,
+    // twice or never, as the quadratic's minimum on the edge is below zero or not. The roots
+    // themselves, from the far corner, are only located to ~ε of its implicit value, which
+    // may not tell whether a crossing next to a corner falls before or after it: each is
+    // re-solved from the nearer corner ([`crossing_on_edge`]).
     for k in 0..4 {
         let k1 = (k + 1) % 4;
         let (p0, p1) = (q[k], q[k1]);
@@ -79,21 +87,42 @@ pub fn rectangle_conic_with(
         let beta = p0[0] * e[0] * ia2 + p0[1] * e[1] * ib2;
         let disc = beta * beta - alpha * gamma[k];
         let err = 16.0 * f64::EPSILON * (beta * beta + alpha * (gamma[k].abs() + 2.0));
-        if disc > err {
-            let qq = -(beta + disc.sqrt().copysign(beta));
-            for s in [qq / alpha, gamma[k] / qq] {
-                if (0.0..1.0).contains(&s) {
+        let qq = -(beta + disc.max(0.0).sqrt().copysign(beta));
+        let roots = if qq != 0.0 {
+            [qq / alpha, gamma[k] / qq]
+        } else {
+            [-beta / alpha; 2]
+        };
+        let (in0, in1) = (gamma[k] < 0.0, gamma[k1] < 0.0);
+        if in0 != in1 {
+            // One crossing: the root on the edge, or the nearer to it when rounding has put it
+            // just beyond an end.
+            let off = |s: f64| (s - s.clamp(0.0, 1.0)).abs();
+            let s = if off(roots[0]) <= off(roots[1]) {
+                roots[0]
+            } else {
+                roots[1]
+            };
+            cross[n] = crossing_on_edge(k, s.clamp(0.0, 1.0), &q, &gamma, e, alpha, [ia2, ib2]);
+            n += 1;
+        } else if !in0 {
+            // Both ends outside: two crossings when the minimum, at s = −β/α, is on the edge
+            // and certainly below zero.
+            let s_min = -beta / alpha;
+            if !(0.0..=1.0).contains(&s_min) {
+                continue;
+            }
+            if disc > err {
+                for s in roots {
+                    let s = s.clamp(0.0, 1.0);
                     cross[n] = crossing_on_edge(k, s, &q, &gamma, e, alpha, [ia2, ib2]);
                     n += 1;
                 }
-            }
-        } else if disc >= -err {
-            let s = -beta / alpha;
-            if (0.0..=1.0).contains(&s) {
+            } else if disc >= -err {
                 // Outward normal of this edge (corners run counter-clockwise).
                 let len = e[0].hypot(e[1]);
                 tangent = Some((
-                    [p0[0] + s * e[0], p0[1] + s * e[1]],
+                    [p0[0] + s_min * e[0], p0[1] + s_min * e[1]],
                     [e[1] / len, -e[0] / len],
                 ));
             }
@@ -114,7 +143,21 @@ pub fn rectangle_conic_with(
     match n {
         2 => {
             let (p, qv) = (cross[0].point(), cross[1].point());
-            let (nrm, dpt) = orient(chord_direction_normal(&cross[0], &cross[1]), depth);
+            // Two crossings that rounding cannot tell apart (a corner on the conic's boundary):
+            // the chord's limit, the conic's tangent there.
+            let nrm = chord_direction_normal(&cross[0], &cross[1]).unwrap_or_else(|| {
+                let (gx, gy) = (p[0] * ia2, p[1] * ib2);
+                let len = gx.hypot(gy);
+                [gx / len, gy / len]
+            });
+            let (nrm, dpt) = orient(nrm, depth);
+            if dpt <= TOUCH_TOL {
+                // Crossings within rounding of each other and of tangency.
+                return Contact {
+                    state: ContactState::Touching,
+                    geometry: Some(frame.geometry(p, qv, super::midpoint(p, qv), nrm, dpt)),
+                };
+            }
             let mid = super::midpoint(p, qv);
             let mut g = frame.geometry(p, qv, mid, nrm, dpt);
             if area {
@@ -173,9 +216,13 @@ pub fn rectangle_conic_with(
             if let Some((t, face)) = tangent {
                 // An edge within rounding of tangency: the half-chord cannot tell a tiny overlap
                 // from a tiny gap where the conic is sharply curved, the depth through that face
-                // can (exact, from the support functions).
+                // can (exact, from the support functions) — unless, along that face's normal,
+                // one body's extent lies within the other's: then the edge touches the conic
+                // from inside (one body in the other), which the test below decides.
                 let (nrm, dpt) = orient(face, depth);
-                if dpt >= -TOUCH_TOL {
+                let s_min = rect_support(nrm[0], nrm[1]).min(ell_support(nrm[0], nrm[1]));
+                let nested = dpt >= 2.0 * s_min - TOUCH_TOL;
+                if !nested && dpt >= -TOUCH_TOL {
                     let state = if dpt <= TOUCH_TOL {
                         ContactState::Touching
                     } else {
@@ -187,12 +234,14 @@ pub fn rectangle_conic_with(
                     };
                 }
             }
-            // Nested or apart: one corner inside the conic, or the conic's vertex inside the rectangle.
-            let corner_in = q[0][0] * q[0][0] * ia2 + q[0][1] * q[0][1] * ib2 < 1.0;
-            let (vx, vy) = (a - c.x, -c.y);
-            let (lx, ly) = (cr * vx + sr * vy, -sr * vx + cr * vy);
-            let vertex_in = lx.abs() < 0.5 * w && ly.abs() < 0.5 * h;
-            if !(corner_in || vertex_in) {
+            // No crossing: nested or apart. The solids meet only if one lies inside the other,
+            // and then the inner one's centre lies inside the outer one (by at least its own
+            // inscribed radius: a robust test where a corner or a vertex of the inner one may
+            // touch the outer boundary). The inner one is the smaller in area.
+            let rect_centre_in = quad([c.x, c.y]) < 1.0;
+            let (lx, ly) = (-cr * c.x - sr * c.y, sr * c.x - cr * c.y); // conic centre, rect frame
+            let conic_centre_in = lx.abs() < 0.5 * w && ly.abs() < 0.5 * h;
+            if !(rect_centre_in || conic_centre_in) {
                 return Contact::SEPARATED;
             }
             let toward = if d > 0.0 {
@@ -201,7 +250,8 @@ pub fn rectangle_conic_with(
                 [1.0, 0.0]
             };
             let (nrm, dpt) = orient(toward, depth);
-            let inner = if corner_in { [c.x, c.y] } else { [0.0, 0.0] };
+            let rect_inner = w * h <= std::f64::consts::PI * a * b;
+            let inner = if rect_inner { [c.x, c.y] } else { [0.0, 0.0] };
             Contact {
                 state: ContactState::Contained,
                 geometry: Some(frame.geometry(inner, inner, inner, nrm, dpt)),
@@ -274,8 +324,8 @@ fn crossing_on_edge(
 
 /// Unit normal of the chord between two crossings, from the best-conditioned data: the edge's
 /// own direction when both lie on one edge, the corner-relative offsets when they flank one
-/// corner, the points otherwise.
-fn chord_direction_normal(a: &Crossing, b: &Crossing) -> [f64; 2] {
+/// corner, the points otherwise. `None` when the two coincide.
+fn chord_direction_normal(a: &Crossing, b: &Crossing) -> Option<[f64; 2]> {
     let d = if a.edge == b.edge {
         a.edge_dir
     } else if a.corner_index == b.corner_index {
@@ -285,5 +335,5 @@ fn chord_direction_normal(a: &Crossing, b: &Crossing) -> [f64; 2] {
         [q[0] - p[0], q[1] - p[1]]
     };
     let len = d[0].hypot(d[1]);
-    [-d[1] / len, d[0] / len]
+    (len > 0.0).then(|| [-d[1] / len, d[0] / len])
 }

@@ -53,14 +53,8 @@ pub fn parse_wall_with<T>(
     let mut o = Obj::new(v, path)?;
     let point = o.req_with("point", vec2)?;
     let normal = Vec2::from(o.req_with("normal", vec2)?);
-    // Scaled by its largest component first, so that a tiny non-zero normal such as
-    // [1e-200, 1e-200] (whose squared length underflows) is not taken for zero.
-    let largest = normal.x.abs().max(normal.y.abs());
-    let normal = if largest > 0.0 {
-        normal / largest
-    } else {
-        normal
-    };
+    // `Wall::new` takes a normal of any non-zero length (a tiny one such as [1e-200, 1e-200],
+    // whose squared length underflows, too) and keeps its direction exactly.
     let wall = Wall::new(Vec2::from(point), normal)
         .ok_or_else(|| FieldError::new(o.field_path("normal"), "must be a non-zero vector"))?;
     let t = extra(&mut o)?;

@@ -142,6 +142,35 @@ fn place_wall(sj: Shape, tj: f64, n: [f64; 2], nu: f64, pos: [f64; 2]) -> Case {
     }
 }
 
+/// The same pair moved out to 1e5 … 1e6 from the origin in a random direction (both bodies; the
+/// positions are rounded there, and the reference sees the same rounded numbers), and a wall's
+/// point slid along its line by up to 1e6 either way, so that the wall's distance to the body is
+/// taken across up to ~1.4e6.
+fn far(c: Case, rng: &mut Rng) -> Case {
+    let dir = unit(rng.angle());
+    let r = rng.range(1e5, 1e6);
+    let slide = rng.range(-1e6, 1e6);
+    let shift = |s: Spec| match s {
+        Spec::Body(shape, p, t) => Spec::Body(shape, [p[0] + r * dir[0], p[1] + r * dir[1]], t),
+        Spec::Wall(p, n) => {
+            let len = n[0].hypot(n[1]);
+            let t = [-n[1] / len, n[0] / len];
+            Spec::Wall(
+                [
+                    p[0] + r * dir[0] + slide * t[0],
+                    p[1] + r * dir[1] + slide * t[1],
+                ],
+                n,
+            )
+        }
+    };
+    Case {
+        i: shift(c.i),
+        j: shift(c.j),
+        along: c.along,
+    }
+}
+
 /// What one family measured: worst errors (depth and point in units of a_max, normal in
 /// radians; rigid motion and swap in units of the bars), misclassifications, the first
 /// failures, and the pairs themselves (for timing).
@@ -610,39 +639,31 @@ pub fn run_families() -> Vec<FamilyReport> {
         },
         450,
     );
-    family(
-        "circle–ellipse",
-        &mut reports,
-        |rng, k| {
-            let aspect = ASPECTS[(k / 9) % ASPECTS.len()];
-            let sc = Shape::Circle {
-                r: rng.range(0.3, 2.0),
-            };
-            let se = Shape::Ellipse {
-                a: 1.0,
-                b: 1.0 / aspect,
-            };
-            let nu = DEPTHS[k % DEPTHS.len()] / aspect;
-            let c = place(sc, 0.0, se, rng.angle(), unit(rng.angle()), nu, [0.0, 0.0]);
-            Some(if k % 2 == 0 { c } else { c.swapped() })
-        },
-        450,
-    );
-    family(
-        "circle–circle",
-        &mut reports,
-        |rng, k| {
-            let si = Shape::Circle {
-                r: rng.range(0.3, 2.0),
-            };
-            let sj = Shape::Circle {
-                r: rng.range(0.3, 2.0),
-            };
-            let nu = DEPTHS[k % DEPTHS.len()] * if k % 2 == 0 { 0.3 } else { -0.3 };
-            Some(place(si, 0.0, sj, 0.0, unit(rng.angle()), nu, [0.0, 0.0]))
-        },
-        360,
-    );
+    let circle_ellipse = |rng: &mut Rng, k: usize| -> Option<Case> {
+        let aspect = ASPECTS[(k / 9) % ASPECTS.len()];
+        let sc = Shape::Circle {
+            r: rng.range(0.3, 2.0),
+        };
+        let se = Shape::Ellipse {
+            a: 1.0,
+            b: 1.0 / aspect,
+        };
+        let nu = DEPTHS[k % DEPTHS.len()] / aspect;
+        let c = place(sc, 0.0, se, rng.angle(), unit(rng.angle()), nu, [0.0, 0.0]);
+        Some(if k.is_multiple_of(2) { c } else { c.swapped() })
+    };
+    family("circle–ellipse", &mut reports, &circle_ellipse, 450);
+    let circle_circle = |rng: &mut Rng, k: usize| -> Option<Case> {
+        let si = Shape::Circle {
+            r: rng.range(0.3, 2.0),
+        };
+        let sj = Shape::Circle {
+            r: rng.range(0.3, 2.0),
+        };
+        let nu = DEPTHS[k % DEPTHS.len()] * if k.is_multiple_of(2) { 0.3 } else { -0.3 };
+        Some(place(si, 0.0, sj, 0.0, unit(rng.angle()), nu, [0.0, 0.0]))
+    };
+    family("circle–circle", &mut reports, &circle_circle, 360);
     family(
         "ellipse pairs 1e6 from the origin",
         &mut reports,
@@ -680,7 +701,7 @@ pub fn run_families() -> Vec<FamilyReport> {
                 a: 1.0,
                 b: 1.0 / aspect,
             };
-            let sj = if k % 3 == 0 {
+            let sj = if k.is_multiple_of(3) {
                 Shape::Circle { r: 0.7 }
             } else {
                 Shape::Ellipse {
@@ -700,200 +721,259 @@ pub fn run_families() -> Vec<FamilyReport> {
         },
         300,
     );
+    let crossed = |rng: &mut Rng, _: usize| -> Option<Case> {
+        let aspect = rng.range(2.0, 20.0);
+        let si = Shape::Ellipse {
+            a: 1.0,
+            b: 1.0 / aspect,
+        };
+        let sj = Shape::Ellipse {
+            a: rng.range(0.8, 1.2),
+            b: 1.0 / aspect,
+        };
+        let ti = rng.angle();
+        let tj = ti + std::f64::consts::FRAC_PI_2 + rng.range(-0.6, 0.6);
+        let off = rng.range(0.0, 0.3);
+        let dir = unit(rng.angle());
+        Some(Case {
+            i: Spec::Body(si, [0.0, 0.0], ti),
+            j: Spec::Body(sj, [off * dir[0], off * dir[1]], tj),
+            along: dir,
+        })
+    };
     family(
         "four crossings (crossed ellipses)",
         &mut reports,
-        |rng, _| {
-            let aspect = rng.range(2.0, 20.0);
-            let si = Shape::Ellipse {
-                a: 1.0,
-                b: 1.0 / aspect,
-            };
-            let sj = Shape::Ellipse {
-                a: rng.range(0.8, 1.2),
-                b: 1.0 / aspect,
-            };
-            let ti = rng.angle();
-            let tj = ti + std::f64::consts::FRAC_PI_2 + rng.range(-0.6, 0.6);
-            let off = rng.range(0.0, 0.3);
-            let dir = unit(rng.angle());
-            Some(Case {
-                i: Spec::Body(si, [0.0, 0.0], ti),
-                j: Spec::Body(sj, [off * dir[0], off * dir[1]], tj),
-                along: dir,
-            })
-        },
+        &crossed,
         300,
     );
-    family(
-        "containment",
-        &mut reports,
-        |rng, k| {
-            let aspect = ASPECTS[k % ASPECTS.len()].min(10.0);
-            let si = Shape::Ellipse {
-                a: 2.0,
-                b: 2.0 / aspect,
-            };
-            let small = 0.2 / aspect;
-            let sj = if k % 2 == 0 {
-                Shape::Circle { r: small }
-            } else {
-                Shape::Ellipse {
-                    a: small,
-                    b: small * 0.6,
-                }
-            };
-            let ti = rng.angle();
-            let dir = unit(rng.angle());
-            let off = rng.range(0.0, 0.5) / aspect;
-            let c = Case {
-                i: Spec::Body(si, [0.0, 0.0], ti),
-                j: Spec::Body(sj, [off * dir[0], off * dir[1]], rng.angle()),
+    let containment = |rng: &mut Rng, k: usize| -> Option<Case> {
+        let aspect = ASPECTS[k % ASPECTS.len()].min(10.0);
+        let si = Shape::Ellipse {
+            a: 2.0,
+            b: 2.0 / aspect,
+        };
+        let small = 0.2 / aspect;
+        let sj = if k.is_multiple_of(2) {
+            Shape::Circle { r: small }
+        } else {
+            Shape::Ellipse {
+                a: small,
+                b: small * 0.6,
+            }
+        };
+        let ti = rng.angle();
+        let dir = unit(rng.angle());
+        let off = rng.range(0.0, 0.5) / aspect;
+        let c = Case {
+            i: Spec::Body(si, [0.0, 0.0], ti),
+            j: Spec::Body(sj, [off * dir[0], off * dir[1]], rng.angle()),
+            along: dir,
+        };
+        Some(if k % 4 == 1 {
+            Case {
+                i: c.j,
+                j: c.i,
                 along: dir,
-            };
-            Some(if k % 4 == 1 {
-                Case {
-                    i: c.j,
-                    j: c.i,
-                    along: dir,
-                }
-            } else {
-                c
-            })
-        },
-        200,
-    );
+            }
+        } else {
+            c
+        })
+    };
+    family("containment", &mut reports, &containment, 200);
     // Walls and rectangles.
+    let wall_conic = |rng: &mut Rng, k: usize| -> Option<Case> {
+        let aspect = ASPECTS[k % ASPECTS.len()];
+        let s = if k.is_multiple_of(4) {
+            Shape::Circle { r: 1.0 }
+        } else {
+            Shape::Ellipse {
+                a: 1.0,
+                b: 1.0 / aspect,
+            }
+        };
+        let nu = DEPTHS[(k / 5) % DEPTHS.len()] / aspect * alternate(k);
+        let far = if k.is_multiple_of(3) { 1e6 } else { 0.0 };
+        let c = place_wall(s, rng.angle(), unit(rng.angle()), nu, [far, -far]);
+        Some(if k % 5 == 2 { c.swapped() } else { c })
+    };
     family(
         "wall–ellipse/circle (incl. 1e6)",
         &mut reports,
-        |rng, k| {
-            let aspect = ASPECTS[k % ASPECTS.len()];
-            let s = if k % 4 == 0 {
-                Shape::Circle { r: 1.0 }
-            } else {
-                Shape::Ellipse {
-                    a: 1.0,
-                    b: 1.0 / aspect,
-                }
-            };
-            let nu = DEPTHS[(k / 5) % DEPTHS.len()] / aspect * alternate(k);
-            let far = if k % 3 == 0 { 1e6 } else { 0.0 };
-            let c = place_wall(s, rng.angle(), unit(rng.angle()), nu, [far, -far]);
-            Some(if k % 5 == 2 { c.swapped() } else { c })
-        },
+        &wall_conic,
         450,
     );
-    family(
-        "wall–rectangle",
-        &mut reports,
-        |rng, k| {
-            let s = Shape::Rectangle {
-                w: 1.0,
-                h: rng.range(0.1, 1.0),
-            };
-            let nu = DEPTHS[k % DEPTHS.len()] * 0.1 * alternate(k);
-            let th = if k % 7 == 0 { 0.0 } else { rng.angle() };
-            Some(place_wall(s, th, unit(rng.angle()), nu, [0.0, 0.0]))
-        },
-        360,
-    );
+    let wall_rectangle = |rng: &mut Rng, k: usize| -> Option<Case> {
+        let s = Shape::Rectangle {
+            w: 1.0,
+            h: rng.range(0.1, 1.0),
+        };
+        let nu = DEPTHS[k % DEPTHS.len()] * 0.1 * alternate(k);
+        let th = if k.is_multiple_of(7) {
+            0.0
+        } else {
+            rng.angle()
+        };
+        Some(place_wall(s, th, unit(rng.angle()), nu, [0.0, 0.0]))
+    };
+    family("wall–rectangle", &mut reports, &wall_rectangle, 360);
+    let rectangle_conic = |rng: &mut Rng, k: usize| -> Option<Case> {
+        let sr = Shape::Rectangle {
+            w: 1.0,
+            h: rng.range(0.2, 1.0),
+        };
+        let aspect = ASPECTS[k % ASPECTS.len()].min(10.0);
+        let se = if k.is_multiple_of(3) {
+            Shape::Circle {
+                r: rng.range(0.2, 1.0),
+            }
+        } else {
+            Shape::Ellipse {
+                a: 0.8,
+                b: 0.8 / aspect,
+            }
+        };
+        let nu = DEPTHS[(k / 5) % DEPTHS.len()] * 0.08 * alternate(k);
+        let c = place(
+            sr,
+            rng.angle(),
+            se,
+            rng.angle(),
+            unit(rng.angle()),
+            nu,
+            [0.0, 0.0],
+        );
+        Some(if k % 4 == 3 { c.swapped() } else { c })
+    };
     family(
         "rectangle–ellipse/circle",
         &mut reports,
-        |rng, k| {
-            let sr = Shape::Rectangle {
-                w: 1.0,
-                h: rng.range(0.2, 1.0),
-            };
-            let aspect = ASPECTS[k % ASPECTS.len()].min(10.0);
-            let se = if k % 3 == 0 {
-                Shape::Circle {
-                    r: rng.range(0.2, 1.0),
-                }
-            } else {
-                Shape::Ellipse {
-                    a: 0.8,
-                    b: 0.8 / aspect,
-                }
-            };
-            let nu = DEPTHS[(k / 5) % DEPTHS.len()] * 0.08 * alternate(k);
-            let c = place(
-                sr,
-                rng.angle(),
-                se,
-                rng.angle(),
-                unit(rng.angle()),
-                nu,
-                [0.0, 0.0],
-            );
-            Some(if k % 4 == 3 { c.swapped() } else { c })
-        },
+        &rectangle_conic,
         450,
     );
+    let rectangle_face = |rng: &mut Rng, k: usize| -> Option<Case> {
+        let si = Shape::Rectangle {
+            w: 1.0,
+            h: rng.range(0.2, 1.0),
+        };
+        let sj = Shape::Rectangle {
+            w: rng.range(0.3, 1.5),
+            h: rng.range(0.2, 1.0),
+        };
+        let nu = DEPTHS[k % DEPTHS.len()] * 0.1 * alternate(k);
+        let ti = rng.angle();
+        // Along a face normal of i: i's support there is a face, j's a corner (or an edge
+        // when j is aligned, every fifth case: stacked boxes with collinear sides).
+        let face = (k / 2 % 4) as f64 * std::f64::consts::FRAC_PI_2;
+        let dir = unit(ti + face);
+        let tj = if k.is_multiple_of(5) { ti } else { rng.angle() };
+        let mut c = place(si, ti, sj, tj, dir, nu, [0.0, 0.0]);
+        if let Spec::Body(s, p, t) = c.j {
+            // Slide j along the face so that aligned boxes are offset (not corner on corner).
+            let slide = rng.range(-0.3, 0.3);
+            c.j = Spec::Body(s, [p[0] - slide * dir[1], p[1] + slide * dir[0]], t);
+        }
+        Some(if k % 3 == 1 {
+            Case {
+                i: c.j,
+                j: c.i,
+                along: [-dir[0], -dir[1]],
+            }
+        } else {
+            c
+        })
+    };
     family(
         "rectangle–rectangle, corner or edge against a face",
         &mut reports,
-        |rng, k| {
-            let si = Shape::Rectangle {
-                w: 1.0,
-                h: rng.range(0.2, 1.0),
-            };
-            let sj = Shape::Rectangle {
-                w: rng.range(0.3, 1.5),
-                h: rng.range(0.2, 1.0),
-            };
-            let nu = DEPTHS[k % DEPTHS.len()] * 0.1 * alternate(k);
-            let ti = rng.angle();
-            // Along a face normal of i: i's support there is a face, j's a corner (or an edge
-            // when j is aligned, every fifth case: stacked boxes with collinear sides).
-            let face = (k / 2 % 4) as f64 * std::f64::consts::FRAC_PI_2;
-            let dir = unit(ti + face);
-            let tj = if k % 5 == 0 { ti } else { rng.angle() };
-            let mut c = place(si, ti, sj, tj, dir, nu, [0.0, 0.0]);
-            if let Spec::Body(s, p, t) = c.j {
-                // Slide j along the face so that aligned boxes are offset (not corner on corner).
-                let slide = rng.range(-0.3, 0.3);
-                c.j = Spec::Body(s, [p[0] - slide * dir[1], p[1] + slide * dir[0]], t);
-            }
-            Some(if k % 3 == 1 {
-                Case {
-                    i: c.j,
-                    j: c.i,
-                    along: [-dir[0], -dir[1]],
-                }
-            } else {
-                c
-            })
-        },
+        &rectangle_face,
         450,
     );
+    let rectangle_corner = |rng: &mut Rng, k: usize| -> Option<Case> {
+        let si = Shape::Rectangle {
+            w: 1.0,
+            h: rng.range(0.2, 1.0),
+        };
+        let sj = Shape::Rectangle {
+            w: rng.range(0.3, 1.5),
+            h: rng.range(0.2, 1.0),
+        };
+        let nu = DEPTHS[k % DEPTHS.len()] * 0.1 * alternate(k);
+        Some(place(
+            si,
+            rng.angle(),
+            sj,
+            rng.angle(),
+            unit(rng.angle()),
+            nu,
+            [0.0, 0.0],
+        ))
+    };
     family_with(
         "rectangle–rectangle, corner on corner",
         &mut reports,
-        &mut |rng, k| {
-            let si = Shape::Rectangle {
-                w: 1.0,
-                h: rng.range(0.2, 1.0),
-            };
-            let sj = Shape::Rectangle {
-                w: rng.range(0.3, 1.5),
-                h: rng.range(0.2, 1.0),
-            };
-            let nu = DEPTHS[k % DEPTHS.len()] * 0.1 * alternate(k);
-            Some(place(
-                si,
-                rng.angle(),
-                sj,
-                rng.angle(),
-                unit(rng.angle()),
-                nu,
-                [0.0, 0.0],
-            ))
-        },
+        &mut |rng, k| rectangle_corner(rng, k),
         450,
         true,
     );
 
+    // Every pair kind again, up to 1e6 sizes from the origin (a wall's point as far again along
+    // its line): the same pairs moved, so the same bars (depth 1e-12·a_max: the relative position
+    // of two bodies is exact out there, and so is, to rounding, a distance from a wall line).
+    family(
+        "circle–ellipse up to 1e6 from the origin",
+        &mut reports,
+        |rng, k| circle_ellipse(rng, k).map(|c| far(c, rng)),
+        450,
+    );
+    family(
+        "circle–circle up to 1e6 from the origin",
+        &mut reports,
+        |rng, k| circle_circle(rng, k).map(|c| far(c, rng)),
+        360,
+    );
+    family(
+        "four crossings up to 1e6 from the origin",
+        &mut reports,
+        |rng, k| crossed(rng, k).map(|c| far(c, rng)),
+        300,
+    );
+    family(
+        "containment up to 1e6 from the origin",
+        &mut reports,
+        |rng, k| containment(rng, k).map(|c| far(c, rng)),
+        200,
+    );
+    family(
+        "wall–ellipse/circle moved 1e5…1e6 out, wall point up to 1e6 along the wall",
+        &mut reports,
+        |rng, k| wall_conic(rng, k).map(|c| far(c, rng)),
+        450,
+    );
+    family(
+        "wall–rectangle moved 1e5…1e6 out, wall point up to 1e6 along the wall",
+        &mut reports,
+        |rng, k| wall_rectangle(rng, k).map(|c| far(c, rng)),
+        360,
+    );
+    family(
+        "rectangle–ellipse/circle up to 1e6 from the origin",
+        &mut reports,
+        |rng, k| rectangle_conic(rng, k).map(|c| far(c, rng)),
+        450,
+    );
+    family(
+        "rectangle–rectangle, corner or edge against a face, up to 1e6 from the origin",
+        &mut reports,
+        |rng, k| rectangle_face(rng, k).map(|c| far(c, rng)),
+        450,
+    );
+    family_with(
+        "rectangle–rectangle, corner on corner, up to 1e6 from the origin",
+        &mut reports,
+        &mut |rng, k| rectangle_corner(rng, k).map(|c| far(c, rng)),
+        450,
+        true,
+    );
     reports
 }

@@ -1,0 +1,483 @@
+//! Every pair kind at the extremes of the accepted input ranges (issue 11, item 16; the ranges
+//! are `dem2d::scene::ranges`: sizes 1e-40 … 1e40, sizes of a pair within a factor 1e6,
+//! coordinates within 1e9 × the smaller size and within 1e40).
+//!
+//! Pairs of every kind (circle, ellipse, rectangle, wall; every combination, both orders) are
+//! drawn concentric, one inside the other, overlapping, separated and touching, at size ratios
+//! 1, 1e3 and 1e6, near the origin and as far out as the ranges allow (a wall's point as far
+//! along its line), and then scaled by an exact power of two to the smallest accepted sizes
+//! (the smaller body at ~1e-40), to sizes of one, and to the largest (the larger body at
+//! ~5e39). Each is checked against the double-double reference (`dem2d::validation::reference`)
+//! with the bars of the hard-case families: the right state whenever the true depth or gap is at
+//! least 1e-12·a_max (deep and contained always), |depth error| ≤ 1e-12·a_max, normal within
+//! 1e-8 rad, point within 1e-9·a_max plus two ulps of the coordinates; for containment the
+//! depth along the fallback's own normal (within 1e-12·a_max plus two ulps of itself: a body
+//! 1e9 sizes deep in a wall has a depth of 1e9 sizes). Swapping i and j must give the same
+//! result exactly.
+//!
+//! The reference is evaluated at sizes of order one and its lengths scaled by the same power of
+//! two: the scaling is exact on every input, so the true geometry scales exactly too, while the
+//! reference's own double-double arithmetic is not made for 1e±40 (its quartic's coefficients
+//! are products of up to eight lengths: at 2^-132 it loses ~1e-4 of the depth, at 2^132 it
+//! misjudges a deep pair).
+
+use dem2d::geometry::{Pose, Shape, Vec2, Wall};
+use dem2d::narrow_phase::{Contact, ContactState, Object, contact};
+use dem2d::scene::ranges::{MAX_EXTENT_RATIO, MAX_MAGNITUDE, MIN_SCALE, Placed, check_extent};
+use dem2d::validation::reference::{
+    RContact, RObj, RShape, RState, depth_along, reference_contact,
+};
+use dem2d::validation::rng::Rng;
+
+const DEPTH_BAR: f64 = 1e-12;
+const ANGLE_BAR: f64 = 1e-8;
+const POINT_BAR: f64 = 1e-9;
+const CLASS_BAR: f64 = 1e-12;
+
+/// One side of a pair at sizes of order one.
+#[derive(Clone, Copy, Debug)]
+enum Spec {
+    Body(Shape, [f64; 2], f64),
+    Wall([f64; 2], [f64; 2]),
+}
+
+impl Spec {
+    /// Lengths multiplied by `k` (a power of two: exact).
+    fn scaled(&self, k: f64) -> Spec {
+        match *self {
+            Spec::Body(s, p, t) => Spec::Body(
+                match s {
+                    Shape::Circle { r } => Shape::Circle { r: r * k },
+                    Shape::Ellipse { a, b } => Shape::Ellipse { a: a * k, b: b * k },
+                    Shape::Rectangle { w, h } => Shape::Rectangle { w: w * k, h: h * k },
+                },
+                [p[0] * k, p[1] * k],
+                t,
+            ),
+            Spec::Wall(p, n) => Spec::Wall([p[0] * k, p[1] * k], n),
+        }
+    }
+    fn object(&self) -> Object {
+        match *self {
+            Spec::Body(shape, p, t) => Object::Body {
+                shape,
+                pose: Pose::new(Vec2::from(p), t),
+            },
+            Spec::Wall(p, n) => Object::Wall(Wall::new(Vec2::from(p), Vec2::from(n)).unwrap()),
+        }
+    }
+    fn reference(&self) -> RObj {
+        match *self {
+            Spec::Body(shape, pos, angle) => RObj::Body {
+                shape: match shape {
+                    Shape::Circle { r } => RShape::Circle { r },
+                    Shape::Ellipse { a, b } => RShape::Ellipse { a, b },
+                    Shape::Rectangle { w, h } => RShape::Rectangle { w, h },
+                },
+                pos,
+                angle,
+            },
+            Spec::Wall(point, normal) => RObj::Wall { point, normal },
+        }
+    }
+    fn sizes(&self) -> Vec<f64> {
+        match *self {
+            Spec::Body(Shape::Circle { r }, ..) => vec![r],
+            Spec::Body(Shape::Ellipse { a, b }, ..) => vec![a, b],
+            Spec::Body(Shape::Rectangle { w, h }, ..) => vec![w, h],
+            Spec::Wall(..) => vec![],
+        }
+    }
+    fn coordinates(&self) -> [f64; 2] {
+        match *self {
+            Spec::Body(_, p, _) | Spec::Wall(p, _) => p,
+        }
+    }
+    fn bounding(&self) -> f64 {
+        match *self {
+            Spec::Body(s, ..) => s.bounding_radius(),
+            Spec::Wall(..) => 0.0,
+        }
+    }
+}
+
+/// A shape of `kind` (0 circle, 1 ellipse, 2 rectangle) with an aspect ratio up to 3 and its
+/// sizes within `lo … hi` (its larger size `hi` when it is the large body, its smaller `lo`
+/// when it is the small one): the sizes of a pair then spread by at most `hi / lo`.
+fn shape(kind: usize, large: bool, lo: f64, hi: f64, rng: &mut Rng) -> Shape {
+    let aspect = rng.range(1.0, 3.0).min(hi / lo);
+    let (big, small) = if large {
+        (hi, hi / aspect)
+    } else {
+        (lo * aspect, lo)
+    };
+    match kind {
+        0 => Shape::Circle {
+            r: if large { hi } else { lo },
+        },
+        1 => Shape::Ellipse { a: big, b: small },
+        _ => Shape::Rectangle { w: big, h: small },
+    }
+}
+
+fn unit(t: f64) -> [f64; 2] {
+    [t.cos(), t.sin()]
+}
+
+/// The point of `shape` (centred at the origin, at `angle`) farthest along the unit `n`.
+fn support_point(shape: &Shape, angle: f64, n: [f64; 2]) -> [f64; 2] {
+    let (s, c) = angle.sin_cos();
+    let (ux, uy) = (c * n[0] + s * n[1], -s * n[0] + c * n[1]);
+    let (px, py) = match *shape {
+        Shape::Circle { r } => (r * ux, r * uy),
+        Shape::Ellipse { a, b } => {
+            let h = ((a * ux) * (a * ux) + (b * uy) * (b * uy)).sqrt();
+            (a * a * ux / h, b * b * uy / h)
+        }
+        Shape::Rectangle { w, h } => (0.5 * w * ux.signum(), 0.5 * h * uy.signum()),
+    };
+    [c * px - s * py, s * px + c * py]
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Config {
+    Concentric,
+    Contained,
+    Overlap,
+    Separated,
+    Touching,
+}
+
+/// A pair at sizes of order one: the larger body of size 1, the other `1/ratio` (or of size
+/// 1 and `1/ratio`-thin ellipses are not drawn here: ratios are between bodies), placed by
+/// `cfg` with overlap or gap `nu` (in units of the smaller size) along `dir`, and moved to
+/// `at`. Returns the pair, the construction direction and whether the state is decisive by
+/// construction.
+fn unit_pair(
+    ki: usize,
+    kj: usize,
+    cfg: Config,
+    ratio: f64,
+    nu: f64,
+    at: [f64; 2],
+    rng: &mut Rng,
+) -> (Spec, Spec, [f64; 2]) {
+    let dir = unit(rng.angle());
+    let (ti, tj) = (rng.angle(), rng.angle());
+    // Which body is the small one.
+    let small_j = rng.uniform() < 0.5;
+    let plus = |c: [f64; 2]| [at[0] + c[0], at[1] + c[1]];
+    if ki == 3 || kj == 3 {
+        let kb = if ki == 3 { kj } else { ki };
+        // Against a wall, the body alone: sizes 1/ratio … 1 (at ratio 1, a circle of 1).
+        let sb = shape(kb, true, 1.0 / ratio, 1.0, rng);
+        let n = dir;
+        let h = {
+            let p = support_point(&sb, ti, n);
+            p[0] * n[0] + p[1] * n[1]
+        };
+        let small = sb.inscribed_radius();
+        let far = at[0].hypot(at[1]);
+        // "Concentric" against a wall: the body deep in the wall's solid, as far from the line
+        // as the ranges allow (`far`); "separated" as far on the free side every other time.
+        let depth = match cfg {
+            Config::Concentric => 2.0 * h + 1.0 / ratio + far,
+            Config::Contained => 2.0 * h + small * 1e-6,
+            Config::Overlap => nu * small,
+            Config::Separated if rng.uniform() < 0.5 => -nu * small - far,
+            Config::Separated => -nu * small,
+            Config::Touching => 0.0,
+        };
+        // The wall's foot under the body, and either the pair at the far point `at` or the
+        // wall's point slid along the line by that much (the body near the origin). Body and
+        // foot straddle the chosen place, so that at the largest sizes no coordinate leaves the
+        // range.
+        let (centre, slide) = if (depth - h).abs() > far {
+            ([0.0, 0.0], 0.0) // already far apart across the line
+        } else if rng.uniform() < 0.5 {
+            ([0.0, 0.0], far)
+        } else {
+            (at, 0.0)
+        };
+        let half = 0.5 * (h - depth);
+        let body_at = [centre[0] + half * n[0], centre[1] + half * n[1]];
+        let foot = [
+            centre[0] - half * n[0] - slide * n[1],
+            centre[1] - half * n[1] + slide * n[0],
+        ];
+        let w = Spec::Wall(foot, n);
+        let b = Spec::Body(sb, body_at, ti);
+        return if ki == 3 {
+            (w, b, n)
+        } else {
+            (b, w, [-n[0], -n[1]])
+        };
+    }
+    let lo = 1.0 / ratio;
+    let (si, sj) = (
+        shape(ki, !small_j, lo, 1.0, rng),
+        shape(kj, small_j, lo, 1.0, rng),
+    );
+    let smaller = si.inscribed_radius().min(sj.inscribed_radius());
+    let cj = match cfg {
+        Config::Concentric => [0.0, 0.0],
+        Config::Contained => {
+            // The small one at up to a third of the large one's inscribed radius from its
+            // centre (at ratio ≥ 10 it lies well inside).
+            let big = si.inscribed_radius().max(sj.inscribed_radius());
+            let off = big * rng.range(0.0, 0.3);
+            [off * dir[0], off * dir[1]]
+        }
+        Config::Overlap | Config::Separated | Config::Touching => {
+            let nu = match cfg {
+                Config::Overlap => nu * smaller,
+                Config::Separated => -nu * smaller,
+                _ => 0.0,
+            };
+            let (pi, pj) = (
+                support_point(&si, ti, dir),
+                support_point(&sj, tj, [-dir[0], -dir[1]]),
+            );
+            [pi[0] - pj[0] - nu * dir[0], pi[1] - pj[1] - nu * dir[1]]
+        }
+    };
+    // The two centres straddle `at` (so that at the largest sizes no coordinate leaves the
+    // range); far out they are rounded, and the reference sees the same rounded numbers.
+    let pi = plus([-0.5 * cj[0], -0.5 * cj[1]]);
+    let pj = plus([0.5 * cj[0], 0.5 * cj[1]]);
+    (Spec::Body(si, pi, ti), Spec::Body(sj, pj, tj), dir)
+}
+
+fn angle_between(a: Vec2, b: [f64; 2]) -> f64 {
+    (a.x * b[1] - a.y * b[0])
+        .atan2(a.x * b[0] + a.y * b[1])
+        .abs()
+}
+
+fn ulp(x: f64) -> f64 {
+    let x = x.abs().max(f64::MIN_POSITIVE);
+    f64::from_bits(x.to_bits() + 1) - x
+}
+
+fn same_state(k: ContactState, r: RState) -> bool {
+    matches!(
+        (k, r),
+        (ContactState::Separated, RState::Separated)
+            | (ContactState::Touching, RState::Touching)
+            | (ContactState::Overlap, RState::Overlap)
+            | (ContactState::Deep, RState::Deep(_))
+            | (ContactState::Contained, RState::Contained)
+    )
+}
+
+/// Checks the scaled pair against the unit-size reference scaled by `k`; returns what failed.
+fn check(i: &Spec, j: &Spec, along: [f64; 2], k: f64) -> Result<ContactState, String> {
+    let (ri, rj) = (i.reference(), j.reference());
+    let r: RContact = reference_contact(&ri, &rj);
+    let (si, sj) = (i.scaled(k), j.scaled(k));
+    // Within the accepted ranges.
+    let sizes: Vec<f64> = si.sizes().into_iter().chain(sj.sizes()).collect();
+    for &s in &sizes {
+        assert!(
+            (MIN_SCALE..=MAX_MAGNITUDE).contains(&s),
+            "size {s:e} outside the range"
+        );
+    }
+    for s in [&si, &sj] {
+        for c in s.coordinates() {
+            assert!(c.abs() <= MAX_MAGNITUDE, "coordinate {c:e} beyond 1e40");
+        }
+    }
+    let placed: Vec<Placed> = [(&si, "i"), (&sj, "j")]
+        .iter()
+        .map(|(s, name)| match s.object() {
+            Object::Body { shape, pose } => Placed::Body {
+                path: name.to_string(),
+                shape: Box::leak(Box::new(shape)),
+                position: pose.position,
+            },
+            Object::Wall(w) => Placed::Wall {
+                path: name.to_string(),
+                point: w.point,
+            },
+        })
+        .collect();
+    check_extent(&placed).map_err(|e| format!("generator left the ranges: {e:?}"))?;
+
+    let (oi, oj) = (si.object(), sj.object());
+    let kc: Contact = contact(&oi, &oj).unwrap();
+    let ks: Contact = contact(&oj, &oi).unwrap();
+    // Swap: exact (the normal only when i and j can be told apart: two equal circles with
+    // one centre, or two equal shapes in one pose, are one object twice).
+    let identical = match (oi, oj) {
+        (
+            Object::Body {
+                shape: Shape::Circle { r: a },
+                pose: p,
+            },
+            Object::Body {
+                shape: Shape::Circle { r: b },
+                pose: q,
+            },
+        ) => a == b && p.position == q.position,
+        _ => oi == oj,
+    };
+    let swapped_ok = kc.state == ks.state
+        && match (kc.geometry, ks.geometry) {
+            (None, None) => true,
+            (Some(a), Some(b)) => {
+                a.depth == b.depth && a.point == b.point && (identical || a.normal == -b.normal)
+            }
+            _ => false,
+        };
+    if !swapped_ok {
+        return Err(format!("swap: {kc:?} vs {ks:?}"));
+    }
+    let a_max = i.bounding().max(j.bounding()); // at unit size
+    let along_depth = depth_along(&ri, &rj, along);
+    let decisive = match r.state {
+        RState::Overlap => r.depth.unwrap() >= CLASS_BAR * a_max,
+        RState::Separated => along_depth <= -CLASS_BAR * a_max,
+        RState::Deep(_) | RState::Contained => true,
+        RState::Touching => false,
+    };
+    if decisive && !same_state(kc.state, r.state) {
+        return Err(format!(
+            "state {:?}, reference {:?} (depth {:?})",
+            kc.state, r.state, r.depth
+        ));
+    }
+    let Some(g) = kc.geometry else {
+        return Ok(kc.state);
+    };
+    if !(g.depth.is_finite() && g.point.x.is_finite() && g.point.y.is_finite()) {
+        return Err(format!("non-finite geometry {g:?}"));
+    }
+    let depth = g.depth / k; // back to unit size (exact)
+    match kc.state {
+        ContactState::Overlap | ContactState::Touching => {
+            let (Some(rd), Some(rn), Some(rp)) = (r.depth, r.normal, r.point_rel) else {
+                return Ok(kc.state); // reference touching without a normal (two corners)
+            };
+            let de = (depth - rd).abs() / a_max;
+            let touching = kc.state == ContactState::Touching || r.state == RState::Touching;
+            let ae = angle_between(g.normal, rn);
+            // Two rectangles corner on corner: their chord joins two intersections of edge lines
+            // whose positions carry the rounding of the rotated half-sizes (ε·a_max), so its
+            // normal is known to ~ε·a_max/(chord · sin θ), θ the angle between the edges (the
+            // families' bar for that case; see the README's accuracy section).
+            let angle_bar = match (i, j) {
+                (
+                    Spec::Body(Shape::Rectangle { .. }, _, ti),
+                    Spec::Body(Shape::Rectangle { .. }, _, tj),
+                ) if r.crossings.len() == 2 => {
+                    let [p, q] = [r.crossings[0], r.crossings[1]];
+                    let chord = (q[0] - p[0]).hypot(q[1] - p[1]);
+                    let sin_theta = (tj - ti).sin().abs().min((tj - ti).cos().abs());
+                    ANGLE_BAR.max(2.0 * 16.0 * f64::EPSILON * a_max / (chord * sin_theta))
+                }
+                _ => ANGLE_BAR,
+            };
+            let point = (g.point / k) - Vec2::from(r.origin);
+            let round = 2.0 * ulp(g.point.x / k).max(ulp(g.point.y / k));
+            let pe = (((point - Vec2::from(rp)).norm()) - round).max(0.0) / a_max;
+            if de > DEPTH_BAR || (!touching && (ae > angle_bar || pe > POINT_BAR)) {
+                return Err(format!(
+                    "depth err {de:.2e}, angle err {ae:.2e}, point err {pe:.2e} (state {:?}, \
+                     reference {:?})",
+                    kc.state, r.state
+                ));
+            }
+        }
+        ContactState::Deep | ContactState::Contained => {
+            let rd = depth_along(&ri, &rj, [g.normal.x, g.normal.y]);
+            // A body 1e9 sizes deep in a wall has a depth of 1e9 sizes, which a double holds
+            // only to its own last bits: the bar is 1e-12·a_max beyond two ulps of the depth.
+            let de = ((depth - rd).abs() - 2.0 * ulp(rd)).max(0.0) / a_max;
+            if de > DEPTH_BAR {
+                return Err(format!("fallback depth err {de:.2e} ({:?})", kc.state));
+            }
+        }
+        ContactState::Separated => {}
+    }
+    Ok(kc.state)
+}
+
+#[test]
+fn every_pair_kind_is_right_at_the_extremes_of_the_accepted_ranges() {
+    let names = ["circle", "ellipse", "rectangle", "wall"];
+    let mut rng = Rng(0x0E57_0016);
+    let mut failures = Vec::new();
+    let mut counts = std::collections::BTreeMap::new();
+    let mut total = 0;
+    for ki in 0..4 {
+        for kj in 0..4 {
+            if ki == 3 && kj == 3 {
+                continue;
+            }
+            for ratio in [1.0, 1e3, 1e6] {
+                // The scales: the smaller size at ~1e-40 (the smallest accepted), sizes of
+                // order one, the larger size at ~5e39 (below the largest, 1e40).
+                let small = 2f64.powi((ratio * MIN_SCALE).log2().ceil() as i32);
+                for k in [small, 1.0, 2f64.powi(132)] {
+                    for cfg in [
+                        Config::Concentric,
+                        Config::Contained,
+                        Config::Overlap,
+                        Config::Separated,
+                        Config::Touching,
+                    ] {
+                        if cfg == Config::Contained && ratio < 10.0 && ki != 3 && kj != 3 {
+                            continue; // equal sizes cannot nest
+                        }
+                        for rep in 0..12 {
+                            let nu = [1e-9, 1e-6, 1e-4, 1e-2, 0.1, 0.5][rep % 6];
+                            // As far out as the ranges allow (1e9 × the smaller size, and
+                            // within 1e40), in units of the unit-size pair; or at the origin.
+                            let reach = (MAX_EXTENT_RATIO / ratio)
+                                .min((0.5 * MAX_MAGNITUDE / k - 1.0).max(0.0));
+                            let far = if rep % 2 == 0 {
+                                0.0
+                            } else {
+                                reach * rng.range(0.5, 0.9)
+                            };
+                            let d = unit(rng.angle());
+                            let at = [far * d[0], far * d[1]];
+                            let (i, j, along) = unit_pair(ki, kj, cfg, ratio, nu, at, &mut rng);
+                            total += 1;
+                            match check(&i, &j, along, k) {
+                                Ok(state) => {
+                                    *counts
+                                        .entry((names[ki], names[kj], state.as_str()))
+                                        .or_insert(0) += 1
+                                }
+                                Err(e) => failures.push(format!(
+                                    "{}–{} {cfg:?} ratio {ratio:e} scale {k:e} ν {nu:e} at {far:e}: \
+                                     {e}\n    i = {:?}\n    j = {:?}",
+                                    names[ki],
+                                    names[kj],
+                                    i.scaled(k),
+                                    j.scaled(k)
+                                )),
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    for ((i, j, s), n) in &counts {
+        println!("{i:>9}–{j:<9} {s:<10} {n}");
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {total} pairs wrong at the extremes; first ones:\n{}",
+        failures.len(),
+        failures
+            .iter()
+            .take(10)
+            .cloned()
+            .collect::<Vec<_>>()
+            .join("\n")
+    );
+}
