@@ -15,6 +15,7 @@
 //! its slots in key order (`adjacency`), so that forces are gathered per body, in parallel,
 //! without two threads writing to the same body.
 
+use super::partner::Sides;
 use crate::contact_law::History;
 use crate::geometry::Vec2;
 use crate::narrow_phase::ContactState;
@@ -42,10 +43,10 @@ pub struct Slot {
     pub active: bool,
     /// Geometry state (overlap, deep, contained, …).
     pub state: ContactState,
-    /// Shear history (T16), dropped when the contact ends.
+    /// Shear and rolling history (T16; Ai et al.'s EPSD), dropped when the contact ends.
     pub history: History,
-    /// Energy stored in the shear spring (lost when the contact opens).
-    pub shear_energy: f64,
+    /// Energy stored in the history springs, shear and rolling (lost when the contact opens).
+    pub history_energy: f64,
 }
 
 impl Slot {
@@ -57,7 +58,7 @@ impl Slot {
             active: false,
             state: ContactState::Separated,
             history: History::default(),
-            shear_energy: 0.0,
+            history_energy: 0.0,
         }
     }
 
@@ -65,6 +66,12 @@ impl Slot {
     #[inline]
     pub fn is_wall(&self) -> bool {
         self.j >= WALL_BASE
+    }
+
+    /// Which side receives `+F` ([`Sides`]).
+    #[inline]
+    pub fn sides(&self) -> Sides {
+        Sides::of_slot(self.i, self.j)
     }
 
     /// The pair's key.
@@ -138,6 +145,9 @@ pub struct ContactExtra {
     pub eta_n: f32,
     pub kt: f32,
     pub eta_t: f32,
+    /// Rolling spring and dashpot (EPSD; zero otherwise).
+    pub kr: f32,
+    pub cr: f32,
 }
 
 /// A contact of this step: its slot and its data (a copy, for reading).
@@ -155,10 +165,16 @@ impl Contact {
     pub fn is_wall(&self) -> bool {
         self.slot.is_wall()
     }
+
+    /// Which side receives `+F` ([`Sides`]).
+    #[inline]
+    pub fn sides(&self) -> Sides {
+        self.slot.sides()
+    }
 }
 
-/// One entry of a body's adjacency: a slot and whether the body receives `+F` (it is the slot's
-/// `j`, or the body of a wall contact) or `−F` (it is the slot's `i` in a body pair).
+/// One entry of a body's adjacency: a slot and whether the body receives `+F` or `−F`
+/// ([`Sides`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Adjacent {
     /// Slot index, with the top bit set when the body receives `−F`.
@@ -198,6 +214,8 @@ pub struct ContactList {
     pub(crate) adjacency: Vec<Adjacent>,
     /// Body positions when the list was built.
     pub(crate) built_at: Vec<Vec2>,
+    /// Wall points when the list was built (moving walls count towards the rebuild).
+    pub(crate) wall_built_at: Vec<Vec2>,
     /// Margin added to the bounding circles at the build.
     pub skin: f64,
     /// Number of builds so far.
@@ -237,7 +255,7 @@ impl ContactList {
     }
 
     /// Replaces the slots by `keys` (sorted, unique), carrying every continuing slot with its
-    /// history; rebuilds each body's adjacency for `n` bodies. Returns the shear-spring energy
+    /// history; rebuilds each body's adjacency for `n` bodies. Returns the history springs' energy
     /// of contacts that were active but are no longer candidates (lost, as when a contact opens).
     pub(crate) fn rebuild_from_keys(&mut self, n: usize, conic: bool) -> f64 {
         let mut lost = 0.0;
@@ -252,7 +270,7 @@ impl ContactList {
         for &(i, j) in &self.keys {
             while old < self.slots.len() && self.slots[old].key() < (i, j) {
                 if self.slots[old].active {
-                    lost += self.slots[old].shear_energy;
+                    lost += self.slots[old].history_energy;
                 }
                 old += 1;
             }
@@ -275,7 +293,7 @@ impl ContactList {
         }
         for s in &self.slots[old..] {
             if s.active {
-                lost += s.shear_energy;
+                lost += s.history_energy;
             }
         }
         std::mem::swap(&mut self.slots, &mut self.rebuilt);
@@ -309,19 +327,16 @@ impl ContactList {
         fill.extend_from_slice(&self.adjacency_start[..n]);
         for (idx, s) in self.slots.iter().enumerate() {
             let idx = idx as u32;
-            if s.is_wall() {
-                let k = s.i as usize;
-                self.adjacency[fill[k] as usize] = Adjacent { packed: idx };
-                fill[k] += 1;
-            } else {
-                let (i, j) = (s.i as usize, s.j as usize);
-                self.adjacency[fill[i] as usize] = Adjacent {
+            let sides = Sides::of_slot(s.i, s.j);
+            if let Some(k) = sides.giving_body() {
+                self.adjacency[fill[k] as usize] = Adjacent {
                     packed: idx | Adjacent::GIVES,
                 };
-                fill[i] += 1;
-                self.adjacency[fill[j] as usize] = Adjacent { packed: idx };
-                fill[j] += 1;
+                fill[k] += 1;
             }
+            let k = sides.receiver;
+            self.adjacency[fill[k] as usize] = Adjacent { packed: idx };
+            fill[k] += 1;
         }
         self.adjacency_fill = fill;
         self.builds += 1;

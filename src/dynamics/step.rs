@@ -31,9 +31,14 @@
 //! [`crate::narrow_phase::ellipse_ellipse`]).
 
 use super::body::Bodies;
-use super::contacts::{ContactData, ContactExtra, Slot, WALL_BASE, WarmStart, reserve_for};
+use super::boundary::{Motion, WallLoad, servo_velocity};
+use super::contacts::{ContactData, ContactExtra, Slot, WarmStart, reserve_for};
+use super::kinematics;
+use super::partner::{Partner, Sides};
 use super::world::{WallSpec, World};
-use crate::contact_law::{AreaKinematics, ContactSpec, EquivalentOverlap, Kinematics, NormalForce};
+use crate::contact_law::{
+    AreaKinematics, ContactSpec, EquivalentOverlap, Kinematics, Law, NormalForce, RollingKinematics,
+};
 use crate::geometry::Shape;
 use crate::geometry::overlap_area::DiskLens;
 use crate::geometry::{Pose, Vec2};
@@ -104,13 +109,13 @@ pub(crate) struct BodyPartial {
 pub(crate) struct SlotPartial {
     contacts: usize,
     elastic: f64,
-    /// Shear-spring energy of contacts that opened this step.
-    lost_shear: f64,
+    /// History springs' energy of contacts that opened this step.
+    lost_history: f64,
     deep: u64,
     contained: u64,
     max_depth_ratio: f64,
-    /// Σ of the change of the shear springs' energy.
-    shear_energy_change: f64,
+    /// Σ of the change of the history springs' energy (shear and rolling).
+    history_energy_change: f64,
 }
 
 /// Keeps the two largest of the values pushed.
@@ -205,9 +210,23 @@ impl World {
             }
         }
         self.last_increments = inc;
+        // Moving walls drift with the bodies; a wall's normal displacement since the list was
+        // built counts like a body's.
+        let mut wall_disp = 0.0f64;
+        for (w, ws) in self.walls.iter_mut().enumerate() {
+            if ws.moves() {
+                ws.wall.point += ws.velocity * dt;
+                if let Some(at) = self.contacts.wall_built_at.get(w) {
+                    wall_disp = wall_disp.max((ws.wall.point - at).dot(&ws.wall.normal).abs());
+                }
+            }
+        }
         // 3. Forces at the new positions (the neighbour list first, if a pair outside it could
-        // now touch: two bodies approach by at most the sum of their displacements).
-        if self.contacts.built_at.len() != n || disp[0] + disp[1] > self.contacts.skin {
+        // now touch: two bodies approach by at most the sum of their displacements, a body and
+        // a wall by the sum of theirs).
+        if self.contacts.built_at.len() != n
+            || disp[0] + disp[1].max(wall_disp) > self.contacts.skin
+        {
             self.rebuild_neighbours();
         }
         let slots = self.compute_slots(dt);
@@ -219,8 +238,22 @@ impl World {
         // Energy the contacts took out during this step. Verlet applies the forces of time level
         // n+1 over the interval centred on it, so their work is taken with the velocities at n+1
         // (after the second kick): the non-elastic forces' power, summed body by body
-        // (Σ_c f·v_rel = Σ_k F_k·v_k + M_k ω_k), less the change of the shear springs' energy.
-        self.energies.dissipated -= bodies_sum.non_elastic_power * dt + slots.shear_energy_change;
+        // (Σ_c f·v_rel = Σ_k F_k·v_k + M_k ω_k − Σ_walls F_w·v_w), less the change of the
+        // history springs' energy. A moving wall does the work F_w·v_w (see `boundary`).
+        if self.walls.iter().any(WallSpec::moves) {
+            let (mut power, mut power_ne) = (0.0, 0.0);
+            for ws in &self.walls {
+                power += ws.load.force.dot(&ws.velocity);
+                power_ne += ws.load.force_non_elastic.dot(&ws.velocity);
+            }
+            self.energies.dissipated -=
+                (bodies_sum.non_elastic_power - power_ne) * dt + slots.history_energy_change;
+            self.energies.boundary_work += power * dt;
+            self.update_servos();
+        } else {
+            self.energies.dissipated -=
+                bodies_sum.non_elastic_power * dt + slots.history_energy_change;
+        }
         self.step = next_step;
         self.time = next_time;
         self.energies.kinetic = bodies_sum.kinetic;
@@ -239,7 +272,18 @@ impl World {
         self.gather_forces(None);
     }
 
-    /// One partial result per chunk of bodies and of slots.
+    /// Sets each servo wall's velocity for the next step from the load of the last force
+    /// evaluation (see [`super::boundary`]).
+    pub(crate) fn update_servos(&mut self) {
+        for k in 0..self.walls.len() {
+            if let Motion::Servo(s) = self.walls[k].motion {
+                self.walls[k].velocity = servo_velocity(&self.walls[k], &s, &self.walls, self.dt);
+            }
+        }
+    }
+
+    /// One partial result per chunk of bodies and of slots (and per wall for each chunk of
+    /// slots: at least one, so that every chunk has its slice).
     fn size_partials(&mut self) {
         let nb = self.bodies.len().div_ceil(BODY_CHUNK);
         if self.body_partials.len() != nb {
@@ -248,6 +292,10 @@ impl World {
         let ns = self.contacts.slots.len().div_ceil(SLOT_CHUNK);
         if self.slot_partials.len() != ns {
             self.slot_partials.resize(ns, SlotPartial::default());
+        }
+        let nw = ns * self.walls.len().max(1);
+        if self.wall_partials.len() != nw {
+            self.wall_partials.resize(nw, WallLoad::default());
         }
     }
 
@@ -273,7 +321,8 @@ impl World {
             let (x, r) = (self.bodies.state[i].pose.position, self.bodies.bound[i]);
             for (w, ws) in self.walls.iter().enumerate() {
                 if ws.wall.signed_distance(x) <= r + skin {
-                    list.keys.push((i as u32, WALL_BASE + w as u32));
+                    list.keys
+                        .push((i as u32, super::contacts::WALL_BASE + w as u32));
                 }
             }
         }
@@ -289,6 +338,9 @@ impl World {
         reserve_for(&mut list.built_at, n);
         list.built_at
             .extend(self.bodies.state.iter().map(|s| s.pose.position));
+        list.wall_built_at.clear();
+        list.wall_built_at
+            .extend(self.walls.iter().map(|w| w.wall.point));
         self.size_partials();
     }
 
@@ -299,36 +351,42 @@ impl World {
     fn compute_slots(&mut self, dt: f64) -> SlotPartial {
         let g = self.gravity.norm();
         self.resolve_uniform_laws(g);
-        let laws = if self.law_cache.is_empty() {
-            None
-        } else {
-            Some(&self.law_cache[..])
+        let cx = SlotContext {
+            bodies: &self.bodies,
+            walls: &self.walls[..],
+            spec: &self.spec,
+            laws: if self.law_cache.is_empty() {
+                None
+            } else {
+                Some(&self.law_cache[..])
+            },
+            g,
+            dt,
         };
-        let bodies = &self.bodies;
-        let walls = &self.walls[..];
-        let spec = &self.spec;
+        let nw = self.walls.len().max(1);
         let list = &mut self.contacts;
         let chunks = list
             .slots
             .par_chunks_mut(SLOT_CHUNK)
             .zip(list.data.par_chunks_mut(SLOT_CHUNK))
-            .zip(self.slot_partials.par_iter_mut());
+            .zip(self.slot_partials.par_iter_mut())
+            .zip(self.wall_partials.par_chunks_mut(nw));
         if list.warm.is_empty() {
-            chunks.for_each(|((slots, data), part)| {
+            chunks.for_each(|(((slots, data), part), loads)| {
                 let mut p = SlotPartial::default();
+                loads.fill(WallLoad::default());
                 for (slot, data) in slots.iter_mut().zip(data) {
-                    let ctx = (bodies, walls, spec, laws, g, dt);
-                    update_slot(slot, data, None, None, ctx, &mut p);
+                    update_slot(slot, data, None, None, cx, &mut p, loads);
                 }
                 *part = p;
             });
         } else {
             chunks.zip(list.warm.par_chunks_mut(SLOT_CHUNK)).for_each(
-                |(((slots, data), part), warm)| {
+                |((((slots, data), part), loads), warm)| {
                     let mut p = SlotPartial::default();
+                    loads.fill(WallLoad::default());
                     for ((slot, data), warm) in slots.iter_mut().zip(data).zip(warm) {
-                        let ctx = (bodies, walls, spec, laws, g, dt);
-                        update_slot(slot, data, None, Some(warm), ctx, &mut p);
+                        update_slot(slot, data, None, Some(warm), cx, &mut p, loads);
                     }
                     *part = p;
                 },
@@ -338,14 +396,22 @@ impl World {
         for p in &self.slot_partials {
             sum.contacts += p.contacts;
             sum.elastic += p.elastic;
-            sum.lost_shear += p.lost_shear;
+            sum.lost_history += p.lost_history;
             sum.deep += p.deep;
             sum.contained += p.contained;
             sum.max_depth_ratio = sum.max_depth_ratio.max(p.max_depth_ratio);
-            sum.shear_energy_change += p.shear_energy_change;
+            sum.history_energy_change += p.history_energy_change;
         }
-        // A contact that opened took its shear spring's energy with it.
-        self.energies.dissipated += sum.lost_shear;
+        // Each wall's load: its contacts' sums, chunk by chunk in order.
+        for (w, ws) in self.walls.iter_mut().enumerate() {
+            let mut load = WallLoad::default();
+            for c in self.wall_partials.chunks(nw) {
+                load.add(&c[w]);
+            }
+            ws.load = load;
+        }
+        // A contact that opened took its history springs' energy with it.
+        self.energies.dissipated += sum.lost_history;
         self.energies.elastic = sum.elastic;
         self.diagnostics.deep_contacts += sum.deep;
         self.diagnostics.contained_contacts += sum.contained;
@@ -361,12 +427,18 @@ impl World {
     pub fn refresh_contact_extras(&mut self) {
         let g = self.gravity.norm();
         self.resolve_uniform_laws(g);
-        let laws = if self.law_cache.is_empty() {
-            None
-        } else {
-            Some(&self.law_cache[..])
+        let cx = SlotContext {
+            bodies: &self.bodies,
+            walls: &self.walls[..],
+            spec: &self.spec,
+            laws: if self.law_cache.is_empty() {
+                None
+            } else {
+                Some(&self.law_cache[..])
+            },
+            g,
+            dt: 0.0,
         };
-        let (bodies, walls, spec) = (&self.bodies, &self.walls[..], &self.spec);
         let list = &mut self.contacts;
         let warm = &list.warm[..];
         list.slots
@@ -379,14 +451,14 @@ impl World {
                     let mut copy = (*slot, ContactData::default());
                     let mut warm_copy = warm.get(c * SLOT_CHUNK + k).copied();
                     if slot.active {
-                        let ctx = (bodies, walls, spec, laws, g, 0.0);
                         update_slot(
                             &mut copy.0,
                             &mut copy.1,
                             Some(extra),
                             warm_copy.as_mut(),
-                            ctx,
+                            cx,
                             &mut p,
+                            &mut [],
                         );
                     } else {
                         *extra = ContactExtra::default();
@@ -404,9 +476,8 @@ impl World {
         let (mut sum_f, mut sum_m, mut count) = (0.0, 0.0, 0usize);
         for c in self.contacts.active() {
             let f = c.data.force.norm();
-            let recv = if c.is_wall() { c.slot.i } else { c.slot.j } as usize;
             sum_f += f;
-            sum_m += f * b.bound[recv];
+            sum_m += f * b.bound[c.sides().receiver];
             count += 1;
         }
         if count == 0 || b.is_empty() {
@@ -427,19 +498,10 @@ impl World {
     /// each wall's once (`law_cache[0]`, `law_cache[1 + w]`) instead of at every contact.
     fn resolve_uniform_laws(&mut self, g: f64) {
         self.law_cache.clear();
-        let per_pair = |s: &ContactSpec| {
-            matches!(
-                s,
-                ContactSpec::Linear {
-                    damping: crate::contact_law::LinearDamping::Restitution(_),
-                    ..
-                }
-            )
-        };
         let Some(rho) = self.uniform_density else {
             return;
         };
-        if per_pair(&self.spec) || self.walls.iter().any(|w| per_pair(&w.spec)) {
+        if self.spec.depends_on_mass() || self.walls.iter().any(|w| w.spec.depends_on_mass()) {
             return;
         }
         self.law_cache
@@ -531,110 +593,85 @@ impl World {
 
 /// What every slot's contact is computed from: the bodies, the walls, the scene's law, the laws
 /// resolved once for the step (if uniform), |g| and the step Δt.
-type SlotContext<'a> = (
-    &'a Bodies,
-    &'a [WallSpec],
-    &'a ContactSpec,
-    Option<&'a [crate::contact_law::Law]>,
-    f64,
-    f64,
-);
+#[derive(Clone, Copy)]
+struct SlotContext<'a> {
+    bodies: &'a Bodies,
+    walls: &'a [WallSpec],
+    spec: &'a ContactSpec,
+    laws: Option<&'a [Law]>,
+    g: f64,
+    dt: f64,
+}
 
 /// One slot's contact: geometry (narrow phase, from the slot's warm start when it has one),
 /// kinematics at the contact point, the law, and the history; an inactive slot drops its
-/// history. `extra`, when given, receives the depth, normal and stiffness.
+/// history. `extra`, when given, receives the depth, normal and stiffness; `loads` (one per
+/// wall, or empty) the sums of each wall's contacts.
 fn update_slot(
     slot: &mut Slot,
     data: &mut ContactData,
     extra: Option<&mut ContactExtra>,
     warm_start: Option<&mut WarmStart>,
-    (b, walls, spec, laws, g, dt): SlotContext,
+    cx: SlotContext,
     p: &mut SlotPartial,
+    loads: &mut [WallLoad],
 ) {
-    let (iu, ju) = (slot.i as usize, slot.j as usize);
-    let wall = slot.is_wall();
-    let governing = if wall {
-        &walls[ju - WALL_BASE as usize].spec
-    } else {
-        spec
+    let SlotContext {
+        bodies: b,
+        walls,
+        spec,
+        laws,
+        g,
+        dt,
+    } = cx;
+    let sides = Sides::of_slot(slot.i, slot.j);
+    let recv = sides.receiver;
+    let governing = match sides.giver {
+        Partner::Wall(w) => &walls[w].spec,
+        Partner::Body(_) => spec,
     };
     let area_law = governing.normal_force() == NormalForce::Area;
     let mut warm = None;
     // Circles take the lean path (no chord: nothing below reads it; both normal-force laws are
     // the spring on the depth for two disks); every other pair the chord contact, with the
     // overlap area under the area law.
-    let lean = match (wall, b.shape[iu], b.shape.get(ju)) {
-        (true, Shape::Circle { r }, _) => {
-            overlap_wall_circle(&walls[ju - WALL_BASE as usize].wall, r, &b.state[iu].pose)
+    let lean = match (sides.giver, b.shape[recv]) {
+        (Partner::Wall(w), Shape::Circle { r }) => {
+            overlap_wall_circle(&walls[w].wall, r, &b.state[recv].pose)
                 .map(|(s, pt, n, d)| (s, pt, n, d, Spring::Depth))
         }
-        (false, Shape::Circle { r: ri }, Some(&Shape::Circle { r: rj })) => {
-            overlap_circle_circle(ri, &b.state[iu].pose, rj, &b.state[ju].pose)
+        (Partner::Body(i), Shape::Circle { r: rj }) if b.is_circle[i] => {
+            let ri = b.shape[i].bounding_radius();
+            overlap_circle_circle(ri, &b.state[i].pose, rj, &b.state[recv].pose)
                 .map(|(s, pt, n, d)| (s, pt, n, d, Spring::Depth))
         }
         _ => {
-            let c = if wall {
-                contact_wall_body_with(
-                    &walls[ju - WALL_BASE as usize].wall,
-                    &b.shape[iu],
-                    &b.state[iu].pose,
+            let c = match sides.giver {
+                Partner::Wall(w) => contact_wall_body_with(
+                    &walls[w].wall,
+                    &b.shape[recv],
+                    &b.state[recv].pose,
                     area_law,
-                )
-            } else {
-                // Conic pairs start from last step's crossings (if the contact lasts).
-                // (Only a separating axis survives a separated step.)
-                let guess = warm_start.as_ref().and_then(|w| w.get());
-                let (c, next, _) = contact_bodies_with(
-                    &b.shape[iu],
-                    &b.state[iu].pose,
-                    &b.shape[ju],
-                    &b.state[ju].pose,
-                    guess,
-                    area_law,
-                );
-                warm = next;
-                c
+                ),
+                Partner::Body(i) => {
+                    // Conic pairs start from last step's crossings (if the contact lasts).
+                    // (Only a separating axis survives a separated step.)
+                    let guess = warm_start.as_ref().and_then(|w| w.get());
+                    let (c, next, _) = contact_bodies_with(
+                        &b.shape[i],
+                        &b.state[i].pose,
+                        &b.shape[recv],
+                        &b.state[recv].pose,
+                        guess,
+                        area_law,
+                    );
+                    warm = next;
+                    c
+                }
             };
-            c.geometry.map(|g| {
-                let spring = match (g.flat, g.area) {
-                    // Flat on flat against a wall: a Winkler foundation (see `FlatOverlap`),
-                    // under either law (against a straight line it is the gradient of its
-                    // energy) — resultant k′A with k′ = k_n/ℓ at the overlap centroid; energy
-                    // k′Aȳ. The spring then acts on δ_s = A/ℓ with energy ½k_n δ_s (2ȳ).
-                    (Some(f), _) if c.state == ContactState::Overlap && (wall || !area_law) => {
-                        let ell = if wall {
-                            face_length(&b.shape[iu])
-                        } else {
-                            0.5 * (face_length(&b.shape[iu]) + face_length(&b.shape[ju]))
-                        };
-                        let ybar = (f.centroid - g.chord.0).dot(&g.normal).abs();
-                        Spring::Winkler(f.area / ell, 2.0 * ybar, f.centroid)
-                    }
-                    // The area potential: between two rectangles, the flat-equivalent overlap;
-                    // otherwise the equal-area disks' lens.
-                    (_, Some(a)) if area_law => {
-                        let flat_pair = !wall
-                            && matches!(
-                                (b.shape[iu], b.shape[ju]),
-                                (Shape::Rectangle { .. }, Shape::Rectangle { .. })
-                            );
-                        let equivalent = if flat_pair {
-                            EquivalentOverlap::Flat(
-                                0.5 * (face_length(&b.shape[iu]) + face_length(&b.shape[ju])),
-                            )
-                        } else {
-                            let far = if wall {
-                                f64::INFINITY
-                            } else {
-                                b.area_radius[ju]
-                            };
-                            EquivalentOverlap::Lens(DiskLens::new(b.area_radius[iu], far))
-                        };
-                        Spring::Area(a, equivalent)
-                    }
-                    _ => Spring::Depth,
-                };
-                (c.state, g.point, g.normal, g.depth, spring)
+            c.geometry.map(|geo| {
+                let spring = spring_of(b, sides, c.state, &geo, area_law);
+                (c.state, geo.point, geo.normal, geo.depth, spring)
             })
         }
     };
@@ -643,7 +680,7 @@ fn update_slot(
         // Separated, or touching without overlap: no force, no history.
         _ => {
             if slot.active {
-                p.lost_shear += slot.shear_energy;
+                p.lost_history += slot.history_energy;
             }
             *slot = Slot::new(slot.i, slot.j);
             if let Some(w) = warm_start {
@@ -670,38 +707,20 @@ fn update_slot(
         Spring::Depth => (geo_point, geo_normal),
     };
     let t_ = Vec2::new(-n_.y, n_.x);
-    // The body that receives +F ("j" of the law) and the one that receives −F.
-    let (recv, give) = if wall { (iu, None) } else { (ju, Some(iu)) };
-    let r_recv = point - b.state[recv].pose.position;
-    let mut v_rel = b.point_velocity(recv, r_recv);
-    let mut inv_m = b.inv_mass[recv];
-    let mut rho = b.density[recv];
-    let mut spin = b.state[recv].omega; // ω_j − ω_i, for the rate of a deep overlap's area
-    if let Some(k) = give {
-        v_rel -= b.point_velocity(k, point - b.state[k].pose.position);
-        inv_m += b.inv_mass[k];
-        rho = 0.5 * (rho + b.density[k]);
-        spin -= b.state[k].omega;
-    }
-    let vn = v_rel.dot(&n_);
+    let rel = kinematics::relative(b, walls, sides, point);
+    let vn = rel.velocity.dot(&n_);
+    let m_eff = 1.0 / rel.inv_mass; // T(13)
+    let law = match laws {
+        Some(l) => l[sides.wall().map_or(0, |w| 1 + w)],
+        None => governing.resolve(spec, rel.density, g, m_eff),
+    };
     // R* only matters to Hertz–Mindlin (T11): a linear scene does not pay for curvatures. The
     // area law takes the equal-area disks' (so that its potential depends on A alone).
     let r_eff = match (governing, &spring) {
         (ContactSpec::HertzMindlin { .. }, Spring::Area(_, EquivalentOverlap::Lens(lens))) => {
-            let (r1, r2) = lens.radii();
-            if r2.is_finite() {
-                r1 * r2 / (r1 + r2)
-            } else {
-                r1
-            }
+            lens.effective_radius()
         }
-        (ContactSpec::HertzMindlin { .. }, _) => {
-            let mut inv_r = 1.0 / b.curvature_radius(recv, -n_);
-            if let Some(k) = give {
-                inv_r += 1.0 / b.curvature_radius(k, n_);
-            }
-            1.0 / inv_r // T(11)
-        }
+        (ContactSpec::HertzMindlin { .. }, _) => kinematics::effective_radius(b, sides, n_),
         (ContactSpec::Linear { .. }, _) => f64::NAN,
     };
     let (spring_depth, energy_depth, area) = match spring {
@@ -712,7 +731,7 @@ fn update_slot(
             Some(AreaKinematics {
                 area: a.area,
                 length: a.length,
-                rate: -a.length * vn + a.couple * spin,
+                rate: -a.length * vn + a.couple * rel.spin,
                 couple: a.couple,
                 equivalent,
             }),
@@ -723,15 +742,20 @@ fn update_slot(
         depth: spring_depth,
         energy_depth,
         vn,
-        vt: v_rel.dot(&t_),
-        m_eff: 1.0 / inv_m, // T(13)
+        vt: rel.velocity.dot(&t_),
+        m_eff,
         r_eff,
         dt,
         area,
-    };
-    let law = match laws {
-        Some(l) => l[if wall { 1 + ju - WALL_BASE as usize } else { 0 }],
-        None => governing.resolve(spec, rho, g, kin.m_eff),
+        spin: rel.spin,
+        rolling: if law.rolling.is_some() {
+            kinematics::rolling(b, sides, point, n_)
+        } else {
+            RollingKinematics {
+                radius: f64::NAN,
+                inertia: f64::NAN,
+            }
+        },
     };
     let mut history = if slot.active {
         slot.history
@@ -743,12 +767,20 @@ fn update_slot(
     let f_ne = n_ * cf.normal_non_elastic + t_ * cf.tangential;
     p.contacts += 1;
     p.elastic += cf.elastic_energy;
-    p.shear_energy_change += cf.shear_energy_change;
-    let scale = b.shape[recv]
-        .inscribed_radius()
-        .min(give.map_or(f64::INFINITY, |k| b.shape[k].inscribed_radius()));
+    p.history_energy_change += cf.history_energy_change;
+    let scale = b.shape[recv].inscribed_radius().min(
+        sides
+            .giving_body()
+            .map_or(f64::INFINITY, |k| b.shape[k].inscribed_radius()),
+    );
     if depth > p.max_depth_ratio * scale {
         p.max_depth_ratio = depth / scale; // divide only when the maximum grows
+    }
+    if let Some(load) = sides.wall().and_then(|w| loads.get_mut(w)) {
+        load.force += f;
+        load.force_non_elastic += f_ne;
+        load.stiffness += cf.kn;
+        load.contacts += 1;
     }
     *slot = Slot {
         i: slot.i,
@@ -756,7 +788,7 @@ fn update_slot(
         active: true,
         state,
         history,
-        shear_energy: cf.shear_energy,
+        history_energy: cf.history_energy,
     };
     if let Some(w) = warm_start {
         w.set(warm);
@@ -776,7 +808,57 @@ fn update_slot(
             eta_n: cf.eta_n as f32,
             kt: cf.kt as f32,
             eta_t: cf.eta_t as f32,
+            kr: cf.kr as f32,
+            cr: cf.cr as f32,
         };
+    }
+}
+
+/// What the normal spring of a contact acts on, from the geometry the narrow phase found (a
+/// chord contact: not two circles).
+fn spring_of(
+    b: &Bodies,
+    sides: Sides,
+    state: ContactState,
+    geo: &crate::narrow_phase::ContactGeometry,
+    area_law: bool,
+) -> Spring {
+    let recv = sides.receiver;
+    let wall = sides.wall().is_some();
+    // The mean face length of a flat pair (a body and a wall: the body's).
+    let face = || match sides.giving_body() {
+        Some(k) => 0.5 * (b.shape[recv].face_length() + b.shape[k].face_length()),
+        None => b.shape[recv].face_length(),
+    };
+    match (geo.flat, geo.area) {
+        // Flat on flat against a wall: a Winkler foundation (see `FlatOverlap`), under either
+        // law (against a straight line it is the gradient of its energy) — resultant k′A with
+        // k′ = k_n/ℓ at the overlap centroid; energy k′Aȳ. The spring then acts on
+        // δ_s = A/ℓ with energy ½k_n δ_s (2ȳ).
+        (Some(f), _) if state == ContactState::Overlap && (wall || !area_law) => {
+            let ybar = (f.centroid - geo.chord.0).dot(&geo.normal).abs();
+            Spring::Winkler(f.area / face(), 2.0 * ybar, f.centroid)
+        }
+        // The area potential: between two rectangles, the flat-equivalent overlap; otherwise
+        // the equal-area disks' lens.
+        (_, Some(a)) if area_law => {
+            let flat_pair = sides.giving_body().is_some_and(|k| {
+                matches!(
+                    (b.shape[k], b.shape[recv]),
+                    (Shape::Rectangle { .. }, Shape::Rectangle { .. })
+                )
+            });
+            let equivalent = if flat_pair {
+                EquivalentOverlap::Flat(face())
+            } else {
+                let far = sides
+                    .giving_body()
+                    .map_or(f64::INFINITY, |k| b.area_radius[k]);
+                EquivalentOverlap::Lens(DiskLens::new(b.area_radius[recv], far))
+            };
+            Spring::Area(a, equivalent)
+        }
+        _ => Spring::Depth,
     }
 }
 
@@ -790,15 +872,6 @@ enum Spring {
     Winkler(f64, f64, Vec2),
     /// The area potential.
     Area(OverlapArea, EquivalentOverlap),
-}
-
-/// The face length ℓ of a flat-sided shape for the Winkler contact: the mean side, `(w + h)/2`,
-/// so that a square pressed flat by δ feels exactly `k_n δ`.
-fn face_length(shape: &crate::geometry::Shape) -> f64 {
-    match *shape {
-        crate::geometry::Shape::Rectangle { w, h } => 0.5 * (w + h),
-        _ => shape.bounding_radius(),
-    }
 }
 
 /// The z component of `a × b`.

@@ -1,17 +1,11 @@
 //! The world: bodies, walls, gravity, the contact law, time, and the running energy account.
 
 use super::body::{Bodies, BodyInit};
+pub use super::boundary::WallSpec;
 use super::broad_phase::Grid;
 use super::contacts::ContactList;
 use crate::contact_law::ContactSpec;
-use crate::geometry::{Vec2, Wall};
-
-/// A wall and the contact parameters of contacts with it (the scene's, or its own overrides).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct WallSpec {
-    pub wall: Wall,
-    pub spec: ContactSpec,
-}
+use crate::geometry::Vec2;
 
 /// Energies of the system, per unit thickness.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -25,10 +19,13 @@ pub struct Energies {
     /// Energy taken out by dashpots and sliding so far (including springs' energy lost when a
     /// contact opens).
     pub dissipated: f64,
+    /// Work done on the bodies by moving walls so far (see [`super::boundary`]).
+    pub boundary_work: f64,
 }
 
 impl Energies {
-    /// Kinetic + potential + elastic + dissipated: constant in exact arithmetic.
+    /// Kinetic + potential + elastic + dissipated: in exact arithmetic, its initial value plus
+    /// the walls' work [`Energies::boundary_work`].
     pub fn total(&self) -> f64 {
         self.kinetic + self.potential + self.elastic + self.dissipated
     }
@@ -70,6 +67,8 @@ pub struct World {
     /// Per-chunk partial results of the parallel passes (see `step`).
     pub(crate) body_partials: Vec<super::step::BodyPartial>,
     pub(crate) slot_partials: Vec<super::step::SlotPartial>,
+    /// Per chunk of slots, per wall: the wall's contacts' sums (see `step`).
+    pub(crate) wall_partials: Vec<super::boundary::WallLoad>,
     /// The density of every body when they all have the same (checked at each list build).
     pub(crate) uniform_density: Option<f64>,
     /// Laws resolved once per step when every pair of a kind has the same (see `step`).
@@ -105,10 +104,12 @@ impl World {
             pair_scratch: Vec::new(),
             body_partials: Vec::new(),
             slot_partials: Vec::new(),
+            wall_partials: Vec::new(),
             uniform_density: None,
             law_cache: Vec::new(),
         };
         w.evaluate_forces();
+        w.update_servos();
         w.energies.kinetic = w.kinetic_energy();
         w.energies.potential = w.potential_energy();
         w
@@ -188,6 +189,7 @@ impl World {
             (
                 "build scratch",
                 held(&c.keys)
+                    + held(&self.wall_partials)
                     + held(&c.rebuilt)
                     + held(&c.rebuilt_warm)
                     + held(&c.built_at)
