@@ -6,10 +6,15 @@
 //!   `M = −μ_r R_r F_n sgn(ω_rel)`, with `ω_rel = ω_j − ω_i` (its opposite on i). It has no
 //!   static state: the torque keeps its full size while ω_rel ≠ 0 and reverses with it, so a
 //!   body that has stopped rolling chatters (ω flips sign every step). dem2d caps the couple so
-//!   that it cannot reverse ω_rel within one step, `|M| ≤ I_r |ω_rel| / Δt` (the moment limiter
-//!   of STAR-CCM+'s constant-torque model, at its full factor 1): a rolling body then comes to
-//!   rest in the step in which it would have reversed, and stays (CDT still cannot hold a body
-//!   on a slope: nothing acts at ω_rel = 0).
+//!   that it cannot reverse ω_rel within one step (a moment limiter, as STAR-CCM+'s
+//!   constant-torque model has): within one step the couple turns the bodies about their
+//!   centroids (the friction force that makes a rolling body pivot about the contact point is a
+//!   spring, tens of steps slower), so the cap is `|M| ≤ I_s |ω_rel| / Δt` with
+//!   `1/I_s = n_i/I_i + n_j/I_j` — centroidal inertias, each divided by the number of contacts
+//!   its body may have (its neighbour-list slots), so that all of a body's contacts braking at
+//!   once still cannot reverse it. A rolling body then comes to rest in about the step in which
+//!   it would have reversed, and stays (CDT still cannot hold a body on a slope: nothing acts at
+//!   ω_rel = 0).
 //! - **EPSD** (`"epsd"`, type C, elastic–plastic spring–dashpot): a rolling spring on the
 //!   relative rotation, `M_k ← M_k − k_r ω_rel Δt` (history, carried like the shear spring and
 //!   dropped when the contact ends), capped at `μ_r R_r F_n` (kept at the cap, like Coulomb's
@@ -64,12 +69,14 @@ pub struct RollingPart {
 }
 
 /// What the rolling part needs to know about a contact besides the normal force: the rolling
-/// radius `R_r` and the rolling inertia `I_r` (the pair's equivalent moment of inertia for a
-/// rotation about the contact point).
+/// radius `R_r`, the rolling inertia `I_r` (the pair's equivalent moment of inertia for a
+/// rotation about the contact point: EPSD's dashpot), and the inertia `I_s` against which the
+/// CDT limiter caps the couple (see the module documentation).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RollingKinematics {
     pub radius: f64,
     pub inertia: f64,
+    pub spin_inertia: f64,
 }
 
 impl RollingPart {
@@ -97,7 +104,7 @@ impl RollingPart {
                 let mut m = limit;
                 if dt > 0.0 {
                     // The limiter: the couple cannot reverse ω_rel within a step.
-                    m = m.min(rk.inertia * spin.abs() / dt);
+                    m = m.min(rk.spin_inertia * spin.abs() / dt);
                 }
                 if spin > 0.0 {
                     -m

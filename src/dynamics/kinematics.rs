@@ -91,26 +91,36 @@ pub fn effective_radius(b: &Bodies, sides: Sides, n: Vec2) -> f64 {
     1.0 / inv_r // T(11)
 }
 
-/// The rolling radius and inertia of a contact at `point` with normal `n` (from the giver to
-/// the receiver): see the module documentation.
-pub fn rolling(b: &Bodies, sides: Sides, point: Vec2, n: Vec2) -> RollingKinematics {
+/// The rolling radius and inertias of a contact at `point` with normal `n` (from the giver to
+/// the receiver): see the module documentation. `slots(k)` is the number of neighbour-list
+/// slots of body k (the CDT limiter's share, see `contact_law::rolling`).
+pub fn rolling(
+    b: &Bodies,
+    sides: Sides,
+    point: Vec2,
+    n: Vec2,
+    slots: impl Fn(usize) -> u32,
+) -> RollingKinematics {
     let side = |k: usize, outward: Vec2| {
         let lever = b.support_distance(k, outward);
         let d2 = (point - b.state[k].pose.position).norm_squared();
-        (lever, b.inertia[k] + b.mass[k] * d2)
+        let share = slots(k).max(1) as f64 * b.inv_inertia[k];
+        (lever, b.inertia[k] + b.mass[k] * d2, share)
     };
-    let (l_r, i_r) = side(sides.receiver, -n);
+    let (l_r, i_r, s_r) = side(sides.receiver, -n);
     match sides.giving_body() {
         Some(k) => {
-            let (l_g, i_g) = side(k, n);
+            let (l_g, i_g, s_g) = side(k, n);
             RollingKinematics {
                 radius: 1.0 / (1.0 / l_r + 1.0 / l_g),
                 inertia: 1.0 / (1.0 / i_r + 1.0 / i_g),
+                spin_inertia: 1.0 / (s_r + s_g),
             }
         }
         None => RollingKinematics {
             radius: l_r,
             inertia: i_r,
+            spin_inertia: 1.0 / s_r,
         },
     }
 }

@@ -32,7 +32,7 @@
 
 use super::body::Bodies;
 use super::boundary::{Motion, WallLoad, servo_velocity};
-use super::contacts::{ContactData, ContactExtra, Slot, WarmStart, reserve_for};
+use super::contacts::{ContactData, ContactExtra, ContactList, Slot, WarmStart, reserve_for};
 use super::kinematics;
 use super::partner::{Partner, Sides};
 use super::world::{WallSpec, World};
@@ -351,6 +351,13 @@ impl World {
     fn compute_slots(&mut self, dt: f64) -> SlotPartial {
         let g = self.gravity.norm();
         self.resolve_uniform_laws(g);
+        let ContactList {
+            slots,
+            data,
+            warm,
+            adjacency_start,
+            ..
+        } = &mut self.contacts;
         let cx = SlotContext {
             bodies: &self.bodies,
             walls: &self.walls[..],
@@ -362,16 +369,15 @@ impl World {
             },
             g,
             dt,
+            adjacency_start,
         };
         let nw = self.walls.len().max(1);
-        let list = &mut self.contacts;
-        let chunks = list
-            .slots
+        let chunks = slots
             .par_chunks_mut(SLOT_CHUNK)
-            .zip(list.data.par_chunks_mut(SLOT_CHUNK))
+            .zip(data.par_chunks_mut(SLOT_CHUNK))
             .zip(self.slot_partials.par_iter_mut())
             .zip(self.wall_partials.par_chunks_mut(nw));
-        if list.warm.is_empty() {
+        if warm.is_empty() {
             chunks.for_each(|(((slots, data), part), loads)| {
                 let mut p = SlotPartial::default();
                 loads.fill(WallLoad::default());
@@ -381,7 +387,7 @@ impl World {
                 *part = p;
             });
         } else {
-            chunks.zip(list.warm.par_chunks_mut(SLOT_CHUNK)).for_each(
+            chunks.zip(warm.par_chunks_mut(SLOT_CHUNK)).for_each(
                 |((((slots, data), part), loads), warm)| {
                     let mut p = SlotPartial::default();
                     loads.fill(WallLoad::default());
@@ -427,6 +433,13 @@ impl World {
     pub fn refresh_contact_extras(&mut self) {
         let g = self.gravity.norm();
         self.resolve_uniform_laws(g);
+        let ContactList {
+            slots,
+            extra,
+            warm,
+            adjacency_start,
+            ..
+        } = &mut self.contacts;
         let cx = SlotContext {
             bodies: &self.bodies,
             walls: &self.walls[..],
@@ -438,12 +451,12 @@ impl World {
             },
             g,
             dt: 0.0,
+            adjacency_start,
         };
-        let list = &mut self.contacts;
-        let warm = &list.warm[..];
-        list.slots
+        let warm = &warm[..];
+        slots
             .par_chunks(SLOT_CHUNK)
-            .zip(list.extra.par_chunks_mut(SLOT_CHUNK))
+            .zip(extra.par_chunks_mut(SLOT_CHUNK))
             .enumerate()
             .for_each(|(c, (slots, extra))| {
                 let mut p = SlotPartial::default();
@@ -601,6 +614,8 @@ struct SlotContext<'a> {
     laws: Option<&'a [Law]>,
     g: f64,
     dt: f64,
+    /// The neighbour list's per-body slot ranges (a body's number of slots).
+    adjacency_start: &'a [u32],
 }
 
 /// One slot's contact: geometry (narrow phase, from the slot's warm start when it has one),
@@ -623,6 +638,7 @@ fn update_slot(
         laws,
         g,
         dt,
+        ..
     } = cx;
     let sides = Sides::of_slot(slot.i, slot.j);
     let recv = sides.receiver;
@@ -749,11 +765,14 @@ fn update_slot(
         area,
         spin: rel.spin,
         rolling: if law.rolling.is_some() {
-            kinematics::rolling(b, sides, point, n_)
+            kinematics::rolling(b, sides, point, n_, |k| {
+                cx.adjacency_start[k + 1] - cx.adjacency_start[k]
+            })
         } else {
             RollingKinematics {
                 radius: f64::NAN,
                 inertia: f64::NAN,
+                spin_inertia: f64::NAN,
             }
         },
     };

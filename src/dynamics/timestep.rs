@@ -134,6 +134,7 @@ pub fn estimate_critical_dt(
         let rk = RollingKinematics {
             radius: r_eff,
             inertia: if b.is_some() { 0.5 * pivot } else { pivot },
+            spin_inertia: bodies.inertia[a],
         };
         // Each part's stiffness and dashpot (Hertz's at an overlap of 1 % of the smallest
         // inscribed radius).
