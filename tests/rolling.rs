@@ -191,3 +191,113 @@ fn epsd_disk_on_a_slope_stays_iff_tan_beta_is_at_most_mu_r() {
         );
     }
 }
+
+/// The energy account `K + P + E_el + D` with a rolling part: an undamped elastic rolling
+/// spring stores and returns what it takes (E_el carries it, D stays near 0); CDT dissipates
+/// what the disk loses. A history spring's work is taken with the velocities at n+1 and its
+/// energy change with those at n+½ (the shear spring's accounting, unchanged): the account of
+/// an elastic history spring then oscillates, without drift, by about `Ω Δt` of the energy in
+/// the oscillation (Ω its frequency) — the bound used.
+#[test]
+fn the_energy_account_closes_with_rolling_resistance() {
+    let undamped = LinearDamping::Dashpots {
+        eta_n: Scaled::Absolute(0.0),
+        eta_s: Scaled::Absolute(0.0),
+    };
+    // EPSD, no dashpot anywhere, a spin small enough that the spring never reaches its cap:
+    // the disk rocks about its contact point, elastically.
+    let epsd = Some(RollingPart {
+        model: RollingModel::Epsd,
+        friction: 0.5,
+        damping: Some(0.0),
+    });
+    let mut w = disk_on_floor(
+        1.0,
+        0.01,
+        Vec2::new(0.0, -G),
+        spec(0.5, epsd, undamped),
+        1e-6,
+    );
+    let e0 = w.energies.total();
+    let k0 = w.energies.kinetic;
+    let (mut worst, mut most_stored) = (0.0f64, 0.0f64);
+    for _ in 0..20_000 {
+        w.step().unwrap();
+        worst = worst.max((w.energies.total() - e0).abs());
+        most_stored = most_stored.max(w.contacts.slots[0].history_energy);
+        assert!(
+            w.contacts.slots[0].history.rolling.abs() < 0.5 * PI * G,
+            "below the cap"
+        );
+    }
+    eprintln!(
+        "EPSD elastic: |ΔE| ≤ {worst:.3e} erg, initial kinetic {k0:.3e}, rolling spring held up to \
+         {most_stored:.3e}, dissipated {:.3e}",
+        w.energies.dissipated
+    );
+    // The stiffest rotation the rolling spring k_r = k_t r² drives: about the centroid,
+    // Ω = √(k_r/I) = √(2k_t/m).
+    let omega_dt = (2.0 * KN / PI).sqrt() * 1e-6;
+    assert!(
+        most_stored > 0.5 * k0,
+        "the spring took the motion's energy: {most_stored}"
+    );
+    assert!(worst < omega_dt * k0, "energy error {worst} of {k0}");
+    assert!(w.energies.dissipated.abs() < omega_dt * k0);
+    // CDT: everything the disk had is dissipated, and the account closes.
+    let s = spec(0.5, rolling(RollingModel::Cdt, 0.05), undamped);
+    let mut w = disk_on_floor(1.0, 20.0, Vec2::new(0.0, -G), s, 1e-5);
+    let e0 = w.energies.total();
+    let k0 = w.energies.kinetic;
+    while w.time < 0.8 {
+        w.step().unwrap();
+    }
+    let e = w.energies;
+    eprintln!(
+        "CDT: kinetic {k0:.4e} → {:.3e}, dissipated {:.6e}, account error {:.2e}",
+        e.kinetic,
+        e.dissipated,
+        e.total() - e0
+    );
+    assert!(e.kinetic < 1e-9 * k0);
+    assert!(((e.total() - e0) / k0).abs() < 1e-4, "{}", e.total() - e0);
+}
+
+/// The rolling keys in a case: on the contact, and overridden per wall like any contact key (a
+/// wall that changes the rolling model does not inherit the scene model's damping; μ_r = 0
+/// switches the rolling part off).
+#[test]
+fn rolling_keys_are_read_and_walls_override_them() {
+    let text = r#"{ "version": 1, "name": "t", "gravity": [0, -980], "dt": 1e-5, "duration": 0.1,
+      "contact": { "model": "linear", "kn_over_rho_g": 36400, "restitution": 0.5, "friction": 0.3,
+                   "rolling_model": "epsd", "rolling_friction": 0.05, "rolling_damping": 0.2 },
+      "walls": [ { "point": [0, 0], "normal": [0, 1] },
+                 { "point": [-5, 0], "normal": [1, 0], "rolling_model": "cdt" },
+                 { "point": [5, 0], "normal": [-1, 0], "rolling_friction": 0 },
+                 { "point": [0, 9], "normal": [0, -1], "rolling_friction": 0.2 } ],
+      "bodies": [ { "shape": {"type": "circle", "r": 1}, "position": [0, 2] } ] }"#;
+    let case = dem2d::scene::Case::from_json(text).unwrap();
+    let epsd = RollingPart {
+        model: RollingModel::Epsd,
+        friction: 0.05,
+        damping: Some(0.2),
+    };
+    assert_eq!(case.contact.rolling(), Some(epsd));
+    assert_eq!(case.walls[0].spec.rolling(), Some(epsd));
+    assert_eq!(
+        case.walls[1].spec.rolling(),
+        Some(RollingPart {
+            model: RollingModel::Cdt,
+            friction: 0.05,
+            damping: None
+        })
+    );
+    assert_eq!(case.walls[2].spec.rolling(), None);
+    assert_eq!(
+        case.walls[3].spec.rolling(),
+        Some(RollingPart {
+            friction: 0.2,
+            ..epsd
+        })
+    );
+}
