@@ -3,7 +3,9 @@
 //!
 //! # Moving walls
 //! A wall's line translates with its velocity `v_w` (cm/s; it does not turn). It drifts with the
-//! bodies, `p ← p + Δt v_w` at the step's drift, so its position has the bodies' time level; the
+//! bodies at the step's drift, so its position has the bodies' time level: at a constant
+//! velocity `p = p₀ + t v_w` exactly (no rounding accumulates), under a servo
+//! `p ← p + Δt v_w`. The
 //! contact law sees the relative velocity of the body's material point and the wall,
 //! `v_body − v_w`, so the dashpots and the shear spring act on the relative motion.
 //!
@@ -24,16 +26,21 @@
 //! - the **control law**: `v_w = G (σ_t − σ) n_w`, capped at `max_speed` (σ below the target:
 //!   the wall advances into the material); the velocity for the next step is set from the
 //!   forces of this one.
-//! - the **gain**: the wall's contacts resist its advance with the stiffness
-//!   `K = Σ_c k_n,c (n_c·n_w)²` (force per unit of wall displacement, with the bodies held), so a
-//!   step moves the stress by `ΔS = −(K/S) G (σ − σ_t) Δt`: the error is multiplied by
-//!   `1 − λ` per step, `λ = G K Δt / S`. The loop is stable for `λ < 2` and without overshoot
-//!   for `λ ≤ 1`. By default dem2d sets `G = α S/(K Δt)` each step with α =
-//!   [`SERVO_RELAXATION`] = 0.5, i.e. λ = ½ (the servo of Itasca's PFC, whose `α` is the same
-//!   relaxation factor): half the error is corrected per step against the contacts' own
-//!   stiffness; the bodies behind them are softer, so the actual λ is smaller. With no
-//!   contact (K = 0) the wall approaches at `max_speed`. A fixed `gain` may be given instead:
-//!   then the case is responsible for `G K Δt/S < 2`.
+//! - the **gain**: the wall's contacts resist its motion with the stiffness
+//!   `K = Σ_c k_n,c` and, through their normal dashpots, `C = Σ_c η_n,c` (per unit of wall
+//!   displacement and of wall speed, with the bodies held). With the error `e = σ_t − σ` the
+//!   stress of the next step is `σ' = (K x' + C v)/S`: moving the wall by `v Δt` adds
+//!   `K v Δt/S`, and the dashpots add `C v/S` at once and withdraw it a step later. So
+//!   `e_{n+1} = (1 − a − c) e_n + c e_{n−1}` with `a = G K Δt/S`, `c = G C/S`, which is stable iff
+//!   `a + 2c < 2` and `c < 1` (the roots of `z² − (1 − a − c) z − c`). dem2d sets, each step,
+//!   `G = α S/(K Δt + 2C)` with α = [`SERVO_RELAXATION`] = ½: then `a + 2c = ½` whatever the
+//!   contacts, the roots are inside `[−¼, 1)`, and without dashpots half the error is corrected
+//!   per step (the servo of Itasca's PFC, whose α is the same relaxation factor, ignores the
+//!   dashpots; with DEM dashpots, `C/Δt` is often ten times K, and that gain would make the wall
+//!   chatter between ±`max_speed`). The bodies behind the contacts are softer than the
+//!   contacts, so the actual loop gain is smaller still. With no contact (K = 0) the wall
+//!   approaches at `max_speed`. A fixed `gain` may be given instead: then the case is
+//!   responsible for `a + 2c < 2`.
 
 use crate::contact_law::ContactSpec;
 use crate::geometry::{Vec2, Wall};
@@ -81,8 +88,9 @@ pub struct WallLoad {
     /// Σ of the forces on the bodies, and of their non-elastic parts.
     pub force: Vec2,
     pub force_non_elastic: Vec2,
-    /// Σ of the contacts' normal stiffness (along the wall normal).
+    /// Σ of the contacts' normal stiffness and normal dashpots (along the wall normal).
     pub stiffness: f64,
+    pub damping: f64,
     /// Number of contacts.
     pub contacts: u32,
 }
@@ -94,6 +102,7 @@ impl WallLoad {
         self.force += o.force;
         self.force_non_elastic += o.force_non_elastic;
         self.stiffness += o.stiffness;
+        self.damping += o.damping;
         self.contacts += o.contacts;
     }
 }
@@ -104,6 +113,8 @@ impl WallLoad {
 pub struct WallSpec {
     /// The wall's line now.
     pub wall: Wall,
+    /// Its point at t = 0.
+    pub start: Vec2,
     pub spec: ContactSpec,
     pub motion: Motion,
     /// Velocity of the current step's drift (zero for a fixed wall).
@@ -127,10 +138,21 @@ impl WallSpec {
         };
         WallSpec {
             wall,
+            start: wall.point,
             spec,
             motion,
             velocity,
             load: WallLoad::default(),
+        }
+    }
+
+    /// Moves the wall over the drift that ends at `time` (a step of `dt`).
+    #[inline]
+    pub fn drift(&mut self, time: f64, dt: f64) {
+        match self.motion {
+            Motion::Fixed => {}
+            Motion::Velocity(v) => self.wall.point = self.start + v * time,
+            Motion::Servo(_) => self.wall.point += self.velocity * dt,
         }
     }
 
@@ -172,7 +194,7 @@ pub fn servo_velocity(wall: &WallSpec, servo: &Servo, walls: &[WallSpec], dt: f6
     let speed = match servo.gain {
         Some(g) => g * error,
         None if wall.load.stiffness > 0.0 => {
-            SERVO_RELAXATION * span / (wall.load.stiffness * dt) * error
+            SERVO_RELAXATION * span / (wall.load.stiffness * dt + 2.0 * wall.load.damping) * error
         }
         None => servo.max_speed.copysign(error),
     };

@@ -215,7 +215,7 @@ impl World {
         let mut wall_disp = 0.0f64;
         for (w, ws) in self.walls.iter_mut().enumerate() {
             if ws.moves() {
-                ws.wall.point += ws.velocity * dt;
+                ws.drift(next_time, dt);
                 if let Some(at) = self.contacts.wall_built_at.get(w) {
                     wall_disp = wall_disp.max((ws.wall.point - at).dot(&ws.wall.normal).abs());
                 }
@@ -799,6 +799,7 @@ fn update_slot(
         load.force += f;
         load.force_non_elastic += f_ne;
         load.stiffness += cf.kn;
+        load.damping += cf.eta_n;
         load.contacts += 1;
     }
     *slot = Slot {
