@@ -1,6 +1,7 @@
 //! Rigid-body dynamics: bodies, the world, the step function, the quiescence criterion and the
 //! critical time step. Reads no files and writes none.
 
+pub mod account;
 pub mod body;
 pub mod boundary;
 pub mod broad_phase;

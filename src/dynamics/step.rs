@@ -30,12 +30,14 @@
 //! start from the last step's crossings or separating axis (see
 //! [`crate::narrow_phase::ellipse_ellipse`]).
 
+use super::account::{Diagnostics, Energies};
 use super::body::Bodies;
+use super::boundary::WallSpec;
 use super::boundary::{Motion, WallLoad, servo_velocity};
+use super::broad_phase::Grid;
 use super::contacts::{ContactData, ContactExtra, ContactList, Slot, WarmStart, reserve_for};
 use super::kinematics;
 use super::partner::{Partner, Sides};
-use super::world::{WallSpec, World};
 use crate::contact_law::{
     AreaKinematics, ContactSpec, EquivalentOverlap, Kinematics, Law, NormalForce, RollingKinematics,
 };
@@ -90,7 +92,7 @@ pub struct StepReport {
 
 /// Per-chunk results of the body passes.
 #[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct BodyPartial {
+struct BodyPartial {
     /// Σ|Δx|, Σ|Δy|, Σ|Δθ| (drift).
     inc: [f64; 3],
     /// The two largest displacements since the neighbour list was built (drift).
@@ -106,7 +108,7 @@ pub(crate) struct BodyPartial {
 
 /// Per-chunk results of the slot passes.
 #[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct SlotPartial {
+struct SlotPartial {
     contacts: usize,
     elastic: f64,
     /// History springs' energy of contacts that opened this step.
@@ -116,6 +118,56 @@ pub(crate) struct SlotPartial {
     max_depth_ratio: f64,
     /// Σ of the change of the history springs' energy (shear and rolling).
     history_energy_change: f64,
+}
+
+/// What a step reads and writes of the world, borrowed from it by [`World::step`]: the stepper
+/// never names the world, which owns it (no import cycle between the two).
+pub(crate) struct Parts<'a> {
+    pub bodies: &'a mut Bodies,
+    pub walls: &'a mut [WallSpec],
+    pub contacts: &'a mut ContactList,
+    pub energies: &'a mut Energies,
+    pub diagnostics: &'a mut Diagnostics,
+    pub gravity: Vec2,
+    pub spec: &'a ContactSpec,
+    pub dt: f64,
+    pub step: &'a mut u64,
+    pub time: &'a mut f64,
+    pub last_increments: &'a mut [f64; 3],
+}
+
+/// The stepper: the scratch the step reuses from step to step (the broad phase's grid and pair
+/// list, the per-chunk partial sums of the parallel passes, the laws resolved once per step).
+/// Nothing in it is state: a world rebuilt from its bodies and contacts steps the same.
+#[derive(Clone, Debug, Default)]
+pub struct Stepper {
+    grid: Grid,
+    /// Scratch of the neighbour-list build (the grid's body pairs).
+    pair_scratch: Vec<(u32, u32)>,
+    /// Per-chunk partial results of the parallel passes.
+    body_partials: Vec<BodyPartial>,
+    slot_partials: Vec<SlotPartial>,
+    /// Per chunk of slots, per wall: the wall's contacts' sums.
+    wall_partials: Vec<WallLoad>,
+    /// The density of every body when they all have the same (checked at each list build).
+    uniform_density: Option<f64>,
+    /// Laws resolved once per step when every pair of a kind has the same.
+    law_cache: Vec<Law>,
+}
+
+impl Stepper {
+    /// Heap bytes of the grid, and of the build's and the passes' scratch.
+    pub(crate) fn heap_bytes(&self) -> (usize, usize) {
+        let held = |cap: usize, size: usize| cap * size;
+        (
+            self.grid.heap_bytes(),
+            held(self.pair_scratch.capacity(), 8)
+                + held(
+                    self.wall_partials.capacity(),
+                    std::mem::size_of::<WallLoad>(),
+                ),
+        )
+    }
 }
 
 /// Keeps the two largest of the values pushed.
@@ -129,15 +181,15 @@ fn top_two(t: &mut [f64; 2], d: f64) {
     }
 }
 
-impl World {
+impl Stepper {
     /// Advances the world by one time step (see the module documentation for the stages).
-    pub fn step(&mut self) -> Result<StepReport, Blowup> {
-        let dt = self.dt;
+    pub(crate) fn step(&mut self, wd: &mut Parts) -> Result<StepReport, Blowup> {
+        let dt = wd.dt;
         let h = 0.5 * dt;
-        let n = self.bodies.len();
-        let next_step = self.step + 1;
+        let n = wd.bodies.len();
+        let next_step = *wd.step + 1;
         let next_time = next_step as f64 * dt;
-        self.size_partials();
+        self.size_partials(wd);
         // 1.–2. Kick to the half step and drift, chunk by chunk.
         {
             let Bodies {
@@ -148,8 +200,8 @@ impl World {
                 inv_mass,
                 inv_inertia,
                 ..
-            } = &mut self.bodies;
-            let built_at = &self.contacts.built_at;
+            } = &mut *wd.bodies;
+            let built_at = &wd.contacts.built_at;
             let fresh = built_at.len() == n;
             state
                 .par_chunks_mut(BODY_CHUNK)
@@ -209,14 +261,14 @@ impl World {
                 *v /= n as f64;
             }
         }
-        self.last_increments = inc;
+        *wd.last_increments = inc;
         // Moving walls drift with the bodies; a wall's normal displacement since the list was
         // built counts like a body's.
         let mut wall_disp = 0.0f64;
-        for (w, ws) in self.walls.iter_mut().enumerate() {
+        for (k, ws) in wd.walls.iter_mut().enumerate() {
             if ws.moves() {
                 ws.drift(next_time, dt);
-                if let Some(at) = self.contacts.wall_built_at.get(w) {
+                if let Some(at) = wd.contacts.wall_built_at.get(k) {
                     wall_disp = wall_disp.max((ws.wall.point - at).dot(&ws.wall.normal).abs());
                 }
             }
@@ -224,14 +276,12 @@ impl World {
         // 3. Forces at the new positions (the neighbour list first, if a pair outside it could
         // now touch: two bodies approach by at most the sum of their displacements, a body and
         // a wall by the sum of theirs).
-        if self.contacts.built_at.len() != n
-            || disp[0] + disp[1].max(wall_disp) > self.contacts.skin
-        {
-            self.rebuild_neighbours();
+        if wd.contacts.built_at.len() != n || disp[0] + disp[1].max(wall_disp) > wd.contacts.skin {
+            self.rebuild_neighbours(wd);
         }
-        let slots = self.compute_slots(dt);
+        let slots = self.compute_slots(wd, dt);
         // 4. Kick to the full step, gathering each body's forces.
-        let bodies_sum = self.gather_forces(Some(h));
+        let bodies_sum = self.gather_forces(wd, Some(h));
         if let Some(body) = bodies_sum.bad {
             return Err(blowup(body, "velocity"));
         }
@@ -240,24 +290,24 @@ impl World {
         // (after the second kick): the non-elastic forces' power, summed body by body
         // (Σ_c f·v_rel = Σ_k F_k·v_k + M_k ω_k − Σ_walls F_w·v_w), less the change of the
         // history springs' energy. A moving wall does the work F_w·v_w (see `boundary`).
-        if self.walls.iter().any(WallSpec::moves) {
+        if wd.walls.iter().any(WallSpec::moves) {
             let (mut power, mut power_ne) = (0.0, 0.0);
-            for ws in &self.walls {
+            for ws in wd.walls.iter() {
                 power += ws.load.force.dot(&ws.velocity);
                 power_ne += ws.load.force_non_elastic.dot(&ws.velocity);
             }
-            self.energies.dissipated -=
+            wd.energies.dissipated -=
                 (bodies_sum.non_elastic_power - power_ne) * dt + slots.history_energy_change;
-            self.energies.boundary_work += power * dt;
-            self.update_servos();
+            wd.energies.boundary_work += power * dt;
+            Self::update_servos(wd);
         } else {
-            self.energies.dissipated -=
+            wd.energies.dissipated -=
                 bodies_sum.non_elastic_power * dt + slots.history_energy_change;
         }
-        self.step = next_step;
-        self.time = next_time;
-        self.energies.kinetic = bodies_sum.kinetic;
-        self.energies.potential = bodies_sum.potential;
+        *wd.step = next_step;
+        *wd.time = next_time;
+        wd.energies.kinetic = bodies_sum.kinetic;
+        wd.energies.potential = bodies_sum.potential;
         Ok(StepReport {
             increments: inc,
             contacts: slots.contacts,
@@ -265,35 +315,35 @@ impl World {
     }
 
     /// Evaluates the forces of the current configuration without advancing (used at t = 0).
-    pub fn evaluate_forces(&mut self) {
-        self.size_partials();
-        self.rebuild_neighbours();
-        self.compute_slots(0.0);
-        self.gather_forces(None);
+    pub(crate) fn evaluate_forces(&mut self, wd: &mut Parts) {
+        self.size_partials(wd);
+        self.rebuild_neighbours(wd);
+        self.compute_slots(wd, 0.0);
+        self.gather_forces(wd, None);
     }
 
     /// Sets each servo wall's velocity for the next step from the load of the last force
     /// evaluation (see [`super::boundary`]).
-    pub(crate) fn update_servos(&mut self) {
-        for k in 0..self.walls.len() {
-            if let Motion::Servo(s) = self.walls[k].motion {
-                self.walls[k].velocity = servo_velocity(&self.walls[k], &s, &self.walls, self.dt);
+    pub(crate) fn update_servos(wd: &mut Parts) {
+        for k in 0..wd.walls.len() {
+            if let Motion::Servo(s) = wd.walls[k].motion {
+                wd.walls[k].velocity = servo_velocity(&wd.walls[k], &s, wd.walls, wd.dt);
             }
         }
     }
 
     /// One partial result per chunk of bodies and of slots (and per wall for each chunk of
     /// slots: at least one, so that every chunk has its slice).
-    fn size_partials(&mut self) {
-        let nb = self.bodies.len().div_ceil(BODY_CHUNK);
+    fn size_partials(&mut self, wd: &Parts) {
+        let nb = wd.bodies.len().div_ceil(BODY_CHUNK);
         if self.body_partials.len() != nb {
             self.body_partials.resize(nb, BodyPartial::default());
         }
-        let ns = self.contacts.slots.len().div_ceil(SLOT_CHUNK);
+        let ns = wd.contacts.slots.len().div_ceil(SLOT_CHUNK);
         if self.slot_partials.len() != ns {
             self.slot_partials.resize(ns, SlotPartial::default());
         }
-        let nw = ns * self.walls.len().max(1);
+        let nw = ns * wd.walls.len().max(1);
         if self.wall_partials.len() != nw {
             self.wall_partials.resize(nw, WallLoad::default());
         }
@@ -301,15 +351,15 @@ impl World {
 
     /// Rebuilds the neighbour list from the current positions (body pairs from the grid, then
     /// each body's walls after its body partners: key order), carrying histories over.
-    pub(crate) fn rebuild_neighbours(&mut self) {
-        let n = self.bodies.len();
-        let max_bound = self.bodies.bound.iter().copied().fold(0.0f64, f64::max);
+    pub(crate) fn rebuild_neighbours(&mut self, wd: &mut Parts) {
+        let n = wd.bodies.len();
+        let max_bound = wd.bodies.bound.iter().copied().fold(0.0f64, f64::max);
         let skin = SKIN_FRACTION * max_bound;
-        let d0 = self.bodies.density.first().copied();
-        self.uniform_density = d0.filter(|&d| self.bodies.density.iter().all(|&x| x == d));
-        let list = &mut self.contacts;
+        let d0 = wd.bodies.density.first().copied();
+        self.uniform_density = d0.filter(|&d| wd.bodies.density.iter().all(|&x| x == d));
+        let list = &mut *wd.contacts;
         list.skin = skin;
-        self.grid.pairs(&self.bodies, skin, &mut self.pair_scratch);
+        self.grid.pairs(wd.bodies, skin, &mut self.pair_scratch);
         list.keys.clear();
         reserve_for(&mut list.keys, self.pair_scratch.len() + n);
         let mut next = 0;
@@ -318,8 +368,8 @@ impl World {
                 list.keys.push(self.pair_scratch[next]);
                 next += 1;
             }
-            let (x, r) = (self.bodies.state[i].pose.position, self.bodies.bound[i]);
-            for (w, ws) in self.walls.iter().enumerate() {
+            let (x, r) = (wd.bodies.state[i].pose.position, wd.bodies.bound[i]);
+            for (w, ws) in wd.walls.iter().enumerate() {
                 if ws.wall.signed_distance(x) <= r + skin {
                     list.keys
                         .push((i as u32, super::contacts::WALL_BASE + w as u32));
@@ -327,41 +377,41 @@ impl World {
             }
         }
         // Conic pairs (circle–ellipse, ellipse–ellipse) carry warm starts; others need none.
-        let conic = self
+        let conic = wd
             .bodies
             .shape
             .iter()
             .any(|s| matches!(s, Shape::Ellipse { .. }));
         let lost = list.rebuild_from_keys(n, conic);
-        self.energies.dissipated += lost;
+        wd.energies.dissipated += lost;
         list.built_at.clear();
         reserve_for(&mut list.built_at, n);
         list.built_at
-            .extend(self.bodies.state.iter().map(|s| s.pose.position));
+            .extend(wd.bodies.state.iter().map(|s| s.pose.position));
         list.wall_built_at.clear();
         list.wall_built_at
-            .extend(self.walls.iter().map(|w| w.wall.point));
-        self.size_partials();
+            .extend(wd.walls.iter().map(|w| w.wall.point));
+        self.size_partials(wd);
     }
 
     /// Every slot's contact for the current positions and velocities, in parallel; `dt` is the
     /// step just drifted over (0 at the start), over which the shear displacement is integrated
     /// (T16). Adds the shear energy of contacts that opened to the dissipated energy and sets the
     /// elastic energy and the diagnostics; returns the sums.
-    fn compute_slots(&mut self, dt: f64) -> SlotPartial {
-        let g = self.gravity.norm();
-        self.resolve_uniform_laws(g);
+    fn compute_slots(&mut self, wd: &mut Parts, dt: f64) -> SlotPartial {
+        let g = wd.gravity.norm();
+        self.resolve_uniform_laws(wd, g);
         let ContactList {
             slots,
             data,
             warm,
             adjacency_start,
             ..
-        } = &mut self.contacts;
+        } = &mut *wd.contacts;
         let cx = SlotContext {
-            bodies: &self.bodies,
-            walls: &self.walls[..],
-            spec: &self.spec,
+            bodies: &*wd.bodies,
+            walls: &wd.walls[..],
+            spec: wd.spec,
             laws: if self.law_cache.is_empty() {
                 None
             } else {
@@ -371,7 +421,7 @@ impl World {
             dt,
             adjacency_start,
         };
-        let nw = self.walls.len().max(1);
+        let nw = wd.walls.len().max(1);
         let chunks = slots
             .par_chunks_mut(SLOT_CHUNK)
             .zip(data.par_chunks_mut(SLOT_CHUNK))
@@ -409,7 +459,7 @@ impl World {
             sum.history_energy_change += p.history_energy_change;
         }
         // Each wall's load: its contacts' sums, chunk by chunk in order.
-        for (w, ws) in self.walls.iter_mut().enumerate() {
+        for (w, ws) in wd.walls.iter_mut().enumerate() {
             let mut load = WallLoad::default();
             for c in self.wall_partials.chunks(nw) {
                 load.add(&c[w]);
@@ -417,12 +467,11 @@ impl World {
             ws.load = load;
         }
         // A contact that opened took its history springs' energy with it.
-        self.energies.dissipated += sum.lost_history;
-        self.energies.elastic = sum.elastic;
-        self.diagnostics.deep_contacts += sum.deep;
-        self.diagnostics.contained_contacts += sum.contained;
-        self.diagnostics.max_depth_ratio =
-            self.diagnostics.max_depth_ratio.max(sum.max_depth_ratio);
+        wd.energies.dissipated += sum.lost_history;
+        wd.energies.elastic = sum.elastic;
+        wd.diagnostics.deep_contacts += sum.deep;
+        wd.diagnostics.contained_contacts += sum.contained;
+        wd.diagnostics.max_depth_ratio = wd.diagnostics.max_depth_ratio.max(sum.max_depth_ratio);
         sum
     }
 
@@ -430,20 +479,20 @@ impl World {
     /// state. The step does not store them (it would stream them to memory every step for a
     /// report made every output interval): this evaluates every slot again on a copy — its
     /// history untouched, no time elapsing (Δt = 0) — and keeps only the extras.
-    pub fn refresh_contact_extras(&mut self) {
-        let g = self.gravity.norm();
-        self.resolve_uniform_laws(g);
+    pub(crate) fn refresh_contact_extras(&mut self, wd: &mut Parts) {
+        let g = wd.gravity.norm();
+        self.resolve_uniform_laws(wd, g);
         let ContactList {
             slots,
             extra,
             warm,
             adjacency_start,
             ..
-        } = &mut self.contacts;
+        } = &mut *wd.contacts;
         let cx = SlotContext {
-            bodies: &self.bodies,
-            walls: &self.walls[..],
-            spec: &self.spec,
+            bodies: &*wd.bodies,
+            walls: &wd.walls[..],
+            spec: wd.spec,
             laws: if self.law_cache.is_empty() {
                 None
             } else {
@@ -480,57 +529,31 @@ impl World {
             });
     }
 
-    /// The unbalanced-force ratio of PFC and Yade — mean |net force| over bodies divided by
-    /// mean |contact force| over contacts — and the same for moments (contact force × the
-    /// receiving body's bounding radius); 0 without contacts. Computed on demand from the last
-    /// evaluation (it costs a square root per contact and per body).
-    pub fn unbalanced_ratios(&self) -> (f64, f64) {
-        let b = &self.bodies;
-        let (mut sum_f, mut sum_m, mut count) = (0.0, 0.0, 0usize);
-        for c in self.contacts.active() {
-            let f = c.data.force.norm();
-            sum_f += f;
-            sum_m += f * b.bound[c.sides().receiver];
-            count += 1;
-        }
-        if count == 0 || b.is_empty() {
-            return (0.0, 0.0);
-        }
-        let n = b.len() as f64;
-        let net_f = b.force.iter().map(|f| f.norm()).sum::<f64>() / n;
-        let net_m = b.torque.iter().map(|m| m.abs()).sum::<f64>() / n;
-        let (mean_f, mean_m) = (sum_f / count as f64, sum_m / count as f64);
-        (
-            if mean_f > 0.0 { net_f / mean_f } else { 0.0 },
-            if mean_m > 0.0 { net_m / mean_m } else { 0.0 },
-        )
-    }
-
     /// When every pair of a kind has the same law — one density for all bodies, and no law that
     /// depends on the pair's mass (restitution-tuned dashpots) — resolves the body–body law and
     /// each wall's once (`law_cache[0]`, `law_cache[1 + w]`) instead of at every contact.
-    fn resolve_uniform_laws(&mut self, g: f64) {
+    fn resolve_uniform_laws(&mut self, wd: &Parts, g: f64) {
         self.law_cache.clear();
         let Some(rho) = self.uniform_density else {
             return;
         };
-        if self.spec.depends_on_mass() || self.walls.iter().any(|w| w.spec.depends_on_mass()) {
+        if wd.spec.depends_on_mass() || wd.walls.iter().any(|w| w.spec.depends_on_mass()) {
             return;
         }
         self.law_cache
-            .push(self.spec.resolve(&self.spec, rho, g, f64::NAN));
-        for w in &self.walls {
+            .push(wd.spec.resolve(wd.spec, rho, g, f64::NAN));
+        for w in wd.walls.iter() {
             self.law_cache
-                .push(w.spec.resolve(&self.spec, rho, g, f64::NAN));
+                .push(w.spec.resolve(wd.spec, rho, g, f64::NAN));
         }
     }
 
     /// Each body's force and moment: gravity (T3) and its contacts' (T4, T22), gathered in key
     /// order. With `kick = Some(h)`, then `v += h F/m`, `ω += h M/I` (the second half-kick) and
     /// the sums of the body pass (net force and moment, energies, first non-finite body).
-    fn gather_forces(&mut self, kick: Option<f64>) -> BodyPartial {
-        let gravity = self.gravity;
-        let list = &self.contacts;
+    fn gather_forces(&mut self, wd: &mut Parts, kick: Option<f64>) -> BodyPartial {
+        let gravity = wd.gravity;
+        let list = &*wd.contacts;
         let (data, start, adjacency) = (
             &list.data[..],
             &list.adjacency_start[..],
@@ -545,7 +568,7 @@ impl World {
             inv_mass,
             inv_inertia,
             ..
-        } = &mut self.bodies;
+        } = &mut *wd.bodies;
         force
             .par_chunks_mut(BODY_CHUNK)
             .zip(torque.par_chunks_mut(BODY_CHUNK))
