@@ -301,3 +301,66 @@ fn rolling_keys_are_read_and_walls_override_them() {
         })
     );
 }
+
+/// Runs a case until P's criterion holds (the time at rest) or `limit` s.
+fn rest_time(case: &dem2d::scene::Case, limit: f64) -> (World, Option<f64>) {
+    let mut w = case.build_world();
+    let mut q = case.quiescence_criterion().expect("quiescence");
+    while w.time < limit {
+        let r = w.step().unwrap();
+        if let Some(s) = q.observe(w.step, &r.increments) {
+            return (w, Some(s as f64 * case.dt));
+        }
+    }
+    (w, None)
+}
+
+/// P Fig. 3: without rolling resistance the thrown circle rolls on and the ellipse rocks on for
+/// ever (README); with EPSD's μ_r = 0.05 both come to rest within the case's 3 s.
+#[test]
+fn the_thrown_circle_and_ellipse_of_p_fig_3_come_to_rest_with_rolling_resistance() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases");
+    for name in ["throw_circle", "throw_ellipse"] {
+        let text = std::fs::read_to_string(root.join(format!("{name}.json"))).unwrap();
+        let case = dem2d::scene::Case::from_json(&text).unwrap();
+        let (_, never) = rest_time(&case, case.duration);
+        assert_eq!(never, None, "{name} without rolling resistance");
+        let rolling = case.clone().with_rolling(rolling(RollingModel::Epsd, 0.05));
+        let (w, at) = rest_time(&rolling, case.duration);
+        eprintln!(
+            "{name}, EPSD μ_r = 0.05: at rest at t = {at:?} s, x = {:.2} cm",
+            w.bodies.state[0].pose.position.x
+        );
+        assert!(at.is_some(), "{name} comes to rest");
+    }
+}
+
+/// The angle of repose of a small heap (100 disks released from a column by a withdrawing wall,
+/// `examples/repose.rs`'s protocol without the settling) rises with μ_r.
+#[test]
+fn the_angle_of_repose_of_a_heap_rises_with_rolling_friction() {
+    use dem2d::dynamics::analysis::heap_surface;
+    use dem2d::scene::generate::ColumnSpec;
+    let column = ColumnSpec {
+        n: 100,
+        width: 12.5,
+        seed: 5,
+        friction: 0.5,
+    };
+    let bodies = column.lattice_bodies();
+    let mut angles = Vec::new();
+    for mu_r in [0.0, 0.1, 0.3] {
+        let text = column.case_json("repose", &bodies, 100.0, rolling(RollingModel::Epsd, mu_r));
+        let case = dem2d::scene::Case::from_json(&text).unwrap();
+        let (w, at) = rest_time(&case, 2.5);
+        let (angle, h, toe) = heap_surface(&w, 2.0);
+        eprintln!(
+            "μ_r = {mu_r}: angle {angle:.1}°, height {h:.1} cm, toe {toe:.1} cm, at rest {at:?}"
+        );
+        angles.push(angle);
+    }
+    assert!(
+        angles[1] > angles[0] + 2.0 && angles[2] > angles[1] + 2.0,
+        "{angles:?}"
+    );
+}

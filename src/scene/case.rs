@@ -232,6 +232,12 @@ impl Case {
         self
     }
 
+    /// P's quiescence criterion as the case states it (None: no stop at rest).
+    pub fn quiescence_criterion(&self) -> Option<crate::dynamics::Quiescence> {
+        self.quiescence
+            .map(|q| crate::dynamics::Quiescence::new(q, self.quiescence_window))
+    }
+
     /// Number of steps the duration takes (rounded to the nearest step).
     pub fn steps(&self) -> u64 {
         (self.duration / self.dt).round().max(1.0) as u64
