@@ -23,24 +23,24 @@
 //!   given in the case (`"span": 10`), or `"span": [a, b]`: the length of this wall's line
 //!   between the lines of walls a and b, measured from their current positions (the box's
 //!   current width for the top of a box whose sides are walls a and b);
-//! - the **control law**: `v_w = G (σ_t − σ) n_w`, capped at `max_speed` (σ below the target:
-//!   the wall advances into the material); the velocity for the next step is set from the
-//!   forces of this one.
-//! - the **gain**: the wall's contacts resist its motion with the stiffness
-//!   `K = Σ_c k_n,c` and, through their normal dashpots, `C = Σ_c η_n,c` (per unit of wall
-//!   displacement and of wall speed, with the bodies held). With the error `e = σ_t − σ` the
-//!   stress of the next step is `σ' = (K x' + C v)/S`: moving the wall by `v Δt` adds
-//!   `K v Δt/S`, and the dashpots add `C v/S` at once and withdraw it a step later. So
-//!   `e_{n+1} = (1 − a − c) e_n + c e_{n−1}` with `a = G K Δt/S`, `c = G C/S`, which is stable iff
-//!   `a + 2c < 2` and `c < 1` (the roots of `z² − (1 − a − c) z − c`). dem2d sets, each step,
-//!   `G = α S/(K Δt + 2C)` with α = [`SERVO_RELAXATION`] = ½: then `a + 2c = ½` whatever the
-//!   contacts, the roots are inside `[−¼, 1)`, and without dashpots half the error is corrected
-//!   per step (the servo of Itasca's PFC, whose α is the same relaxation factor, ignores the
-//!   dashpots; with DEM dashpots, `C/Δt` is often ten times K, and that gain would make the wall
-//!   chatter between ±`max_speed`). The bodies behind the contacts are softer than the
-//!   contacts, so the actual loop gain is smaller still. With no contact (K = 0) the wall
-//!   approaches at `max_speed`. A fixed `gain` may be given instead: then the case is
-//!   responsible for `a + 2c < 2`.
+//! - the **control law**: `v_w = G (σ_t − σ_el) n_w`, capped at `max_speed` (below the target
+//!   the wall advances into the material), set for the next step from the forces of this one.
+//!   It acts on `σ_el`, the elastic part of σ (the springs' normal forces; at steady state the
+//!   dashpots carry nothing on average, so σ_el = σ): a dashpot answers the wall's own speed at
+//!   once, `C v/S` with `C = Σ_c η_n,c`, and fed back that makes the loop
+//!   `e_{n+1} = (1 − a − c) e_n + c e_{n−1}` (`c = G C/S`), which needs `G < S/C` — a gain so
+//!   small, with DEM dashpots (`C/Δt` is often ten times the contacts' stiffness K), that the
+//!   wall lags 20–40 % behind a dilating sample in a biaxial test.
+//! - the **gain**: the wall's contacts resist its displacement with the stiffness
+//!   `K = Σ_c k_n,c` (with the bodies held), so a step moves σ_el by `K v Δt/S`: with
+//!   `e = σ_t − σ_el`, `e_{n+1} = (1 − a) e_n`, `a = G K Δt/S`, stable for `a < 2` and without
+//!   overshoot for `a ≤ 1`. dem2d sets, each step, `G = α S/(K Δt)` with α =
+//!   [`SERVO_RELAXATION`] (the servo of Itasca's PFC, whose α is the same relaxation factor):
+//!   the error is corrected by the fraction α per step against the contacts' own stiffness;
+//!   the bodies behind them are softer, so the actual `a` is smaller. A wall that must follow a
+//!   moving sample at speed `v` lags by `e = v/G = v K Δt/(α S)`. With no contact (K = 0) the
+//!   wall approaches at `max_speed`. A fixed `gain` may be given instead: then the case is
+//!   responsible for `a < 2`.
 
 use crate::contact_law::ContactSpec;
 use crate::geometry::{Vec2, Wall};
@@ -88,9 +88,8 @@ pub struct WallLoad {
     /// Σ of the forces on the bodies, and of their non-elastic parts.
     pub force: Vec2,
     pub force_non_elastic: Vec2,
-    /// Σ of the contacts' normal stiffness and normal dashpots (along the wall normal).
+    /// Σ of the contacts' normal stiffness (along the wall normal).
     pub stiffness: f64,
-    pub damping: f64,
     /// Number of contacts.
     pub contacts: u32,
 }
@@ -102,7 +101,6 @@ impl WallLoad {
         self.force += o.force;
         self.force_non_elastic += o.force_non_elastic;
         self.stiffness += o.stiffness;
-        self.damping += o.damping;
         self.contacts += o.contacts;
     }
 }
@@ -189,13 +187,12 @@ pub fn span_length(wall: &Wall, span: &Span, walls: &[WallSpec]) -> f64 {
 /// (see the module documentation); `dt` the step.
 pub fn servo_velocity(wall: &WallSpec, servo: &Servo, walls: &[WallSpec], dt: f64) -> Vec2 {
     let span = span_length(&wall.wall, &servo.span, walls);
-    let stress = wall.load.force.dot(&wall.wall.normal) / span;
-    let error = servo.stress - stress;
+    let load = &wall.load;
+    let elastic = (load.force - load.force_non_elastic).dot(&wall.wall.normal) / span;
+    let error = servo.stress - elastic;
     let speed = match servo.gain {
         Some(g) => g * error,
-        None if wall.load.stiffness > 0.0 => {
-            SERVO_RELAXATION * span / (wall.load.stiffness * dt + 2.0 * wall.load.damping) * error
-        }
+        None if load.stiffness > 0.0 => SERVO_RELAXATION * span / (load.stiffness * dt) * error,
         None => servo.max_speed.copysign(error),
     };
     wall.wall.normal * speed.clamp(-servo.max_speed, servo.max_speed)

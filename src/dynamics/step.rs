@@ -822,7 +822,6 @@ fn update_slot(
         load.force += f;
         load.force_non_elastic += f_ne;
         load.stiffness += cf.kn;
-        load.damping += cf.eta_n;
         load.contacts += 1;
     }
     *slot = Slot {

@@ -310,7 +310,7 @@ impl PileSpec {
              At rest when the mean increments per step stay below {q} cm (a mean speed of {v} cm/s) \
              for {QUIESCENCE_WINDOW} steps; at most {duration} s. Written by `{command}`.",
             q = self.quiescence,
-            v = self.quiescence / DT,
+            v = round6(self.quiescence / DT),
             duration = self.duration,
             n = self.n,
             nf = match self.normal_force {
@@ -363,32 +363,37 @@ impl PileSpec {
                 ]),
             ),
         ];
-        // Fields in reading order, one per line; bodies one per line.
-        let mut text = String::from("{\n");
-        for (key, value) in &head {
-            writeln!(text, "  \"{key}\": {value},").expect("string");
-        }
-        text.push_str("  \"bodies\": [\n");
-        for (k, b) in bodies.iter().enumerate() {
-            let shape = match b.shape {
-                Shape::Circle { r } => json!({"type": "circle", "r": r}),
-                Shape::Ellipse { a, b } => json!({"type": "ellipse", "a": a, "b": b}),
-                Shape::Rectangle { w, h } => json!({"type": "rectangle", "w": w, "h": h}),
-            };
-            let body = json!({
-                "shape": shape,
-                "position": [b.position.x, b.position.y],
-                "angle": b.angle,
-                "velocity": [b.velocity.x, b.velocity.y],
-                "omega": b.omega,
-                "density": b.density,
-            });
-            let sep = if k + 1 < bodies.len() { "," } else { "" };
-            writeln!(text, "    {body}{sep}").expect("string");
-        }
-        text.push_str("  ]\n}\n");
-        text
+        case_text_from(&head, bodies)
     }
+}
+
+/// Case-file text: the fields `head` in this order, one per line, then `bodies`, one per line.
+pub fn case_text_from(head: &[(&str, Value)], bodies: &[BodyInit]) -> String {
+    // Fields in reading order, one per line; bodies one per line.
+    let mut text = String::from("{\n");
+    for (key, value) in head {
+        writeln!(text, "  \"{key}\": {value},").expect("string");
+    }
+    text.push_str("  \"bodies\": [\n");
+    for (k, b) in bodies.iter().enumerate() {
+        let shape = match b.shape {
+            Shape::Circle { r } => json!({"type": "circle", "r": r}),
+            Shape::Ellipse { a, b } => json!({"type": "ellipse", "a": a, "b": b}),
+            Shape::Rectangle { w, h } => json!({"type": "rectangle", "w": w, "h": h}),
+        };
+        let body = json!({
+            "shape": shape,
+            "position": [b.position.x, b.position.y],
+            "angle": b.angle,
+            "velocity": [b.velocity.x, b.velocity.y],
+            "omega": b.omega,
+            "density": b.density,
+        });
+        let sep = if k + 1 < bodies.len() { "," } else { "" };
+        writeln!(text, "    {body}{sep}").expect("string");
+    }
+    text.push_str("  ]\n}\n");
+    text
 }
 
 /// A column of disks for the angle of repose (a dam break): `n` disks, radii uniform in
@@ -460,44 +465,34 @@ impl ColumnSpec {
         let rolling_text = rolling.map_or("none".to_string(), |r| {
             format!("{} with μ_r = {}", r.model.as_str(), r.friction)
         });
-        let bodies: Vec<Value> = bodies
-            .iter()
-            .map(|b| {
-                let r = b.shape.bounding_radius();
-                json!({
-                    "shape": {"type": "circle", "r": r},
-                    "position": [b.position.x, b.position.y],
-                    "velocity": [b.velocity.x, b.velocity.y],
-                    "omega": b.omega,
-                    "density": b.density,
-                })
-            })
-            .collect();
-        let v = json!({
-            "version": 1,
-            "name": name,
-            "description": format!(
-                "Angle of repose (examples/repose.rs): {} disks in a column {} cm wide; the right \
-                 wall withdraws at {gate_speed} cm/s and the grains flow out over the floor until \
-                 at rest. Rolling resistance: {rolling_text}.",
-                bodies.len(),
-                self.width
+        let description = format!(
+            "Angle of repose (examples/repose.rs): {} disks in a column {} cm wide; the right wall \
+             withdraws at {gate_speed} cm/s and the grains flow out over the floor until at rest. \
+             Rolling resistance: {rolling_text}.",
+            bodies.len(),
+            self.width
+        );
+        let head: [(&str, Value); 12] = [
+            ("version", json!(1)),
+            ("name", json!(name)),
+            ("description", json!(description)),
+            ("units", json!("cm")),
+            ("gravity", json!([0.0, -G])),
+            ("dt", json!(DT)),
+            ("duration", json!(6.0)),
+            ("quiescence", json!(QUIESCENCE)),
+            ("quiescence_window", json!(QUIESCENCE_WINDOW)),
+            ("output_every", json!(10000)),
+            ("contact", contact),
+            (
+                "walls",
+                json!([
+                    {"point": [0.0, 0.0], "normal": [0.0, 1.0]},
+                    {"point": [0.0, 0.0], "normal": [1.0, 0.0]},
+                    gate,
+                ]),
             ),
-            "units": "cm",
-            "gravity": [0.0, -G],
-            "dt": DT,
-            "duration": 6.0,
-            "quiescence": QUIESCENCE,
-            "quiescence_window": QUIESCENCE_WINDOW,
-            "output_every": 10000,
-            "contact": contact,
-            "walls": [
-                {"point": [0.0, 0.0], "normal": [0.0, 1.0]},
-                {"point": [0.0, 0.0], "normal": [1.0, 0.0]},
-                gate,
-            ],
-            "bodies": bodies,
-        });
-        serde_json::to_string_pretty(&v).expect("JSON") + "\n"
+        ];
+        case_text_from(&head, bodies)
     }
 }
