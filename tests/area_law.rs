@@ -33,6 +33,7 @@ fn spec(normal_force: NormalForce) -> ContactSpec {
         },
         friction: 0.0,
         normal_force,
+        rolling: None,
     }
 }
 

@@ -234,7 +234,7 @@ fn servo_on_pile(n: usize, sigma: f64) -> (World, Vec<f64>, f64) {
         w.step().unwrap();
         let (s, _) = w.walls[3].measured_stress(&w.walls).unwrap();
         stress.push(s);
-        if std::env::var_os("SERVO_TRACE").is_some() && w.step % 500 == 0 {
+        if std::env::var_os("SERVO_TRACE").is_some() && w.step.is_multiple_of(500) {
             eprintln!(
                 "t {:.4} σ {s:.1} y {:.5} v {:.4e} contacts {} K {:.3e}",
                 w.time,

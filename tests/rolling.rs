@@ -90,7 +90,7 @@ fn cdt_disk_rolling_on_a_floor_decelerates_at_two_thirds_mu_r_g_and_stops_at_the
         while w.time < 1.2 * t_stop {
             w.step().unwrap();
             let v = w.bodies.state[0].vel.x;
-            if w.time > 0.1 * t_stop && w.time < 0.9 * t_stop && w.step % 10 == 0 {
+            if w.time > 0.1 * t_stop && w.time < 0.9 * t_stop && w.step.is_multiple_of(10) {
                 ts.push(w.time);
                 vs.push(v);
             }
@@ -144,7 +144,7 @@ fn on_slope(beta: f64, mu_r: f64, time: f64) -> (f64, f64, f64) {
         w.step().unwrap();
         if w.time >= 0.5 * time {
             x_half.get_or_insert(w.bodies.state[0].pose.position.x);
-            if w.step % 10 == 0 {
+            if w.step.is_multiple_of(10) {
                 ts.push(w.time);
                 vs.push(w.bodies.state[0].vel.x);
             }
