@@ -6,13 +6,18 @@
 //!    evaluation, at time level n).
 //! 2. **Drift**: `x_{n+1} = x_n + Δt v_{n+½}`, `θ_{n+1} = θ_n + Δt ω_{n+½}`; the increments
 //!    `|Δx|, |Δy|, |Δθ|` averaged over bodies are P's quiescence measure. Non-finite state stops
-//!    here with the step and the body.
-//! 3. **Forces** `F_{n+1}, M_{n+1}` from the positions `x_{n+1}, θ_{n+1}` and, for the dashpots and
-//!    the shear displacement, the velocities `v_{n+½}, ω_{n+½}` (the latest available; as in
-//!    LAMMPS and LIGGGHTS): broad phase → narrow phase → contact law → `F` and `r × F` on each
-//!    body (T3, T4; `r` from the centroid to the contact point, so the normal force has a moment
-//!    on non-circular bodies), plus gravity (T3).
+//!    here with the step and the body. Moving walls drift to time level n+1 too
+//!    ([`super::boundary`]).
+//! 3. **Forces** `F_{n+1}, M_{n+1}` from the positions `x_{n+1}, θ_{n+1}` and, for the dashpots,
+//!    the shear displacement and the rolling spring, the velocities `v_{n+½}, ω_{n+½}` (the
+//!    latest available; as in LAMMPS and LIGGGHTS) and the walls' drift velocities: neighbour
+//!    list → narrow phase → kinematics at the contact ([`super::kinematics`]) → contact law →
+//!    `F`, `r × F` and the contact's couple on each body (T3, T4, T22; `r` from the centroid to
+//!    the contact point, so the normal force has a moment on non-circular bodies), plus gravity
+//!    (T3); each wall's load is summed.
 //! 4. **Kick**: `v_{n+1} = v_{n+½} + ½Δt F_{n+1}/m`, `ω_{n+1} = ω_{n+½} + ½Δt M_{n+1}/I` (T1).
+//! 5. **Account**: the dissipated energy and the walls' work over the step; the servo walls'
+//!    velocities for the next drift, from their loads.
 //!
 //! For an undamped linear oscillator this scheme is stable for `ωΔt < 2`; with a dashpot of
 //! damping ratio ζ evaluated at the half step, for `ωΔt < 2(√(1+ζ²) − ζ)`
