@@ -255,8 +255,6 @@ pub struct ContactForce {
     /// Rolling stiffness and dashpot now (EPSD; zero otherwise).
     pub kr: f64,
     pub cr: f64,
-    /// True when the Coulomb slider slipped this step (T20).
-    pub sliding: bool,
     /// The part of `normal` that is not the spring's: the dashpot's, or what the clamp
     /// `F_n ≥ 0` withholds. Its work, and the shear force's and the rolling couple's work less
     /// the change of their springs' energy, is what the contact dissipates.
@@ -298,28 +296,38 @@ impl Law {
     /// clamped so that the contact never pulls); the tangential part (T15–T20) with the
     /// damping part's shear dashpot; the rolling part, if any. Elastic energy `e k δ²` (with
     /// `δ²` → `δ·energy_depth`) plus the history springs'.
-    #[inline]
+    #[inline(always)]
     pub fn force(&self, k: &Kinematics, h: &mut History) -> ContactForce {
         let o = k.spring_overlap();
         let s = self.normal.spring(o.depth, k.r_eff);
         let eta_n = self.damping.normal(&s, k.m_eff);
         let spring = o.rho * (s.k * o.depth);
         let fn_ = (spring + eta_n * o.rate).max(0.0); // T(6)
+        let (couple, couple_non_elastic) = o.couple(s.k * o.depth, eta_n);
         let mut out = ContactForce {
             normal: fn_,
-            normal_non_elastic: fn_ - spring,
+            tangential: 0.0,
             elastic_energy: s.energy * s.k * o.depth * o.energy_depth,
             kn: s.tangent * s.k * o.rho * o.rho,
             eta_n: eta_n * o.rho,
-            ..Default::default()
+            kt: 0.0,
+            eta_t: 0.0,
+            kr: 0.0,
+            cr: 0.0,
+            normal_non_elastic: fn_ - spring,
+            history_energy: 0.0,
+            history_energy_change: 0.0,
+            couple,
+            couple_non_elastic,
         };
-        (out.couple, out.couple_non_elastic) = o.couple(s.k * o.depth, eta_n);
-        let kt = self.tangential.stiffness(&s);
-        let eta_t = self.damping.tangential(eta_n);
-        self.tangential.apply(kt, eta_t, k.vt, k.dt, h, &mut out);
-        if let Some(r) = &self.rolling {
-            let zeta = self.damping.ratio(&s, k.m_eff);
-            r.apply(&k.rolling, k.spin, kt, zeta, k.dt, h, &mut out);
+        if self.tangential.friction > 0.0 || self.rolling.is_some() {
+            let kt = self.tangential.stiffness(&s);
+            self.tangential
+                .apply(kt, self.damping.tangential(eta_n), k.vt, k.dt, h, &mut out);
+            if let Some(r) = &self.rolling {
+                let zeta = self.damping.ratio(&s, k.m_eff);
+                r.apply(&k.rolling, k.spin, kt, zeta, k.dt, h, &mut out);
+            }
         }
         out
     }

@@ -49,9 +49,7 @@ impl TangentialPart {
             let before = 0.5 * kt * h.shear * h.shear;
             h.shear += vt * dt; // T(16)
             let trial = -kt * h.shear - eta_t * vt; // T(15)
-            let (ft, sliding) = coulomb(trial, self.friction * out.normal, kt, h);
-            out.tangential = ft;
-            out.sliding = sliding;
+            out.tangential = coulomb(trial, self.friction * out.normal, kt, h);
             let now = 0.5 * kt * h.shear * h.shear;
             out.history_energy += now;
             out.history_energy_change += now - before;
@@ -66,14 +64,14 @@ impl TangentialPart {
 /// `μ F_n` with the trial's sign and the spring is reset to hold exactly that (`δ_t = −F_t/k_t`);
 /// the dashpot then carries nothing. In 2D the direction `v_t/|v_t|` of T21 is a sign, and the
 /// trial force's sign equals −sign(v_t) in steady sliding; using the trial's keeps the force
-/// continuous when `v_t` passes through zero. Returns the force and whether it slipped.
+/// continuous when `v_t` passes through zero. Returns the force.
 #[inline]
-pub(crate) fn coulomb(trial: f64, limit: f64, kt: f64, history: &mut History) -> (f64, bool) {
+pub(crate) fn coulomb(trial: f64, limit: f64, kt: f64, history: &mut History) -> f64 {
     if trial.abs() > limit {
         let f = limit.copysign(trial); // T(20)
         history.shear = if kt > 0.0 { -f / kt } else { 0.0 };
-        (f, true)
+        f
     } else {
-        (trial, false)
+        trial
     }
 }

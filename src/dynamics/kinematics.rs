@@ -40,7 +40,7 @@ use crate::contact_law::RollingKinematics;
 use crate::contact_law::params::pair_density;
 use crate::geometry::Vec2;
 
-/// The relative motion at a contact point and the pair's mass and density.
+/// The relative motion at a contact point and the pair's mass.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Relative {
     /// Velocity of the receiver's material point minus the giver's (a wall's: its velocity).
@@ -49,8 +49,6 @@ pub struct Relative {
     pub spin: f64,
     /// `1/m* = Σ 1/m` (T13; a wall adds nothing).
     pub inv_mass: f64,
-    /// The density the pair's per-ρg parameters are scaled by.
-    pub density: f64,
 }
 
 /// The relative motion of the two sides at `point`.
@@ -60,24 +58,25 @@ pub fn relative(b: &Bodies, walls: &[WallSpec], sides: Sides, point: Vec2) -> Re
     let mut velocity = b.point_velocity(recv, point - b.state[recv].pose.position);
     let mut inv_mass = b.inv_mass[recv];
     let mut spin = b.state[recv].omega;
-    let density = match sides.giver {
+    match sides.giver {
         Partner::Body(k) => {
             velocity -= b.point_velocity(k, point - b.state[k].pose.position);
             inv_mass += b.inv_mass[k];
             spin -= b.state[k].omega;
-            pair_density(b.density[recv], Some(b.density[k]))
         }
-        Partner::Wall(w) => {
-            velocity -= walls[w].velocity;
-            pair_density(b.density[recv], None)
-        }
-    };
+        Partner::Wall(w) => velocity -= walls[w].velocity,
+    }
     Relative {
         velocity,
         spin,
         inv_mass,
-        density,
     }
+}
+
+/// The density the pair's per-ρg parameters are scaled by ([`pair_density`]).
+#[inline]
+pub fn density(b: &Bodies, sides: Sides) -> f64 {
+    pair_density(b.density[sides.receiver], sides.giving_body().map(|k| b.density[k]))
 }
 
 /// Hertz's effective radius `R* = (1/R_i + 1/R_j)⁻¹` (T11) from each body's radius of

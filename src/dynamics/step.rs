@@ -437,7 +437,7 @@ impl Stepper {
                 let mut p = SlotPartial::default();
                 loads.fill(WallLoad::default());
                 for (slot, data) in slots.iter_mut().zip(data) {
-                    update_slot(slot, data, None, None, cx, &mut p, loads);
+                    update_slot(slot, data, None, None, &cx, &mut p, loads);
                 }
                 *part = p;
             });
@@ -447,7 +447,7 @@ impl Stepper {
                     let mut p = SlotPartial::default();
                     loads.fill(WallLoad::default());
                     for ((slot, data), warm) in slots.iter_mut().zip(data).zip(warm) {
-                        update_slot(slot, data, None, Some(warm), cx, &mut p, loads);
+                        update_slot(slot, data, None, Some(warm), &cx, &mut p, loads);
                     }
                     *part = p;
                 },
@@ -523,7 +523,7 @@ impl Stepper {
                             &mut copy.1,
                             Some(extra),
                             warm_copy.as_mut(),
-                            cx,
+                            &cx,
                             &mut p,
                             &mut [],
                         );
@@ -655,7 +655,7 @@ fn update_slot(
     data: &mut ContactData,
     extra: Option<&mut ContactExtra>,
     warm_start: Option<&mut WarmStart>,
-    cx: SlotContext,
+    cx: &SlotContext,
     p: &mut SlotPartial,
     loads: &mut [WallLoad],
 ) {
@@ -667,12 +667,13 @@ fn update_slot(
         g,
         dt,
         ..
-    } = cx;
+    } = *cx;
     let sides = Sides::of_slot(slot.i, slot.j);
     let recv = sides.receiver;
-    let governing = match sides.giver {
-        Partner::Wall(w) => &walls[w].spec,
-        Partner::Body(_) => spec,
+    let (wall, giver) = (sides.wall(), sides.giving_body());
+    let governing = match wall {
+        Some(w) => &walls[w].spec,
+        None => spec,
     };
     let area_law = governing.normal_force() == NormalForce::Area;
     let mut warm = None;
@@ -685,7 +686,7 @@ fn update_slot(
                 .map(|(s, pt, n, d)| (s, pt, n, d, Spring::Depth))
         }
         (Partner::Body(i), Shape::Circle { r: rj }) if b.is_circle[i] => {
-            let ri = b.shape[i].bounding_radius();
+            let ri = b.bound[i]; // a circle's bounding radius is its radius
             overlap_circle_circle(ri, &b.state[i].pose, rj, &b.state[recv].pose)
                 .map(|(s, pt, n, d)| (s, pt, n, d, Spring::Depth))
         }
@@ -754,9 +755,13 @@ fn update_slot(
     let rel = kinematics::relative(b, walls, sides, point);
     let vn = rel.velocity.dot(&n_);
     let m_eff = 1.0 / rel.inv_mass; // T(13)
+    let resolved;
     let law = match laws {
-        Some(l) => l[sides.wall().map_or(0, |w| 1 + w)],
-        None => governing.resolve(spec, rel.density, g, m_eff),
+        Some(l) => &l[wall.map_or(0, |w| 1 + w)],
+        None => {
+            resolved = governing.resolve(spec, kinematics::density(b, sides), g, m_eff);
+            &resolved
+        }
     };
     // R* only matters to Hertz–Mindlin (T11): a linear scene does not pay for curvatures. The
     // area law takes the equal-area disks' (so that its potential depends on A alone).
@@ -815,15 +820,13 @@ fn update_slot(
     p.contacts += 1;
     p.elastic += cf.elastic_energy;
     p.history_energy_change += cf.history_energy_change;
-    let scale = b.shape[recv].inscribed_radius().min(
-        sides
-            .giving_body()
-            .map_or(f64::INFINITY, |k| b.shape[k].inscribed_radius()),
-    );
+    let scale = b.shape[recv]
+        .inscribed_radius()
+        .min(giver.map_or(f64::INFINITY, |k| b.shape[k].inscribed_radius()));
     if depth > p.max_depth_ratio * scale {
         p.max_depth_ratio = depth / scale; // divide only when the maximum grows
     }
-    if let Some(load) = sides.wall().and_then(|w| loads.get_mut(w)) {
+    if let Some(load) = wall.and_then(|w| loads.get_mut(w)) {
         load.force += f;
         load.force_non_elastic += f_ne;
         load.stiffness += cf.kn;
