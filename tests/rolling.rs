@@ -226,7 +226,7 @@ fn the_energy_account_closes_with_rolling_resistance() {
         worst = worst.max((w.energies.total() - e0).abs());
         most_stored = most_stored.max(w.contacts.slots[0].history_energy);
         assert!(
-            w.contacts.slots[0].history.rolling.abs() < 0.5 * PI * G,
+            w.contacts.rolling_moment(0).abs() < 0.5 * PI * G,
             "below the cap"
         );
     }

@@ -16,7 +16,6 @@
 //! without two threads writing to the same body.
 
 use super::partner::Sides;
-use crate::contact_law::History;
 use crate::geometry::Vec2;
 use crate::narrow_phase::ContactState;
 use crate::narrow_phase::ellipse_ellipse::Warm;
@@ -43,8 +42,10 @@ pub struct Slot {
     pub active: bool,
     /// Geometry state (overlap, deep, contained, …).
     pub state: ContactState,
-    /// Shear and rolling history (T16; Ai et al.'s EPSD), dropped when the contact ends.
-    pub history: History,
+    /// Shear spring elongation δ_t along the current tangent (T16), dropped when the contact
+    /// ends. (EPSD's rolling spring, the rest of the contact's history, is kept beside the
+    /// slots: [`ContactList::rolling_moment`].)
+    pub shear: f64,
     /// Energy stored in the history springs, shear and rolling (lost when the contact opens).
     pub history_energy: f64,
 }
@@ -57,7 +58,7 @@ impl Slot {
             j,
             active: false,
             state: ContactState::Separated,
-            history: History::default(),
+            shear: 0.0,
             history_energy: 0.0,
         }
     }
@@ -226,6 +227,11 @@ pub struct ContactList {
     /// Each slot's warm start (same index), or empty when the scene has no conic pair.
     pub(crate) warm: Vec<WarmStart>,
     pub(crate) rebuilt_warm: Vec<WarmStart>,
+    /// Each slot's rolling spring moment (EPSD, Ai et al. 2011; same index) — contact history,
+    /// carried like the shear spring — or empty when no contact law of the scene has one (so
+    /// that the slots, streamed every step, stay 32 bytes).
+    pub(crate) rolling: Vec<f64>,
+    pub(crate) rebuilt_rolling: Vec<f64>,
     pub(crate) adjacency_fill: Vec<u32>,
 }
 
@@ -244,6 +250,11 @@ impl ContactList {
             })
     }
 
+    /// The rolling spring moment of slot `k` (0 without EPSD).
+    pub fn rolling_moment(&self, k: usize) -> f64 {
+        self.rolling.get(k).copied().unwrap_or(0.0)
+    }
+
     /// Number of contacts this step.
     pub fn len(&self) -> usize {
         self.slots.iter().filter(|c| c.active).count()
@@ -255,9 +266,10 @@ impl ContactList {
     }
 
     /// Replaces the slots by `keys` (sorted, unique), carrying every continuing slot with its
-    /// history; rebuilds each body's adjacency for `n` bodies. Returns the history springs' energy
+    /// history (and its warm start when `conic`, its rolling spring when `rolling`); rebuilds
+    /// each body's adjacency for `n` bodies. Returns the history springs' energy
     /// of contacts that were active but are no longer candidates (lost, as when a contact opens).
-    pub(crate) fn rebuild_from_keys(&mut self, n: usize, conic: bool) -> f64 {
+    pub(crate) fn rebuild_from_keys(&mut self, n: usize, conic: bool, rolling: bool) -> f64 {
         let mut lost = 0.0;
         self.rebuilt.clear();
         reserve_for(&mut self.rebuilt, self.keys.len());
@@ -266,6 +278,11 @@ impl ContactList {
             reserve_for(&mut self.rebuilt_warm, self.keys.len());
         }
         let carry_warm = conic && self.warm.len() == self.slots.len();
+        self.rebuilt_rolling.clear();
+        if rolling {
+            reserve_for(&mut self.rebuilt_rolling, self.keys.len());
+        }
+        let carry_rolling = rolling && self.rolling.len() == self.slots.len();
         let mut old = 0;
         for &(i, j) in &self.keys {
             while old < self.slots.len() && self.slots[old].key() < (i, j) {
@@ -283,11 +300,21 @@ impl ContactList {
                         WarmStart::NONE
                     });
                 }
+                if rolling {
+                    self.rebuilt_rolling.push(if carry_rolling {
+                        self.rolling[old]
+                    } else {
+                        0.0
+                    });
+                }
                 old += 1;
             } else {
                 self.rebuilt.push(Slot::new(i, j));
                 if conic {
                     self.rebuilt_warm.push(WarmStart::NONE);
+                }
+                if rolling {
+                    self.rebuilt_rolling.push(0.0);
                 }
             }
         }
@@ -298,6 +325,7 @@ impl ContactList {
         }
         std::mem::swap(&mut self.slots, &mut self.rebuilt);
         std::mem::swap(&mut self.warm, &mut self.rebuilt_warm);
+        std::mem::swap(&mut self.rolling, &mut self.rebuilt_rolling);
         // The data are recomputed from the slots every step: only their number changes.
         reserve_for(&mut self.data, self.slots.len());
         self.data.resize(self.slots.len(), ContactData::default());

@@ -76,7 +76,10 @@ pub fn relative(b: &Bodies, walls: &[WallSpec], sides: Sides, point: Vec2) -> Re
 /// The density the pair's per-ρg parameters are scaled by ([`pair_density`]).
 #[inline]
 pub fn density(b: &Bodies, sides: Sides) -> f64 {
-    pair_density(b.density[sides.receiver], sides.giving_body().map(|k| b.density[k]))
+    pair_density(
+        b.density[sides.receiver],
+        sides.giving_body().map(|k| b.density[k]),
+    )
 }
 
 /// Hertz's effective radius `R* = (1/R_i + 1/R_j)⁻¹` (T11) from each body's radius of

@@ -44,7 +44,8 @@ use super::contacts::{ContactData, ContactExtra, ContactList, Slot, WarmStart, r
 use super::kinematics;
 use super::partner::{Partner, Sides};
 use crate::contact_law::{
-    AreaKinematics, ContactSpec, EquivalentOverlap, Kinematics, Law, NormalForce, RollingKinematics,
+    AreaKinematics, ContactSpec, EquivalentOverlap, History, Kinematics, Law, NormalForce,
+    RollingKinematics, RollingModel,
 };
 use crate::geometry::Shape;
 use crate::geometry::overlap_area::DiskLens;
@@ -387,7 +388,13 @@ impl Stepper {
             .shape
             .iter()
             .any(|s| matches!(s, Shape::Ellipse { .. }));
-        let lost = list.rebuild_from_keys(n, conic);
+        // Contacts with a rolling spring carry it beside the slots.
+        let epsd = |spec: &ContactSpec| {
+            spec.rolling()
+                .is_some_and(|r| r.model == RollingModel::Epsd)
+        };
+        let rolling = epsd(wd.spec) || wd.walls.iter().any(|w| epsd(&w.spec));
+        let lost = list.rebuild_from_keys(n, conic, rolling);
         wd.energies.dissipated += lost;
         list.built_at.clear();
         reserve_for(&mut list.built_at, n);
@@ -410,6 +417,7 @@ impl Stepper {
             slots,
             data,
             warm,
+            rolling,
             adjacency_start,
             ..
         } = &mut *wd.contacts;
@@ -432,26 +440,42 @@ impl Stepper {
             .zip(data.par_chunks_mut(SLOT_CHUNK))
             .zip(self.slot_partials.par_iter_mut())
             .zip(self.wall_partials.par_chunks_mut(nw));
-        if warm.is_empty() {
-            chunks.for_each(|(((slots, data), part), loads)| {
-                let mut p = SlotPartial::default();
-                loads.fill(WallLoad::default());
-                for (slot, data) in slots.iter_mut().zip(data) {
-                    update_slot(slot, data, None, None, &cx, &mut p, loads);
-                }
-                *part = p;
-            });
-        } else {
-            chunks.zip(warm.par_chunks_mut(SLOT_CHUNK)).for_each(
+        // One chunk of slots, with its warm starts and rolling springs when the scene keeps them.
+        let run = |slots: &mut [Slot],
+                   data: &mut [ContactData],
+                   part: &mut SlotPartial,
+                   loads: &mut [WallLoad],
+                   mut warm: Option<&mut [WarmStart]>,
+                   mut rolling: Option<&mut [f64]>| {
+            let mut p = SlotPartial::default();
+            loads.fill(WallLoad::default());
+            for (k, (slot, data)) in slots.iter_mut().zip(data).enumerate() {
+                let w = warm.as_deref_mut().map(|w| &mut w[k]);
+                let r = rolling.as_deref_mut().map(|r| &mut r[k]);
+                update_slot(slot, data, None, w, r, &cx, &mut p, loads);
+            }
+            *part = p;
+        };
+        match (warm.is_empty(), rolling.is_empty()) {
+            (true, true) => chunks.for_each(|(((slots, data), part), loads)| {
+                run(slots, data, part, loads, None, None)
+            }),
+            (false, true) => chunks.zip(warm.par_chunks_mut(SLOT_CHUNK)).for_each(
                 |((((slots, data), part), loads), warm)| {
-                    let mut p = SlotPartial::default();
-                    loads.fill(WallLoad::default());
-                    for ((slot, data), warm) in slots.iter_mut().zip(data).zip(warm) {
-                        update_slot(slot, data, None, Some(warm), &cx, &mut p, loads);
-                    }
-                    *part = p;
+                    run(slots, data, part, loads, Some(warm), None)
                 },
-            );
+            ),
+            (true, false) => chunks.zip(rolling.par_chunks_mut(SLOT_CHUNK)).for_each(
+                |((((slots, data), part), loads), rolling)| {
+                    run(slots, data, part, loads, None, Some(rolling))
+                },
+            ),
+            (false, false) => chunks
+                .zip(warm.par_chunks_mut(SLOT_CHUNK))
+                .zip(rolling.par_chunks_mut(SLOT_CHUNK))
+                .for_each(|(((((slots, data), part), loads), warm), rolling)| {
+                    run(slots, data, part, loads, Some(warm), Some(rolling))
+                }),
         }
         let mut sum = SlotPartial::default();
         for p in &self.slot_partials {
@@ -491,6 +515,7 @@ impl Stepper {
             slots,
             extra,
             warm,
+            rolling,
             adjacency_start,
             ..
         } = &mut *wd.contacts;
@@ -507,7 +532,7 @@ impl Stepper {
             dt: 0.0,
             adjacency_start,
         };
-        let warm = &warm[..];
+        let (warm, rolling) = (&warm[..], &rolling[..]);
         slots
             .par_chunks(SLOT_CHUNK)
             .zip(extra.par_chunks_mut(SLOT_CHUNK))
@@ -517,12 +542,14 @@ impl Stepper {
                 for (k, (slot, extra)) in slots.iter().zip(extra).enumerate() {
                     let mut copy = (*slot, ContactData::default());
                     let mut warm_copy = warm.get(c * SLOT_CHUNK + k).copied();
+                    let mut rolling_copy = rolling.get(c * SLOT_CHUNK + k).copied();
                     if slot.active {
                         update_slot(
                             &mut copy.0,
                             &mut copy.1,
                             Some(extra),
                             warm_copy.as_mut(),
+                            rolling_copy.as_mut(),
                             &cx,
                             &mut p,
                             &mut [],
@@ -648,13 +675,16 @@ struct SlotContext<'a> {
 
 /// One slot's contact: geometry (narrow phase, from the slot's warm start when it has one),
 /// kinematics at the contact point, the law, and the history; an inactive slot drops its
-/// history. `extra`, when given, receives the depth, normal and stiffness; `loads` (one per
+/// history (the slot's shear spring, and the rolling spring `rolling_spring` when the scene
+/// keeps them). `extra`, when given, receives the depth, normal and stiffness; `loads` (one per
 /// wall, or empty) the sums of each wall's contacts.
+#[allow(clippy::too_many_arguments)]
 fn update_slot(
     slot: &mut Slot,
     data: &mut ContactData,
     extra: Option<&mut ContactExtra>,
     warm_start: Option<&mut WarmStart>,
+    rolling_spring: Option<&mut f64>,
     cx: &SlotContext,
     p: &mut SlotPartial,
     loads: &mut [WallLoad],
@@ -728,6 +758,9 @@ fn update_slot(
                 p.lost_history += slot.history_energy;
             }
             *slot = Slot::new(slot.i, slot.j);
+            if let Some(r) = rolling_spring {
+                *r = 0.0;
+            }
             if let Some(w) = warm_start {
                 w.set(warm); // a separating axis, for the next step
             }
@@ -810,10 +843,17 @@ fn update_slot(
         },
     };
     let mut history = if slot.active {
-        slot.history
+        History {
+            shear: slot.shear,
+            rolling: rolling_spring.as_deref().copied().unwrap_or(0.0),
+        }
     } else {
-        Default::default()
+        History::default()
     };
+    debug_assert!(
+        rolling_spring.is_some() || law.rolling.is_none_or(|r| r.model == RollingModel::Cdt),
+        "an EPSD contact without a rolling spring slot"
+    );
     let cf = law.force(&kin, &mut history);
     let f = n_ * cf.normal + t_ * cf.tangential; // T(5): on the receiving body
     let f_ne = n_ * cf.normal_non_elastic + t_ * cf.tangential;
@@ -837,9 +877,12 @@ fn update_slot(
         j: slot.j,
         active: true,
         state,
-        history,
+        shear: history.shear,
         history_energy: cf.history_energy,
     };
+    if let Some(r) = rolling_spring {
+        *r = history.rolling;
+    }
     if let Some(w) = warm_start {
         w.set(warm);
     }
