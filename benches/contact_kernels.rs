@@ -20,7 +20,8 @@
 
 use criterion::{BenchmarkId, Criterion};
 use dem2d::contact_law::{
-    AreaKinematics, EquivalentOverlap, History, Kinematics, Linear, NormalForce,
+    AreaKinematics, DampingPart, EquivalentOverlap, History, Kinematics, Law, NormalForce,
+    NormalPart, RollingKinematics, ShearStiffness, TangentialPart,
 };
 use dem2d::geometry::cubic::{one_real_root, solve_cubic};
 use dem2d::geometry::overlap_area::DiskLens;
@@ -341,12 +342,17 @@ fn geometry_and_law(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose, w: Warm, nf: N
     let Some(g) = c.geometry else {
         return 0.0;
     };
-    let law = Linear {
-        kn: 3.6e7,
-        ks: 3.6e7,
-        eta_n: 1e4,
-        eta_s: 1e4,
-        friction: 0.3,
+    let law = Law {
+        normal: NormalPart::Linear { kn: 3.6e7 },
+        damping: DampingPart::Dashpots {
+            eta_n: 1e4,
+            eta_s: 1e4,
+        },
+        tangential: TangentialPart {
+            stiffness: ShearStiffness::Constant(3.6e7),
+            friction: 0.3,
+        },
+        rolling: None,
     };
     let kin = Kinematics {
         depth: g.depth,
@@ -366,6 +372,12 @@ fn geometry_and_law(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose, w: Warm, nf: N
                 sj.equal_area_radius(),
             )),
         }),
+        spin: 0.0,
+        rolling: RollingKinematics {
+            radius: f64::NAN,
+            inertia: f64::NAN,
+            spin_inertia: f64::NAN,
+        },
     };
     law.force(&kin, &mut History::default()).normal
 }

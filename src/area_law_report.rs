@@ -22,6 +22,7 @@ fn linear(kn: f64, e: Option<f64>, nf: NormalForce) -> ContactSpec {
         },
         friction: 0.0,
         normal_force: nf,
+        rolling: None,
     }
 }
 
@@ -37,10 +38,10 @@ fn body(shape: Shape, x: Vec2, angle: f64, v: Vec2, omega: f64) -> BodyInit {
 }
 
 fn floor(spec: ContactSpec) -> WallSpec {
-    WallSpec {
-        wall: Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).expect("unit normal"),
+    WallSpec::new(
+        Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).expect("unit normal"),
         spec,
-    }
+    )
 }
 
 /// Support of `shape` at `angle` along the world direction `u`.
@@ -164,6 +165,7 @@ fn rebound(shape: Shape, angle: f64, nf: NormalForce, e: f64, hertz: bool) -> f6
             restitution: e,
             friction: 0.0,
             normal_force: nf,
+            rolling: None,
         }
     } else {
         linear(36400.0 * 980.0, Some(e), nf)

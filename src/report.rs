@@ -750,6 +750,7 @@ fn speed_vs_error(opts: &FigureOptions) -> Result<SpeedVsError, ReportError> {
         damping: crate::contact_law::LinearDamping::Restitution(1.0),
         friction: 0.0,
         normal_force: drop.contact.normal_force(),
+        rolling: None,
     };
     for w in &mut elastic.walls {
         w.spec = elastic.contact;

@@ -33,6 +33,7 @@ fn spec(normal_force: NormalForce) -> ContactSpec {
         },
         friction: 0.0,
         normal_force,
+        rolling: None,
     }
 }
 
@@ -93,14 +94,7 @@ fn force_on_j(i: &Side, j: &Side, nf: NormalForce) -> (Vec2, f64) {
     };
     let (bodies, walls, k) = match *i {
         Side::Body(si, xi, ti) => (vec![init(si, xi, ti), init(sj, xj, tj)], vec![], 1),
-        Side::Wall(w) => (
-            vec![init(sj, xj, tj)],
-            vec![WallSpec {
-                wall: w,
-                spec: spec(nf),
-            }],
-            0,
-        ),
+        Side::Wall(w) => (vec![init(sj, xj, tj)], vec![WallSpec::new(w, spec(nf))], 0),
     };
     let w = World::new(&bodies, walls, Vec2::zeros(), spec(nf), 1e-6);
     (w.bodies.force[k], w.bodies.torque[k])
@@ -582,6 +576,7 @@ fn energy_spec(nf: NormalForce, restitution: Option<f64>) -> ContactSpec {
         },
         friction: 0.0,
         normal_force: nf,
+        rolling: None,
     }
 }
 
@@ -600,10 +595,7 @@ fn energy_drift(mut w: World, steps: usize) -> f64 {
 /// `phase` (0…1) shifts the release height so that impacts fall elsewhere within a step.
 fn ellipse_bouncing(nf: NormalForce, dt: f64, phase: f64) -> World {
     let spec = energy_spec(nf, None);
-    let floor = WallSpec {
-        wall: Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(),
-        spec,
-    };
+    let floor = WallSpec::new(Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(), spec);
     let mut body = init(
         Shape::Ellipse { a: 1.5, b: 1.0 },
         Vec2::new(0.0, 2.2 + 0.013 * phase),
@@ -687,14 +679,12 @@ fn obtained_restitution(shape: Shape, angle: f64, nf: NormalForce, e: f64, hertz
             restitution: e,
             friction: 0.0,
             normal_force: nf,
+            rolling: None,
         }
     } else {
         energy_spec(nf, Some(e))
     };
-    let floor = WallSpec {
-        wall: Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(),
-        spec,
-    };
+    let floor = WallSpec::new(Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(), spec);
     let h = support(&shape, angle, Vec2::new(0.0, -1.0));
     let mut body = init(shape, Vec2::new(0.0, h + 0.05), angle);
     let v0 = 50.0;

@@ -37,7 +37,10 @@ fn summary(dir: &Path) -> Value {
 #[test]
 fn every_case_runs() {
     let mut ran = 0;
-    for entry in std::fs::read_dir(cases_dir()).unwrap() {
+    let files = std::fs::read_dir(cases_dir())
+        .unwrap()
+        .chain(std::fs::read_dir(cases_dir().join("repose")).unwrap());
+    for entry in files {
         let path = entry.unwrap().path();
         if path.extension().is_none_or(|e| e != "json") {
             continue;

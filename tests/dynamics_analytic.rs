@@ -27,14 +27,12 @@ fn linear(kn: f64, ks: f64, eta: f64, friction: f64) -> ContactSpec {
         },
         friction,
         normal_force: NormalForce::Depth,
+        rolling: None,
     }
 }
 
 fn floor(spec: ContactSpec) -> WallSpec {
-    WallSpec {
-        wall: Wall::new(Vec2::zeros(), Vec2::y()).unwrap(),
-        spec,
-    }
+    WallSpec::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), spec)
 }
 
 /// One body at (0, y), angle 0, with velocity `v` and no spin, above the floor `y = 0`.
@@ -237,6 +235,7 @@ fn ellipse_on_its_flat_side_sinks_mg_over_kn() {
         damping: LinearDamping::Restitution(0.1),
         friction: 0.5,
         normal_force: NormalForce::Depth,
+        rolling: None,
     };
     let mut w = on_floor(
         Shape::Ellipse { a, b },
@@ -387,7 +386,7 @@ fn rotating_the_whole_scene_rotates_the_trajectory() {
                 omega: 3.0,
                 density: 1.0,
             }],
-            vec![WallSpec { wall, spec }],
+            vec![WallSpec::new(wall, spec)],
             r(Vec2::new(0.0, -980.0)),
             spec,
             1e-5,
@@ -459,6 +458,7 @@ fn hertz_impact_matches_closed_form_and_an_independent_integration() {
             restitution: e,
             friction: 0.0,
             normal_force: NormalForce::Depth,
+            rolling: None,
         };
         let mut w = on_floor(
             Shape::Circle { r },
@@ -500,14 +500,8 @@ fn network_critical_step_matches_the_modes_of_closed_form_systems() {
     // springs, eigenvalues (k/m)(2 ∓ 1): the stiffest ω² = 3k/m. Undamped: Δt = 2/ω.
     let spec = linear(k, k, 0.0, 0.0);
     let walls = vec![
-        WallSpec {
-            wall: Wall::new(Vec2::new(0.0, 0.0), Vec2::x()).unwrap(),
-            spec,
-        },
-        WallSpec {
-            wall: Wall::new(Vec2::new(3.97, 0.0), -Vec2::x()).unwrap(),
-            spec,
-        },
+        WallSpec::new(Wall::new(Vec2::new(0.0, 0.0), Vec2::x()).unwrap(), spec),
+        WallSpec::new(Wall::new(Vec2::new(3.97, 0.0), -Vec2::x()).unwrap(), spec),
     ];
     let disks = [
         body(Shape::Circle { r: 1.0 }, 0.99, 0.0, 0.0, Vec2::zeros(), 0.0),

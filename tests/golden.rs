@@ -1,5 +1,7 @@
-//! Golden trajectories: the exact bits that the paper's cases (under both normal-force laws) and
-//! small generated piles (disks and ellipses, both laws, one and two threads) end in, stored in
+//! Golden trajectories: the exact bits that the paper's cases (under both normal-force laws), P
+//! Fig. 3's throws with rolling resistance (CDT and EPSD), small generated piles (disks and
+//! ellipses, both laws, one and two threads), and scenes with moving walls and rolling
+//! resistance (the biaxial test, the repose column; one and two threads) end in, stored in
 //! `tests/golden/trajectories.json`. Any change to the dynamics that moves a single bit fails here:
 //! a refactor must keep them; a deliberate change of the physics regenerates them and says why
 //! in its commit:
@@ -8,7 +10,7 @@
 //! DEM2D_REGENERATE_GOLDEN=1 cargo test --release --test golden
 //! ```
 
-use dem2d::contact_law::NormalForce;
+use dem2d::contact_law::{NormalForce, RollingModel, RollingPart};
 use dem2d::dynamics::World;
 use dem2d::scene::Case;
 use dem2d::scene::generate::{PileShape, PileSpec};
@@ -119,6 +121,40 @@ fn trajectories_are_bit_identical_to_the_stored_ones() {
             }
         }
     }
+    // Rolling resistance: P Fig. 3's throws with each model (their own law, the depth law).
+    for name in ["throw_circle", "throw_ellipse"] {
+        let text = std::fs::read_to_string(root().join("cases").join(format!("{name}.json")))
+            .expect("case file");
+        let case = Case::from_json(&text).expect("case");
+        for model in [RollingModel::Cdt, RollingModel::Epsd] {
+            let c = case.clone().with_rolling(Some(RollingPart {
+                model,
+                friction: 0.05,
+                damping: None,
+            }));
+            got.insert(
+                format!("{name}/{} 0.05", model.as_str()),
+                run(&c, 20_000, 1),
+            );
+        }
+    }
+    // Moving walls (two at a constant velocity, two servos) and rolling resistance in many-body
+    // scenes, on one and two threads.
+    for file in [
+        "biaxial_disks.json",
+        "repose/epsd_mu_r_0.1.json",
+        "repose/cdt_mu_r_0.1.json",
+    ] {
+        let text = std::fs::read_to_string(root().join("cases").join(file)).expect("case file");
+        let case = Case::from_json(&text).expect("case");
+        for threads in [1, 2] {
+            let v = run(&case, 3000, threads);
+            got.insert(
+                format!("{file}/{threads} threads"),
+                json!({"step": v["step"], "hash": hash(&v)}),
+            );
+        }
+    }
     let path = root().join("tests/golden/trajectories.json");
     let got = Value::Object(got);
     if std::env::var_os("DEM2D_REGENERATE_GOLDEN").is_some() {
@@ -147,7 +183,7 @@ fn trajectories_are_bit_identical_to_the_stored_ones() {
         differ.is_empty(),
         "trajectories differ from tests/golden/trajectories.json: {differ:?} (if the physics changed on purpose, regenerate: see the module doc)"
     );
-    // The piles: two threads give the bits of one.
+    // The many-body scenes: two threads give the bits of one.
     for (k, v) in got.as_object().unwrap() {
         if let Some(base) = k.strip_suffix("/2 threads") {
             assert_eq!(Some(v), got.get(format!("{base}/1 threads")), "{base}");

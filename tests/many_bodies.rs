@@ -38,6 +38,7 @@ fn law(friction: f64) -> ContactSpec {
         },
         friction,
         normal_force: NormalForce::Area,
+        rolling: None,
     }
 }
 
@@ -79,14 +80,8 @@ fn random_scene(seed: u64, n: usize, escapees: usize) -> World {
         });
     }
     let walls = vec![
-        WallSpec {
-            wall: Wall::new(Vec2::zeros(), Vec2::y()).unwrap(),
-            spec: law(0.5),
-        },
-        WallSpec {
-            wall: Wall::new(Vec2::zeros(), Vec2::x()).unwrap(),
-            spec: law(0.5),
-        },
+        WallSpec::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), law(0.5)),
+        WallSpec::new(Wall::new(Vec2::zeros(), Vec2::x()).unwrap(), law(0.5)),
     ];
     World::new(&bodies, walls, Vec2::new(0.0, -980.0), law(0.3), 2e-5)
 }

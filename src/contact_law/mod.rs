@@ -2,6 +2,21 @@
 //! the contact point, the pair's effective mass and radius, and the contact's history.
 //! A law never sees a shape.
 //!
+//! # A law is composed of parts
+//! As LAMMPS's granular model, a [`Law`] is assembled from parts, each in its own file, each
+//! returning its force or couple and its stiffness (the critical-step estimate asks the parts,
+//! [`Law::modes`]):
+//! - [`normal`]: the spring (linear on δ, or Hertz), on the overlap the [`NormalForce`] choice
+//!   gives it (the depth, or the area potential's equivalent overlap);
+//! - [`damping`]: the normal and shear dashpots (given, or from a restitution coefficient);
+//! - [`tangential`]: the shear spring and Coulomb's slider, written once for every spring;
+//! - [`rolling`] (optional): the rolling-resistance couple (Ai et al. 2011's CDT or EPSD).
+//!
+//! A case still names a model (`linear`, `hertz_mindlin`) with its parameters, plus the
+//! optional rolling keys; [`params`] reads nothing, it resolves a pair's parameters into the
+//! parts once ([`ContactSpec::resolve`]). Adding a part touches its file, its parameter parsing
+//! (`scene::case`) and [`Law::force`], the one place where the parts are registered.
+//!
 //! Conventions: `n` points from i to j; `t = (−n_y, n_x)` (n turned a quarter counter-clockwise);
 //! the relative velocity is that of j's material point minus i's, at the contact point, with
 //! components `v_n` (negative when approaching) and `v_t`. The force on j is `F_n n + F_t t`, on
@@ -29,13 +44,17 @@
 //!   radius of curvature is R*_t has ρ ≈ (R*_t/R*_eq)^{1/3} and stiffness `k_n ρ²` against its
 //!   depth). See [`EquivalentOverlap`] for two flat faces.
 
-pub mod hertz_mindlin;
-pub mod linear;
-pub mod spec;
+pub mod damping;
+pub mod normal;
+pub mod params;
+pub mod rolling;
+pub mod tangential;
 
-pub use hertz_mindlin::HertzMindlin;
-pub use linear::Linear;
-pub use spec::{ContactSpec, LinearDamping, Scaled};
+pub use damping::{DampingPart, damping_factor_hertz, damping_ratio_linear};
+pub use normal::{NormalPart, NormalSpring};
+pub use params::{ContactSpec, LinearDamping, Scaled};
+pub use rolling::{RollingKinematics, RollingModel, RollingPart};
+pub use tangential::{ShearStiffness, TangentialPart};
 
 use crate::geometry::overlap_area::DiskLens;
 
@@ -121,6 +140,10 @@ pub struct Kinematics {
     pub dt: f64,
     /// For the area law: the overlap area and its rate (None: the spring acts on `depth`).
     pub area: Option<AreaKinematics>,
+    /// Relative spin `ω_j − ω_i` (a wall does not turn).
+    pub spin: f64,
+    /// Rolling radius and inertia (read only by a rolling part; NaN when none is needed).
+    pub rolling: RollingKinematics,
 }
 
 /// The overlap a normal spring acts on, for one contact (see [`Kinematics::spring_overlap`]).
@@ -189,13 +212,15 @@ impl Kinematics {
 }
 
 /// The per-contact state carried from step to step while the contact lasts (T16): the shear
-/// spring's elongation along the current tangent `t`. In 2D the tangent plane is a line, so a
-/// scalar along `t` is the displacement "kept in the current tangent direction as the contact
-/// rotates". Dropped when the contact ends.
+/// spring's elongation along the current tangent `t`, and the rolling spring's moment. In 2D the
+/// tangent plane is a line, so a scalar along `t` is the displacement "kept in the current
+/// tangent direction as the contact rotates". Dropped when the contact ends.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct History {
     /// Shear spring elongation δ_t along `t` (T16).
     pub shear: f64,
+    /// EPSD's rolling spring moment `M_k` on j (Ai et al. 2011, type C); 0 for other laws.
+    pub rolling: f64,
 }
 
 /// Force on j (components along n and t), the elastic energy stored in the contact and its
@@ -206,81 +231,119 @@ pub struct ContactForce {
     pub normal: f64,
     /// Tangential force on j along t.
     pub tangential: f64,
-    /// Energy stored in the normal and shear springs.
+    /// Energy stored in the normal, shear and rolling springs.
     pub elastic_energy: f64,
     /// Normal stiffness `dF_n/dδ` and dashpot now.
     pub kn: f64,
     pub eta_n: f64,
-    /// Shear stiffness and dashpot now.
+    /// Shear stiffness and dashpot now (zero without friction).
     pub kt: f64,
     pub eta_t: f64,
-    /// True when the Coulomb slider slipped this step (T20).
-    pub sliding: bool,
+    /// Rolling stiffness and dashpot now (EPSD; zero otherwise).
+    pub kr: f64,
+    pub cr: f64,
     /// The part of `normal` that is not the spring's: the dashpot's, or what the clamp
-    /// `F_n ≥ 0` withholds. Its work, and the shear force's work less the change of the shear
-    /// spring's energy, is what the contact dissipates.
+    /// `F_n ≥ 0` withholds. Its work, and the shear force's and the rolling couple's work less
+    /// the change of their springs' energy, is what the contact dissipates.
     pub normal_non_elastic: f64,
-    /// Energy now stored in the shear spring (lost when the contact opens).
-    pub shear_energy: f64,
-    /// Change of the shear spring's energy over this step (including a reset by the slider).
-    pub shear_energy_change: f64,
-    /// A couple on j (its opposite on i) and its non-elastic part (see
-    /// [`SpringOverlap::couple`]).
+    /// Energy now stored in the contact's history springs (shear and rolling: lost when the
+    /// contact opens).
+    pub history_energy: f64,
+    /// Change of the history springs' energy over this step (including resets by the sliders).
+    pub history_energy_change: f64,
+    /// A couple on j (its opposite on i) — the area law's deep overlaps' and the rolling
+    /// resistance — and its non-elastic part (see [`SpringOverlap::couple`]; the whole rolling
+    /// couple).
     pub couple: f64,
     pub couple_non_elastic: f64,
 }
 
-/// A contact law with its parameters resolved for one pair.
+/// A contact law with its parameters resolved for one pair: the parts it is composed of.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Law {
-    Linear(Linear),
-    HertzMindlin(HertzMindlin),
+pub struct Law {
+    pub normal: NormalPart,
+    pub damping: DampingPart,
+    pub tangential: TangentialPart,
+    pub rolling: Option<RollingPart>,
+}
+
+/// The stiffness and damping of a contact's modes, for the critical time step: along the
+/// normal, the tangent, and in relative rotation (the rolling spring).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Modes {
+    pub normal: (f64, f64),
+    pub tangential: (f64, f64),
+    pub rolling: (f64, f64),
 }
 
 impl Law {
-    /// The force for these kinematics, updating the shear history.
-    #[inline]
-    pub fn force(&self, k: &Kinematics, history: &mut History) -> ContactForce {
-        match self {
-            Law::Linear(l) => l.force(k, history),
-            Law::HertzMindlin(h) => h.force(k, history),
+    /// The force for these kinematics, updating the history. The parts in order:
+    /// the normal spring on its overlap ([`Kinematics::spring_overlap`]: the depth, or the
+    /// area law's δ_eq with `F_n = ρ F_s(δ_eq) + η δ̇_eq`), `F_n = max(0, ρ F_s + η_n δ̇)` (T6,
+    /// clamped so that the contact never pulls); the tangential part (T15–T20) with the
+    /// damping part's shear dashpot; the rolling part, if any. Elastic energy `e k δ²` (with
+    /// `δ²` → `δ·energy_depth`) plus the history springs'.
+    #[inline(always)]
+    pub fn force(&self, k: &Kinematics, h: &mut History) -> ContactForce {
+        let o = k.spring_overlap();
+        let s = self.normal.spring(o.depth, k.r_eff);
+        let eta_n = self.damping.normal(&s, k.m_eff);
+        let spring = o.rho * (s.k * o.depth);
+        let fn_ = (spring + eta_n * o.rate).max(0.0); // T(6)
+        let (couple, couple_non_elastic) = o.couple(s.k * o.depth, eta_n);
+        let mut out = ContactForce {
+            normal: fn_,
+            tangential: 0.0,
+            elastic_energy: s.energy * s.k * o.depth * o.energy_depth,
+            kn: s.tangent * s.k * o.rho * o.rho,
+            eta_n: eta_n * o.rho,
+            kt: 0.0,
+            eta_t: 0.0,
+            kr: 0.0,
+            cr: 0.0,
+            normal_non_elastic: fn_ - spring,
+            history_energy: 0.0,
+            history_energy_change: 0.0,
+            couple,
+            couple_non_elastic,
+        };
+        if self.tangential.friction > 0.0 || self.rolling.is_some() {
+            let kt = self.tangential.stiffness(&s);
+            self.tangential
+                .apply(kt, self.damping.tangential(eta_n), k.vt, k.dt, h, &mut out);
+            if let Some(r) = &self.rolling {
+                let zeta = self.damping.ratio(&s, k.m_eff);
+                r.apply(&k.rolling, k.spin, kt, zeta, k.dt, h, &mut out);
+            }
+        }
+        out
+    }
+
+    /// The modes of a contact at the spring overlap `depth` (R* `r_eff`, m* `m_eff`, rolling
+    /// kinematics `rk`), each part's stiffness and dashpot as [`Law::force`] reports them
+    /// (`ρ = 1`: the caller scales the normal mode for the geometry it assumes).
+    pub fn modes(&self, depth: f64, r_eff: f64, m_eff: f64, rk: &RollingKinematics) -> Modes {
+        let s = self.normal.spring(depth, r_eff);
+        let eta_n = self.damping.normal(&s, m_eff);
+        let kt = self.tangential.stiffness(&s);
+        let tangential = if self.tangential.friction > 0.0 {
+            (kt, self.damping.tangential(eta_n))
+        } else {
+            (0.0, 0.0)
+        };
+        let rolling = match &self.rolling {
+            Some(r) => r.mode(rk, kt, self.damping.ratio(&s, m_eff)),
+            None => (0.0, 0.0),
+        };
+        Modes {
+            normal: (s.tangent * s.k, eta_n),
+            tangential,
+            rolling,
         }
     }
 
     /// Coulomb friction coefficient μ.
     pub fn friction(&self) -> f64 {
-        match self {
-            Law::Linear(l) => l.friction,
-            Law::HertzMindlin(h) => h.friction,
-        }
-    }
-}
-
-/// α of T12: the damping ratio that gives restitution `e` for a linear spring–dashpot,
-/// `α = −ln e / √(ln²e + π²)` (`η_n = 2α√(m* k_n)`).
-pub fn damping_ratio_linear(e: f64) -> f64 {
-    let l = e.ln();
-    -l / (l * l + std::f64::consts::PI.powi(2)).sqrt() // T(12)
-}
-
-/// β of T14 for the Hertz spring: `β = −ln e · √(5/(ln²e + π²))` (`η_n = β√(m* k_n)`).
-pub fn damping_factor_hertz(e: f64) -> f64 {
-    let l = e.ln();
-    -l * (5.0 / (l * l + std::f64::consts::PI.powi(2))).sqrt() // T(14)
-}
-
-/// The Coulomb slider (T20, T21) on a trial shear force: when `|F_t| > μ F_n` the force is
-/// `μ F_n` with the trial's sign and the spring is reset to hold exactly that (`δ_t = −F_t/k_t`);
-/// the dashpot then carries nothing. In 2D the direction `v_t/|v_t|` of T21 is a sign, and the
-/// trial force's sign equals −sign(v_t) in steady sliding; using the trial's keeps the force
-/// continuous when `v_t` passes through zero. Returns the force and whether it slipped.
-#[inline]
-pub(crate) fn coulomb(trial: f64, limit: f64, kt: f64, history: &mut History) -> (f64, bool) {
-    if trial.abs() > limit {
-        let f = limit.copysign(trial); // T(20)
-        history.shear = if kt > 0.0 { -f / kt } else { 0.0 };
-        (f, true)
-    } else {
-        (trial, false)
+        self.tangential.friction
     }
 }

@@ -111,18 +111,16 @@ impl Bodies {
     }
 
     /// Radius of curvature of body `k`'s boundary where its outward normal is `n` (world), for
-    /// the Hertz radius R* (T11): circle `r`; ellipse `a²b²/h³` with `h` its support along `n`;
-    /// rectangle: the radius of the circle of equal area (a corner has R = 0 and a face R = ∞,
-    /// neither usable in √(R*δ): the documented choice is the equal-area circle).
+    /// the Hertz radius R* (T11): see [`Shape::curvature_radius`].
+    #[inline]
     pub fn curvature_radius(&self, k: usize, n: Vec2) -> f64 {
-        match self.shape[k] {
-            Shape::Circle { r } => r,
-            Shape::Ellipse { a, b } => {
-                let u = self.state[k].pose.to_body_vector(n);
-                let h = ((a * u.x).powi(2) + (b * u.y).powi(2)).sqrt();
-                (a * a * b * b) / (h * h * h)
-            }
-            Shape::Rectangle { w, h } => (w * h / std::f64::consts::PI).sqrt(),
-        }
+        self.shape[k].curvature_radius(self.state[k].pose.to_body_vector(n))
+    }
+
+    /// Distance from body `k`'s centroid to its tangent line whose outward normal is `n`
+    /// (world, unit): its support along `n` ([`Shape::support`]).
+    #[inline]
+    pub fn support_distance(&self, k: usize, n: Vec2) -> f64 {
+        self.shape[k].support(self.state[k].pose.to_body_vector(n))
     }
 }

@@ -15,7 +15,7 @@
 //! its slots in key order (`adjacency`), so that forces are gathered per body, in parallel,
 //! without two threads writing to the same body.
 
-use crate::contact_law::History;
+use super::partner::Sides;
 use crate::geometry::Vec2;
 use crate::narrow_phase::ContactState;
 use crate::narrow_phase::ellipse_ellipse::Warm;
@@ -42,10 +42,12 @@ pub struct Slot {
     pub active: bool,
     /// Geometry state (overlap, deep, contained, …).
     pub state: ContactState,
-    /// Shear history (T16), dropped when the contact ends.
-    pub history: History,
-    /// Energy stored in the shear spring (lost when the contact opens).
-    pub shear_energy: f64,
+    /// Shear spring elongation δ_t along the current tangent (T16), dropped when the contact
+    /// ends. (EPSD's rolling spring, the rest of the contact's history, is kept beside the
+    /// slots: [`ContactList::rolling_moment`].)
+    pub shear: f64,
+    /// Energy stored in the history springs, shear and rolling (lost when the contact opens).
+    pub history_energy: f64,
 }
 
 impl Slot {
@@ -56,8 +58,8 @@ impl Slot {
             j,
             active: false,
             state: ContactState::Separated,
-            history: History::default(),
-            shear_energy: 0.0,
+            shear: 0.0,
+            history_energy: 0.0,
         }
     }
 
@@ -65,6 +67,12 @@ impl Slot {
     #[inline]
     pub fn is_wall(&self) -> bool {
         self.j >= WALL_BASE
+    }
+
+    /// Which side receives `+F` ([`Sides`]).
+    #[inline]
+    pub fn sides(&self) -> Sides {
+        Sides::of_slot(self.i, self.j)
     }
 
     /// The pair's key.
@@ -138,6 +146,9 @@ pub struct ContactExtra {
     pub eta_n: f32,
     pub kt: f32,
     pub eta_t: f32,
+    /// Rolling spring and dashpot (EPSD; zero otherwise).
+    pub kr: f32,
+    pub cr: f32,
 }
 
 /// A contact of this step: its slot and its data (a copy, for reading).
@@ -155,10 +166,16 @@ impl Contact {
     pub fn is_wall(&self) -> bool {
         self.slot.is_wall()
     }
+
+    /// Which side receives `+F` ([`Sides`]).
+    #[inline]
+    pub fn sides(&self) -> Sides {
+        self.slot.sides()
+    }
 }
 
-/// One entry of a body's adjacency: a slot and whether the body receives `+F` (it is the slot's
-/// `j`, or the body of a wall contact) or `−F` (it is the slot's `i` in a body pair).
+/// One entry of a body's adjacency: a slot and whether the body receives `+F` or `−F`
+/// ([`Sides`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Adjacent {
     /// Slot index, with the top bit set when the body receives `−F`.
@@ -198,6 +215,8 @@ pub struct ContactList {
     pub(crate) adjacency: Vec<Adjacent>,
     /// Body positions when the list was built.
     pub(crate) built_at: Vec<Vec2>,
+    /// Wall points when the list was built (moving walls count towards the rebuild).
+    pub(crate) wall_built_at: Vec<Vec2>,
     /// Margin added to the bounding circles at the build.
     pub skin: f64,
     /// Number of builds so far.
@@ -208,6 +227,11 @@ pub struct ContactList {
     /// Each slot's warm start (same index), or empty when the scene has no conic pair.
     pub(crate) warm: Vec<WarmStart>,
     pub(crate) rebuilt_warm: Vec<WarmStart>,
+    /// Each slot's rolling spring moment (EPSD, Ai et al. 2011; same index) — contact history,
+    /// carried like the shear spring — or empty when no contact law of the scene has one (so
+    /// that the slots, streamed every step, stay 32 bytes).
+    pub(crate) rolling: Vec<f64>,
+    pub(crate) rebuilt_rolling: Vec<f64>,
     pub(crate) adjacency_fill: Vec<u32>,
 }
 
@@ -226,6 +250,11 @@ impl ContactList {
             })
     }
 
+    /// The rolling spring moment of slot `k` (0 without EPSD).
+    pub fn rolling_moment(&self, k: usize) -> f64 {
+        self.rolling.get(k).copied().unwrap_or(0.0)
+    }
+
     /// Number of contacts this step.
     pub fn len(&self) -> usize {
         self.slots.iter().filter(|c| c.active).count()
@@ -237,9 +266,10 @@ impl ContactList {
     }
 
     /// Replaces the slots by `keys` (sorted, unique), carrying every continuing slot with its
-    /// history; rebuilds each body's adjacency for `n` bodies. Returns the shear-spring energy
+    /// history (and its warm start when `conic`, its rolling spring when `rolling`); rebuilds
+    /// each body's adjacency for `n` bodies. Returns the history springs' energy
     /// of contacts that were active but are no longer candidates (lost, as when a contact opens).
-    pub(crate) fn rebuild_from_keys(&mut self, n: usize, conic: bool) -> f64 {
+    pub(crate) fn rebuild_from_keys(&mut self, n: usize, conic: bool, rolling: bool) -> f64 {
         let mut lost = 0.0;
         self.rebuilt.clear();
         reserve_for(&mut self.rebuilt, self.keys.len());
@@ -248,11 +278,16 @@ impl ContactList {
             reserve_for(&mut self.rebuilt_warm, self.keys.len());
         }
         let carry_warm = conic && self.warm.len() == self.slots.len();
+        self.rebuilt_rolling.clear();
+        if rolling {
+            reserve_for(&mut self.rebuilt_rolling, self.keys.len());
+        }
+        let carry_rolling = rolling && self.rolling.len() == self.slots.len();
         let mut old = 0;
         for &(i, j) in &self.keys {
             while old < self.slots.len() && self.slots[old].key() < (i, j) {
                 if self.slots[old].active {
-                    lost += self.slots[old].shear_energy;
+                    lost += self.slots[old].history_energy;
                 }
                 old += 1;
             }
@@ -265,21 +300,32 @@ impl ContactList {
                         WarmStart::NONE
                     });
                 }
+                if rolling {
+                    self.rebuilt_rolling.push(if carry_rolling {
+                        self.rolling[old]
+                    } else {
+                        0.0
+                    });
+                }
                 old += 1;
             } else {
                 self.rebuilt.push(Slot::new(i, j));
                 if conic {
                     self.rebuilt_warm.push(WarmStart::NONE);
                 }
+                if rolling {
+                    self.rebuilt_rolling.push(0.0);
+                }
             }
         }
         for s in &self.slots[old..] {
             if s.active {
-                lost += s.shear_energy;
+                lost += s.history_energy;
             }
         }
         std::mem::swap(&mut self.slots, &mut self.rebuilt);
         std::mem::swap(&mut self.warm, &mut self.rebuilt_warm);
+        std::mem::swap(&mut self.rolling, &mut self.rebuilt_rolling);
         // The data are recomputed from the slots every step: only their number changes.
         reserve_for(&mut self.data, self.slots.len());
         self.data.resize(self.slots.len(), ContactData::default());
@@ -309,19 +355,16 @@ impl ContactList {
         fill.extend_from_slice(&self.adjacency_start[..n]);
         for (idx, s) in self.slots.iter().enumerate() {
             let idx = idx as u32;
-            if s.is_wall() {
-                let k = s.i as usize;
-                self.adjacency[fill[k] as usize] = Adjacent { packed: idx };
-                fill[k] += 1;
-            } else {
-                let (i, j) = (s.i as usize, s.j as usize);
-                self.adjacency[fill[i] as usize] = Adjacent {
+            let sides = Sides::of_slot(s.i, s.j);
+            if let Some(k) = sides.giving_body() {
+                self.adjacency[fill[k] as usize] = Adjacent {
                     packed: idx | Adjacent::GIVES,
                 };
-                fill[i] += 1;
-                self.adjacency[fill[j] as usize] = Adjacent { packed: idx };
-                fill[j] += 1;
+                fill[k] += 1;
             }
+            let k = sides.receiver;
+            self.adjacency[fill[k] as usize] = Adjacent { packed: idx };
+            fill[k] += 1;
         }
         self.adjacency_fill = fill;
         self.builds += 1;

@@ -1,14 +1,24 @@
-//! Rigid-body dynamics: bodies, the world, the step function, the quiescence criterion and the
-//! critical time step. Reads no files and writes none.
+//! Rigid-body dynamics: bodies, boundaries (walls that may move), the world, the step function,
+//! the kinematics of a contact, the quiescence criterion, the critical time step and analyses of
+//! a state. Reads no files and writes none.
 
+pub mod account;
+pub mod analysis;
 pub mod body;
+pub mod boundary;
 pub mod broad_phase;
 pub mod contacts;
+pub mod kinematics;
+pub mod partner;
+pub mod quiescence;
 pub mod step;
 pub mod timestep;
 pub mod watch;
 pub mod world;
 
 pub use body::{Bodies, BodyInit, BodyState};
+pub use boundary::{Motion, Servo, Span, WallSpec};
+pub use partner::{Partner, Sides};
+pub use quiescence::Quiescence;
 pub use step::{Blowup, StepReport};
-pub use world::{WallSpec, World};
+pub use world::World;

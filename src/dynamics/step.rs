@@ -6,13 +6,18 @@
 //!    evaluation, at time level n).
 //! 2. **Drift**: `x_{n+1} = x_n + Δt v_{n+½}`, `θ_{n+1} = θ_n + Δt ω_{n+½}`; the increments
 //!    `|Δx|, |Δy|, |Δθ|` averaged over bodies are P's quiescence measure. Non-finite state stops
-//!    here with the step and the body.
-//! 3. **Forces** `F_{n+1}, M_{n+1}` from the positions `x_{n+1}, θ_{n+1}` and, for the dashpots and
-//!    the shear displacement, the velocities `v_{n+½}, ω_{n+½}` (the latest available; as in
-//!    LAMMPS and LIGGGHTS): broad phase → narrow phase → contact law → `F` and `r × F` on each
-//!    body (T3, T4; `r` from the centroid to the contact point, so the normal force has a moment
-//!    on non-circular bodies), plus gravity (T3).
+//!    here with the step and the body. Moving walls drift to time level n+1 too
+//!    ([`super::boundary`]).
+//! 3. **Forces** `F_{n+1}, M_{n+1}` from the positions `x_{n+1}, θ_{n+1}` and, for the dashpots,
+//!    the shear displacement and the rolling spring, the velocities `v_{n+½}, ω_{n+½}` (the
+//!    latest available; as in LAMMPS and LIGGGHTS) and the walls' drift velocities: neighbour
+//!    list → narrow phase → kinematics at the contact ([`super::kinematics`]) → contact law →
+//!    `F`, `r × F` and the contact's couple on each body (T3, T4, T22; `r` from the centroid to
+//!    the contact point, so the normal force has a moment on non-circular bodies), plus gravity
+//!    (T3); each wall's load is summed.
 //! 4. **Kick**: `v_{n+1} = v_{n+½} + ½Δt F_{n+1}/m`, `ω_{n+1} = ω_{n+½} + ½Δt M_{n+1}/I` (T1).
+//! 5. **Account**: the dissipated energy and the walls' work over the step; the servo walls'
+//!    velocities for the next drift, from their loads.
 //!
 //! For an undamped linear oscillator this scheme is stable for `ωΔt < 2`; with a dashpot of
 //! damping ratio ζ evaluated at the half step, for `ωΔt < 2(√(1+ζ²) − ζ)`
@@ -30,10 +35,18 @@
 //! start from the last step's crossings or separating axis (see
 //! [`crate::narrow_phase::ellipse_ellipse`]).
 
+use super::account::{Diagnostics, Energies};
 use super::body::Bodies;
-use super::contacts::{ContactData, ContactExtra, Slot, WALL_BASE, WarmStart, reserve_for};
-use super::world::{WallSpec, World};
-use crate::contact_law::{AreaKinematics, ContactSpec, EquivalentOverlap, Kinematics, NormalForce};
+use super::boundary::WallSpec;
+use super::boundary::{Motion, WallLoad, servo_velocity};
+use super::broad_phase::Grid;
+use super::contacts::{ContactData, ContactExtra, ContactList, Slot, WarmStart, reserve_for};
+use super::kinematics;
+use super::partner::{Partner, Sides};
+use crate::contact_law::{
+    AreaKinematics, ContactSpec, EquivalentOverlap, History, Kinematics, Law, NormalForce,
+    RollingKinematics, RollingModel,
+};
 use crate::geometry::Shape;
 use crate::geometry::overlap_area::DiskLens;
 use crate::geometry::{Pose, Vec2};
@@ -85,7 +98,7 @@ pub struct StepReport {
 
 /// Per-chunk results of the body passes.
 #[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct BodyPartial {
+struct BodyPartial {
     /// Σ|Δx|, Σ|Δy|, Σ|Δθ| (drift).
     inc: [f64; 3],
     /// The two largest displacements since the neighbour list was built (drift).
@@ -101,16 +114,66 @@ pub(crate) struct BodyPartial {
 
 /// Per-chunk results of the slot passes.
 #[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct SlotPartial {
+struct SlotPartial {
     contacts: usize,
     elastic: f64,
-    /// Shear-spring energy of contacts that opened this step.
-    lost_shear: f64,
+    /// History springs' energy of contacts that opened this step.
+    lost_history: f64,
     deep: u64,
     contained: u64,
     max_depth_ratio: f64,
-    /// Σ of the change of the shear springs' energy.
-    shear_energy_change: f64,
+    /// Σ of the change of the history springs' energy (shear and rolling).
+    history_energy_change: f64,
+}
+
+/// What a step reads and writes of the world, borrowed from it by [`World::step`]: the stepper
+/// never names the world, which owns it (no import cycle between the two).
+pub(crate) struct Parts<'a> {
+    pub bodies: &'a mut Bodies,
+    pub walls: &'a mut [WallSpec],
+    pub contacts: &'a mut ContactList,
+    pub energies: &'a mut Energies,
+    pub diagnostics: &'a mut Diagnostics,
+    pub gravity: Vec2,
+    pub spec: &'a ContactSpec,
+    pub dt: f64,
+    pub step: &'a mut u64,
+    pub time: &'a mut f64,
+    pub last_increments: &'a mut [f64; 3],
+}
+
+/// The stepper: the scratch the step reuses from step to step (the broad phase's grid and pair
+/// list, the per-chunk partial sums of the parallel passes, the laws resolved once per step).
+/// Nothing in it is state: a world rebuilt from its bodies and contacts steps the same.
+#[derive(Clone, Debug, Default)]
+pub struct Stepper {
+    grid: Grid,
+    /// Scratch of the neighbour-list build (the grid's body pairs).
+    pair_scratch: Vec<(u32, u32)>,
+    /// Per-chunk partial results of the parallel passes.
+    body_partials: Vec<BodyPartial>,
+    slot_partials: Vec<SlotPartial>,
+    /// Per chunk of slots, per wall: the wall's contacts' sums.
+    wall_partials: Vec<WallLoad>,
+    /// The density of every body when they all have the same (checked at each list build).
+    uniform_density: Option<f64>,
+    /// Laws resolved once per step when every pair of a kind has the same.
+    law_cache: Vec<Law>,
+}
+
+impl Stepper {
+    /// Heap bytes of the grid, and of the build's and the passes' scratch.
+    pub(crate) fn heap_bytes(&self) -> (usize, usize) {
+        let held = |cap: usize, size: usize| cap * size;
+        (
+            self.grid.heap_bytes(),
+            held(self.pair_scratch.capacity(), 8)
+                + held(
+                    self.wall_partials.capacity(),
+                    std::mem::size_of::<WallLoad>(),
+                ),
+        )
+    }
 }
 
 /// Keeps the two largest of the values pushed.
@@ -124,15 +187,15 @@ fn top_two(t: &mut [f64; 2], d: f64) {
     }
 }
 
-impl World {
+impl Stepper {
     /// Advances the world by one time step (see the module documentation for the stages).
-    pub fn step(&mut self) -> Result<StepReport, Blowup> {
-        let dt = self.dt;
+    pub(crate) fn step(&mut self, wd: &mut Parts) -> Result<StepReport, Blowup> {
+        let dt = wd.dt;
         let h = 0.5 * dt;
-        let n = self.bodies.len();
-        let next_step = self.step + 1;
+        let n = wd.bodies.len();
+        let next_step = *wd.step + 1;
         let next_time = next_step as f64 * dt;
-        self.size_partials();
+        self.size_partials(wd);
         // 1.–2. Kick to the half step and drift, chunk by chunk.
         {
             let Bodies {
@@ -143,8 +206,8 @@ impl World {
                 inv_mass,
                 inv_inertia,
                 ..
-            } = &mut self.bodies;
-            let built_at = &self.contacts.built_at;
+            } = &mut *wd.bodies;
+            let built_at = &wd.contacts.built_at;
             let fresh = built_at.len() == n;
             state
                 .par_chunks_mut(BODY_CHUNK)
@@ -204,27 +267,53 @@ impl World {
                 *v /= n as f64;
             }
         }
-        self.last_increments = inc;
-        // 3. Forces at the new positions (the neighbour list first, if a pair outside it could
-        // now touch: two bodies approach by at most the sum of their displacements).
-        if self.contacts.built_at.len() != n || disp[0] + disp[1] > self.contacts.skin {
-            self.rebuild_neighbours();
+        *wd.last_increments = inc;
+        // Moving walls drift with the bodies; a wall's normal displacement since the list was
+        // built counts like a body's.
+        let mut wall_disp = 0.0f64;
+        for (k, ws) in wd.walls.iter_mut().enumerate() {
+            if ws.moves() {
+                ws.drift(next_time, dt);
+                if let Some(at) = wd.contacts.wall_built_at.get(k) {
+                    wall_disp = wall_disp.max((ws.wall.point - at).dot(&ws.wall.normal).abs());
+                }
+            }
         }
-        let slots = self.compute_slots(dt);
+        // 3. Forces at the new positions (the neighbour list first, if a pair outside it could
+        // now touch: two bodies approach by at most the sum of their displacements, a body and
+        // a wall by the sum of theirs).
+        if wd.contacts.built_at.len() != n || disp[0] + disp[1].max(wall_disp) > wd.contacts.skin {
+            self.rebuild_neighbours(wd);
+        }
+        let slots = self.compute_slots(wd, dt);
         // 4. Kick to the full step, gathering each body's forces.
-        let bodies_sum = self.gather_forces(Some(h));
+        let bodies_sum = self.gather_forces(wd, Some(h));
         if let Some(body) = bodies_sum.bad {
             return Err(blowup(body, "velocity"));
         }
         // Energy the contacts took out during this step. Verlet applies the forces of time level
         // n+1 over the interval centred on it, so their work is taken with the velocities at n+1
         // (after the second kick): the non-elastic forces' power, summed body by body
-        // (Σ_c f·v_rel = Σ_k F_k·v_k + M_k ω_k), less the change of the shear springs' energy.
-        self.energies.dissipated -= bodies_sum.non_elastic_power * dt + slots.shear_energy_change;
-        self.step = next_step;
-        self.time = next_time;
-        self.energies.kinetic = bodies_sum.kinetic;
-        self.energies.potential = bodies_sum.potential;
+        // (Σ_c f·v_rel = Σ_k F_k·v_k + M_k ω_k − Σ_walls F_w·v_w), less the change of the
+        // history springs' energy. A moving wall does the work F_w·v_w (see `boundary`).
+        if wd.walls.iter().any(WallSpec::moves) {
+            let (mut power, mut power_ne) = (0.0, 0.0);
+            for ws in wd.walls.iter() {
+                power += ws.load.force.dot(&ws.velocity);
+                power_ne += ws.load.force_non_elastic.dot(&ws.velocity);
+            }
+            wd.energies.dissipated -=
+                (bodies_sum.non_elastic_power - power_ne) * dt + slots.history_energy_change;
+            wd.energies.boundary_work += power * dt;
+            Self::update_servos(wd);
+        } else {
+            wd.energies.dissipated -=
+                bodies_sum.non_elastic_power * dt + slots.history_energy_change;
+        }
+        *wd.step = next_step;
+        *wd.time = next_time;
+        wd.energies.kinetic = bodies_sum.kinetic;
+        wd.energies.potential = bodies_sum.potential;
         Ok(StepReport {
             increments: inc,
             contacts: slots.contacts,
@@ -232,36 +321,51 @@ impl World {
     }
 
     /// Evaluates the forces of the current configuration without advancing (used at t = 0).
-    pub fn evaluate_forces(&mut self) {
-        self.size_partials();
-        self.rebuild_neighbours();
-        self.compute_slots(0.0);
-        self.gather_forces(None);
+    pub(crate) fn evaluate_forces(&mut self, wd: &mut Parts) {
+        self.size_partials(wd);
+        self.rebuild_neighbours(wd);
+        self.compute_slots(wd, 0.0);
+        self.gather_forces(wd, None);
     }
 
-    /// One partial result per chunk of bodies and of slots.
-    fn size_partials(&mut self) {
-        let nb = self.bodies.len().div_ceil(BODY_CHUNK);
+    /// Sets each servo wall's velocity for the next step from the load of the last force
+    /// evaluation (see [`super::boundary`]).
+    pub(crate) fn update_servos(wd: &mut Parts) {
+        for k in 0..wd.walls.len() {
+            if let Motion::Servo(s) = wd.walls[k].motion {
+                wd.walls[k].velocity = servo_velocity(&wd.walls[k], &s, wd.walls, wd.dt);
+            }
+        }
+    }
+
+    /// One partial result per chunk of bodies and of slots (and per wall for each chunk of
+    /// slots: at least one, so that every chunk has its slice).
+    fn size_partials(&mut self, wd: &Parts) {
+        let nb = wd.bodies.len().div_ceil(BODY_CHUNK);
         if self.body_partials.len() != nb {
             self.body_partials.resize(nb, BodyPartial::default());
         }
-        let ns = self.contacts.slots.len().div_ceil(SLOT_CHUNK);
+        let ns = wd.contacts.slots.len().div_ceil(SLOT_CHUNK);
         if self.slot_partials.len() != ns {
             self.slot_partials.resize(ns, SlotPartial::default());
+        }
+        let nw = ns * wd.walls.len().max(1);
+        if self.wall_partials.len() != nw {
+            self.wall_partials.resize(nw, WallLoad::default());
         }
     }
 
     /// Rebuilds the neighbour list from the current positions (body pairs from the grid, then
     /// each body's walls after its body partners: key order), carrying histories over.
-    pub(crate) fn rebuild_neighbours(&mut self) {
-        let n = self.bodies.len();
-        let max_bound = self.bodies.bound.iter().copied().fold(0.0f64, f64::max);
+    pub(crate) fn rebuild_neighbours(&mut self, wd: &mut Parts) {
+        let n = wd.bodies.len();
+        let max_bound = wd.bodies.bound.iter().copied().fold(0.0f64, f64::max);
         let skin = SKIN_FRACTION * max_bound;
-        let d0 = self.bodies.density.first().copied();
-        self.uniform_density = d0.filter(|&d| self.bodies.density.iter().all(|&x| x == d));
-        let list = &mut self.contacts;
+        let d0 = wd.bodies.density.first().copied();
+        self.uniform_density = d0.filter(|&d| wd.bodies.density.iter().all(|&x| x == d));
+        let list = &mut *wd.contacts;
         list.skin = skin;
-        self.grid.pairs(&self.bodies, skin, &mut self.pair_scratch);
+        self.grid.pairs(wd.bodies, skin, &mut self.pair_scratch);
         list.keys.clear();
         reserve_for(&mut list.keys, self.pair_scratch.len() + n);
         let mut next = 0;
@@ -270,87 +374,133 @@ impl World {
                 list.keys.push(self.pair_scratch[next]);
                 next += 1;
             }
-            let (x, r) = (self.bodies.state[i].pose.position, self.bodies.bound[i]);
-            for (w, ws) in self.walls.iter().enumerate() {
+            let (x, r) = (wd.bodies.state[i].pose.position, wd.bodies.bound[i]);
+            for (w, ws) in wd.walls.iter().enumerate() {
                 if ws.wall.signed_distance(x) <= r + skin {
-                    list.keys.push((i as u32, WALL_BASE + w as u32));
+                    list.keys
+                        .push((i as u32, super::contacts::WALL_BASE + w as u32));
                 }
             }
         }
         // Conic pairs (circle–ellipse, ellipse–ellipse) carry warm starts; others need none.
-        let conic = self
+        let conic = wd
             .bodies
             .shape
             .iter()
             .any(|s| matches!(s, Shape::Ellipse { .. }));
-        let lost = list.rebuild_from_keys(n, conic);
-        self.energies.dissipated += lost;
+        // Contacts with a rolling spring carry it beside the slots.
+        let epsd = |spec: &ContactSpec| {
+            spec.rolling()
+                .is_some_and(|r| r.model == RollingModel::Epsd)
+        };
+        let rolling = epsd(wd.spec) || wd.walls.iter().any(|w| epsd(&w.spec));
+        let lost = list.rebuild_from_keys(n, conic, rolling);
+        wd.energies.dissipated += lost;
         list.built_at.clear();
         reserve_for(&mut list.built_at, n);
         list.built_at
-            .extend(self.bodies.state.iter().map(|s| s.pose.position));
-        self.size_partials();
+            .extend(wd.bodies.state.iter().map(|s| s.pose.position));
+        list.wall_built_at.clear();
+        list.wall_built_at
+            .extend(wd.walls.iter().map(|w| w.wall.point));
+        self.size_partials(wd);
     }
 
     /// Every slot's contact for the current positions and velocities, in parallel; `dt` is the
     /// step just drifted over (0 at the start), over which the shear displacement is integrated
     /// (T16). Adds the shear energy of contacts that opened to the dissipated energy and sets the
     /// elastic energy and the diagnostics; returns the sums.
-    fn compute_slots(&mut self, dt: f64) -> SlotPartial {
-        let g = self.gravity.norm();
-        self.resolve_uniform_laws(g);
-        let laws = if self.law_cache.is_empty() {
-            None
-        } else {
-            Some(&self.law_cache[..])
+    fn compute_slots(&mut self, wd: &mut Parts, dt: f64) -> SlotPartial {
+        let g = wd.gravity.norm();
+        self.resolve_uniform_laws(wd, g);
+        let ContactList {
+            slots,
+            data,
+            warm,
+            rolling,
+            adjacency_start,
+            ..
+        } = &mut *wd.contacts;
+        let cx = SlotContext {
+            bodies: &*wd.bodies,
+            walls: &wd.walls[..],
+            spec: wd.spec,
+            laws: if self.law_cache.is_empty() {
+                None
+            } else {
+                Some(&self.law_cache[..])
+            },
+            g,
+            dt,
+            adjacency_start,
         };
-        let bodies = &self.bodies;
-        let walls = &self.walls[..];
-        let spec = &self.spec;
-        let list = &mut self.contacts;
-        let chunks = list
-            .slots
+        let nw = wd.walls.len().max(1);
+        let chunks = slots
             .par_chunks_mut(SLOT_CHUNK)
-            .zip(list.data.par_chunks_mut(SLOT_CHUNK))
-            .zip(self.slot_partials.par_iter_mut());
-        if list.warm.is_empty() {
-            chunks.for_each(|((slots, data), part)| {
-                let mut p = SlotPartial::default();
-                for (slot, data) in slots.iter_mut().zip(data) {
-                    let ctx = (bodies, walls, spec, laws, g, dt);
-                    update_slot(slot, data, None, None, ctx, &mut p);
-                }
-                *part = p;
-            });
-        } else {
-            chunks.zip(list.warm.par_chunks_mut(SLOT_CHUNK)).for_each(
-                |(((slots, data), part), warm)| {
-                    let mut p = SlotPartial::default();
-                    for ((slot, data), warm) in slots.iter_mut().zip(data).zip(warm) {
-                        let ctx = (bodies, walls, spec, laws, g, dt);
-                        update_slot(slot, data, None, Some(warm), ctx, &mut p);
-                    }
-                    *part = p;
+            .zip(data.par_chunks_mut(SLOT_CHUNK))
+            .zip(self.slot_partials.par_iter_mut())
+            .zip(self.wall_partials.par_chunks_mut(nw));
+        // One chunk of slots, with its warm starts and rolling springs when the scene keeps them.
+        let run = |slots: &mut [Slot],
+                   data: &mut [ContactData],
+                   part: &mut SlotPartial,
+                   loads: &mut [WallLoad],
+                   mut warm: Option<&mut [WarmStart]>,
+                   mut rolling: Option<&mut [f64]>| {
+            let mut p = SlotPartial::default();
+            loads.fill(WallLoad::default());
+            for (k, (slot, data)) in slots.iter_mut().zip(data).enumerate() {
+                let w = warm.as_deref_mut().map(|w| &mut w[k]);
+                let r = rolling.as_deref_mut().map(|r| &mut r[k]);
+                update_slot(slot, data, None, w, r, &cx, &mut p, loads);
+            }
+            *part = p;
+        };
+        match (warm.is_empty(), rolling.is_empty()) {
+            (true, true) => chunks.for_each(|(((slots, data), part), loads)| {
+                run(slots, data, part, loads, None, None)
+            }),
+            (false, true) => chunks.zip(warm.par_chunks_mut(SLOT_CHUNK)).for_each(
+                |((((slots, data), part), loads), warm)| {
+                    run(slots, data, part, loads, Some(warm), None)
                 },
-            );
+            ),
+            (true, false) => chunks.zip(rolling.par_chunks_mut(SLOT_CHUNK)).for_each(
+                |((((slots, data), part), loads), rolling)| {
+                    run(slots, data, part, loads, None, Some(rolling))
+                },
+            ),
+            (false, false) => chunks
+                .zip(warm.par_chunks_mut(SLOT_CHUNK))
+                .zip(rolling.par_chunks_mut(SLOT_CHUNK))
+                .for_each(|(((((slots, data), part), loads), warm), rolling)| {
+                    run(slots, data, part, loads, Some(warm), Some(rolling))
+                }),
         }
         let mut sum = SlotPartial::default();
         for p in &self.slot_partials {
             sum.contacts += p.contacts;
             sum.elastic += p.elastic;
-            sum.lost_shear += p.lost_shear;
+            sum.lost_history += p.lost_history;
             sum.deep += p.deep;
             sum.contained += p.contained;
             sum.max_depth_ratio = sum.max_depth_ratio.max(p.max_depth_ratio);
-            sum.shear_energy_change += p.shear_energy_change;
+            sum.history_energy_change += p.history_energy_change;
         }
-        // A contact that opened took its shear spring's energy with it.
-        self.energies.dissipated += sum.lost_shear;
-        self.energies.elastic = sum.elastic;
-        self.diagnostics.deep_contacts += sum.deep;
-        self.diagnostics.contained_contacts += sum.contained;
-        self.diagnostics.max_depth_ratio =
-            self.diagnostics.max_depth_ratio.max(sum.max_depth_ratio);
+        // Each wall's load: its contacts' sums, chunk by chunk in order.
+        for (w, ws) in wd.walls.iter_mut().enumerate() {
+            let mut load = WallLoad::default();
+            for c in self.wall_partials.chunks(nw) {
+                load.add(&c[w]);
+            }
+            ws.load = load;
+        }
+        // A contact that opened took its history springs' energy with it.
+        wd.energies.dissipated += sum.lost_history;
+        wd.energies.elastic = sum.elastic;
+        wd.diagnostics.deep_contacts += sum.deep;
+        wd.diagnostics.contained_contacts += sum.contained;
+        wd.diagnostics.max_depth_ratio = wd.diagnostics.max_depth_ratio.max(sum.max_depth_ratio);
         sum
     }
 
@@ -358,35 +508,51 @@ impl World {
     /// state. The step does not store them (it would stream them to memory every step for a
     /// report made every output interval): this evaluates every slot again on a copy — its
     /// history untouched, no time elapsing (Δt = 0) — and keeps only the extras.
-    pub fn refresh_contact_extras(&mut self) {
-        let g = self.gravity.norm();
-        self.resolve_uniform_laws(g);
-        let laws = if self.law_cache.is_empty() {
-            None
-        } else {
-            Some(&self.law_cache[..])
+    pub(crate) fn refresh_contact_extras(&mut self, wd: &mut Parts) {
+        let g = wd.gravity.norm();
+        self.resolve_uniform_laws(wd, g);
+        let ContactList {
+            slots,
+            extra,
+            warm,
+            rolling,
+            adjacency_start,
+            ..
+        } = &mut *wd.contacts;
+        let cx = SlotContext {
+            bodies: &*wd.bodies,
+            walls: &wd.walls[..],
+            spec: wd.spec,
+            laws: if self.law_cache.is_empty() {
+                None
+            } else {
+                Some(&self.law_cache[..])
+            },
+            g,
+            dt: 0.0,
+            adjacency_start,
         };
-        let (bodies, walls, spec) = (&self.bodies, &self.walls[..], &self.spec);
-        let list = &mut self.contacts;
-        let warm = &list.warm[..];
-        list.slots
+        let (warm, rolling) = (&warm[..], &rolling[..]);
+        slots
             .par_chunks(SLOT_CHUNK)
-            .zip(list.extra.par_chunks_mut(SLOT_CHUNK))
+            .zip(extra.par_chunks_mut(SLOT_CHUNK))
             .enumerate()
             .for_each(|(c, (slots, extra))| {
                 let mut p = SlotPartial::default();
                 for (k, (slot, extra)) in slots.iter().zip(extra).enumerate() {
                     let mut copy = (*slot, ContactData::default());
                     let mut warm_copy = warm.get(c * SLOT_CHUNK + k).copied();
+                    let mut rolling_copy = rolling.get(c * SLOT_CHUNK + k).copied();
                     if slot.active {
-                        let ctx = (bodies, walls, spec, laws, g, 0.0);
                         update_slot(
                             &mut copy.0,
                             &mut copy.1,
                             Some(extra),
                             warm_copy.as_mut(),
-                            ctx,
+                            rolling_copy.as_mut(),
+                            &cx,
                             &mut p,
+                            &mut [],
                         );
                     } else {
                         *extra = ContactExtra::default();
@@ -395,67 +561,31 @@ impl World {
             });
     }
 
-    /// The unbalanced-force ratio of PFC and Yade — mean |net force| over bodies divided by
-    /// mean |contact force| over contacts — and the same for moments (contact force × the
-    /// receiving body's bounding radius); 0 without contacts. Computed on demand from the last
-    /// evaluation (it costs a square root per contact and per body).
-    pub fn unbalanced_ratios(&self) -> (f64, f64) {
-        let b = &self.bodies;
-        let (mut sum_f, mut sum_m, mut count) = (0.0, 0.0, 0usize);
-        for c in self.contacts.active() {
-            let f = c.data.force.norm();
-            let recv = if c.is_wall() { c.slot.i } else { c.slot.j } as usize;
-            sum_f += f;
-            sum_m += f * b.bound[recv];
-            count += 1;
-        }
-        if count == 0 || b.is_empty() {
-            return (0.0, 0.0);
-        }
-        let n = b.len() as f64;
-        let net_f = b.force.iter().map(|f| f.norm()).sum::<f64>() / n;
-        let net_m = b.torque.iter().map(|m| m.abs()).sum::<f64>() / n;
-        let (mean_f, mean_m) = (sum_f / count as f64, sum_m / count as f64);
-        (
-            if mean_f > 0.0 { net_f / mean_f } else { 0.0 },
-            if mean_m > 0.0 { net_m / mean_m } else { 0.0 },
-        )
-    }
-
     /// When every pair of a kind has the same law — one density for all bodies, and no law that
     /// depends on the pair's mass (restitution-tuned dashpots) — resolves the body–body law and
     /// each wall's once (`law_cache[0]`, `law_cache[1 + w]`) instead of at every contact.
-    fn resolve_uniform_laws(&mut self, g: f64) {
+    fn resolve_uniform_laws(&mut self, wd: &Parts, g: f64) {
         self.law_cache.clear();
-        let per_pair = |s: &ContactSpec| {
-            matches!(
-                s,
-                ContactSpec::Linear {
-                    damping: crate::contact_law::LinearDamping::Restitution(_),
-                    ..
-                }
-            )
-        };
         let Some(rho) = self.uniform_density else {
             return;
         };
-        if per_pair(&self.spec) || self.walls.iter().any(|w| per_pair(&w.spec)) {
+        if wd.spec.depends_on_mass() || wd.walls.iter().any(|w| w.spec.depends_on_mass()) {
             return;
         }
         self.law_cache
-            .push(self.spec.resolve(&self.spec, rho, g, f64::NAN));
-        for w in &self.walls {
+            .push(wd.spec.resolve(wd.spec, rho, g, f64::NAN));
+        for w in wd.walls.iter() {
             self.law_cache
-                .push(w.spec.resolve(&self.spec, rho, g, f64::NAN));
+                .push(w.spec.resolve(wd.spec, rho, g, f64::NAN));
         }
     }
 
     /// Each body's force and moment: gravity (T3) and its contacts' (T4, T22), gathered in key
     /// order. With `kick = Some(h)`, then `v += h F/m`, `ω += h M/I` (the second half-kick) and
     /// the sums of the body pass (net force and moment, energies, first non-finite body).
-    fn gather_forces(&mut self, kick: Option<f64>) -> BodyPartial {
-        let gravity = self.gravity;
-        let list = &self.contacts;
+    fn gather_forces(&mut self, wd: &mut Parts, kick: Option<f64>) -> BodyPartial {
+        let gravity = wd.gravity;
+        let list = &*wd.contacts;
         let (data, start, adjacency) = (
             &list.data[..],
             &list.adjacency_start[..],
@@ -470,7 +600,7 @@ impl World {
             inv_mass,
             inv_inertia,
             ..
-        } = &mut self.bodies;
+        } = &mut *wd.bodies;
         force
             .par_chunks_mut(BODY_CHUNK)
             .zip(torque.par_chunks_mut(BODY_CHUNK))
@@ -531,110 +661,92 @@ impl World {
 
 /// What every slot's contact is computed from: the bodies, the walls, the scene's law, the laws
 /// resolved once for the step (if uniform), |g| and the step Δt.
-type SlotContext<'a> = (
-    &'a Bodies,
-    &'a [WallSpec],
-    &'a ContactSpec,
-    Option<&'a [crate::contact_law::Law]>,
-    f64,
-    f64,
-);
+#[derive(Clone, Copy)]
+struct SlotContext<'a> {
+    bodies: &'a Bodies,
+    walls: &'a [WallSpec],
+    spec: &'a ContactSpec,
+    laws: Option<&'a [Law]>,
+    g: f64,
+    dt: f64,
+    /// The neighbour list's per-body slot ranges (a body's number of slots).
+    adjacency_start: &'a [u32],
+}
 
 /// One slot's contact: geometry (narrow phase, from the slot's warm start when it has one),
 /// kinematics at the contact point, the law, and the history; an inactive slot drops its
-/// history. `extra`, when given, receives the depth, normal and stiffness.
+/// history (the slot's shear spring, and the rolling spring `rolling_spring` when the scene
+/// keeps them). `extra`, when given, receives the depth, normal and stiffness; `loads` (one per
+/// wall, or empty) the sums of each wall's contacts.
+#[allow(clippy::too_many_arguments)]
 fn update_slot(
     slot: &mut Slot,
     data: &mut ContactData,
     extra: Option<&mut ContactExtra>,
     warm_start: Option<&mut WarmStart>,
-    (b, walls, spec, laws, g, dt): SlotContext,
+    rolling_spring: Option<&mut f64>,
+    cx: &SlotContext,
     p: &mut SlotPartial,
+    loads: &mut [WallLoad],
 ) {
-    let (iu, ju) = (slot.i as usize, slot.j as usize);
-    let wall = slot.is_wall();
-    let governing = if wall {
-        &walls[ju - WALL_BASE as usize].spec
-    } else {
-        spec
+    let SlotContext {
+        bodies: b,
+        walls,
+        spec,
+        laws,
+        g,
+        dt,
+        ..
+    } = *cx;
+    let sides = Sides::of_slot(slot.i, slot.j);
+    let recv = sides.receiver;
+    let (wall, giver) = (sides.wall(), sides.giving_body());
+    let governing = match wall {
+        Some(w) => &walls[w].spec,
+        None => spec,
     };
     let area_law = governing.normal_force() == NormalForce::Area;
     let mut warm = None;
     // Circles take the lean path (no chord: nothing below reads it; both normal-force laws are
     // the spring on the depth for two disks); every other pair the chord contact, with the
     // overlap area under the area law.
-    let lean = match (wall, b.shape[iu], b.shape.get(ju)) {
-        (true, Shape::Circle { r }, _) => {
-            overlap_wall_circle(&walls[ju - WALL_BASE as usize].wall, r, &b.state[iu].pose)
+    let lean = match (sides.giver, b.shape[recv]) {
+        (Partner::Wall(w), Shape::Circle { r }) => {
+            overlap_wall_circle(&walls[w].wall, r, &b.state[recv].pose)
                 .map(|(s, pt, n, d)| (s, pt, n, d, Spring::Depth))
         }
-        (false, Shape::Circle { r: ri }, Some(&Shape::Circle { r: rj })) => {
-            overlap_circle_circle(ri, &b.state[iu].pose, rj, &b.state[ju].pose)
+        (Partner::Body(i), Shape::Circle { r: rj }) if b.is_circle[i] => {
+            let ri = b.bound[i]; // a circle's bounding radius is its radius
+            overlap_circle_circle(ri, &b.state[i].pose, rj, &b.state[recv].pose)
                 .map(|(s, pt, n, d)| (s, pt, n, d, Spring::Depth))
         }
         _ => {
-            let c = if wall {
-                contact_wall_body_with(
-                    &walls[ju - WALL_BASE as usize].wall,
-                    &b.shape[iu],
-                    &b.state[iu].pose,
+            let c = match sides.giver {
+                Partner::Wall(w) => contact_wall_body_with(
+                    &walls[w].wall,
+                    &b.shape[recv],
+                    &b.state[recv].pose,
                     area_law,
-                )
-            } else {
-                // Conic pairs start from last step's crossings (if the contact lasts).
-                // (Only a separating axis survives a separated step.)
-                let guess = warm_start.as_ref().and_then(|w| w.get());
-                let (c, next, _) = contact_bodies_with(
-                    &b.shape[iu],
-                    &b.state[iu].pose,
-                    &b.shape[ju],
-                    &b.state[ju].pose,
-                    guess,
-                    area_law,
-                );
-                warm = next;
-                c
+                ),
+                Partner::Body(i) => {
+                    // Conic pairs start from last step's crossings (if the contact lasts).
+                    // (Only a separating axis survives a separated step.)
+                    let guess = warm_start.as_ref().and_then(|w| w.get());
+                    let (c, next, _) = contact_bodies_with(
+                        &b.shape[i],
+                        &b.state[i].pose,
+                        &b.shape[recv],
+                        &b.state[recv].pose,
+                        guess,
+                        area_law,
+                    );
+                    warm = next;
+                    c
+                }
             };
-            c.geometry.map(|g| {
-                let spring = match (g.flat, g.area) {
-                    // Flat on flat against a wall: a Winkler foundation (see `FlatOverlap`),
-                    // under either law (against a straight line it is the gradient of its
-                    // energy) — resultant k′A with k′ = k_n/ℓ at the overlap centroid; energy
-                    // k′Aȳ. The spring then acts on δ_s = A/ℓ with energy ½k_n δ_s (2ȳ).
-                    (Some(f), _) if c.state == ContactState::Overlap && (wall || !area_law) => {
-                        let ell = if wall {
-                            face_length(&b.shape[iu])
-                        } else {
-                            0.5 * (face_length(&b.shape[iu]) + face_length(&b.shape[ju]))
-                        };
-                        let ybar = (f.centroid - g.chord.0).dot(&g.normal).abs();
-                        Spring::Winkler(f.area / ell, 2.0 * ybar, f.centroid)
-                    }
-                    // The area potential: between two rectangles, the flat-equivalent overlap;
-                    // otherwise the equal-area disks' lens.
-                    (_, Some(a)) if area_law => {
-                        let flat_pair = !wall
-                            && matches!(
-                                (b.shape[iu], b.shape[ju]),
-                                (Shape::Rectangle { .. }, Shape::Rectangle { .. })
-                            );
-                        let equivalent = if flat_pair {
-                            EquivalentOverlap::Flat(
-                                0.5 * (face_length(&b.shape[iu]) + face_length(&b.shape[ju])),
-                            )
-                        } else {
-                            let far = if wall {
-                                f64::INFINITY
-                            } else {
-                                b.area_radius[ju]
-                            };
-                            EquivalentOverlap::Lens(DiskLens::new(b.area_radius[iu], far))
-                        };
-                        Spring::Area(a, equivalent)
-                    }
-                    _ => Spring::Depth,
-                };
-                (c.state, g.point, g.normal, g.depth, spring)
+            c.geometry.map(|geo| {
+                let spring = spring_of(b, sides, c.state, &geo, area_law);
+                (c.state, geo.point, geo.normal, geo.depth, spring)
             })
         }
     };
@@ -643,9 +755,12 @@ fn update_slot(
         // Separated, or touching without overlap: no force, no history.
         _ => {
             if slot.active {
-                p.lost_shear += slot.shear_energy;
+                p.lost_history += slot.history_energy;
             }
             *slot = Slot::new(slot.i, slot.j);
+            if let Some(r) = rolling_spring {
+                *r = 0.0;
+            }
             if let Some(w) = warm_start {
                 w.set(warm); // a separating axis, for the next step
             }
@@ -670,38 +785,24 @@ fn update_slot(
         Spring::Depth => (geo_point, geo_normal),
     };
     let t_ = Vec2::new(-n_.y, n_.x);
-    // The body that receives +F ("j" of the law) and the one that receives −F.
-    let (recv, give) = if wall { (iu, None) } else { (ju, Some(iu)) };
-    let r_recv = point - b.state[recv].pose.position;
-    let mut v_rel = b.point_velocity(recv, r_recv);
-    let mut inv_m = b.inv_mass[recv];
-    let mut rho = b.density[recv];
-    let mut spin = b.state[recv].omega; // ω_j − ω_i, for the rate of a deep overlap's area
-    if let Some(k) = give {
-        v_rel -= b.point_velocity(k, point - b.state[k].pose.position);
-        inv_m += b.inv_mass[k];
-        rho = 0.5 * (rho + b.density[k]);
-        spin -= b.state[k].omega;
-    }
-    let vn = v_rel.dot(&n_);
+    let rel = kinematics::relative(b, walls, sides, point);
+    let vn = rel.velocity.dot(&n_);
+    let m_eff = 1.0 / rel.inv_mass; // T(13)
+    let resolved;
+    let law = match laws {
+        Some(l) => &l[wall.map_or(0, |w| 1 + w)],
+        None => {
+            resolved = governing.resolve(spec, kinematics::density(b, sides), g, m_eff);
+            &resolved
+        }
+    };
     // R* only matters to Hertz–Mindlin (T11): a linear scene does not pay for curvatures. The
     // area law takes the equal-area disks' (so that its potential depends on A alone).
     let r_eff = match (governing, &spring) {
         (ContactSpec::HertzMindlin { .. }, Spring::Area(_, EquivalentOverlap::Lens(lens))) => {
-            let (r1, r2) = lens.radii();
-            if r2.is_finite() {
-                r1 * r2 / (r1 + r2)
-            } else {
-                r1
-            }
+            lens.effective_radius()
         }
-        (ContactSpec::HertzMindlin { .. }, _) => {
-            let mut inv_r = 1.0 / b.curvature_radius(recv, -n_);
-            if let Some(k) = give {
-                inv_r += 1.0 / b.curvature_radius(k, n_);
-            }
-            1.0 / inv_r // T(11)
-        }
+        (ContactSpec::HertzMindlin { .. }, _) => kinematics::effective_radius(b, sides, n_),
         (ContactSpec::Linear { .. }, _) => f64::NAN,
     };
     let (spring_depth, energy_depth, area) = match spring {
@@ -712,7 +813,7 @@ fn update_slot(
             Some(AreaKinematics {
                 area: a.area,
                 length: a.length,
-                rate: -a.length * vn + a.couple * spin,
+                rate: -a.length * vn + a.couple * rel.spin,
                 couple: a.couple,
                 equivalent,
             }),
@@ -723,41 +824,65 @@ fn update_slot(
         depth: spring_depth,
         energy_depth,
         vn,
-        vt: v_rel.dot(&t_),
-        m_eff: 1.0 / inv_m, // T(13)
+        vt: rel.velocity.dot(&t_),
+        m_eff,
         r_eff,
         dt,
         area,
-    };
-    let law = match laws {
-        Some(l) => l[if wall { 1 + ju - WALL_BASE as usize } else { 0 }],
-        None => governing.resolve(spec, rho, g, kin.m_eff),
+        spin: rel.spin,
+        rolling: if law.rolling.is_some() {
+            kinematics::rolling(b, sides, point, n_, |k| {
+                cx.adjacency_start[k + 1] - cx.adjacency_start[k]
+            })
+        } else {
+            RollingKinematics {
+                radius: f64::NAN,
+                inertia: f64::NAN,
+                spin_inertia: f64::NAN,
+            }
+        },
     };
     let mut history = if slot.active {
-        slot.history
+        History {
+            shear: slot.shear,
+            rolling: rolling_spring.as_deref().copied().unwrap_or(0.0),
+        }
     } else {
-        Default::default()
+        History::default()
     };
+    debug_assert!(
+        rolling_spring.is_some() || law.rolling.is_none_or(|r| r.model == RollingModel::Cdt),
+        "an EPSD contact without a rolling spring slot"
+    );
     let cf = law.force(&kin, &mut history);
     let f = n_ * cf.normal + t_ * cf.tangential; // T(5): on the receiving body
     let f_ne = n_ * cf.normal_non_elastic + t_ * cf.tangential;
     p.contacts += 1;
     p.elastic += cf.elastic_energy;
-    p.shear_energy_change += cf.shear_energy_change;
+    p.history_energy_change += cf.history_energy_change;
     let scale = b.shape[recv]
         .inscribed_radius()
-        .min(give.map_or(f64::INFINITY, |k| b.shape[k].inscribed_radius()));
+        .min(giver.map_or(f64::INFINITY, |k| b.shape[k].inscribed_radius()));
     if depth > p.max_depth_ratio * scale {
         p.max_depth_ratio = depth / scale; // divide only when the maximum grows
+    }
+    if let Some(load) = wall.and_then(|w| loads.get_mut(w)) {
+        load.force += f;
+        load.force_non_elastic += f_ne;
+        load.stiffness += cf.kn;
+        load.contacts += 1;
     }
     *slot = Slot {
         i: slot.i,
         j: slot.j,
         active: true,
         state,
-        history,
-        shear_energy: cf.shear_energy,
+        shear: history.shear,
+        history_energy: cf.history_energy,
     };
+    if let Some(r) = rolling_spring {
+        *r = history.rolling;
+    }
     if let Some(w) = warm_start {
         w.set(warm);
     }
@@ -776,7 +901,57 @@ fn update_slot(
             eta_n: cf.eta_n as f32,
             kt: cf.kt as f32,
             eta_t: cf.eta_t as f32,
+            kr: cf.kr as f32,
+            cr: cf.cr as f32,
         };
+    }
+}
+
+/// What the normal spring of a contact acts on, from the geometry the narrow phase found (a
+/// chord contact: not two circles).
+fn spring_of(
+    b: &Bodies,
+    sides: Sides,
+    state: ContactState,
+    geo: &crate::narrow_phase::ContactGeometry,
+    area_law: bool,
+) -> Spring {
+    let recv = sides.receiver;
+    let wall = sides.wall().is_some();
+    // The mean face length of a flat pair (a body and a wall: the body's).
+    let face = || match sides.giving_body() {
+        Some(k) => 0.5 * (b.shape[recv].face_length() + b.shape[k].face_length()),
+        None => b.shape[recv].face_length(),
+    };
+    match (geo.flat, geo.area) {
+        // Flat on flat against a wall: a Winkler foundation (see `FlatOverlap`), under either
+        // law (against a straight line it is the gradient of its energy) — resultant k′A with
+        // k′ = k_n/ℓ at the overlap centroid; energy k′Aȳ. The spring then acts on
+        // δ_s = A/ℓ with energy ½k_n δ_s (2ȳ).
+        (Some(f), _) if state == ContactState::Overlap && (wall || !area_law) => {
+            let ybar = (f.centroid - geo.chord.0).dot(&geo.normal).abs();
+            Spring::Winkler(f.area / face(), 2.0 * ybar, f.centroid)
+        }
+        // The area potential: between two rectangles, the flat-equivalent overlap; otherwise
+        // the equal-area disks' lens.
+        (_, Some(a)) if area_law => {
+            let flat_pair = sides.giving_body().is_some_and(|k| {
+                matches!(
+                    (b.shape[k], b.shape[recv]),
+                    (Shape::Rectangle { .. }, Shape::Rectangle { .. })
+                )
+            });
+            let equivalent = if flat_pair {
+                EquivalentOverlap::Flat(face())
+            } else {
+                let far = sides
+                    .giving_body()
+                    .map_or(f64::INFINITY, |k| b.area_radius[k]);
+                EquivalentOverlap::Lens(DiskLens::new(b.area_radius[recv], far))
+            };
+            Spring::Area(a, equivalent)
+        }
+        _ => Spring::Depth,
     }
 }
 
@@ -790,15 +965,6 @@ enum Spring {
     Winkler(f64, f64, Vec2),
     /// The area potential.
     Area(OverlapArea, EquivalentOverlap),
-}
-
-/// The face length ℓ of a flat-sided shape for the Winkler contact: the mean side, `(w + h)/2`,
-/// so that a square pressed flat by δ feels exactly `k_n δ`.
-fn face_length(shape: &crate::geometry::Shape) -> f64 {
-    match *shape {
-        crate::geometry::Shape::Rectangle { w, h } => 0.5 * (w + h),
-        _ => shape.bounding_radius(),
-    }
 }
 
 /// The z component of `a × b`.

@@ -12,7 +12,8 @@
 use super::body::Bodies;
 use super::contacts::Contact;
 use super::world::{WallSpec, World};
-use crate::contact_law::{ContactSpec, Law, NormalForce};
+use crate::contact_law::params::pair_density;
+use crate::contact_law::{ContactSpec, NormalForce, RollingKinematics};
 use crate::geometry::Shape;
 
 /// Stability limit of one damped contact mode (∞ without stiffness).
@@ -24,17 +25,6 @@ pub fn critical_dt(k: f64, eta: f64, w: f64) -> f64 {
     let omega = (k * w).sqrt();
     let zeta = eta * w / (2.0 * omega);
     2.0 * ((1.0 + zeta * zeta).sqrt() - zeta) / omega
-}
-
-/// The largest normal lever arm `|r × n|` a contact can have on this shape (the largest distance
-/// from the centroid to a boundary normal line): circle 0, ellipse `|a − b|`, rectangle half its
-/// diagonal (a corner can take any normal).
-pub fn max_normal_lever(shape: &Shape) -> f64 {
-    match *shape {
-        Shape::Circle { .. } => 0.0,
-        Shape::Ellipse { a, b } => (a - b).abs(),
-        Shape::Rectangle { w, h } => 0.5 * w.hypot(h),
-    }
 }
 
 /// The largest factor by which a contact of this scene can be stiffer (against its depth) than
@@ -104,7 +94,7 @@ pub fn estimate_critical_dt(
     let mut wn: Vec<(f64, usize)> = Vec::with_capacity(n);
     let mut wt: Vec<(f64, usize)> = Vec::with_capacity(n);
     for k in 0..n {
-        let ln = max_normal_lever(&bodies.shape[k]);
+        let ln = bodies.shape[k].max_normal_lever();
         let lt = bodies.bound[k];
         wn.push((bodies.inv_mass[k] + ln * ln * bodies.inv_inertia[k], k));
         wt.push((bodies.inv_mass[k] + lt * lt * bodies.inv_inertia[k], k));
@@ -135,32 +125,27 @@ pub fn estimate_critical_dt(
             Some(b) => 1.0 / (bodies.inv_mass[a] + bodies.inv_mass[b]),
             None => bodies.mass[a],
         };
-        let rho = match b {
-            Some(b) => 0.5 * (bodies.density[a] + bodies.density[b]),
-            None => bodies.density[a],
+        let rho = pair_density(bodies.density[a], b.map(|b| bodies.density[b]));
+        // R* and the rolling radius of two such bodies (or body and wall), from the body's
+        // bounding radius; the rolling inertia about a point on its bounding circle.
+        let r = bodies.bound[a];
+        let r_eff = if b.is_some() { 0.5 * r } else { r };
+        let pivot = bodies.inertia[a] + bodies.mass[a] * r * r;
+        let rk = RollingKinematics {
+            radius: r_eff,
+            inertia: if b.is_some() { 0.5 * pivot } else { pivot },
+            spin_inertia: bodies.inertia[a],
         };
-        let (kn, eta_n, kt, eta_t) = match s.resolve(spec, rho, g, m_eff) {
-            Law::Linear(l) => (
-                l.kn,
-                l.eta_n,
-                if l.friction > 0.0 { l.ks } else { 0.0 },
-                l.eta_s,
-            ),
-            Law::HertzMindlin(h) => {
-                // R* of two such bodies (or body and wall), with the body's bounding radius.
-                let r = bodies.bound[a];
-                let r_eff = if b.is_some() { 0.5 * r } else { r };
-                let root = (r_eff * delta).sqrt();
-                let kn = 2.0 * h.e_star * root; // dF/dδ = (3/2)(4/3)E*√(R*δ)
-                let eta = h.beta * (m_eff * kn).sqrt();
-                let kt = if h.friction > 0.0 {
-                    8.0 * h.g_star * root
-                } else {
-                    0.0
-                };
-                (kn, eta, kt, eta)
-            }
-        };
+        // Each part's stiffness and dashpot (Hertz's at an overlap of 1 % of the smallest
+        // inscribed radius).
+        let modes = s
+            .resolve(spec, rho, g, m_eff)
+            .modes(delta, r_eff, m_eff, &rk);
+        let (kn, eta_n) = modes.normal;
+        let (kt, eta_t) = modes.tangential;
+        // The rolling spring turns the bodies about their centroids: inverse inertia Σ 1/I.
+        let w_r = bodies.inv_inertia[a] + b.map_or(0.0, |b| bodies.inv_inertia[b]);
+        dt = dt.min(critical_dt(modes.rolling.0, modes.rolling.1, w_r));
         // A normal spring stiffer by the factor f: stiffness f k_n and dashpot √f η (the area
         // law's ρ η; more damping only lowers the limit).
         let f = stiffness_factor(bodies, s.normal_force(), b.is_none());
@@ -210,13 +195,18 @@ fn network_dt(b: &Bodies, contacts: &[Contact]) -> f64 {
     let cross = |a: Vec2, c: Vec2| a.x * c.y - a.y * c.x;
     let mut rows: Vec<JacobianRow> = Vec::with_capacity(2 * contacts.len());
     for c in contacts {
-        let (iu, ju) = (c.slot.i as usize, c.slot.j as usize);
-        let (recv, give) = if c.is_wall() {
-            (iu, None)
-        } else {
-            (ju, Some(iu))
-        };
+        let sides = c.sides();
+        let (recv, give) = (sides.receiver, sides.giving_body());
         let (d, e) = (&c.data, &c.extra);
+        // The rolling spring: a relative rotation, no translation.
+        if e.kr > 0.0 {
+            let a = (recv, [0.0, 0.0, scale[recv][2]]);
+            let (g, two) = match give {
+                Some(k) => ((k, [0.0, 0.0, -scale[k][2]]), true),
+                None => ((recv, [0.0; 3]), false),
+            };
+            rows.push((e.kr as f64, e.cr as f64, [a, g], two));
+        }
         let t = Vec2::new(-e.normal.y, e.normal.x);
         for (u, k, eta) in [
             (e.normal, e.kn as f64, e.eta_n as f64),

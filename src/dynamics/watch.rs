@@ -4,8 +4,8 @@
 //!
 //! # The energy criterion
 //! With `D ≥ 0` the energy the contacts took out, `E = K + P + E_el + D` is constant in exact
-//! arithmetic, up to the work `W` done on the bodies by moving boundaries (none today: walls are
-//! fixed; see [`BlowupWatch::check`] for where that term goes). A stable explicit step does not
+//! arithmetic, up to the work `W` done on the bodies by moving walls (`Energies::boundary_work`,
+//! see `dynamics::boundary`): `E − W` is. A stable explicit step does not
 //! conserve `E` exactly but keeps its error bounded: velocity Verlet's measured energy swings by a
 //! factor of at most `1/(1 − (ωΔt)²/4)` during a contact, ×11 only within 5 % of the stability
 //! limit `ωΔt = 2`. An unstable step multiplies the energy at every step. The run therefore
@@ -49,6 +49,8 @@ pub struct BlowupWatch {
     total0: f64,
     /// Most energy gravity has supplied so far, `max (P₀ − P)`.
     gravity_supplied: f64,
+    /// Most work the walls have done so far, `max W`.
+    boundary_supplied: f64,
     depth_limit: f64,
 }
 
@@ -62,6 +64,7 @@ impl BlowupWatch {
             potential0: e.potential,
             total0: e.total(),
             gravity_supplied: 0.0,
+            boundary_supplied: 0.0,
             depth_limit: DEPTH_LIMIT.max(world.diagnostics.max_depth_ratio),
         }
     }
@@ -79,13 +82,16 @@ impl BlowupWatch {
                 return Some(Trigger::NonFinite(name));
             }
         }
-        // Work done on the bodies by moving boundaries: zero while walls are fixed. When walls
-        // move, add it here (created energy is `E − E₀ − W`, and `|W|` so far is available).
-        let boundary_work = 0.0;
-        let boundary_available = 0.0;
+        // Work done on the bodies by moving walls: created energy is `E − E₀ − W`, and the most
+        // work they have done so far is available.
+        if !e.boundary_work.is_finite() {
+            return Some(Trigger::NonFinite("work of the walls"));
+        }
+        self.boundary_supplied = self.boundary_supplied.max(e.boundary_work);
         self.gravity_supplied = self.gravity_supplied.max(self.potential0 - e.potential);
-        let available = self.kinetic0 + self.elastic0 + self.gravity_supplied + boundary_available;
-        let created = e.total() - self.total0 - boundary_work;
+        let available =
+            self.kinetic0 + self.elastic0 + self.gravity_supplied + self.boundary_supplied;
+        let created = e.total() - self.total0 - e.boundary_work;
         // The rounding of the sums that form the totals (the potential can dwarf the rest).
         let rounding = 1e-9
             * (self.potential0.abs()
@@ -93,6 +99,7 @@ impl BlowupWatch {
                 + e.kinetic
                 + e.elastic
                 + e.dissipated.abs()
+                + e.boundary_work.abs()
                 + self.kinetic0
                 + self.elastic0);
         if created > ENERGY_GROWTH * available + rounding {

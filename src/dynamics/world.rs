@@ -1,52 +1,12 @@
 //! The world: bodies, walls, gravity, the contact law, time, and the running energy account.
 
+pub use super::account::{Diagnostics, Energies};
 use super::body::{Bodies, BodyInit};
-use super::broad_phase::Grid;
+pub use super::boundary::WallSpec;
 use super::contacts::ContactList;
+use super::step::{Blowup, Parts, StepReport, Stepper};
 use crate::contact_law::ContactSpec;
-use crate::geometry::{Vec2, Wall};
-
-/// A wall and the contact parameters of contacts with it (the scene's, or its own overrides).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct WallSpec {
-    pub wall: Wall,
-    pub spec: ContactSpec,
-}
-
-/// Energies of the system, per unit thickness.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Energies {
-    /// `Σ ½ m v² + ½ I ω²`.
-    pub kinetic: f64,
-    /// `Σ −m g·x` (zero at the origin).
-    pub potential: f64,
-    /// Energy stored in the contact springs now.
-    pub elastic: f64,
-    /// Energy taken out by dashpots and sliding so far (including springs' energy lost when a
-    /// contact opens).
-    pub dissipated: f64,
-}
-
-impl Energies {
-    /// Kinetic + potential + elastic + dissipated: constant in exact arithmetic.
-    pub fn total(&self) -> f64 {
-        self.kinetic + self.potential + self.elastic + self.dissipated
-    }
-}
-
-/// Counters a run reports.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Diagnostics {
-    /// Largest `δ / (smaller inscribed radius of the pair)` seen.
-    pub max_depth_ratio: f64,
-    /// Contact-steps in the `deep` (four crossings) fallback.
-    pub deep_contacts: u64,
-    /// Contact-steps in the `contained` fallback.
-    pub contained_contacts: u64,
-    /// Smallest critical time step of the contact network sampled so far (∞ before any contact;
-    /// see [`World::network_critical_dt`]).
-    pub dt_critical_observed: f64,
-}
+use crate::geometry::Vec2;
 
 /// Everything the step function evolves.
 #[derive(Clone, Debug)]
@@ -64,16 +24,8 @@ pub struct World {
     pub diagnostics: Diagnostics,
     /// Mean |Δx|, |Δy|, |Δθ| over bodies during the last step (P's quiescence measure).
     pub last_increments: [f64; 3],
-    pub(crate) grid: Grid,
-    /// Scratch of the neighbour-list build (the grid's body pairs).
-    pub(crate) pair_scratch: Vec<(u32, u32)>,
-    /// Per-chunk partial results of the parallel passes (see `step`).
-    pub(crate) body_partials: Vec<super::step::BodyPartial>,
-    pub(crate) slot_partials: Vec<super::step::SlotPartial>,
-    /// The density of every body when they all have the same (checked at each list build).
-    pub(crate) uniform_density: Option<f64>,
-    /// Laws resolved once per step when every pair of a kind has the same (see `step`).
-    pub(crate) law_cache: Vec<crate::contact_law::Law>,
+    /// The step's scratch (owned here, never read as state).
+    stepper: Stepper,
 }
 
 impl World {
@@ -101,17 +53,80 @@ impl World {
                 ..Default::default()
             },
             last_increments: [0.0; 3],
-            grid: Grid::default(),
-            pair_scratch: Vec::new(),
-            body_partials: Vec::new(),
-            slot_partials: Vec::new(),
-            uniform_density: None,
-            law_cache: Vec::new(),
+            stepper: Stepper::default(),
         };
         w.evaluate_forces();
+        Stepper::update_servos(&mut w.parts().1);
         w.energies.kinetic = w.kinetic_energy();
         w.energies.potential = w.potential_energy();
         w
+    }
+
+    /// The stepper and the state it steps, borrowed apart.
+    fn parts(&mut self) -> (&mut Stepper, Parts<'_>) {
+        (
+            &mut self.stepper,
+            Parts {
+                bodies: &mut self.bodies,
+                walls: &mut self.walls,
+                contacts: &mut self.contacts,
+                energies: &mut self.energies,
+                diagnostics: &mut self.diagnostics,
+                gravity: self.gravity,
+                spec: &self.spec,
+                dt: self.dt,
+                step: &mut self.step,
+                time: &mut self.time,
+                last_increments: &mut self.last_increments,
+            },
+        )
+    }
+
+    /// Advances the world by one time step (see [`super::step`] for the stages).
+    pub fn step(&mut self) -> Result<StepReport, Blowup> {
+        let (stepper, mut parts) = self.parts();
+        stepper.step(&mut parts)
+    }
+
+    /// Evaluates the forces of the current configuration without advancing (used at t = 0).
+    pub fn evaluate_forces(&mut self) {
+        let (stepper, mut parts) = self.parts();
+        stepper.evaluate_forces(&mut parts);
+    }
+
+    /// Fills each active slot's [`super::contacts::ContactExtra`] (depth, stiffness, damping)
+    /// for the current state. The step does not store them (it would stream them to memory
+    /// every step for a report made every output interval): this evaluates every slot again on
+    /// a copy — its history untouched, no time elapsing (Δt = 0) — and keeps only the extras.
+    pub fn refresh_contact_extras(&mut self) {
+        let (stepper, mut parts) = self.parts();
+        stepper.refresh_contact_extras(&mut parts);
+    }
+
+    /// The unbalanced-force ratio of PFC and Yade — mean |net force| over bodies divided by
+    /// mean |contact force| over contacts — and the same for moments (contact force × the
+    /// receiving body's bounding radius); 0 without contacts. Computed on demand from the last
+    /// evaluation (it costs a square root per contact and per body).
+    pub fn unbalanced_ratios(&self) -> (f64, f64) {
+        let b = &self.bodies;
+        let (mut sum_f, mut sum_m, mut count) = (0.0, 0.0, 0usize);
+        for c in self.contacts.active() {
+            let f = c.data.force.norm();
+            sum_f += f;
+            sum_m += f * b.bound[c.sides().receiver];
+            count += 1;
+        }
+        if count == 0 || b.is_empty() {
+            return (0.0, 0.0);
+        }
+        let n = b.len() as f64;
+        let net_f = b.force.iter().map(|f| f.norm()).sum::<f64>() / n;
+        let net_m = b.torque.iter().map(|m| m.abs()).sum::<f64>() / n;
+        let (mean_f, mean_m) = (sum_f / count as f64, sum_m / count as f64);
+        (
+            if mean_f > 0.0 { net_f / mean_f } else { 0.0 },
+            if mean_m > 0.0 { net_m / mean_m } else { 0.0 },
+        )
     }
 
     /// `Σ ½ m v² + ½ I ω²`.
@@ -162,6 +177,7 @@ impl World {
     pub fn heap_breakdown(&self) -> [(&'static str, usize); 5] {
         let b = &self.bodies;
         let c = &self.contacts;
+        let (grid, scratch) = self.stepper.heap_bytes();
         let bodies = held(&b.shape)
             + held(&b.density)
             + held(&b.mass)
@@ -178,20 +194,22 @@ impl World {
             ("bodies", bodies),
             (
                 "slots and contact data",
-                held(&c.slots) + held(&c.data) + held(&c.extra) + held(&c.warm),
+                held(&c.slots) + held(&c.data) + held(&c.extra) + held(&c.warm) + held(&c.rolling),
             ),
             (
                 "adjacency",
                 held(&c.adjacency) + held(&c.adjacency_start) + held(&c.adjacency_fill),
             ),
-            ("grid", self.grid.heap_bytes()),
+            ("grid", grid),
             (
                 "build scratch",
                 held(&c.keys)
+                    + scratch
                     + held(&c.rebuilt)
                     + held(&c.rebuilt_warm)
+                    + held(&c.rebuilt_rolling)
                     + held(&c.built_at)
-                    + held(&self.pair_scratch),
+                    + held(&c.wall_built_at),
             ),
         ]
     }

@@ -295,6 +295,17 @@ impl DiskLens {
         ]
     }
 
+    /// The disks' effective radius `R* = r1 r2/(r1 + r2)` (T11; `r1` against a half-plane).
+    #[inline]
+    pub fn effective_radius(&self) -> f64 {
+        let (r1, r2) = (self.r1, self.r2);
+        if r2.is_finite() {
+            r1 * r2 / (r1 + r2)
+        } else {
+            r1
+        }
+    }
+
     /// The whole smaller disk: the largest area a lens can have.
     pub fn full_area(&self) -> f64 {
         PI * self.r1 * self.r1

@@ -92,6 +92,66 @@ impl Shape {
         }
     }
 
+    /// Centred support function `h(u) = max over the shape of u·x` for a direction `u` in the
+    /// shape's own frame (not necessarily unit: the result scales with |u|): circle `r|u|`,
+    /// ellipse `√(a²u_x² + b²u_y²)`, rectangle `(w|u_x| + h|u_y|)/2`. For a unit `u` it is the
+    /// distance from the centroid to the tangent line whose outward normal is `u`.
+    #[inline]
+    pub fn support(&self, u: Vec2) -> f64 {
+        super::support::support_local(self, u.x, u.y)
+    }
+
+    /// Radius of curvature of the boundary where its outward unit normal is `u` (own frame),
+    /// for the Hertz radius R* (T11): circle `r`; ellipse `a²b²/h³` with `h` its support along
+    /// `u` (closed form at the support point); rectangle: the radius of the circle of equal
+    /// area (a corner has R = 0 and a face R = ∞, neither usable in √(R*δ): a documented
+    /// choice).
+    #[inline]
+    pub fn curvature_radius(&self, u: Vec2) -> f64 {
+        match *self {
+            Shape::Circle { r } => r,
+            Shape::Ellipse { a, b } => {
+                let h = ((a * u.x).powi(2) + (b * u.y).powi(2)).sqrt();
+                (a * a * b * b) / (h * h * h)
+            }
+            Shape::Rectangle { w, h } => (w * h / std::f64::consts::PI).sqrt(),
+        }
+    }
+
+    /// The face length ℓ of a flat-sided shape for the Winkler contact and the area law's flat
+    /// equivalent: a rectangle's mean side `(w + h)/2`, so that a square pressed flat by δ
+    /// feels exactly `k_n δ`. A conic has no face: its bounding radius (no contact asks).
+    #[inline]
+    pub fn face_length(&self) -> f64 {
+        match *self {
+            Shape::Rectangle { w, h } => 0.5 * (w + h),
+            Shape::Circle { .. } | Shape::Ellipse { .. } => self.bounding_radius(),
+        }
+    }
+
+    /// Area (the mass per unit thickness and unit density).
+    #[inline]
+    pub fn area(&self) -> f64 {
+        super::mass::area(self)
+    }
+
+    /// Moment of inertia about the centroid divided by mass (T2 in 2D).
+    #[inline]
+    pub fn inertia_per_mass(&self) -> f64 {
+        super::mass::inertia_per_mass(self)
+    }
+
+    /// The largest normal lever arm `|r × n|` a contact can have on this shape (the largest
+    /// distance from the centroid to a boundary normal line): circle 0, ellipse `|a − b|`,
+    /// rectangle half its diagonal (a corner can take any normal).
+    pub fn max_normal_lever(&self) -> f64 {
+        match *self {
+            Shape::Circle { .. } => 0.0,
+            Shape::Ellipse { a, b } => (a - b).abs(),
+            Shape::Rectangle { w, h } => 0.5 * w.hypot(h),
+        }
+    }
+
     /// The shape's type name as written in case files (`circle`, `ellipse`, `rectangle`).
     pub fn type_name(&self) -> &'static str {
         match self {

@@ -21,8 +21,10 @@ use super::fields::{
     FieldError, Obj, index, join, non_negative, number, positive, scale, type_of, vec2,
 };
 use super::ranges::{Placed, SpecContext, check_extent, check_spec, check_steps};
-use crate::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
-use crate::dynamics::{BodyInit, WallSpec};
+use crate::contact_law::{
+    ContactSpec, LinearDamping, NormalForce, RollingModel, RollingPart, Scaled,
+};
+use crate::dynamics::{BodyInit, Motion, Servo, Span, WallSpec};
 use crate::geometry::Vec2;
 use serde_json::{Map, Value};
 
@@ -60,7 +62,7 @@ pub struct OutputSpec {
     pub vtk_every: Option<u64>,
 }
 
-const CONTACT_KEYS: [&str; 14] = [
+const CONTACT_KEYS: [&str; 17] = [
     "model",
     "normal_force",
     "kn",
@@ -75,6 +77,9 @@ const CONTACT_KEYS: [&str; 14] = [
     "friction",
     "young",
     "poisson",
+    "rolling_model",
+    "rolling_friction",
+    "rolling_damping",
 ];
 
 /// Keys that replace each other when a wall overrides one of them.
@@ -142,14 +147,19 @@ impl Case {
             let items = list.as_array().ok_or_else(|| {
                 FieldError::new("walls", format!("must be an array, got {}", type_of(list)))
             })?;
+            let mut spans = Vec::new();
             for (k, item) in items.iter().enumerate() {
                 let path = index("walls", k);
-                let (wall, spec) =
-                    parse_wall_with(item, &path, |w| wall_overrides(w, &contact_map))?;
-                walls.push(WallSpec {
-                    wall,
-                    spec: spec.unwrap_or(contact),
-                });
+                let (wall, (spec, motion)) = parse_wall_with(item, &path, |w| {
+                    Ok((wall_overrides(w, &contact_map)?, wall_motion(w)?))
+                })?;
+                if let Motion::Servo(s) = motion {
+                    spans.push((k, s.span));
+                }
+                walls.push(WallSpec::moving(wall, spec.unwrap_or(contact), motion));
+            }
+            for (k, span) in spans {
+                check_span(&walls, k, &span)?;
             }
         }
         let list = o.req("bodies")?;
@@ -213,6 +223,28 @@ impl Case {
         })
     }
 
+    /// The world this case describes, at t = 0 (the forces of the initial configuration
+    /// evaluated).
+    pub fn build_world(&self) -> crate::dynamics::World {
+        crate::dynamics::World::new(
+            &self.bodies,
+            self.walls.clone(),
+            self.gravity,
+            self.contact,
+            self.dt,
+        )
+    }
+
+    /// The same case with every contact (the scene's and each wall's) with the rolling
+    /// resistance `rolling`.
+    pub fn with_rolling(mut self, rolling: Option<RollingPart>) -> Case {
+        self.contact = self.contact.with_rolling(rolling);
+        for w in &mut self.walls {
+            w.spec = w.spec.with_rolling(rolling);
+        }
+        self
+    }
+
     /// The same case with every contact (the scene's and each wall's) under `normal_force`.
     pub fn with_normal_force(mut self, normal_force: NormalForce) -> Case {
         self.contact = self.contact.with_normal_force(normal_force);
@@ -220,6 +252,12 @@ impl Case {
             w.spec = w.spec.with_normal_force(normal_force);
         }
         self
+    }
+
+    /// P's quiescence criterion as the case states it (None: no stop at rest).
+    pub fn quiescence_criterion(&self) -> Option<crate::dynamics::Quiescence> {
+        self.quiescence
+            .map(|q| crate::dynamics::Quiescence::new(q, self.quiescence_window))
     }
 
     /// Number of steps the duration takes (rounded to the nearest step).
@@ -305,6 +343,10 @@ fn wall_overrides(
             if *key == "model" {
                 merged.clear();
             }
+            // Another rolling model does not inherit the scene's model's damping.
+            if *key == "rolling_model" && !w.has("rolling_damping") {
+                merged.remove("rolling_damping");
+            }
             for group in GROUPS {
                 if group.contains(key) && !given.iter().any(|g| group.contains(&g.as_str())) {
                     for k in group.iter() {
@@ -358,6 +400,7 @@ fn parse_contact(
             }
         },
     };
+    let rolling = parse_rolling(map, path, missing_at)?;
     // A stiffness is a scale (zero would let bodies pass through each other); a damping may be
     // zero.
     type Reader = fn(&Value, &str) -> Result<f64, FieldError>;
@@ -453,6 +496,7 @@ fn parse_contact(
                 damping,
                 friction,
                 normal_force,
+                rolling,
             })
         }
         "hertz_mindlin" => {
@@ -494,6 +538,7 @@ fn parse_contact(
                 restitution,
                 friction,
                 normal_force,
+                rolling,
             })
         }
         other => Err(FieldError::new(
@@ -501,4 +546,149 @@ fn parse_contact(
             format!("unknown contact model `{other}` (expected `linear` or `hertz_mindlin`)"),
         )),
     }
+}
+
+/// The rolling-resistance keys of a contact object (Ai et al. 2011): `rolling_model` (`cdt` or
+/// `epsd`) with `rolling_friction` μ_r ≥ 0, and for EPSD an optional `rolling_damping` η_r ≥ 0.
+/// None when not given, or when μ_r = 0 (no couple at all).
+fn parse_rolling(
+    map: &Map<String, Value>,
+    path: &str,
+    missing_at: &str,
+) -> Result<Option<RollingPart>, FieldError> {
+    let field = |k: &str| join(path, k);
+    let (model, friction, damping) = (
+        map.get("rolling_model"),
+        map.get("rolling_friction"),
+        map.get("rolling_damping"),
+    );
+    let Some(model) = model else {
+        for (k, v) in [("rolling_friction", friction), ("rolling_damping", damping)] {
+            if v.is_some() {
+                return Err(FieldError::new(
+                    field(k),
+                    "needs `rolling_model` (`cdt` or `epsd`)",
+                ));
+            }
+        }
+        return Ok(None);
+    };
+    let model = match string(model, &field("rolling_model"))?.as_str() {
+        "cdt" => RollingModel::Cdt,
+        "epsd" => RollingModel::Epsd,
+        other => {
+            return Err(FieldError::new(
+                field("rolling_model"),
+                format!("unknown rolling model `{other}` (expected `cdt` or `epsd`)"),
+            ));
+        }
+    };
+    let friction = match friction {
+        Some(v) => non_negative(v, &field("rolling_friction"))?,
+        None => {
+            return Err(FieldError::new(
+                join(missing_at, "rolling_friction"),
+                "is missing (the coefficient of rolling friction μ_r that `rolling_model` needs)",
+            ));
+        }
+    };
+    let damping = match (damping, model) {
+        (None, _) => None,
+        (Some(_), RollingModel::Cdt) => {
+            return Err(FieldError::new(
+                field("rolling_damping"),
+                "is not a parameter of the `cdt` rolling model (only `epsd` has a rolling dashpot)",
+            ));
+        }
+        (Some(v), RollingModel::Epsd) => Some(non_negative(v, &field("rolling_damping"))?),
+    };
+    if friction == 0.0 {
+        return Ok(None);
+    }
+    Ok(Some(RollingPart {
+        model,
+        friction,
+        damping,
+    }))
+}
+
+/// A wall's motion: `"velocity": [vx, vy]` (cm/s), or `"servo": {"stress": σ, "span": S or
+/// [a, b], "max_speed": v, "gain": G}` (see `dynamics::boundary`); fixed without either.
+fn wall_motion(w: &mut Obj) -> Result<Motion, FieldError> {
+    let velocity = w.opt_with("velocity", vec2)?;
+    let Some(v) = w.get("servo") else {
+        return Ok(velocity.map_or(Motion::Fixed, |v| Motion::Velocity(Vec2::from(v))));
+    };
+    let at = w.field_path("servo");
+    if velocity.is_some() {
+        return Err(FieldError::new(
+            w.field_path("velocity"),
+            "give `velocity` or `servo`, not both (a servo sets the wall's velocity)",
+        ));
+    }
+    let mut o = Obj::new(v, &at)?;
+    let stress = o.req_with("stress", positive)?;
+    let span = o.req_with("span", |v, p| match v {
+        Value::Array(_) => {
+            let err = || {
+                FieldError::new(
+                    p,
+                    "must be a length or two wall indices [a, b] (the span between walls a and b)",
+                )
+            };
+            let a = v.as_array().expect("array");
+            if a.len() != 2 {
+                return Err(err());
+            }
+            let idx = |x: &Value| x.as_u64().map(|k| k as usize).ok_or_else(err);
+            Ok(Span::Between(idx(&a[0])?, idx(&a[1])?))
+        }
+        _ => Ok(Span::Length(scale(v, p)?)),
+    })?;
+    let max_speed = o.req_with("max_speed", positive)?;
+    let gain = o.opt_with("gain", positive)?;
+    o.finish()?;
+    Ok(Motion::Servo(Servo {
+        stress,
+        span,
+        gain,
+        max_speed,
+    }))
+}
+
+/// A servo span between two walls must name two other walls that cross the servo wall's line.
+fn check_span(walls: &[WallSpec], k: usize, span: &Span) -> Result<(), FieldError> {
+    let Span::Between(a, b) = *span else {
+        return Ok(());
+    };
+    let at = format!("{}.servo.span", index("walls", k));
+    let me = &walls[k].wall;
+    let t = Vec2::new(-me.normal.y, me.normal.x);
+    if a == b {
+        return Err(FieldError::new(at, "must name two different walls"));
+    }
+    for w in [a, b] {
+        if w >= walls.len() {
+            return Err(FieldError::new(
+                at,
+                format!(
+                    "wall {w} does not exist (the case has {} walls)",
+                    walls.len()
+                ),
+            ));
+        }
+        if w == k {
+            return Err(FieldError::new(
+                at,
+                "must name two other walls, not this one",
+            ));
+        }
+        if walls[w].wall.normal.dot(&t).abs() < 1e-6 {
+            return Err(FieldError::new(
+                at,
+                format!("wall {w} is parallel to this wall: their lines do not cross"),
+            ));
+        }
+    }
+    Ok(())
 }

@@ -310,7 +310,7 @@ impl PileSpec {
              At rest when the mean increments per step stay below {q} cm (a mean speed of {v} cm/s) \
              for {QUIESCENCE_WINDOW} steps; at most {duration} s. Written by `{command}`.",
             q = self.quiescence,
-            v = self.quiescence / DT,
+            v = round6(self.quiescence / DT),
             duration = self.duration,
             n = self.n,
             nf = match self.normal_force {
@@ -363,30 +363,136 @@ impl PileSpec {
                 ]),
             ),
         ];
-        // Fields in reading order, one per line; bodies one per line.
-        let mut text = String::from("{\n");
-        for (key, value) in &head {
-            writeln!(text, "  \"{key}\": {value},").expect("string");
+        case_text_from(&head, bodies)
+    }
+}
+
+/// Case-file text: the fields `head` in this order, one per line, then `bodies`, one per line.
+pub fn case_text_from(head: &[(&str, Value)], bodies: &[BodyInit]) -> String {
+    // Fields in reading order, one per line; bodies one per line.
+    let mut text = String::from("{\n");
+    for (key, value) in head {
+        writeln!(text, "  \"{key}\": {value},").expect("string");
+    }
+    text.push_str("  \"bodies\": [\n");
+    for (k, b) in bodies.iter().enumerate() {
+        let shape = match b.shape {
+            Shape::Circle { r } => json!({"type": "circle", "r": r}),
+            Shape::Ellipse { a, b } => json!({"type": "ellipse", "a": a, "b": b}),
+            Shape::Rectangle { w, h } => json!({"type": "rectangle", "w": w, "h": h}),
+        };
+        let body = json!({
+            "shape": shape,
+            "position": [b.position.x, b.position.y],
+            "angle": b.angle,
+            "velocity": [b.velocity.x, b.velocity.y],
+            "omega": b.omega,
+            "density": b.density,
+        });
+        let sep = if k + 1 < bodies.len() { "," } else { "" };
+        writeln!(text, "    {body}{sep}").expect("string");
+    }
+    text.push_str("  ]\n}\n");
+    text
+}
+
+/// A column of disks for the angle of repose (a dam break): `n` disks, radii uniform in
+/// [`R_MIN`, `R_MAX`], density [`DENSITY`], on a loose lattice of 8 columns (spacing 2.5 cm,
+/// a little jitter) between a left wall at x = 0 and a right wall (the gate) at x = `width`,
+/// on a floor y = 0; P's stiffness, dashpots for restitution 0.5 (as the piles), Coulomb
+/// friction `friction`, the area law. See `examples/repose.rs` for the protocol.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ColumnSpec {
+    pub n: usize,
+    pub width: f64,
+    pub seed: u64,
+    pub friction: f64,
+}
+
+impl ColumnSpec {
+    /// The bodies on their lattice, at rest.
+    pub fn lattice_bodies(&self) -> Vec<BodyInit> {
+        let mut rng = SplitMix64(self.seed);
+        let (cols, spacing) = (((self.width / 2.5).floor() as usize).max(1), 2.5);
+        let x0 = 0.5 * (self.width - cols as f64 * spacing);
+        (0..self.n)
+            .map(|k| {
+                let (row, col) = (k / cols, k % cols);
+                let r = round6(rng.range(R_MIN, R_MAX));
+                let x = round6(x0 + spacing * (col as f64 + 0.5) + rng.range(-0.1, 0.1));
+                BodyInit {
+                    shape: Shape::Circle { r },
+                    position: Vec2::new(x, round6(spacing * (row as f64 + 0.5))),
+                    angle: 0.0,
+                    velocity: Vec2::zeros(),
+                    omega: 0.0,
+                    density: DENSITY,
+                }
+            })
+            .collect()
+    }
+
+    /// The case of `bodies` in the column, the gate withdrawing at `gate_speed` (cm/s; 0:
+    /// fixed), with rolling resistance `rolling` on every contact; P's quiescence criterion at
+    /// 1e-7 cm per step held for 1000 steps, or 6 s.
+    pub fn case_json(
+        &self,
+        name: &str,
+        bodies: &[BodyInit],
+        gate_speed: f64,
+        rolling: Option<crate::contact_law::RollingPart>,
+    ) -> String {
+        let eta = {
+            let m = DENSITY * std::f64::consts::PI;
+            let kn = KN_OVER_RHO_G * DENSITY * G;
+            round6(2.0 * damping_ratio_linear(RESTITUTION) * (m * kn).sqrt()) // T(12)
+        };
+        let mut contact = json!({
+            "model": "linear", "normal_force": "area", "kn_over_rho_g": KN_OVER_RHO_G,
+            "eta_n": eta, "friction": self.friction,
+        });
+        if let Some(r) = rolling {
+            contact["rolling_model"] = json!(r.model.as_str());
+            contact["rolling_friction"] = json!(r.friction);
+            if let Some(d) = r.damping {
+                contact["rolling_damping"] = json!(d);
+            }
         }
-        text.push_str("  \"bodies\": [\n");
-        for (k, b) in bodies.iter().enumerate() {
-            let shape = match b.shape {
-                Shape::Circle { r } => json!({"type": "circle", "r": r}),
-                Shape::Ellipse { a, b } => json!({"type": "ellipse", "a": a, "b": b}),
-                Shape::Rectangle { w, h } => json!({"type": "rectangle", "w": w, "h": h}),
-            };
-            let body = json!({
-                "shape": shape,
-                "position": [b.position.x, b.position.y],
-                "angle": b.angle,
-                "velocity": [b.velocity.x, b.velocity.y],
-                "omega": b.omega,
-                "density": b.density,
-            });
-            let sep = if k + 1 < bodies.len() { "," } else { "" };
-            writeln!(text, "    {body}{sep}").expect("string");
+        let mut gate = json!({"point": [self.width, 0.0], "normal": [-1.0, 0.0]});
+        if gate_speed != 0.0 {
+            gate["velocity"] = json!([gate_speed, 0.0]);
         }
-        text.push_str("  ]\n}\n");
-        text
+        let rolling_text = rolling.map_or("none".to_string(), |r| {
+            format!("{} with μ_r = {}", r.model.as_str(), r.friction)
+        });
+        let description = format!(
+            "Angle of repose (examples/repose.rs): {} disks in a column {} cm wide; the right wall \
+             withdraws at {gate_speed} cm/s and the grains flow out over the floor until at rest. \
+             Rolling resistance: {rolling_text}.",
+            bodies.len(),
+            self.width
+        );
+        let head: [(&str, Value); 12] = [
+            ("version", json!(1)),
+            ("name", json!(name)),
+            ("description", json!(description)),
+            ("units", json!("cm")),
+            ("gravity", json!([0.0, -G])),
+            ("dt", json!(DT)),
+            ("duration", json!(6.0)),
+            ("quiescence", json!(QUIESCENCE)),
+            ("quiescence_window", json!(QUIESCENCE_WINDOW)),
+            ("output_every", json!(10000)),
+            ("contact", contact),
+            (
+                "walls",
+                json!([
+                    {"point": [0.0, 0.0], "normal": [0.0, 1.0]},
+                    {"point": [0.0, 0.0], "normal": [1.0, 0.0]},
+                    gate,
+                ]),
+            ),
+        ];
+        case_text_from(&head, bodies)
     }
 }

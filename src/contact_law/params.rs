@@ -1,11 +1,24 @@
-//! Contact parameters as a case gives them, and their resolution into a [`Law`] for one pair.
+//! Contact parameters as a case gives them, and their resolution into a [`Law`] — its parts —
+//! for one pair.
 //!
 //! Stiffness and damping may be absolute (per unit thickness) or normalised by ρg, as P gives
-//! them (`K_n/ρg` in cm): then they are multiplied by the pair's density (the mean of the two
-//! bodies', the body's against a wall) and |g|, and in a scene of one density ρ cancels from
-//! every equation of motion.
+//! them (`K_n/ρg` in cm): then they are multiplied by the pair's density ([`pair_density`]) and
+//! |g|, and in a scene of one density ρ cancels from every equation of motion.
 
-use super::{HertzMindlin, Law, Linear, NormalForce, damping_factor_hertz, damping_ratio_linear};
+use super::{
+    DampingPart, Law, NormalForce, NormalPart, RollingPart, ShearStiffness, TangentialPart,
+    damping_factor_hertz, damping_ratio_linear,
+};
+
+/// The density a pair's parameters given per ρg are scaled by: the mean of the two bodies'
+/// (`rho_j` None: a body against a wall, the body's own).
+#[inline]
+pub fn pair_density(rho_i: f64, rho_j: Option<f64>) -> f64 {
+    match rho_j {
+        Some(r) => 0.5 * (rho_i + r),
+        None => rho_i,
+    }
+}
 
 /// A value given absolutely or divided by ρg.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,6 +56,7 @@ pub enum ContactSpec {
         damping: LinearDamping,
         friction: f64,
         normal_force: NormalForce,
+        rolling: Option<RollingPart>,
     },
     HertzMindlin {
         young: f64,
@@ -50,6 +64,7 @@ pub enum ContactSpec {
         restitution: f64,
         friction: f64,
         normal_force: NormalForce,
+        rolling: Option<RollingPart>,
     },
 }
 
@@ -75,6 +90,24 @@ impl ContactSpec {
         self
     }
 
+    /// Rolling resistance, if any.
+    pub fn rolling(&self) -> Option<RollingPart> {
+        match *self {
+            ContactSpec::Linear { rolling, .. } | ContactSpec::HertzMindlin { rolling, .. } => {
+                rolling
+            }
+        }
+    }
+
+    /// The same spec with rolling resistance `rolling`.
+    pub fn with_rolling(mut self, rolling: Option<RollingPart>) -> Self {
+        match &mut self {
+            ContactSpec::Linear { rolling: r, .. }
+            | ContactSpec::HertzMindlin { rolling: r, .. } => *r = rolling,
+        }
+        self
+    }
+
     /// Coulomb friction coefficient.
     pub fn friction(&self) -> f64 {
         match *self {
@@ -94,6 +127,7 @@ impl ContactSpec {
                 ks,
                 damping,
                 friction,
+                rolling,
                 ..
             } => {
                 let kn = kn.value(rho, g);
@@ -106,19 +140,22 @@ impl ContactSpec {
                         (eta, eta)
                     }
                 };
-                Law::Linear(Linear {
-                    kn,
-                    ks: ks.value(rho, g),
-                    eta_n,
-                    eta_s,
-                    friction,
-                })
+                Law {
+                    normal: NormalPart::Linear { kn },
+                    damping: DampingPart::Dashpots { eta_n, eta_s },
+                    tangential: TangentialPart {
+                        stiffness: ShearStiffness::Constant(ks.value(rho, g)),
+                        friction,
+                    },
+                    rolling,
+                }
             }
             ContactSpec::HertzMindlin {
                 young,
                 poisson,
                 restitution,
                 friction,
+                rolling,
                 ..
             } => {
                 let (e2, nu2) = match *other_material {
@@ -129,13 +166,30 @@ impl ContactSpec {
                 let g_star = 1.0
                     / (2.0 * (2.0 - poisson) * (1.0 + poisson) / young
                         + 2.0 * (2.0 - nu2) * (1.0 + nu2) / e2); // T(19)
-                Law::HertzMindlin(HertzMindlin {
-                    e_star,
-                    g_star,
-                    beta: damping_factor_hertz(restitution),
-                    friction,
-                })
+                Law {
+                    normal: NormalPart::Hertz { e_star },
+                    damping: DampingPart::Hertz {
+                        beta: damping_factor_hertz(restitution),
+                    },
+                    tangential: TangentialPart {
+                        stiffness: ShearStiffness::Mindlin { g_star },
+                        friction,
+                    },
+                    rolling,
+                }
             }
         }
+    }
+
+    /// True when the resolved law depends on the pair's effective mass (restitution-tuned
+    /// linear dashpots), so that it cannot be resolved once for every pair.
+    pub fn depends_on_mass(&self) -> bool {
+        matches!(
+            self,
+            ContactSpec::Linear {
+                damping: LinearDamping::Restitution(_),
+                ..
+            }
+        )
     }
 }

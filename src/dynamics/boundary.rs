@@ -1,0 +1,199 @@
+//! Boundaries: walls (half-planes) with a pose that may move — at a given velocity, or under a
+//! servo that holds a normal stress — and the contact parameters of contacts with them.
+//!
+//! # Moving walls
+//! A wall's line translates with its velocity `v_w` (cm/s; it does not turn). It drifts with the
+//! bodies at the step's drift, so its position has the bodies' time level: at a constant
+//! velocity `p = p₀ + t v_w` exactly (no rounding accumulates), under a servo
+//! `p ← p + Δt v_w`. The
+//! contact law sees the relative velocity of the body's material point and the wall,
+//! `v_body − v_w`, so the dashpots and the shear spring act on the relative motion.
+//!
+//! **Work.** A wall moving at `v_w` does work `W = ∫ Σ_c F_c · v_w dt` on the bodies (F_c the
+//! force of each of its contacts on its body), and the energy account reads
+//! `K + P + E_el + D = E₀ + W`: per contact the kinetic power is `F·v_body`, the springs' and
+//! the dissipation's are taken on the relative velocity `v_body − v_w`, and the difference is
+//! `F·v_w`. The step integrates W with the forces of level n+1 and the velocity of the drift
+//! that reached it.
+//!
+//! # Servo walls
+//! A servo wall moves along its normal to hold a target normal stress σ_t on its loaded span:
+//! - the **measured stress** is `σ = Σ_c (F_c · n_w) / S`, the total normal force its contacts
+//!   push the bodies with (per unit thickness), divided by the **loaded span** S — a length
+//!   given in the case (`"span": 10`), or `"span": [a, b]`: the length of this wall's line
+//!   between the lines of walls a and b, measured from their current positions (the box's
+//!   current width for the top of a box whose sides are walls a and b);
+//! - the **control law**: `v_w = G (σ_t − σ_el) n_w`, capped at `max_speed` (below the target
+//!   the wall advances into the material), set for the next step from the forces of this one.
+//!   It acts on `σ_el`, the elastic part of σ (the springs' normal forces; at steady state the
+//!   dashpots carry nothing on average, so σ_el = σ): a dashpot answers the wall's own speed at
+//!   once, `C v/S` with `C = Σ_c η_n,c`, and fed back that makes the loop
+//!   `e_{n+1} = (1 − a − c) e_n + c e_{n−1}` (`c = G C/S`), which needs `G < S/C` — a gain so
+//!   small, with DEM dashpots (`C/Δt` is often ten times the contacts' stiffness K), that the
+//!   wall lags 20–40 % behind a dilating sample in a biaxial test.
+//! - the **gain**: the wall's contacts resist its displacement with the stiffness
+//!   `K = Σ_c k_n,c` (with the bodies held), so a step moves σ_el by `K v Δt/S`: with
+//!   `e = σ_t − σ_el`, `e_{n+1} = (1 − a) e_n`, `a = G K Δt/S`, stable for `a < 2` and without
+//!   overshoot for `a ≤ 1`. dem2d sets, each step, `G = α S/(K Δt)` with α =
+//!   [`SERVO_RELAXATION`] (the servo of Itasca's PFC, whose α is the same relaxation factor):
+//!   the error is corrected by the fraction α per step against the contacts' own stiffness;
+//!   the bodies behind them are softer, so the actual `a` is smaller. A wall that must follow a
+//!   moving sample at speed `v` lags by `e = v/G = v K Δt/(α S)`. With no contact (K = 0) the
+//!   wall approaches at `max_speed`. A fixed `gain` may be given instead: then the case is
+//!   responsible for `a < 2`.
+
+use crate::contact_law::ContactSpec;
+use crate::geometry::{Vec2, Wall};
+
+/// The servo's relaxation factor α: the fraction of the stress error corrected per step against
+/// the stiffness of the wall's own contacts.
+pub const SERVO_RELAXATION: f64 = 0.5;
+
+/// How a servo wall's loaded span is measured.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Span {
+    /// A fixed length (cm).
+    Length(f64),
+    /// The length of this wall's line between the lines of walls a and b.
+    Between(usize, usize),
+}
+
+/// A servo holding a normal stress.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Servo {
+    /// Target normal stress σ_t (dyn/cm²: force per unit length of the span, per unit
+    /// thickness), > 0.
+    pub stress: f64,
+    pub span: Span,
+    /// A fixed gain G (cm/s per dyn/cm²); `None`: `α S/(K Δt)` (see the module documentation).
+    pub gain: Option<f64>,
+    /// Largest speed of the wall (cm/s).
+    pub max_speed: f64,
+}
+
+/// How a wall moves.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Motion {
+    /// At rest.
+    Fixed,
+    /// At a constant velocity.
+    Velocity(Vec2),
+    /// Under a servo.
+    Servo(Servo),
+}
+
+/// What a wall's contacts did in the last force evaluation.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct WallLoad {
+    /// Σ of the forces on the bodies, and of their non-elastic parts.
+    pub force: Vec2,
+    pub force_non_elastic: Vec2,
+    /// Σ of the contacts' normal stiffness (along the wall normal).
+    pub stiffness: f64,
+    /// Number of contacts.
+    pub contacts: u32,
+}
+
+impl WallLoad {
+    /// Adds another partial sum.
+    #[inline]
+    pub fn add(&mut self, o: &WallLoad) {
+        self.force += o.force;
+        self.force_non_elastic += o.force_non_elastic;
+        self.stiffness += o.stiffness;
+        self.contacts += o.contacts;
+    }
+}
+
+/// A wall, the contact parameters of contacts with it (the scene's, or its own overrides), how
+/// it moves, and its current velocity and load.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WallSpec {
+    /// The wall's line now.
+    pub wall: Wall,
+    /// Its point at t = 0.
+    pub start: Vec2,
+    pub spec: ContactSpec,
+    pub motion: Motion,
+    /// Velocity of the current step's drift (zero for a fixed wall).
+    pub velocity: Vec2,
+    /// Its contacts in the last force evaluation.
+    pub load: WallLoad,
+}
+
+impl WallSpec {
+    /// A fixed wall.
+    pub fn new(wall: Wall, spec: ContactSpec) -> Self {
+        Self::moving(wall, spec, Motion::Fixed)
+    }
+
+    /// A wall moving as `motion` says (its velocity: a constant one at once; a servo's from
+    /// the first force evaluation).
+    pub fn moving(wall: Wall, spec: ContactSpec, motion: Motion) -> Self {
+        let velocity = match motion {
+            Motion::Velocity(v) => v,
+            _ => Vec2::zeros(),
+        };
+        WallSpec {
+            wall,
+            start: wall.point,
+            spec,
+            motion,
+            velocity,
+            load: WallLoad::default(),
+        }
+    }
+
+    /// Moves the wall over the drift that ends at `time` (a step of `dt`).
+    #[inline]
+    pub fn drift(&mut self, time: f64, dt: f64) {
+        match self.motion {
+            Motion::Fixed => {}
+            Motion::Velocity(v) => self.wall.point = self.start + v * time,
+            Motion::Servo(_) => self.wall.point += self.velocity * dt,
+        }
+    }
+
+    /// True unless the wall is fixed.
+    #[inline]
+    pub fn moves(&self) -> bool {
+        !matches!(self.motion, Motion::Fixed)
+    }
+
+    /// The normal stress its contacts carry over its loaded span (servo walls), with the
+    /// span; `walls` the scene's walls (for a span between two of them).
+    pub fn measured_stress(&self, walls: &[WallSpec]) -> Option<(f64, f64)> {
+        let Motion::Servo(s) = self.motion else {
+            return None;
+        };
+        let span = span_length(&self.wall, &s.span, walls);
+        Some((self.load.force.dot(&self.wall.normal) / span, span))
+    }
+}
+
+/// The loaded span of a wall (see the module documentation).
+pub fn span_length(wall: &Wall, span: &Span, walls: &[WallSpec]) -> f64 {
+    match *span {
+        Span::Length(l) => l,
+        Span::Between(a, b) => {
+            let t = Vec2::new(-wall.normal.y, wall.normal.x);
+            let along = |o: &Wall| o.normal.dot(&(o.point - wall.point)) / o.normal.dot(&t);
+            (along(&walls[a].wall) - along(&walls[b].wall)).abs()
+        }
+    }
+}
+
+/// The servo's velocity for the next step, from the load of the last force evaluation
+/// (see the module documentation); `dt` the step.
+pub fn servo_velocity(wall: &WallSpec, servo: &Servo, walls: &[WallSpec], dt: f64) -> Vec2 {
+    let span = span_length(&wall.wall, &servo.span, walls);
+    let load = &wall.load;
+    let elastic = (load.force - load.force_non_elastic).dot(&wall.wall.normal) / span;
+    let error = servo.stress - elastic;
+    let speed = match servo.gain {
+        Some(g) => g * error,
+        None if load.stiffness > 0.0 => SERVO_RELAXATION * span / (load.stiffness * dt) * error,
+        None => servo.max_speed.copysign(error),
+    };
+    wall.wall.normal * speed.clamp(-servo.max_speed, servo.max_speed)
+}

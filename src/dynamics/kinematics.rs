@@ -1,0 +1,128 @@
+//! The kinematic facts of a contact that the law needs and no shape-blind law can compute: the
+//! relative velocity of the two material points at the contact point, the effective mass m*
+//! (T13), the effective radius R* (T11), the pair's density (for parameters given per ρg), and
+//! the rolling radius and inertia.
+//!
+//! # Rolling radius and inertia (dem2d's choice for non-round bodies)
+//! Ai et al.'s rolling couple is `μ_r R_r F_n`, with `R_r = R*` for spheres: for a sphere R* is
+//! the lever of the tangential (friction) force about the centre. dem2d takes, for every shape,
+//! **each body's support distance along the contact normal** — the distance `ℓ` from its
+//! centroid to the tangent line at the contact, the lever arm of the tangential force — and
+//! combines them like R*: `1/R_r = 1/ℓ_i + 1/ℓ_j` (a wall: `ℓ = ∞`, so `R_r = ℓ` of the body).
+//! - For disks `ℓ = r` exactly, so `R_r` is R* (LIGGGHTS, PFC).
+//! - For any shape on a slope β, the friction force `m g sin β` has the moment
+//!   `m g sin β · ℓ` about the centroid, which a rolling couple of at most `μ_r ℓ m g cos β`
+//!   holds iff `tan β ≤ μ_r`: μ_r keeps Ai et al.'s meaning — the tangent of the steepest slope
+//!   a body can rest on without rolling — whatever the shape and where it touches.
+//! - It is defined for every contact, bounded by the inscribed and circumscribed radii
+//!   (ellipse: b on its flat side, a on its tip; rectangle: half a side on a face, up to half
+//!   the diagonal on a corner).
+//!
+//! The alternative the issue suggested, the radius of curvature at the contact point
+//! (`a²b²/h³` for an ellipse), fails both tests: it is infinite on a rectangle's face and zero
+//! at its corner, and on an ellipse it is largest on the flat side (a²/b) and smallest at the
+//! tip (b²/a) — the opposite of the lever, so a rolling couple from it would hold an a/b = 2
+//! ellipse lying on its flat side on slopes up to `tan β = 4μ_r`, and standing on its tip only
+//! up to `μ_r/4` (with ℓ: μ_r for both). Curvature sets the width of a Hertz contact patch (`∝ √(Rδ)`), not the lever
+//! of the friction force, which is what Ai et al.'s `R_r` multiplies. (The Rocky DEM manual's
+//! choice, the distance from the centroid to the contact point, is the same as ℓ at an
+//! ellipse's axes and a rectangle's face centres, and larger elsewhere.)
+//!
+//! The rolling inertia is the pair's equivalent moment of inertia for a rotation about the
+//! contact point (Ai et al.; LIGGGHTS): `1/I_r = 1/(I_i + m_i d_i²) + 1/(I_j + m_j d_j²)` with
+//! `d` the distance from each centroid to the contact point (parallel axes; a wall: ∞);
+//! for a disk on a wall `1.5 m r²` (LIGGGHTS' 2D value).
+
+use super::body::Bodies;
+use super::boundary::WallSpec;
+use super::partner::{Partner, Sides};
+use crate::contact_law::RollingKinematics;
+use crate::contact_law::params::pair_density;
+use crate::geometry::Vec2;
+
+/// The relative motion at a contact point and the pair's mass.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Relative {
+    /// Velocity of the receiver's material point minus the giver's (a wall's: its velocity).
+    pub velocity: Vec2,
+    /// Relative spin `ω_receiver − ω_giver` (a wall does not turn).
+    pub spin: f64,
+    /// `1/m* = Σ 1/m` (T13; a wall adds nothing).
+    pub inv_mass: f64,
+}
+
+/// The relative motion of the two sides at `point`.
+#[inline]
+pub fn relative(b: &Bodies, walls: &[WallSpec], sides: Sides, point: Vec2) -> Relative {
+    let recv = sides.receiver;
+    let mut velocity = b.point_velocity(recv, point - b.state[recv].pose.position);
+    let mut inv_mass = b.inv_mass[recv];
+    let mut spin = b.state[recv].omega;
+    match sides.giver {
+        Partner::Body(k) => {
+            velocity -= b.point_velocity(k, point - b.state[k].pose.position);
+            inv_mass += b.inv_mass[k];
+            spin -= b.state[k].omega;
+        }
+        Partner::Wall(w) => velocity -= walls[w].velocity,
+    }
+    Relative {
+        velocity,
+        spin,
+        inv_mass,
+    }
+}
+
+/// The density the pair's per-ρg parameters are scaled by ([`pair_density`]).
+#[inline]
+pub fn density(b: &Bodies, sides: Sides) -> f64 {
+    pair_density(
+        b.density[sides.receiver],
+        sides.giving_body().map(|k| b.density[k]),
+    )
+}
+
+/// Hertz's effective radius `R* = (1/R_i + 1/R_j)⁻¹` (T11) from each body's radius of
+/// curvature where it touches (`n` from the giver to the receiver; a wall has R = ∞).
+#[inline]
+pub fn effective_radius(b: &Bodies, sides: Sides, n: Vec2) -> f64 {
+    let mut inv_r = 1.0 / b.curvature_radius(sides.receiver, -n);
+    if let Some(k) = sides.giving_body() {
+        inv_r += 1.0 / b.curvature_radius(k, n);
+    }
+    1.0 / inv_r // T(11)
+}
+
+/// The rolling radius and inertias of a contact at `point` with normal `n` (from the giver to
+/// the receiver): see the module documentation. `slots(k)` is the number of neighbour-list
+/// slots of body k (the CDT limiter's share, see `contact_law::rolling`).
+pub fn rolling(
+    b: &Bodies,
+    sides: Sides,
+    point: Vec2,
+    n: Vec2,
+    slots: impl Fn(usize) -> u32,
+) -> RollingKinematics {
+    let side = |k: usize, outward: Vec2| {
+        let lever = b.support_distance(k, outward);
+        let d2 = (point - b.state[k].pose.position).norm_squared();
+        let share = slots(k).max(1) as f64 * b.inv_inertia[k];
+        (lever, b.inertia[k] + b.mass[k] * d2, share)
+    };
+    let (l_r, i_r, s_r) = side(sides.receiver, -n);
+    match sides.giving_body() {
+        Some(k) => {
+            let (l_g, i_g, s_g) = side(k, n);
+            RollingKinematics {
+                radius: 1.0 / (1.0 / l_r + 1.0 / l_g),
+                inertia: 1.0 / (1.0 / i_r + 1.0 / i_g),
+                spin_inertia: 1.0 / (s_r + s_g),
+            }
+        }
+        None => RollingKinematics {
+            radius: l_r,
+            inertia: i_r,
+            spin_inertia: 1.0 / s_r,
+        },
+    }
+}
