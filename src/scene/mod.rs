@@ -6,6 +6,7 @@ pub mod case;
 pub mod fields;
 pub mod generate;
 pub mod ranges;
+pub mod servo_box;
 
 pub use body::{parse_object, parse_pairs, parse_shape};
 pub use case::{Case, OutputSpec};
