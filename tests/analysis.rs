@@ -41,7 +41,10 @@ fn love_weber_stress_of_a_servo_compacted_sample_equals_its_boundary_stress() {
     };
     let case = Case::from_json(&spec.compaction_case(5.0)).unwrap();
     let mut world = case.build_world();
-    assert!(settle(&mut world, 2000, 5.0), "did not come to rest by t = 5 s");
+    assert!(
+        settle(&mut world, 2000, 5.0),
+        "did not come to rest by t = 5 s"
+    );
     world.refresh_contact_extras();
     let frame = Frame::from_world(&world);
     let m = analysis::measure(&frame, None);
@@ -62,6 +65,10 @@ fn love_weber_stress_of_a_servo_compacted_sample_equals_its_boundary_stress() {
             m.boundary_stress
         );
     }
-    assert!(m.packing_fraction > 0.75 && m.packing_fraction < 0.9, "{}", m.packing_fraction);
+    assert!(
+        m.packing_fraction > 0.75 && m.packing_fraction < 0.9,
+        "{}",
+        m.packing_fraction
+    );
     assert!(m.coordination_no_rattlers >= 3.0, "{m:?}");
 }

@@ -105,10 +105,18 @@ pub fn anisotropy(frame: &Frame, inside: &[bool]) -> Anisotropy {
         .map(|k| (centre(k), sum_t[k] / count[k] as f64))
         .collect();
     if mean_n.len() < 3 {
-        return Anisotropy { a_c, theta_c, ..nan };
+        return Anisotropy {
+            a_c,
+            theta_c,
+            ..nan
+        };
     }
     let (Some(fn_), Some(ft)) = (fit(&mean_n), fit(&mean_t)) else {
-        return Anisotropy { a_c, theta_c, ..nan };
+        return Anisotropy {
+            a_c,
+            theta_c,
+            ..nan
+        };
     };
     let x = PI / BINS as f64;
     let sinc = x.sin() / x;
@@ -242,6 +250,10 @@ mod tests {
         assert_abs_diff_eq!(s, 1.0, epsilon = 1e-14);
         assert_abs_diff_eq!(d, 0.1 + 0.5 * PI, epsilon = 1e-14);
         let spread: Vec<f64> = (0..12).map(|k| k as f64 * PI / 12.0).collect();
-        assert_abs_diff_eq!(orientation_order(&mk(&spread), &[true; 12]).0, 0.0, epsilon = 1e-14);
+        assert_abs_diff_eq!(
+            orientation_order(&mk(&spread), &[true; 12]).0,
+            0.0,
+            epsilon = 1e-14
+        );
     }
 }

@@ -254,14 +254,34 @@ mod tests {
     #[test]
     fn a_disk_inside_on_an_edge_at_a_corner_and_at_a_distance_from_an_edge() {
         let c = Shape::Circle { r: 1.5 };
-        assert_relative_eq!(clipped_area(&body(c, 5.0, 3.0, 0.0), W), PI * 2.25, max_relative = 1e-14);
-        assert_relative_eq!(clipped_area(&body(c, 5.0, 0.0, 0.0), W), PI * 2.25 / 2.0, max_relative = 1e-14);
-        assert_relative_eq!(clipped_area(&body(c, 10.0, 6.0, 0.0), W), PI * 2.25 / 4.0, max_relative = 1e-14);
-        approx::assert_abs_diff_eq!(clipped_area(&body(c, 20.0, 3.0, 0.0), W), 0.0, epsilon = 1e-14);
+        assert_relative_eq!(
+            clipped_area(&body(c, 5.0, 3.0, 0.0), W),
+            PI * 2.25,
+            max_relative = 1e-14
+        );
+        assert_relative_eq!(
+            clipped_area(&body(c, 5.0, 0.0, 0.0), W),
+            PI * 2.25 / 2.0,
+            max_relative = 1e-14
+        );
+        assert_relative_eq!(
+            clipped_area(&body(c, 10.0, 6.0, 0.0), W),
+            PI * 2.25 / 4.0,
+            max_relative = 1e-14
+        );
+        approx::assert_abs_diff_eq!(
+            clipped_area(&body(c, 20.0, 3.0, 0.0), W),
+            0.0,
+            epsilon = 1e-14
+        );
         // Centre at distance d outside the edge x = 10: the segment r² acos(d/r) − d√(r² − d²).
         let (r, d) = (1.5f64, 0.6f64);
         let segment = r * r * (d / r).acos() - d * (r * r - d * d).sqrt();
-        assert_relative_eq!(clipped_area(&body(c, 10.6, 3.0, 0.0), W), segment, max_relative = 1e-13);
+        assert_relative_eq!(
+            clipped_area(&body(c, 10.6, 3.0, 0.0), W),
+            segment,
+            max_relative = 1e-13
+        );
     }
 
     #[test]
@@ -269,32 +289,73 @@ mod tests {
         for angle in [0.0, 0.3, 1.1, 2.5] {
             let e = Shape::Ellipse { a: 2.0, b: 0.7 };
             let area = PI * 1.4;
-            assert_relative_eq!(clipped_area(&body(e, 4.0, 3.0, angle), W), area, max_relative = 1e-13);
+            assert_relative_eq!(
+                clipped_area(&body(e, 4.0, 3.0, angle), W),
+                area,
+                max_relative = 1e-13
+            );
             // An edge through the centre halves a centrally symmetric body; a corner quarters it
             // only for a body symmetric about both axes through the corner — a half-turn about
             // the centre maps the body onto itself, so opposite quadrants are equal, and the
             // window holds one quadrant: at angle 0 (axes aligned) exactly a quarter.
-            assert_relative_eq!(clipped_area(&body(e, 0.0, 3.0, angle), W), area / 2.0, max_relative = 1e-13);
+            assert_relative_eq!(
+                clipped_area(&body(e, 0.0, 3.0, angle), W),
+                area / 2.0,
+                max_relative = 1e-13
+            );
             let r = Shape::Rectangle { w: 3.0, h: 1.0 };
-            assert_relative_eq!(clipped_area(&body(r, 4.0, 3.0, angle), W), 3.0, max_relative = 1e-13);
-            assert_relative_eq!(clipped_area(&body(r, 5.0, 6.0, angle), W), 1.5, max_relative = 1e-13);
+            assert_relative_eq!(
+                clipped_area(&body(r, 4.0, 3.0, angle), W),
+                3.0,
+                max_relative = 1e-13
+            );
+            assert_relative_eq!(
+                clipped_area(&body(r, 5.0, 6.0, angle), W),
+                1.5,
+                max_relative = 1e-13
+            );
         }
         let e = Shape::Ellipse { a: 2.0, b: 0.7 };
-        assert_relative_eq!(clipped_area(&body(e, 0.0, 0.0, 0.0), W), PI * 1.4 / 4.0, max_relative = 1e-13);
+        assert_relative_eq!(
+            clipped_area(&body(e, 0.0, 0.0, 0.0), W),
+            PI * 1.4 / 4.0,
+            max_relative = 1e-13
+        );
         let r = Shape::Rectangle { w: 3.0, h: 1.0 };
-        assert_relative_eq!(clipped_area(&body(r, 10.0, 0.0, 0.0), W), 0.75, max_relative = 1e-13);
+        assert_relative_eq!(
+            clipped_area(&body(r, 10.0, 0.0, 0.0), W),
+            0.75,
+            max_relative = 1e-13
+        );
     }
 
     #[test]
     fn a_square_lattice_of_touching_disks_packs_at_pi_over_4() {
         // Unit disks at the odd integers × 2: a window of whole cells holds π/4.
         let bodies: Vec<FrameBody> = (0..36)
-            .map(|k| body(Shape::Circle { r: 1.0 }, 2.0 * (k % 6) as f64 + 1.0, 2.0 * (k / 6) as f64 + 1.0, 0.0))
+            .map(|k| {
+                body(
+                    Shape::Circle { r: 1.0 },
+                    2.0 * (k % 6) as f64 + 1.0,
+                    2.0 * (k / 6) as f64 + 1.0,
+                    0.0,
+                )
+            })
             .collect();
-        let w = Window { x0: 2.0, x1: 10.0, y0: 2.0, y1: 8.0 };
+        let w = Window {
+            x0: 2.0,
+            x1: 10.0,
+            y0: 2.0,
+            y1: 8.0,
+        };
         assert_relative_eq!(packing_fraction(&bodies, w), PI / 4.0, max_relative = 1e-13);
         // A window cutting the disks anywhere still holds π/4 when it spans whole periods.
-        let w = Window { x0: 1.3, x1: 9.3, y0: 0.7, y1: 8.7 };
+        let w = Window {
+            x0: 1.3,
+            x1: 9.3,
+            y0: 0.7,
+            y1: 8.7,
+        };
         assert_relative_eq!(packing_fraction(&bodies, w), PI / 4.0, max_relative = 1e-13);
     }
 

@@ -1,5 +1,6 @@
 //! Output formats. Readers of results only: nothing here changes the world.
 
+pub mod analysis;
 pub mod contacts;
 pub mod forces;
 pub mod outline;

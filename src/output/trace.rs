@@ -73,7 +73,7 @@ pub fn time_value(step: u64, dt: f64) -> f64 {
 }
 
 /// A text file written in whole lines (see the module documentation).
-struct LineFile {
+pub(crate) struct LineFile {
     file: File,
     path: PathBuf,
     buf: Vec<u8>,
@@ -85,7 +85,7 @@ struct LineFile {
 const BUFFER: usize = 1 << 16;
 
 impl LineFile {
-    fn create(path: &Path) -> Result<Self, WriteError> {
+    pub(crate) fn create(path: &Path) -> Result<Self, WriteError> {
         let file = File::create(path).map_err(|error| WriteError {
             file: path.to_path_buf(),
             error,
@@ -99,7 +99,7 @@ impl LineFile {
     }
 
     /// Appends one line (the text without its newline).
-    fn line(&mut self, args: fmt::Arguments) -> Result<(), WriteError> {
+    pub(crate) fn line(&mut self, args: fmt::Arguments) -> Result<(), WriteError> {
         // Writing into a Vec cannot fail.
         let _ = self.buf.write_fmt(args);
         self.buf.push(b'\n');
@@ -110,7 +110,7 @@ impl LineFile {
     }
 
     /// Writes the buffered lines; on failure cuts the file back to its last whole line.
-    fn flush(&mut self) -> Result<(), WriteError> {
+    pub(crate) fn flush(&mut self) -> Result<(), WriteError> {
         let result = self
             .file
             .write_all(&self.buf)

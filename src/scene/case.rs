@@ -46,7 +46,8 @@ pub struct Case {
     /// can satisfy the criterion; a window of a few hundred steps tells that from rest.
     pub quiescence_window: u64,
     pub output_every: u64,
-    /// Optional outputs (`"output": {"vtk": true, "vtk_every": N}`).
+    /// Optional outputs (`"output": {"vtk": true, "vtk_every": N, "analysis": true,
+    /// "contacts": true, "analysis_window": [x0, x1, y0, y1]}`).
     pub output: OutputSpec,
     pub contact: ContactSpec,
     pub walls: Vec<WallSpec>,
@@ -54,12 +55,19 @@ pub struct Case {
 }
 
 /// The case's optional outputs.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct OutputSpec {
     /// Write VTK frames and `run.pvd` for ParaView (as `dem2d run --vtk`).
     pub vtk: bool,
     /// Steps between VTK frames (default: `output_every`).
     pub vtk_every: Option<u64>,
+    /// Write `analysis.csv` at the output frames (as `dem2d run --analysis`).
+    pub analysis: bool,
+    /// Write `contacts.csv` and `walls.csv` at the output frames (as `dem2d run --contacts`).
+    pub contacts: bool,
+    /// The region of `analysis.csv`'s measures, `[x0, x1, y0, y1]` (cm; default: the box of four
+    /// axis-aligned walls, else the bodies' extent).
+    pub analysis_window: Option<[f64; 4]>,
 }
 
 const CONTACT_KEYS: [&str; 17] = [
@@ -127,8 +135,20 @@ impl Case {
                 let mut out = Obj::new(v, "output")?;
                 let vtk = out.opt_with("vtk", boolean)?.unwrap_or(false);
                 let vtk_every = out.opt_with("vtk_every", count)?;
+                let analysis = out.opt_with("analysis", boolean)?.unwrap_or(false);
+                let contacts = out.opt_with("contacts", boolean)?.unwrap_or(false);
+                let analysis_window = match out.get("analysis_window") {
+                    None => None,
+                    Some(w) => Some(analysis_window(w)?),
+                };
                 out.finish()?;
-                OutputSpec { vtk, vtk_every }
+                OutputSpec {
+                    vtk,
+                    vtk_every,
+                    analysis,
+                    contacts,
+                    analysis_window,
+                }
             }
         };
         let contact_value = o.req("contact")?;
@@ -691,4 +711,24 @@ fn check_span(walls: &[WallSpec], k: usize, span: &Span) -> Result<(), FieldErro
         }
     }
     Ok(())
+}
+
+/// `output.analysis_window`: four finite numbers `[x0, x1, y0, y1]` with `x0 < x1`, `y0 < y1`.
+fn analysis_window(v: &Value) -> Result<[f64; 4], FieldError> {
+    let field = "output.analysis_window";
+    let bad = || {
+        FieldError::new(
+            field,
+            format!("must be [x0, x1, y0, y1] (cm) with x0 < x1 and y0 < y1, got {v}"),
+        )
+    };
+    let a = v.as_array().ok_or_else(bad)?;
+    if a.len() != 4 {
+        return Err(bad());
+    }
+    let x: Vec<f64> = a.iter().filter_map(Value::as_f64).collect();
+    if x.len() != 4 || x.iter().any(|x| !x.is_finite()) || x[0] >= x[1] || x[2] >= x[3] {
+        return Err(bad());
+    }
+    Ok([x[0], x[1], x[2], x[3]])
 }

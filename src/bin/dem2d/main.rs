@@ -1,11 +1,13 @@
 //! `dem2d` command line: parse arguments, call the library, map errors to exit codes
 //! (0 success, 1 failure while running, 2 bad input).
 
+mod analyze;
 mod area_law_report;
 mod bench;
 mod report;
 mod runner;
 mod study;
+mod verify;
 
 use crate::runner::{RunError, RunOptions, default_out_dir, run_case, signal_name};
 use clap::{Parser, Subcommand};
@@ -115,6 +117,39 @@ enum Command {
         /// output_every); implies --vtk.
         #[arg(long)]
         vtk_every: Option<u64>,
+        /// Also write OUT/analysis.csv at the output frames: stress (Love–Weber and from the
+        /// walls), packing fraction, coordination, fabric anisotropies, orientation order. The
+        /// case's "output": {"analysis": true} does the same.
+        #[arg(long)]
+        analysis: bool,
+        /// Also write every contact at the output frames, OUT/contacts.csv (and the walls'
+        /// lines, OUT/walls.csv), which `dem2d analyze` reads. The case's "output":
+        /// {"contacts": true} does the same.
+        #[arg(long)]
+        contacts: bool,
+    },
+    /// Recompute RUN_DIR/analysis.csv from a run's trajectory.csv, contacts.csv and walls.csv
+    /// (a run made with --contacts; fails, naming the file, for a run without per-contact data).
+    Analyze {
+        /// The run directory.
+        run_dir: PathBuf,
+        /// The region, x0,x1,y0,y1 (cm; default: the box of four walls, else the bodies' extent).
+        #[arg(long, value_delimiter = ',', num_args = 4)]
+        window: Option<Vec<f64>>,
+        /// Output file (default: RUN_DIR/analysis.csv).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Run the benchmarks with published or closed-form answers (impacts, stress, packing,
+    /// biaxial) and print each comparison: quantity, value, reference, tolerance, pass or fail.
+    /// Exits 1 if any fails.
+    Verify {
+        /// Only the fastest subset (what CI runs, well under two minutes).
+        #[arg(long, conflicts_with = "full")]
+        quick: bool,
+        /// The sizes of the README's figures (tens of minutes).
+        #[arg(long)]
+        full: bool,
     },
     /// Draw a run (a directory written by `dem2d run`) as an SVG, or a PNG for `--out x.png`.
     Plot {
@@ -415,6 +450,8 @@ struct RunArgs<'a> {
     overwrite: bool,
     vtk: bool,
     vtk_every: Option<u64>,
+    analysis: bool,
+    contacts: bool,
 }
 
 fn run(args: RunArgs) -> Result<(), Failure> {
@@ -441,6 +478,9 @@ fn run(args: RunArgs) -> Result<(), Failure> {
         overwrite: args.overwrite,
         stop,
         vtk_every,
+        analysis: args.analysis || case.output.analysis,
+        contacts: args.contacts || case.output.contacts,
+        analysis_window: case.output.analysis_window,
     };
     let outcome = run_case(&case, &text, &opts).map_err(|e| match e {
         RunError::Occupied { .. } => Failure::input(e.to_string()),
@@ -813,6 +853,8 @@ fn main() -> ExitCode {
             overwrite,
             vtk,
             vtk_every,
+            analysis,
+            contacts,
         } => set_threads(*threads).and_then(|()| {
             run(RunArgs {
                 case,
@@ -822,8 +864,30 @@ fn main() -> ExitCode {
                 overwrite: *overwrite,
                 vtk: *vtk,
                 vtk_every: *vtk_every,
+                analysis: *analysis,
+                contacts: *contacts,
             })
         }),
+        Command::Analyze {
+            run_dir,
+            window,
+            out,
+        } => analyze::run(run_dir, window.as_deref(), out.as_deref())
+            .map_err(|(code, message)| Failure { code, message }),
+        Command::Verify { quick, full } => {
+            let level = match (quick, full) {
+                (true, _) => verify::Level::Quick,
+                (_, true) => verify::Level::Full,
+                _ => verify::Level::Default,
+            };
+            if verify::run(level) {
+                Ok(())
+            } else {
+                Err(Failure::failed(
+                    "dem2d verify: some comparisons failed".into(),
+                ))
+            }
+        }
         Command::Plot {
             run_dir,
             out,

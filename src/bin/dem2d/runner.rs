@@ -19,6 +19,7 @@
 use dem2d::dynamics::timestep::estimate_critical_dt;
 use dem2d::dynamics::watch::{self, BlowupWatch, Trigger};
 use dem2d::dynamics::{Blowup, World};
+use dem2d::output::analysis::AnalysisOutput;
 use dem2d::output::progress::{self, Progress};
 use dem2d::output::summary::{DeepCounts, EnergyReport, FinalBody, Status, Summary, write_summary};
 use dem2d::output::trace::{IncrementsWriter, TrajectoryWriter, WriteError, time_value};
@@ -47,11 +48,17 @@ pub struct RunOptions {
     /// Write VTK frames (`vtk/frame_NNNNN.vtu`) every this many steps, at the start and at the
     /// end, and `run.pvd` (see [`dem2d::output::vtk`]); `None`: no VTK output.
     pub vtk_every: Option<u64>,
+    /// Write `analysis.csv` at the output frames ([`dem2d::output::analysis`]).
+    pub analysis: bool,
+    /// Write `contacts.csv` and `walls.csv` at the output frames.
+    pub contacts: bool,
+    /// The region of the analysis measures (`[x0, x1, y0, y1]`; default: the wall box).
+    pub analysis_window: Option<[f64; 4]>,
 }
 
 /// The files a run writes (and `dem2d plot`'s default outputs, drawn from them): what is
 /// removed from a directory before a run replaces an earlier one. The summary comes first.
-pub const OUTPUT_FILES: [&str; 8] = [
+pub const OUTPUT_FILES: [&str; 11] = [
     "summary.json",
     "summary.json.tmp",
     "case.json",
@@ -60,6 +67,9 @@ pub const OUTPUT_FILES: [&str; 8] = [
     "scene.svg",
     "series.svg",
     "quiescence.svg",
+    "analysis.csv",
+    "contacts.csv",
+    "walls.csv",
 ];
 
 /// A blow-up: where it was found and why.
@@ -273,15 +283,25 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
                 Some(_) => Some(VtkWriter::create(dir, &world)?),
                 None => None,
             };
-            Ok((t, i, vtk))
+            let analysis = match opts.analysis || opts.contacts {
+                true => Some(AnalysisOutput::create(
+                    dir,
+                    opts.analysis,
+                    opts.contacts,
+                    opts.analysis_window
+                        .map(|[x0, x1, y0, y1]| dem2d::analysis::Window { x0, x1, y0, y1 }),
+                )?),
+                false => None,
+            };
+            Ok((t, i, vtk, analysis))
         }) {
         Err(e) => Err(e),
-        Ok((mut traj, mut incs, mut vtk)) => {
+        Ok((mut traj, mut incs, mut vtk, mut analysis)) => {
             let stopped = step_loop(
                 case,
                 opts,
                 &mut world,
-                (&mut traj, &mut incs, vtk.as_mut()),
+                (&mut traj, &mut incs, vtk.as_mut(), analysis.as_mut()),
                 &mut counters,
                 &mut last_label,
             );
@@ -292,13 +312,26 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
                 .write_labelled(&world, label)
                 .and_then(|()| traj.flush());
             let incs_done = incs.flush();
+            let analysis_done = match &mut analysis {
+                Some(a) if last_label.is_none() => {
+                    a.write(&mut world, label).and_then(|()| a.flush())
+                }
+                Some(a) => a.flush(),
+                None => Ok(()),
+            };
             let vtk_done = match &mut vtk {
                 // A non-finite state is not drawn (VTK readers choke on it); the trajectory
                 // has it.
                 Some(v) if last_label.is_none() => v.write_labelled(&mut world, label),
                 _ => Ok(()),
             };
-            stopped.and_then(|stop| traj_done.and(incs_done).and(vtk_done).map(|()| stop))
+            stopped.and_then(|stop| {
+                traj_done
+                    .and(incs_done)
+                    .and(vtk_done)
+                    .and(analysis_done)
+                    .map(|()| stop)
+            })
         }
     };
     world.network_critical_dt();
@@ -365,10 +398,11 @@ fn step_loop(
     case: &Case,
     opts: &RunOptions,
     world: &mut World,
-    (traj, incs, mut vtk): (
+    (traj, incs, mut vtk, mut analysis): (
         &mut TrajectoryWriter,
         &mut IncrementsWriter,
         Option<&mut VtkWriter>,
+        Option<&mut AnalysisOutput>,
     ),
     counters: &mut Counters,
     last_label: &mut Option<u64>,
@@ -380,6 +414,9 @@ fn step_loop(
     traj.write(world)?;
     if let Some(v) = vtk.as_deref_mut() {
         v.write(world)?;
+    }
+    if let Some(a) = analysis.as_deref_mut() {
+        a.write(world, world.step)?;
     }
     let mut watch = BlowupWatch::new(world);
     let start = Instant::now();
@@ -414,6 +451,9 @@ fn step_loop(
         if s % case.output_every == 0 {
             traj.write(world)?;
             world.network_critical_dt();
+            if let Some(a) = analysis.as_deref_mut() {
+                a.write(world, world.step)?;
+            }
         }
         if s % vtk_every == 0
             && let Some(v) = vtk.as_deref_mut()

@@ -1,0 +1,112 @@
+//! `dem2d analyze RUN_DIR`: recomputes `analysis.csv` from a run's files — the bodies' shapes
+//! from `case.json`, their poses from `trajectory.csv`, the contacts from `contacts.csv` and the
+//! walls from `walls.csv` (both written by `dem2d run --contacts`). A run without
+//! `contacts.csv` cannot be analysed (the forces are not in its other files): the command says
+//! so and exits 1. Without `walls.csv`, the walls of `case.json` as given are used.
+
+use dem2d::analysis::{self, Frame, FrameBody, Window, wall_box};
+use dem2d::output::analysis::{ANALYSIS_HEADER, analysis_row, read_contact_frames};
+use dem2d::output::run_data::RunData;
+use dem2d::output::trace::time_text;
+use std::collections::HashMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// Writes the analysis; errors are `(exit code, message)`.
+pub fn run(dir: &Path, window: Option<&[f64]>, out: Option<&Path>) -> Result<(), (u8, String)> {
+    let window = match window {
+        None => None,
+        Some(&[x0, x1, y0, y1])
+            if x0 < x1 && y0 < y1 && [x0, x1, y0, y1].iter().all(|v| v.is_finite()) =>
+        {
+            Some(Window { x0, x1, y0, y1 })
+        }
+        Some(w) => {
+            return Err((
+                2,
+                format!("--window: expected x0,x1,y0,y1 with x0 < x1 and y0 < y1, got {w:?}"),
+            ));
+        }
+    };
+    let data = RunData::load(dir).map_err(|e| (1, e.to_string()))?;
+    let contacts = read_contact_frames(dir).map_err(|e| (1, e))?;
+    let by_step: HashMap<u64, usize> = contacts
+        .contacts
+        .iter()
+        .enumerate()
+        .map(|(k, (s, _))| (*s, k))
+        .collect();
+    let walls_by_step: HashMap<u64, usize> = contacts
+        .walls
+        .iter()
+        .enumerate()
+        .map(|(k, (s, _))| (*s, k))
+        .collect();
+    let case_walls: Vec<_> = data
+        .case
+        .walls
+        .iter()
+        .map(|w| (w.wall.point, w.wall.normal))
+        .collect();
+    let n = data.case.bodies.len();
+    let mut text = format!("{ANALYSIS_HEADER}\n");
+    for f in &data.frames {
+        if f.bodies.len() != n {
+            return Err((
+                1,
+                format!(
+                    "{}: step {}: {} bodies, but case.json has {n}",
+                    dir.join("trajectory.csv").display(),
+                    f.step,
+                    f.bodies.len()
+                ),
+            ));
+        }
+        let bodies = data
+            .case
+            .bodies
+            .iter()
+            .zip(&f.bodies)
+            .map(|(b, s)| FrameBody {
+                shape: b.shape,
+                position: dem2d::geometry::Vec2::new(s.x, s.y),
+                angle: s.angle,
+            })
+            .collect();
+        let frame_contacts = by_step
+            .get(&f.step)
+            .map(|&k| contacts.contacts[k].1.clone())
+            .unwrap_or_default();
+        if let Some(c) = frame_contacts
+            .iter()
+            .find(|c| c.j >= n || c.i.body().is_some_and(|i| i >= n))
+        {
+            return Err((
+                1,
+                format!(
+                    "{}: step {}: contact ({:?}, {}) names a body beyond the {n} of case.json",
+                    dir.join("contacts.csv").display(),
+                    f.step,
+                    c.i,
+                    c.j
+                ),
+            ));
+        }
+        let walls = walls_by_step
+            .get(&f.step)
+            .map_or(&case_walls, |&k| &contacts.walls[k].1);
+        let frame = Frame {
+            time: f.t,
+            bodies,
+            contacts: frame_contacts,
+            wall_box: wall_box(walls),
+        };
+        let m = analysis::measure(&frame, window);
+        let t = time_text(f.step, data.case.dt);
+        writeln!(text, "{}", analysis_row(&t, &m)).expect("string");
+    }
+    let out = out.map_or_else(|| dir.join("analysis.csv"), Path::to_path_buf);
+    std::fs::write(&out, text).map_err(|e| (1, format!("{}: cannot write: {e}", out.display())))?;
+    println!("{}", out.display());
+    Ok(())
+}

@@ -1,0 +1,252 @@
+//! `analysis.csv` (the measures of [`crate::analysis`] at each output frame), `contacts.csv`
+//! (every contact at each output frame) and `walls.csv` (the walls' lines at each output frame,
+//! written with the contacts so that a run can be analysed again from its files), and their
+//! readers for `dem2d analyze`.
+//!
+//! - `analysis.csv`: [`ANALYSIS_HEADER`]; stresses in dyn/cm², compression positive, angles in
+//!   degrees; empty fields are NaN (no wall box, no elongated body, no contact).
+//! - `contacts.csv`: `step,t,i,j,px,py,nx,ny,fn,ft,depth,state` — i the giver (a body index, or
+//!   `w<k>` for wall k), j the receiving body, the point (cm), the unit normal from i to j, the
+//!   normal and tangential force on j (dyn per cm of thickness: `F·n`, `F·t` with
+//!   `t = (−n_y, n_x)`), the overlap δ (cm) and the geometry state.
+//! - `walls.csv`: `step,t,wall,x,y,nx,ny`.
+
+use super::trace::{LineFile, WriteError, time_text};
+use crate::analysis::{self, Frame, FrameContact, Measures, Window};
+use crate::dynamics::{Partner, World};
+use crate::geometry::Vec2;
+use std::path::Path;
+
+pub const ANALYSIS_HEADER: &str = "t,area,sxx,syy,sxy,p,q,q_over_p,boundary_sxx,boundary_syy,\
+boundary_sxy,packing_fraction,z,z_no_rattlers,rattler_fraction,a_c,theta_c,a_n,theta_n,a_t,\
+theta_t,orientation_order,bodies,contacts";
+pub const CONTACTS_HEADER: &str = "step,t,i,j,px,py,nx,ny,fn,ft,depth,state";
+pub const WALLS_HEADER: &str = "step,t,wall,x,y,nx,ny";
+
+/// A number, or nothing for NaN.
+fn num(x: f64) -> String {
+    if x.is_nan() {
+        String::new()
+    } else {
+        format!("{x}")
+    }
+}
+
+/// One row of `analysis.csv`.
+pub fn analysis_row(t: &str, m: &Measures) -> String {
+    let [sxx, syy, sxy] = m.stress;
+    let (s1, s3, _) = analysis::stress::principal(m.stress);
+    let (p, q) = (0.5 * (s1 + s3), 0.5 * (s1 - s3));
+    let f = &m.fabric;
+    let deg = |x: f64| x.to_degrees();
+    [
+        t.to_string(),
+        num(m.area),
+        num(sxx),
+        num(syy),
+        num(sxy),
+        num(p),
+        num(q),
+        num(q / p),
+        num(m.boundary_stress[0]),
+        num(m.boundary_stress[1]),
+        num(m.boundary_stress[2]),
+        num(m.packing_fraction),
+        num(m.coordination),
+        num(m.coordination_no_rattlers),
+        num(m.rattler_fraction),
+        num(f.a_c),
+        num(deg(f.theta_c)),
+        num(f.a_n),
+        num(deg(f.theta_n)),
+        num(f.a_t),
+        num(deg(f.theta_t)),
+        num(m.orientation_order),
+        m.bodies.to_string(),
+        m.contacts.to_string(),
+    ]
+    .join(",")
+}
+
+/// The writers of a run's analysis outputs (each optional).
+pub struct AnalysisOutput {
+    analysis: Option<LineFile>,
+    contacts: Option<(LineFile, LineFile)>,
+    window: Option<Window>,
+    last_step: Option<u64>,
+}
+
+impl AnalysisOutput {
+    /// Creates `analysis.csv` when `analysis`, `contacts.csv` and `walls.csv` when `contacts`, in
+    /// `dir`; `window` the region of the measures (default: the wall box, else the bodies' extent).
+    pub fn create(
+        dir: &Path,
+        analysis: bool,
+        contacts: bool,
+        window: Option<Window>,
+    ) -> Result<Self, WriteError> {
+        let a = if analysis {
+            let mut f = LineFile::create(&dir.join("analysis.csv"))?;
+            f.line(format_args!("{ANALYSIS_HEADER}"))?;
+            Some(f)
+        } else {
+            None
+        };
+        let c = if contacts {
+            let mut c = LineFile::create(&dir.join("contacts.csv"))?;
+            c.line(format_args!("{CONTACTS_HEADER}"))?;
+            let mut w = LineFile::create(&dir.join("walls.csv"))?;
+            w.line(format_args!("{WALLS_HEADER}"))?;
+            Some((c, w))
+        } else {
+            None
+        };
+        Ok(AnalysisOutput {
+            analysis: a,
+            contacts: c,
+            window,
+            last_step: None,
+        })
+    }
+
+    /// Writes the frame of the world's current state, labelled `step` (once per label). Refreshes
+    /// the contact extras (normals, depths), which the step does not keep.
+    pub fn write(&mut self, world: &mut World, step: u64) -> Result<(), WriteError> {
+        if self.last_step == Some(step) {
+            return Ok(());
+        }
+        self.last_step = Some(step);
+        world.refresh_contact_extras();
+        let frame = Frame::from_world(world);
+        let t = time_text(step, world.dt);
+        if let Some(a) = &mut self.analysis {
+            let m = analysis::measure(&frame, self.window);
+            a.line(format_args!("{}", analysis_row(&t, &m)))?;
+        }
+        if let Some((c, w)) = &mut self.contacts {
+            for k in &frame.contacts {
+                let i = match k.i {
+                    Partner::Body(b) => b.to_string(),
+                    Partner::Wall(w) => format!("w{w}"),
+                };
+                c.line(format_args!(
+                    "{step},{t},{i},{},{},{},{},{},{},{},{},{}",
+                    k.j,
+                    k.point.x,
+                    k.point.y,
+                    k.normal.x,
+                    k.normal.y,
+                    k.normal_force(),
+                    k.tangential_force(),
+                    k.depth,
+                    k.state
+                ))?;
+            }
+            for (k, wall) in world.walls.iter().enumerate() {
+                let (p, n) = (wall.wall.point, wall.wall.normal);
+                w.line(format_args!(
+                    "{step},{t},{k},{},{},{},{}",
+                    p.x, p.y, n.x, n.y
+                ))?;
+            }
+        }
+        Ok(())
+    }
+
+    pub fn flush(&mut self) -> Result<(), WriteError> {
+        if let Some(a) = &mut self.analysis {
+            a.flush()?;
+        }
+        if let Some((c, w)) = &mut self.contacts {
+            c.flush()?;
+            w.flush()?;
+        }
+        Ok(())
+    }
+}
+
+/// Contacts and walls of each output step, read back from `contacts.csv` and `walls.csv`.
+#[derive(Clone, Debug, Default)]
+pub struct ContactFrames {
+    /// `(step, contacts)` in file order.
+    pub contacts: Vec<(u64, Vec<FrameContact>)>,
+    /// `(step, [(point, normal)])`.
+    pub walls: Vec<(u64, Vec<(Vec2, Vec2)>)>,
+}
+
+/// Reads `contacts.csv` and (if present) `walls.csv` of a run directory. Errors name the file
+/// and the line.
+pub fn read_contact_frames(dir: &Path) -> Result<ContactFrames, String> {
+    let file = dir.join("contacts.csv");
+    let text = std::fs::read_to_string(&file).map_err(|e| {
+        format!(
+            "{}: cannot read: {e} (the run has no per-contact data: run it again with \
+             `dem2d run --contacts`, or \"output\": {{\"contacts\": true}} in the case)",
+            file.display()
+        )
+    })?;
+    let mut out = ContactFrames::default();
+    let mut lines = text.lines();
+    let bad = |n: usize, m: &str| format!("{}: line {n}: {m}", file.display());
+    if lines.next() != Some(CONTACTS_HEADER) {
+        return Err(bad(1, &format!("expected the header `{CONTACTS_HEADER}`")));
+    }
+    for (k, line) in lines.enumerate() {
+        let f: Vec<&str> = line.split(',').collect();
+        if f.len() != 12 {
+            return Err(bad(k + 2, &format!("{} fields, expected 12", f.len())));
+        }
+        let x = |i: usize| {
+            f[i].parse::<f64>()
+                .map_err(|e| bad(k + 2, &format!("field {}: not a number: {e}", i + 1)))
+        };
+        let step: u64 = f[0]
+            .parse()
+            .map_err(|e| bad(k + 2, &format!("step: {e}")))?;
+        let i = match f[2].strip_prefix('w') {
+            Some(w) => Partner::Wall(w.parse().map_err(|e| bad(k + 2, &format!("i: {e}")))?),
+            None => Partner::Body(f[2].parse().map_err(|e| bad(k + 2, &format!("i: {e}")))?),
+        };
+        let j: usize = f[3].parse().map_err(|e| bad(k + 2, &format!("j: {e}")))?;
+        let normal = Vec2::new(x(6)?, x(7)?);
+        let (fn_, ft) = (x(8)?, x(9)?);
+        let c = FrameContact {
+            i,
+            j,
+            point: Vec2::new(x(4)?, x(5)?),
+            normal,
+            force: normal * fn_ + Vec2::new(-normal.y, normal.x) * ft,
+            depth: x(10)?,
+            state: f[11].to_string(),
+        };
+        if out.contacts.last().is_none_or(|(s, _)| *s != step) {
+            out.contacts.push((step, Vec::new()));
+        }
+        out.contacts.last_mut().expect("pushed").1.push(c);
+    }
+    let wfile = dir.join("walls.csv");
+    if let Ok(text) = std::fs::read_to_string(&wfile) {
+        let bad = |n: usize, m: &str| format!("{}: line {n}: {m}", wfile.display());
+        let mut lines = text.lines();
+        if lines.next() != Some(WALLS_HEADER) {
+            return Err(bad(1, &format!("expected the header `{WALLS_HEADER}`")));
+        }
+        for (k, line) in lines.enumerate() {
+            let f: Result<Vec<f64>, _> = line.split(',').map(str::parse::<f64>).collect();
+            let f = f.map_err(|e| bad(k + 2, &format!("not a number: {e}")))?;
+            if f.len() != 7 {
+                return Err(bad(k + 2, &format!("{} fields, expected 7", f.len())));
+            }
+            let step = f[0] as u64;
+            if out.walls.last().is_none_or(|(s, _)| *s != step) {
+                out.walls.push((step, Vec::new()));
+            }
+            out.walls
+                .last_mut()
+                .expect("pushed")
+                .1
+                .push((Vec2::new(f[3], f[4]), Vec2::new(f[5], f[6])));
+        }
+    }
+    Ok(out)
+}
