@@ -11,6 +11,7 @@
 
 pub mod dd;
 pub mod families;
+pub mod impact;
 pub mod overlap_reference;
 pub mod reference;
 pub mod rng;

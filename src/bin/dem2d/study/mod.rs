@@ -3,6 +3,7 @@
 //! studies read `cases/`).
 
 pub mod biaxial;
+pub mod impacts;
 pub mod repose;
 pub mod rolling_fig3;
 
@@ -15,6 +16,9 @@ pub enum Study {
     Repose,
     /// Servo compaction of 400 disks, then a biaxial test with servo side walls.
     Biaxial,
+    /// Impact benchmarks (Chung & Ooi 2011) of a disk on a wall against closed forms; writes
+    /// figures/impacts.svg and figures/impacts.md.
+    Impacts,
 }
 
 /// Runs `study`; `write_cases` also writes its case files into `cases/`.
@@ -23,5 +27,6 @@ pub fn run(study: Study, write_cases: bool) {
         Study::RollingFig3 => rolling_fig3::run(),
         Study::Repose => repose::run(write_cases),
         Study::Biaxial => biaxial::run(write_cases),
+        Study::Impacts => impacts::run(),
     }
 }
