@@ -3,6 +3,7 @@
 //! studies read `cases/`).
 
 pub mod biaxial;
+pub mod biaxial_shape;
 pub mod impacts;
 pub mod repose;
 pub mod rolling_fig3;
@@ -19,6 +20,10 @@ pub enum Study {
     /// Impact benchmarks (Chung & Ooi 2011) of a disk on a wall against closed forms; writes
     /// figures/impacts.svg and figures/impacts.md.
     Impacts,
+    /// Biaxial tests of 400 ellipses per aspect ratio (1, 1.5, 2, 2.5): stress ratio and
+    /// volumetric strain, friction and dilatancy angles, fabric at the peak; writes
+    /// figures/biaxial_shape.svg and figures/biaxial_shape.md.
+    BiaxialShape,
 }
 
 /// Runs `study`; `write_cases` also writes its case files into `cases/`.
@@ -28,5 +33,6 @@ pub fn run(study: Study, write_cases: bool) {
         Study::Repose => repose::run(write_cases),
         Study::Biaxial => biaxial::run(write_cases),
         Study::Impacts => impacts::run(),
+        Study::BiaxialShape => biaxial_shape::run(),
     }
 }

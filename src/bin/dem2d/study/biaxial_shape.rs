@@ -1,0 +1,319 @@
+//! Biaxial compression of dense samples of ellipses against their aspect ratio α.
+//!
+//! `dem2d study biaxial-shape` (α = 1, 1.5, 2, 2.5; 400 grains each: what runs in minutes on two
+//! shared cores, not the few thousand of the literature) writes `figures/biaxial_shape.svg`
+//! and `figures/biaxial_shape.md` and prints the table.
+//!
+//! Protocol (per α): the grains of [`ServoBox`] (equal areas: the disk of radius r ∈ [0.8, 1.2]
+//! cm, ellipses a = r√α, b = r/√α, random orientations), frictionless walls;
+//! 1. **isotropic compaction** by four servo walls to σ_c = 1e5 dyn/cm² with grain friction
+//!    [`MU_COMPACTION`] (low, for a dense sample), until the box area changes by less than
+//!    1e-5 of itself over 2000 steps with an unbalanced force ratio below 1e-2;
+//! 2. **shear** with grain friction [`MU`]: the top and bottom walls approach each other at the
+//!    axial strain rate [`STRAIN_RATE`], the side walls servo-controlled at σ_c. Inertial number
+//!    `I = ε̇ d √(ρ/σ_c)` with d = 2 cm the mean equal-area diameter.
+//!
+//! Recorded every 0.5 % of axial strain: stresses from the walls (mean over the interval: the
+//! top wall's load over the width, the side walls' over the height), the volumetric strain
+//! `ε_v = 1 − A/A₀` (compression positive), the analysis of the state (fabric, packing,
+//! coordination). Friction angles `sin φ = (σ₁ − σ₃)/(σ₁ + σ₃)` at the peak and over the last
+//! 2 % (residual); dilatancy angle `sin ψ = −ε̇_v/(2ε̇₁ − ε̇_v)` from the slope of ε_v against
+//! ε₁ over ±1 % around the peak.
+
+use dem2d::analysis::{self, Frame, Measures};
+use dem2d::dynamics::World;
+use dem2d::dynamics::boundary::span_length;
+use dem2d::dynamics::{BodyInit, Span};
+use dem2d::output::plot::{self, LinePanel, Series};
+use dem2d::scene::Case;
+use dem2d::scene::servo_box::ServoBox;
+use serde_json::json;
+use std::fmt::Write as _;
+use std::time::Instant;
+
+pub const SIGMA_C: f64 = 1e5;
+pub const MU: f64 = 0.5;
+pub const MU_COMPACTION: f64 = 0.1;
+/// Axial strain rate (1/s): I = 0.08 × 2 × √(2.65/1e5) ≈ 8.2e-4.
+pub const STRAIN_RATE: f64 = 0.08;
+
+/// Width, height, axial (top wall) and lateral (side walls) stresses.
+fn wall_state(w: &World) -> (f64, f64, f64, f64) {
+    let width = span_length(&w.walls[1].wall, &Span::Between(2, 3), &w.walls);
+    let height = span_length(&w.walls[2].wall, &Span::Between(0, 1), &w.walls);
+    let axial = w.walls[1].load.force.dot(&w.walls[1].wall.normal) / width;
+    let lateral = 0.5
+        * (w.walls[2].load.force.dot(&w.walls[2].wall.normal)
+            + w.walls[3].load.force.dot(&w.walls[3].wall.normal))
+        / height;
+    (width, height, axial, lateral)
+}
+
+/// Steps a servo-compaction world until it is still (see the module documentation) or
+/// `max_time` passes; returns the steps taken.
+pub fn compact(w: &mut World, max_time: f64) -> u64 {
+    let mut steps = 0;
+    let mut last = f64::INFINITY;
+    while w.time < max_time {
+        for _ in 0..2000 {
+            w.step().expect("finite");
+        }
+        steps += 2000;
+        let (width, height, _, _) = wall_state(w);
+        let a = width * height;
+        if (a - last).abs() < 1e-5 * a && w.unbalanced_ratios().0 < 1e-2 {
+            break;
+        }
+        last = a;
+    }
+    steps
+}
+
+/// One biaxial test.
+#[derive(Clone, Debug, Default)]
+pub struct Outcome {
+    pub aspect: f64,
+    pub grains: usize,
+    /// (axial strain, stress ratio, volumetric strain) every 0.5 %.
+    pub curve: Vec<(f64, f64, f64)>,
+    pub measures: Vec<Measures>,
+    pub initial: Measures,
+    pub peak_ratio: f64,
+    pub peak_strain: f64,
+    pub residual_ratio: f64,
+    pub dilatancy_deg: f64,
+    pub peak_measures: Measures,
+    pub wall_seconds: f64,
+    pub particle_steps: f64,
+}
+
+/// Compacts and shears a sample of `n_side²` grains of aspect ratio `aspect` to axial strain
+/// `strain`.
+pub fn run_one(n_side: usize, aspect: f64, strain: f64, verbose: bool) -> Outcome {
+    let start = Instant::now();
+    let prep = ServoBox {
+        n_side,
+        aspect,
+        friction: MU_COMPACTION,
+        sigma: SIGMA_C,
+        seed: 11,
+    };
+    let case = Case::from_json(&prep.compaction_case(5.0)).expect("valid case");
+    let mut w = case.build_world();
+    let mut steps = compact(&mut w, 5.0);
+    let n = w.bodies.len();
+    if verbose {
+        eprintln!(
+            "α = {aspect}: compacted at t = {:.2} s ({:.0} s wall)",
+            w.time,
+            start.elapsed().as_secs_f64()
+        );
+    }
+    let bodies: Vec<BodyInit> = (0..n)
+        .map(|k| BodyInit {
+            shape: w.bodies.shape[k],
+            position: w.bodies.state[k].pose.position,
+            angle: w.bodies.state[k].pose.angle(),
+            velocity: dem2d::geometry::Vec2::zeros(),
+            omega: 0.0,
+            density: w.bodies.density[k],
+        })
+        .collect();
+    let (_, height0, _, _) = wall_state(&w);
+    let box_ = [
+        w.walls[2].wall.point.x,
+        w.walls[3].wall.point.x,
+        w.walls[0].wall.point.y,
+        w.walls[1].wall.point.y,
+    ];
+    let v = 0.5 * STRAIN_RATE * height0;
+    let shear = ServoBox {
+        friction: MU,
+        ..prep
+    };
+    let duration = strain / STRAIN_RATE;
+    let text = shear.case_json(
+        &format!("biaxial_a{aspect}"),
+        "biaxial shear stage",
+        &bodies,
+        box_,
+        [
+            json!({"velocity": [0.0, v]}),
+            json!({"velocity": [0.0, -v]}),
+            shear.servo(0, 1),
+            shear.servo(0, 1),
+        ],
+        duration,
+    );
+    let case = Case::from_json(&text).expect("valid case");
+    let mut w = case.build_world();
+    w.refresh_contact_extras();
+    let initial = analysis::measure(&Frame::from_world(&w), None);
+    let (width0, height0, _, _) = wall_state(&w);
+    let area0 = width0 * height0;
+    let every = (0.005 / STRAIN_RATE / case.dt).round() as u64;
+    let mut out = Outcome {
+        aspect,
+        grains: n,
+        initial,
+        ..Default::default()
+    };
+    let (mut sum, mut count) = ([0.0; 2], 0.0);
+    for step in 1..=case.steps() {
+        w.step().expect("finite");
+        let (_, _, ax, lat) = wall_state(&w);
+        sum[0] += ax;
+        sum[1] += lat;
+        count += 1.0;
+        if step % every == 0 {
+            let (ax, lat) = (sum[0] / count, sum[1] / count);
+            let (width, height, _, _) = wall_state(&w);
+            out.curve.push((
+                1.0 - height / height0,
+                (ax - lat) / (ax + lat),
+                1.0 - width * height / area0,
+            ));
+            w.refresh_contact_extras();
+            out.measures
+                .push(analysis::measure(&Frame::from_world(&w), None));
+            (sum, count) = ([0.0; 2], 0.0);
+        }
+    }
+    steps += case.steps();
+    let (k, &(e1, q, _)) = out
+        .curve
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.1.total_cmp(&b.1.1))
+        .expect("a curve");
+    out.peak_ratio = q;
+    out.peak_strain = e1;
+    out.peak_measures = out.measures[k];
+    let last = out.curve.last().expect("a curve").0;
+    let tail: Vec<f64> = out
+        .curve
+        .iter()
+        .filter(|c| c.0 >= last - 0.02)
+        .map(|c| c.1)
+        .collect();
+    out.residual_ratio = tail.iter().sum::<f64>() / tail.len() as f64;
+    // Slope of ε_v against ε₁ over ±1 % around the peak (least squares).
+    let pts: Vec<(f64, f64)> = out
+        .curve
+        .iter()
+        .filter(|c| (c.0 - e1).abs() <= 0.0101)
+        .map(|c| (c.0, c.2))
+        .collect();
+    let m = pts.len() as f64;
+    let (mx, my) = (
+        pts.iter().map(|p| p.0).sum::<f64>() / m,
+        pts.iter().map(|p| p.1).sum::<f64>() / m,
+    );
+    let s = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>()
+        / pts.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
+    out.dilatancy_deg = (-s / (2.0 - s)).asin().to_degrees();
+    out.wall_seconds = start.elapsed().as_secs_f64();
+    out.particle_steps = steps as f64 * n as f64;
+    if verbose {
+        eprintln!(
+            "α = {aspect}: peak {:.3} at {:.3}, residual {:.3}, {:.0} s",
+            out.peak_ratio, out.peak_strain, out.residual_ratio, out.wall_seconds
+        );
+    }
+    out
+}
+
+pub fn run() {
+    let aspects = [1.0, 1.5, 2.0, 2.5];
+    let results: Vec<Outcome> = aspects.iter().map(|&a| run_one(20, a, 0.1, true)).collect();
+    let mut md = String::from(
+        "| α | grains | φ after compaction | Z (no rattlers) | peak (σ₁−σ₃)/(σ₁+σ₃) | φ_peak (°) | φ_res (°) | ψ (°) | a_c | a_n | a_t | ½(a_c+a_n+a_t) | LW q/p at peak | orientation order at peak | wall time (s) | particle-steps/s |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+    );
+    for r in &results {
+        let f = &r.peak_measures.fabric;
+        let (s1, s3, _) = analysis::stress::principal(r.peak_measures.stress);
+        writeln!(
+            md,
+            "| {} | {} | {:.4} | {:.2} | {:.3} | {:.1} | {:.1} | {:.1} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {} | {:.0} | {:.2e} |",
+            r.aspect,
+            r.grains,
+            r.initial.packing_fraction,
+            r.initial.coordination_no_rattlers,
+            r.peak_ratio,
+            r.peak_ratio.asin().to_degrees(),
+            r.residual_ratio.asin().to_degrees(),
+            r.dilatancy_deg,
+            f.a_c,
+            f.a_n,
+            f.a_t,
+            0.5 * (f.a_c + f.a_n + f.a_t),
+            (s1 - s3) / (s1 + s3),
+            if r.peak_measures.orientation_order.is_nan() {
+                "–".to_string()
+            } else {
+                format!("{:.3}", r.peak_measures.orientation_order)
+            },
+            r.wall_seconds,
+            r.particle_steps / r.wall_seconds
+        )
+        .expect("string");
+    }
+    writeln!(
+        md,
+        "\nσ_c = {SIGMA_C:e} dyn/cm², grain friction {MU} (compaction {MU_COMPACTION}), frictionless \
+         walls, axial strain rate {STRAIN_RATE} /s: inertial number I = ε̇ d √(ρ/σ_c) = {:.1e} \
+         (d = 2 cm, ρ = 2.65 g/cm³). Written by `dem2d study biaxial-shape`.",
+        STRAIN_RATE * 2.0 * (2.65 / SIGMA_C).sqrt()
+    )
+    .expect("string");
+    let series = |k: usize| -> Vec<Series> {
+        results
+            .iter()
+            .enumerate()
+            .map(|(c, r)| Series {
+                label: format!("α = {}", r.aspect),
+                points: r
+                    .curve
+                    .iter()
+                    .map(|p| (100.0 * p.0, if k == 0 { p.1 } else { 100.0 * p.2 }))
+                    .collect(),
+                color: c,
+                line: true,
+                ..Default::default()
+            })
+            .collect()
+    };
+    let panels = [
+        LinePanel {
+            title: "Stress ratio".into(),
+            x_label: "axial strain ε₁ (%)".into(),
+            y_label: "(σ₁ − σ₃)/(σ₁ + σ₃) (–)".into(),
+            series: series(0),
+            ..Default::default()
+        },
+        LinePanel {
+            title: "Volumetric strain (compression positive)".into(),
+            x_label: "axial strain ε₁ (%)".into(),
+            y_label: "ε_v = 1 − A/A₀ (%)".into(),
+            series: series(1),
+            ..Default::default()
+        },
+    ];
+    plot::line_panels(
+        std::path::Path::new("figures/biaxial_shape.svg"),
+        (1200, 480),
+        (1, 2),
+        &panels,
+    )
+    .expect("figures/biaxial_shape.svg");
+    std::fs::create_dir_all("target/figure-png").expect("target/figure-png");
+    plot::line_panels(
+        std::path::Path::new("target/figure-png/biaxial_shape.png"),
+        (1200, 480),
+        (1, 2),
+        &panels,
+    )
+    .expect("biaxial_shape.png");
+    std::fs::write("figures/biaxial_shape.md", &md).expect("figures/biaxial_shape.md");
+    print!("{md}");
+}
