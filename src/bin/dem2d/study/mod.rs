@@ -5,6 +5,7 @@
 pub mod biaxial;
 pub mod biaxial_shape;
 pub mod impacts;
+pub mod packing;
 pub mod repose;
 pub mod rolling_fig3;
 
@@ -24,6 +25,9 @@ pub enum Study {
     /// volumetric strain, friction and dilatancy angles, fabric at the peak; writes
     /// figures/biaxial_shape.svg and figures/biaxial_shape.md.
     BiaxialShape,
+    /// Packing fraction and coordination of bidisperse grains poured into a box against the
+    /// aspect ratio (1–3), frictionless and μ = 0.5; writes figures/packing.svg and .md.
+    Packing,
 }
 
 /// Runs `study`; `write_cases` also writes its case files into `cases/`.
@@ -34,5 +38,6 @@ pub fn run(study: Study, write_cases: bool) {
         Study::Biaxial => biaxial::run(write_cases),
         Study::Impacts => impacts::run(),
         Study::BiaxialShape => biaxial_shape::run(),
+        Study::Packing => packing::run(),
     }
 }

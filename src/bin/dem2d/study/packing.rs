@@ -1,0 +1,244 @@
+//! Packing fraction and coordination of bidisperse (1:1.4) grains poured under gravity into a
+//! box, against the aspect ratio α (1, 1.2, 1.5, 2, 3), frictionless and with μ = 0.5.
+//!
+//! `dem2d study packing` writes `figures/packing.svg` and `figures/packing.md` and prints the
+//! table. Each pile: [`N`] grains (equal areas: half of radius 0.833 cm, half 1.4 times it,
+//! ellipses a = r√α, b = r/√α in random orientations) on a loose lattice in a box [`WIDTH`] cm
+//! wide, released with random velocities ≤ 5 cm/s, settling under gravity with the laws of
+//! `dem2d generate` (linear on the overlap area, P's stiffness, dashpots for e = 0.5) until at
+//! rest (mean increment ≤ 1e-7 cm per step for 1000 steps) or [`DURATION`] s. Measured in a
+//! window [`MARGIN`] cm away from the side walls, the floor and the surface (the lowest of the
+//! tops of the grains in 5 cm bins, less the margin): the packing fraction from the exact areas
+//! of the grains clipped by the window, the coordination number with and without rattlers of
+//! the grains whose centre lies in it.
+
+use dem2d::analysis::{self, Frame, Window};
+use dem2d::contact_law::NormalForce;
+use dem2d::dynamics::BodyInit;
+use dem2d::geometry::{Shape, Vec2};
+use dem2d::output::plot::{self, LinePanel, Series};
+use dem2d::scene::Case;
+use dem2d::scene::generate::{DENSITY, PileShape, PileSizes, PileSpec, R_SMALL};
+use std::fmt::Write as _;
+use std::time::Instant;
+
+pub const N: usize = 300;
+pub const WIDTH: f64 = 30.0;
+pub const MARGIN: f64 = 4.0;
+pub const DURATION: f64 = 3.0;
+
+/// One pile.
+#[derive(Clone, Copy, Debug)]
+pub struct Pile {
+    pub aspect: f64,
+    pub friction: f64,
+    pub packing: f64,
+    pub z: f64,
+    pub z_no_rattlers: f64,
+    pub rattlers: f64,
+    pub order: f64,
+    pub window: Window,
+    pub at_rest: bool,
+    pub time: f64,
+    pub wall_seconds: f64,
+    pub particle_steps_per_second: f64,
+}
+
+fn bodies(aspect: f64, seed: u64, spacing: f64) -> Vec<BodyInit> {
+    let mut state = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+    let mut uniform = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let cols = (WIDTH / spacing).floor() as usize;
+    let x0 = 0.5 * (WIDTH - cols as f64 * spacing);
+    let r6 = |x: f64| (x * 1e6).round() / 1e6;
+    (0..N)
+        .map(|k| {
+            let r = if uniform() < 0.5 { R_SMALL } else { 1.4 * R_SMALL };
+            let angle = r6(std::f64::consts::PI * uniform());
+            let (speed, dir) = (5.0 * uniform(), std::f64::consts::TAU * uniform());
+            let shape = if aspect == 1.0 {
+                Shape::Circle { r: r6(r) }
+            } else {
+                Shape::Ellipse {
+                    a: r6(r * aspect.sqrt()),
+                    b: r6(r / aspect.sqrt()),
+                }
+            };
+            BodyInit {
+                shape,
+                position: Vec2::new(
+                    r6(x0 + spacing * ((k % cols) as f64 + 0.5)),
+                    r6(spacing * ((k / cols) as f64 + 0.5)),
+                ),
+                angle: if aspect == 1.0 { 0.0 } else { angle },
+                velocity: Vec2::new(r6(speed * dir.cos()), r6(speed * dir.sin())),
+                omega: 0.0,
+                density: DENSITY,
+            }
+        })
+        .collect()
+}
+
+/// Pours and measures one pile.
+pub fn pour(aspect: f64, friction: f64) -> Pile {
+    let start = Instant::now();
+    let mut spec = PileSpec::new(
+        if aspect == 1.0 {
+            PileShape::Disks
+        } else {
+            PileShape::Ellipses
+        },
+        N,
+        1,
+    );
+    spec.aspect = aspect;
+    spec.sizes = PileSizes::Bidisperse;
+    spec.friction = friction;
+    spec.normal_force = NormalForce::Area;
+    spec.duration = DURATION;
+    let spacing = ((2.0 * spec.max_bound() + 0.1) * 10.0).ceil() / 10.0;
+    let text = spec.case_text(
+        &format!("packing_a{aspect}_mu{friction}"),
+        "packing study pile",
+        WIDTH,
+        &bodies(aspect, 5, spacing),
+    );
+    let case = Case::from_json(&text).expect("valid case");
+    let mut w = case.build_world();
+    let q = case.quiescence.expect("a rest criterion");
+    let mut streak = 0;
+    let mut at_rest = false;
+    for _ in 0..case.steps() {
+        let r = w.step().expect("finite");
+        if r.increments.iter().all(|&d| d <= q) {
+            streak += 1;
+        } else {
+            streak = 0;
+        }
+        if streak >= case.quiescence_window {
+            at_rest = true;
+            break;
+        }
+    }
+    w.refresh_contact_extras();
+    let frame = Frame::from_world(&w);
+    // The surface: the lowest of the bins' highest grain tops.
+    let bins = (WIDTH / 5.0) as usize;
+    let mut tops = vec![0.0f64; bins];
+    for b in &frame.bodies {
+        let k = ((b.position.x / 5.0) as usize).min(bins - 1);
+        tops[k] = tops[k].max(b.position.y + b.shape.bounding_radius());
+    }
+    let surface = tops.iter().copied().fold(f64::INFINITY, f64::min);
+    let window = Window {
+        x0: MARGIN,
+        x1: WIDTH - MARGIN,
+        y0: MARGIN,
+        y1: surface - MARGIN,
+    };
+    let m = analysis::measure(&frame, Some(window));
+    let wall = start.elapsed().as_secs_f64();
+    Pile {
+        aspect,
+        friction,
+        packing: m.packing_fraction,
+        z: m.coordination,
+        z_no_rattlers: m.coordination_no_rattlers,
+        rattlers: m.rattler_fraction,
+        order: m.orientation_order,
+        window,
+        at_rest,
+        time: w.time,
+        wall_seconds: wall,
+        particle_steps_per_second: N as f64 * w.step as f64 / wall,
+    }
+}
+
+pub fn run() {
+    let aspects = [1.0, 1.2, 1.5, 2.0, 3.0];
+    let mut piles = Vec::new();
+    for mu in [0.0, 0.5] {
+        for &a in &aspects {
+            let p = pour(a, mu);
+            eprintln!("α = {a}, μ = {mu}: φ = {:.4}, {:.0} s", p.packing, p.wall_seconds);
+            piles.push(p);
+        }
+    }
+    let mut md = String::from(
+        "| α | μ | φ (window) | Z | Z (no rattlers) | rattlers | orientation order | window (cm) | at rest (t, s) | wall time (s) | particle-steps/s |\n|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---:|\n",
+    );
+    for p in &piles {
+        writeln!(
+            md,
+            "| {} | {} | {:.4} | {:.2} | {:.2} | {:.1} % | {} | [{}, {}] × [{}, {:.1}] | {} ({:.2}) | {:.0} | {:.2e} |",
+            p.aspect,
+            p.friction,
+            p.packing,
+            p.z,
+            p.z_no_rattlers,
+            100.0 * p.rattlers,
+            if p.order.is_nan() { "–".into() } else { format!("{:.2}", p.order) },
+            p.window.x0,
+            p.window.x1,
+            p.window.y0,
+            p.window.y1,
+            if p.at_rest { "yes" } else { "no" },
+            p.time,
+            p.wall_seconds,
+            p.particle_steps_per_second
+        )
+        .expect("string");
+    }
+    writeln!(
+        md,
+        "\n{N} bidisperse grains (1:1.4, equal numbers) per pile in a box {WIDTH} cm wide, poured \
+         under gravity; window {MARGIN} cm from the walls, the floor and the surface. Written by \
+         `dem2d study packing`."
+    )
+    .expect("string");
+    let series = |k: usize| -> Vec<Series> {
+        [0.0, 0.5]
+            .iter()
+            .enumerate()
+            .map(|(c, &mu)| Series {
+                label: format!("dem2d, poured, μ = {mu}"),
+                points: piles
+                    .iter()
+                    .filter(|p| p.friction == mu)
+                    .map(|p| (p.aspect, if k == 0 { p.packing } else { p.z_no_rattlers }))
+                    .collect(),
+                color: c,
+                line: true,
+                markers: true,
+                ..Default::default()
+            })
+            .collect()
+    };
+    let panels = [
+        LinePanel {
+            title: "Packing fraction".into(),
+            x_label: "aspect ratio α = a/b (–)".into(),
+            y_label: "φ (–)".into(),
+            series: series(0),
+            hlines: vec![(0.84, "bidisperse disks, isotropic jamming ≈ 0.84 (O'Hern 2003)".into())],
+            ..Default::default()
+        },
+        LinePanel {
+            title: "Coordination number".into(),
+            x_label: "aspect ratio α = a/b (–)".into(),
+            y_label: "Z without rattlers (–)".into(),
+            series: series(1),
+            ..Default::default()
+        },
+    ];
+    for path in ["figures/packing.svg", "target/figure-png/packing.png"] {
+        std::fs::create_dir_all("target/figure-png").expect("target/figure-png");
+        plot::line_panels(std::path::Path::new(path), (1200, 480), (1, 2), &panels).expect(path);
+    }
+    std::fs::write("figures/packing.md", &md).expect("figures/packing.md");
+    print!("{md}");
+}
