@@ -11,11 +11,7 @@ use dem2d::scene::servo_box::ServoBox;
 /// chunk and the unbalanced force ratio is below 1e-3 (or `max_time` passes); returns whether
 /// it got there.
 fn settle(world: &mut World, chunk: usize, max_time: f64) -> bool {
-    let area = |w: &World| {
-        let mut f = Frame::default();
-        f.wall_box = Frame::from_world(w).wall_box;
-        f.wall_box.map_or(0.0, |b| b.area())
-    };
+    let area = |w: &World| Frame::from_world(w).wall_box.map_or(0.0, |b| b.area());
     let mut last = area(world);
     while world.time < max_time {
         for _ in 0..chunk {
