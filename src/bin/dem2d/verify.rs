@@ -3,8 +3,8 @@
 //!
 //! - `--quick` (CI, a few seconds): the impact benchmarks (closed forms) and the Love–Weber
 //!   stress of a servo-compacted sample of 100 disks against its boundary stress (1 %).
-//! - default (about a minute): also the published trend of the biaxial test — the peak stress
-//!   ratio grows with the grains' elongation (Rothenburg & Bathurst 1992; Azéma & Radjaï 2010;
+//! - default (about a minute): also the published trend of the biaxial test — the residual
+//!   stress ratio grows with the grains' elongation (Rothenburg & Bathurst 1992; Azéma & Radjaï 2010;
 //!   Saint-Cyr et al. 2012) — on samples of 144 grains, α = 1 and 2.
 //! - `--full`: the biaxial trend on the README's samples (400 grains, α = 1, 1.5, 2, 2.5).
 
@@ -73,7 +73,7 @@ fn stress_checks() -> Vec<Check> {
         .collect()
 }
 
-/// The peak stress ratio grows with elongation.
+/// The residual stress ratio (the mean over the last 2 % of axial strain) grows with elongation.
 fn biaxial_checks(n_side: usize, aspects: &[f64], strain: f64) -> Vec<Check> {
     let results: Vec<biaxial_shape::Outcome> = aspects
         .iter()
@@ -83,17 +83,17 @@ fn biaxial_checks(n_side: usize, aspects: &[f64], strain: f64) -> Vec<Check> {
         .windows(2)
         .map(|w| Check {
             quantity: format!(
-                "biaxial, {} grains: peak (σ₁−σ₃)/(σ₁+σ₃) at α = {}",
+                "biaxial, {} grains: residual (σ₁−σ₃)/(σ₁+σ₃) at α = {}",
                 n_side * n_side,
                 w[1].aspect
             ),
-            value: w[1].peak_ratio,
+            value: w[1].residual_ratio,
             reference: format!(
                 "> {:.4} at α = {} (strength grows with elongation: Azéma & Radjaï 2010)",
-                w[0].peak_ratio, w[0].aspect
+                w[0].residual_ratio, w[0].aspect
             ),
             tolerance: "inequality".into(),
-            pass: w[1].peak_ratio > w[0].peak_ratio,
+            pass: w[1].residual_ratio > w[0].residual_ratio,
         })
         .collect()
 }
@@ -106,7 +106,7 @@ pub fn run(level: Level) -> bool {
     checks.extend(stress_checks());
     match level {
         Level::Quick => {}
-        Level::Default => checks.extend(biaxial_checks(12, &[1.0, 2.0], 0.06)),
+        Level::Default => checks.extend(biaxial_checks(12, &[1.0, 2.0], 0.08)),
         Level::Full => checks.extend(biaxial_checks(20, &[1.0, 1.5, 2.0, 2.5], 0.1)),
     }
     println!("| quantity | dem2d | reference | tolerance | result |");

@@ -83,6 +83,8 @@ pub struct Outcome {
     pub residual_ratio: f64,
     pub dilatancy_deg: f64,
     pub peak_measures: Measures,
+    /// The state at the peak (for the force-chain figure).
+    pub peak_frame: Frame,
     pub wall_seconds: f64,
     pub particle_steps: f64,
 }
@@ -159,6 +161,7 @@ pub fn run_one(n_side: usize, aspect: f64, strain: f64, verbose: bool) -> Outcom
         ..Default::default()
     };
     let (mut sum, mut count) = ([0.0; 2], 0.0);
+    let mut frames = Vec::new();
     for step in 1..=case.steps() {
         w.step().expect("finite");
         let (_, _, ax, lat) = wall_state(&w);
@@ -174,8 +177,9 @@ pub fn run_one(n_side: usize, aspect: f64, strain: f64, verbose: bool) -> Outcom
                 1.0 - width * height / area0,
             ));
             w.refresh_contact_extras();
-            out.measures
-                .push(analysis::measure(&Frame::from_world(&w), None));
+            let frame = Frame::from_world(&w);
+            out.measures.push(analysis::measure(&frame, None));
+            frames.push(frame);
             (sum, count) = ([0.0; 2], 0.0);
         }
     }
@@ -189,6 +193,7 @@ pub fn run_one(n_side: usize, aspect: f64, strain: f64, verbose: bool) -> Outcom
     out.peak_ratio = q;
     out.peak_strain = e1;
     out.peak_measures = out.measures[k];
+    out.peak_frame = frames.swap_remove(k);
     let last = out.curve.last().expect("a curve").0;
     let tail: Vec<f64> = out
         .curve
@@ -221,6 +226,92 @@ pub fn run_one(n_side: usize, aspect: f64, strain: f64, verbose: bool) -> Outcom
         );
     }
     out
+}
+
+/// An SVG of force chains: each body's outline in grey, each body–body contact a line between
+/// the two centroids of width ∝ F_n (the largest 6 px), panels side by side with a 10 cm scale.
+fn force_chains(results: &[&Outcome]) -> String {
+    let scale = 9.0; // px per cm
+    let (pad, top) = (20.0, 50.0);
+    let mut x_off = pad;
+    let mut body = String::new();
+    let mut height: f64 = 0.0;
+    for r in results {
+        let f = &r.peak_frame;
+        let b = f.wall_box.expect("a wall box");
+        let (w, h) = ((b.x1 - b.x0) * scale, (b.y1 - b.y0) * scale);
+        let tx = |x: f64| x_off + (x - b.x0) * scale;
+        let ty = |y: f64| top + h - (y - b.y0) * scale;
+        let fmax = f
+            .contacts
+            .iter()
+            .map(|c| c.normal_force())
+            .fold(0.0, f64::max);
+        writeln!(
+            body,
+            r#"<text x="{:.1}" y="30" font-family="sans-serif" font-size="15">α = {} at the peak (ε₁ = {:.1} %): width ∝ F_n, widest {:.2e} dyn/cm</text>"#,
+            x_off,
+            r.aspect,
+            100.0 * r.peak_strain,
+            fmax
+        )
+        .expect("string");
+        writeln!(
+            body,
+            r#"<rect x="{:.1}" y="{top}" width="{w:.1}" height="{h:.1}" fill="none" stroke="black"/>"#,
+            x_off
+        )
+        .expect("string");
+        for fb in &f.bodies {
+            let pts: Vec<String> = plot::outline(&fb.shape, fb.position.x, fb.position.y, fb.angle)
+                .iter()
+                .map(|&(x, y)| format!("{:.1},{:.1}", tx(x), ty(y)))
+                .collect();
+            writeln!(
+                body,
+                r##"<polygon points="{}" fill="#eeeeee" stroke="#aaaaaa" stroke-width="0.5"/>"##,
+                pts.join(" ")
+            )
+            .expect("string");
+        }
+        for c in &f.contacts {
+            let Some(i) = c.giver_body() else { continue };
+            let (p, q) = (f.bodies[i].position, f.bodies[c.j].position);
+            let width = 6.0 * c.normal_force().max(0.0) / fmax;
+            if width < 0.05 {
+                continue;
+            }
+            writeln!(
+                body,
+                r#"<line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="black" stroke-width="{width:.2}" stroke-linecap="round"/>"#,
+                tx(p.x),
+                ty(p.y),
+                tx(q.x),
+                ty(q.y)
+            )
+            .expect("string");
+        }
+        writeln!(
+            body,
+            r#"<line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="black" stroke-width="3"/><text x="{:.1}" y="{:.1}" font-family="sans-serif" font-size="13">10 cm</text>"#,
+            x_off,
+            top + h + 20.0,
+            x_off + 10.0 * scale,
+            top + h + 20.0,
+            x_off + 10.0 * scale + 8.0,
+            top + h + 25.0
+        )
+        .expect("string");
+        height = height.max(h);
+        x_off += w + 3.0 * pad;
+    }
+    format!(
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{:.0}" height="{:.0}" viewBox="0 0 {:.0} {:.0}"><rect width="100%" height="100%" fill="white"/>{body}</svg>"#,
+        x_off,
+        top + height + 40.0,
+        x_off,
+        top + height + 40.0
+    )
 }
 
 pub fn run() {
@@ -315,5 +406,9 @@ pub fn run() {
     )
     .expect("biaxial_shape.png");
     std::fs::write("figures/biaxial_shape.md", &md).expect("figures/biaxial_shape.md");
+    let chains = force_chains(&[&results[0], &results[results.len() - 1]]);
+    std::fs::write("figures/force_chains.svg", &chains).expect("figures/force_chains.svg");
+    let png = plot::png_of_svg(&chains, 1.0).expect("force chains PNG");
+    std::fs::write("target/figure-png/force_chains.png", png).expect("force_chains.png");
     print!("{md}");
 }
