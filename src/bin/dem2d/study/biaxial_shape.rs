@@ -232,7 +232,7 @@ pub fn run_one(n_side: usize, aspect: f64, strain: f64, verbose: bool) -> Outcom
 /// the two centroids of width ∝ F_n (the largest 6 px), panels side by side with a 10 cm scale.
 fn force_chains(results: &[&Outcome]) -> String {
     let scale = 9.0; // px per cm
-    let (pad, top) = (20.0, 50.0);
+    let (pad, top) = (20.0, 55.0);
     let mut x_off = pad;
     let mut body = String::new();
     let mut height: f64 = 0.0;
@@ -249,10 +249,11 @@ fn force_chains(results: &[&Outcome]) -> String {
             .fold(0.0, f64::max);
         writeln!(
             body,
-            r#"<text x="{:.1}" y="30" font-family="sans-serif" font-size="15">α = {} at the peak (ε₁ = {:.1} %): width ∝ F_n, widest {:.2e} dyn/cm</text>"#,
+            r#"<text x="{:.1}" y="22" font-family="sans-serif" font-size="15">α = {} at the peak (axial strain {:.1} %)</text><text x="{:.1}" y="42" font-family="sans-serif" font-size="13">line width ∝ F_n; widest {:.2e} dyn/cm</text>"#,
             x_off,
             r.aspect,
             100.0 * r.peak_strain,
+            x_off,
             fmax
         )
         .expect("string");

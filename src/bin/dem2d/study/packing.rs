@@ -57,7 +57,11 @@ fn bodies(aspect: f64, seed: u64, spacing: f64) -> Vec<BodyInit> {
     let r6 = |x: f64| (x * 1e6).round() / 1e6;
     (0..N)
         .map(|k| {
-            let r = if uniform() < 0.5 { R_SMALL } else { 1.4 * R_SMALL };
+            let r = if uniform() < 0.5 {
+                R_SMALL
+            } else {
+                1.4 * R_SMALL
+            };
             let angle = r6(std::f64::consts::PI * uniform());
             let (speed, dir) = (5.0 * uniform(), std::f64::consts::TAU * uniform());
             let shape = if aspect == 1.0 {
@@ -164,7 +168,10 @@ pub fn run() {
     for mu in [0.0, 0.5] {
         for &a in &aspects {
             let p = pour(a, mu);
-            eprintln!("α = {a}, μ = {mu}: φ = {:.4}, {:.0} s", p.packing, p.wall_seconds);
+            eprintln!(
+                "α = {a}, μ = {mu}: φ = {:.4}, {:.0} s",
+                p.packing, p.wall_seconds
+            );
             piles.push(p);
         }
     }
@@ -224,7 +231,13 @@ pub fn run() {
             x_label: "aspect ratio α = a/b (–)".into(),
             y_label: "φ (–)".into(),
             series: series(0),
-            hlines: vec![(0.84, "bidisperse disks, isotropic jamming ≈ 0.84 (O'Hern 2003)".into())],
+            hlines: vec![(
+                0.84,
+                "bidisperse disks, isotropic jamming ≈ 0.84 (O'Hern 2003)".into(),
+            )],
+            // Room above the points for the legend.
+            y_range: Some((0.80, 0.935)),
+            legend: plot::Legend::UpperRight,
             ..Default::default()
         },
         LinePanel {
