@@ -133,8 +133,9 @@ enum Command {
     Analyze {
         /// The run directory.
         run_dir: PathBuf,
-        /// The region, x0,x1,y0,y1 (cm; default: the box of four walls, else the bodies' extent).
-        #[arg(long, value_delimiter = ',', num_args = 4)]
+        /// The region, x0,x1,y0,y1 (cm; default: the box of four walls, else the bodies' extent);
+        /// write `--window=-1,2,0,3` when x0 is negative.
+        #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
         window: Option<Vec<f64>>,
         /// Output file (default: RUN_DIR/analysis.csv).
         #[arg(long)]

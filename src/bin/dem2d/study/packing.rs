@@ -236,7 +236,7 @@ pub fn run() {
                 "bidisperse disks, isotropic jamming ≈ 0.84 (O'Hern 2003)".into(),
             )],
             // Room above the points for the legend.
-            y_range: Some((0.80, 0.935)),
+            y_range: Some((0.78, 0.935)),
             legend: plot::Legend::UpperRight,
             ..Default::default()
         },
