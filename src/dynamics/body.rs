@@ -82,7 +82,7 @@ impl Bodies {
             b.bound.push(init.shape.bounding_radius());
             b.area_radius
                 .push((area(&init.shape) / std::f64::consts::PI).sqrt());
-            b.is_circle.push(matches!(init.shape, Shape::Circle { .. }));
+            b.is_circle.push(init.shape.is_circle());
             b.state.push(BodyState {
                 pose: Pose::new(init.position, init.angle),
                 vel: init.velocity,

@@ -30,10 +30,13 @@
 //! each written by one thread only); gathering each body's forces from its own slots, in key
 //! order, then the second kick and the dissipated power (bodies). Every sum (increments,
 //! energies, counters) is formed per chunk and then over the chunks in order. Nothing depends
-//! on how chunks are scheduled, so a run gives the same bits on one thread or many. Circle
-//! pairs skip the chord (nothing reads it) and circles skip their sine and cosine; conic pairs
-//! start from the last step's crossings or separating axis (see
-//! [`crate::narrow_phase::ellipse_ellipse`]).
+//! on how chunks are scheduled, so a run gives the same bits on one thread or many. Every
+//! slot's geometry comes from the narrow phase's one dispatcher
+//! ([`crate::narrow_phase::contact_with`]), asked for no chord (circle pairs then skip it) and
+//! for the overlap area only under the area law; each slot keeps the pair's opaque
+//! [`PairCache`] beside it (conic pairs start from the last step's crossings or separating
+//! axis, see [`crate::narrow_phase::ellipse_ellipse`]) when some pair of the scene keeps
+//! anything there. Circles skip their sine and cosine.
 
 use super::account::{Diagnostics, Energies};
 use super::body::Bodies;
@@ -47,7 +50,6 @@ use crate::contact_law::{
     AreaKinematics, ContactSpec, EquivalentOverlap, History, Kinematics, Law, NormalForce,
     RollingKinematics, RollingModel,
 };
-use crate::geometry::Shape;
 use crate::geometry::overlap_area::DiskLens;
 use crate::geometry::{Pose, Vec2};
 use crate::narrow_phase::{ContactState, Object, OverlapArea, PairCache, Request, contact_with};
@@ -727,11 +729,11 @@ fn update_slot(
     };
     let c = contact_with(&i, &Object::Body { shape, pose }, cache, request)
         .expect("a slot pairs a body with a body or a wall");
-    let lean = c.geometry.map(|geo| {
+    let found = c.geometry.map(|geo| {
         let spring = spring_of(b, sides, c.state, &geo, area_law);
         (c.state, geo.point, geo.normal, geo.depth, spring)
     });
-    let (state, geo_point, geo_normal, depth, spring) = match lean {
+    let (state, geo_point, geo_normal, depth, spring) = match found {
         Some(l) if l.3 > 0.0 => l,
         // Separated, or touching without overlap: no force, no history.
         _ => {
@@ -752,7 +754,7 @@ fn update_slot(
     match state {
         ContactState::Deep => p.deep += 1,
         ContactState::Contained => p.contained += 1,
-        _ => {}
+        ContactState::Separated | ContactState::Touching | ContactState::Overlap => {}
     }
     // Where the force acts and along which normal: the chord midpoint and normal (the area
     // gradient's for the area law, which equal them for two crossings); for a Winkler contact
@@ -910,12 +912,9 @@ fn spring_of(
         // The area potential: between two rectangles, the flat-equivalent overlap; otherwise
         // the equal-area disks' lens.
         (_, Some(a)) if area_law => {
-            let flat_pair = sides.giving_body().is_some_and(|k| {
-                matches!(
-                    (b.shape[k], b.shape[recv]),
-                    (Shape::Rectangle { .. }, Shape::Rectangle { .. })
-                )
-            });
+            let flat_pair = sides
+                .giving_body()
+                .is_some_and(|k| b.shape[k].is_flat_sided() && b.shape[recv].is_flat_sided());
             let equivalent = if flat_pair {
                 EquivalentOverlap::Flat(face())
             } else {

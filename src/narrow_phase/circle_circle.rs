@@ -16,7 +16,7 @@ use crate::geometry::{Pose, Vec2};
 /// that are exactly symmetric in i and j (`r_i + r_j`, `c_i + c_j`, `|c_j − c_i|`) or exactly
 /// antisymmetric (`c_j − c_i`, `r_i − r_j`), so exchanging the circles negates the normal and
 /// keeps the rest.
-#[inline]
+#[inline(always)]
 pub fn overlap_circle_circle(
     ri: f64,
     pi: &Pose,
@@ -63,7 +63,7 @@ pub fn overlap_circle_circle(
 /// `request.chord` (otherwise both ends at the contact point, unless the area is asked), the
 /// overlap area when `request.area`. Swap-symmetric bit for bit, as [`overlap_circle_circle`]
 /// (the chord's two ends exchange).
-#[inline]
+#[inline(always)]
 pub fn contact_circle_circle(ri: f64, pi: &Pose, rj: f64, pj: &Pose, request: &Request) -> Contact {
     let Some((state, point, n, depth)) = overlap_circle_circle(ri, pi, rj, pj) else {
         return Contact::SEPARATED;

@@ -6,7 +6,7 @@ use crate::geometry::{Pose, Vec2, Wall};
 
 /// A wall–circle pair's state, contact point, normal and depth, without the chord. `None` when
 /// separated. [`contact_wall_circle`] is this plus what the request asks.
-#[inline]
+#[inline(always)]
 pub fn overlap_wall_circle(
     wall: &Wall,
     r: f64,
@@ -32,7 +32,7 @@ pub fn overlap_wall_circle(
 /// Contact between a wall (i) and a circle (j) of radius `r`; the normal is the wall's normal.
 /// The chord when `request.chord` (otherwise both ends at the contact point, unless the area is
 /// asked), the overlap area when `request.area`.
-#[inline]
+#[inline(always)]
 pub fn contact_wall_circle(wall: &Wall, r: f64, pose: &Pose, request: &Request) -> Contact {
     let Some((state, point, n, depth)) = overlap_wall_circle(wall, r, pose) else {
         return Contact::SEPARATED;

@@ -246,7 +246,7 @@ pub fn contact(i: &Object, j: &Object) -> Option<Contact> {
 /// one place where a pair is turned round. The cache always speaks of the caller's i: it is
 /// re-expressed for the kernel when the pair is computed the other way round, and back.
 /// Closed forms where they exist (a circle pair never touches the conic machinery).
-#[inline]
+#[inline(always)]
 pub fn contact_with(
     i: &Object,
     j: &Object,
@@ -270,7 +270,7 @@ pub fn contact_with(
 
 /// A warm start given relative to `from`, re-expressed relative to `to` (the pair's other
 /// object). Only body pairs carry one.
-#[inline]
+#[inline(always)]
 fn seen_from(w: Option<Warm>, from: &Object, to: &Object) -> Option<Warm> {
     match (from, to) {
         (Object::Body { pose: a, .. }, Object::Body { pose: b, .. }) => {
@@ -283,7 +283,7 @@ fn seen_from(w: Option<Warm>, from: &Object, to: &Object) -> Option<Warm> {
 /// The kernels, for pairs in their canonical order only (see [`computed_in_order`]). Returns
 /// the contact, the warm start for the next query (conic pairs; none for the others) and
 /// whether `guess` gave the result.
-#[inline]
+#[inline(always)]
 fn contact_in_order(
     i: &Object,
     j: &Object,
@@ -336,11 +336,10 @@ fn contact_in_order(
 
 /// Whether the pair `(i, j)` is computed in the order given (i first), rather than as `(j, i)`
 /// and swapped; `None` for two walls. The canonical order: a wall before a body; between two
-/// kinds of body, a rectangle before a conic and a circle before an ellipse
-/// ([`kind_rank`]); between two bodies of the same kind, [`computed_first`] — but two circles
-/// are computed as given, their closed form being exactly symmetric (see the module
-/// documentation).
-#[inline]
+/// kinds of body, a rectangle before a conic and a circle before an ellipse; between two bodies
+/// of the same kind, [`computed_first`] — but two circles are computed as given, their closed
+/// form being exactly symmetric (see the module documentation).
+#[inline(always)]
 pub fn computed_in_order(i: &Object, j: &Object) -> Option<bool> {
     match (i, j) {
         (Object::Wall(_), Object::Wall(_)) => None,
@@ -370,7 +369,7 @@ pub fn computed_in_order(i: &Object, j: &Object) -> Option<bool> {
 /// comes first against a conic (its kernel cuts the conic with its edges), a circle first
 /// against an ellipse (the pencil's frame is centred on the first, and a circle's orientation
 /// is arbitrary).
-#[inline]
+#[inline(always)]
 fn kind_rank(s: &Shape) -> u8 {
     match s {
         Shape::Rectangle { .. } => 0,
