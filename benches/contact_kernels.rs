@@ -503,7 +503,9 @@ fn print_table() {
     if let Err(e) = std::fs::write(&out, &md) {
         eprintln!("{}: {e}", out.display());
     }
-    if let Err(e) = dem2d::report::update_readme(&root.join("README.md"), &[("kernel_speed", md)]) {
+    if let Err(e) =
+        dem2d::output::readme::update_readme(&root.join("README.md"), &[("kernel_speed", md)])
+    {
         eprintln!("README.md: {e}");
     }
 }

@@ -16,14 +16,10 @@
 //!   penetrating; the force on j is `+F` and on i `−F`.
 //! - Pair geometry is computed in a frame centred on a body, never in world coordinates.
 
-pub mod area_law_report;
-pub mod bench;
 pub mod contact_law;
 pub mod dynamics;
 pub mod geometry;
 pub mod narrow_phase;
 pub mod output;
-pub mod report;
-pub mod runner;
 pub mod scene;
 pub mod validation;

@@ -336,7 +336,7 @@ fn the_thrown_circle_and_ellipse_of_p_fig_3_come_to_rest_with_rolling_resistance
 }
 
 /// The angle of repose of a small heap (100 disks released from a column by a withdrawing wall,
-/// `examples/repose.rs`'s protocol without the settling) rises with μ_r.
+/// `dem2d study repose`'s protocol without the settling) rises with μ_r.
 #[test]
 fn the_angle_of_repose_of_a_heap_rises_with_rolling_friction() {
     use dem2d::dynamics::analysis::heap_surface;

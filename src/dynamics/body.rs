@@ -42,6 +42,9 @@ pub struct Bodies {
     pub bound: Vec<f64>,
     /// Radius of the disk of the same area (the area law's equivalent lens).
     pub area_radius: Vec<f64>,
+    /// `1/area_radius` (the lens's series wants inverse radii: kept to spare two divisions per
+    /// contact).
+    pub inv_area_radius: Vec<f64>,
     /// Pose and velocities.
     pub state: Vec<BodyState>,
     /// The body is a circle (its orientation enters no contact; the drift reads this rather
@@ -65,6 +68,7 @@ impl Bodies {
             inv_inertia: Vec::with_capacity(n),
             bound: Vec::with_capacity(n),
             area_radius: Vec::with_capacity(n),
+            inv_area_radius: Vec::with_capacity(n),
             state: Vec::with_capacity(n),
             is_circle: Vec::with_capacity(n),
             force: Vec::with_capacity(n),
@@ -80,8 +84,9 @@ impl Bodies {
             b.inertia.push(i);
             b.inv_inertia.push(1.0 / i);
             b.bound.push(init.shape.bounding_radius());
-            b.area_radius
-                .push((area(&init.shape) / std::f64::consts::PI).sqrt());
+            let area_radius = (area(&init.shape) / std::f64::consts::PI).sqrt();
+            b.area_radius.push(area_radius);
+            b.inv_area_radius.push(1.0 / area_radius);
             b.is_circle.push(init.shape.is_circle());
             b.state.push(BodyState {
                 pose: Pose::new(init.position, init.angle),

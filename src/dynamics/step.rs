@@ -918,10 +918,15 @@ fn spring_of(
             let equivalent = if flat_pair {
                 EquivalentOverlap::Flat(face())
             } else {
-                let far = sides
-                    .giving_body()
-                    .map_or(f64::INFINITY, |k| b.area_radius[k]);
-                EquivalentOverlap::Lens(DiskLens::new(b.area_radius[recv], far))
+                let (far, inv_far) = sides.giving_body().map_or((f64::INFINITY, 0.0), |k| {
+                    (b.area_radius[k], b.inv_area_radius[k])
+                });
+                EquivalentOverlap::Lens(DiskLens::with_inverses(
+                    b.area_radius[recv],
+                    b.inv_area_radius[recv],
+                    far,
+                    inv_far,
+                ))
             };
             Spring::Area(a, equivalent)
         }

@@ -186,6 +186,7 @@ impl World {
             + held(&b.inv_inertia)
             + held(&b.bound)
             + held(&b.area_radius)
+            + held(&b.inv_area_radius)
             + held(&b.state)
             + held(&b.is_circle)
             + held(&b.force)

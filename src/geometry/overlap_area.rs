@@ -102,6 +102,30 @@ pub fn ellipse_cap(a: f64, b: f64, p: [f64; 2], e: [f64; 2], major: bool) -> f64
     ellipse_cap_with(a, b, || p, e, major)
 }
 
+/// [`ellipse_cap`] for a caller that already holds `inv2 = [1/a², 1/b²]` (the conic pair's
+/// forms): the chord's image on the unit disk has length² `e_x²/a² + e_y²/b²` without a division,
+/// and the end point `p` is computed only when needed (a chord near the centre).
+#[inline]
+pub fn ellipse_cap_inverse(
+    a: f64,
+    b: f64,
+    inv2: [f64; 2],
+    p: impl FnOnce() -> [f64; 2],
+    e: [f64; 2],
+    major: bool,
+) -> f64 {
+    let l2 = e[0] * e[0] * inv2[0] + e[1] * e[1] * inv2[1];
+    let minor = if l2 <= 2.0 {
+        unit_cap(l2.sqrt())
+    } else {
+        let p = p();
+        let (ex, ey) = (e[0] / a, e[1] / b);
+        let (px, py) = (p[0] / a, p[1] / b);
+        unit_cap_at_distance((px * ey - py * ex).abs() / (ex * ex + ey * ey).sqrt())
+    };
+    a * b * if major { PI - minor } else { minor }
+}
+
 /// [`ellipse_cap`] with the end point `p` computed only when needed (a chord near the centre).
 #[inline]
 pub fn ellipse_cap_with(

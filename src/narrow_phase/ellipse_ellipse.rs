@@ -40,7 +40,7 @@ use super::{
 use crate::geometry::Pose;
 use crate::geometry::conic::EllipseForm;
 use crate::geometry::cubic::{one_real_root, solve_cubic};
-use crate::geometry::overlap_area::ellipse_cap_with;
+use crate::geometry::overlap_area::ellipse_cap_inverse;
 use crate::geometry::pencil::{
     LineCut, Pencil, cut_line, mixed_invariant_from_inverse_squares, split_degenerate,
 };
@@ -119,6 +119,8 @@ pub fn contact_ellipse_ellipse(
 struct Placed {
     a: f64,
     b: f64,
+    /// `[1/a², 1/b²]`, as the pair's conic forms hold them.
+    inv2: [f64; 2],
     cos: f64,
     sin: f64,
     x: f64,
@@ -145,7 +147,7 @@ impl Placed {
         let body = move |v: [f64; 2]| [c * v[0] + s * v[1], -s * v[0] + c * v[1]];
         let rel = [p[0] - self.x, p[1]];
         let major = u[0] * rel[0] + u[1] * rel[1] < 0.0;
-        ellipse_cap_with(self.a, self.b, || body(rel), body(e), major)
+        ellipse_cap_inverse(self.a, self.b, self.inv2, || body(rel), body(e), major)
     }
 }
 
@@ -377,6 +379,7 @@ fn conic_pair_inner(
     let placed_i = Placed {
         a: ai,
         b: bi,
+        inv2: inv_i,
         cos: cti,
         sin: sti,
         x: 0.0,
@@ -384,6 +387,7 @@ fn conic_pair_inner(
     let placed_j = Placed {
         a: aj,
         b: bj,
+        inv2: inv_j,
         cos: ctj,
         sin: stj,
         x: d,

@@ -6,6 +6,7 @@ pub mod outline;
 pub mod panels;
 pub mod plot;
 pub mod progress;
+pub mod readme;
 pub mod run_data;
 pub mod summary;
 pub mod trace;

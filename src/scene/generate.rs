@@ -400,7 +400,7 @@ pub fn case_text_from(head: &[(&str, Value)], bodies: &[BodyInit]) -> String {
 /// [`R_MIN`, `R_MAX`], density [`DENSITY`], on a loose lattice of 8 columns (spacing 2.5 cm,
 /// a little jitter) between a left wall at x = 0 and a right wall (the gate) at x = `width`,
 /// on a floor y = 0; P's stiffness, dashpots for restitution 0.5 (as the piles), Coulomb
-/// friction `friction`, the area law. See `examples/repose.rs` for the protocol.
+/// friction `friction`, the area law. See `dem2d study repose` for the protocol.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ColumnSpec {
     pub n: usize,
@@ -466,7 +466,7 @@ impl ColumnSpec {
             format!("{} with μ_r = {}", r.model.as_str(), r.friction)
         });
         let description = format!(
-            "Angle of repose (examples/repose.rs): {} disks in a column {} cm wide; the right wall \
+            "Angle of repose (dem2d study repose): {} disks in a column {} cm wide; the right wall \
              withdraws at {gate_speed} cm/s and the grains flow out over the floor until at rest. \
              Rolling resistance: {rolling_text}.",
             bodies.len(),

@@ -16,14 +16,14 @@
 //!   created beyond what the initial state and gravity supply, or an overlap deeper than the
 //!   bodies); the report names the step, the body and the reason.
 
-use crate::dynamics::timestep::estimate_critical_dt;
-use crate::dynamics::watch::{self, BlowupWatch, Trigger};
-use crate::dynamics::{Blowup, World};
-use crate::output::progress::{self, Progress};
-use crate::output::summary::{DeepCounts, EnergyReport, FinalBody, Status, Summary, write_summary};
-use crate::output::trace::{IncrementsWriter, TrajectoryWriter, WriteError, time_value};
-use crate::output::vtk::VtkWriter;
-use crate::scene::Case;
+use dem2d::dynamics::timestep::estimate_critical_dt;
+use dem2d::dynamics::watch::{self, BlowupWatch, Trigger};
+use dem2d::dynamics::{Blowup, World};
+use dem2d::output::progress::{self, Progress};
+use dem2d::output::summary::{DeepCounts, EnergyReport, FinalBody, Status, Summary, write_summary};
+use dem2d::output::trace::{IncrementsWriter, TrajectoryWriter, WriteError, time_value};
+use dem2d::output::vtk::VtkWriter;
+use dem2d::scene::Case;
 use std::fmt;
 use std::io;
 use std::path::{Path, PathBuf};
@@ -45,7 +45,7 @@ pub struct RunOptions {
     /// `interrupted` (the command line's SIGINT and SIGTERM handlers set it).
     pub stop: Option<&'static AtomicI32>,
     /// Write VTK frames (`vtk/frame_NNNNN.vtu`) every this many steps, at the start and at the
-    /// end, and `run.pvd` (see [`crate::output::vtk`]); `None`: no VTK output.
+    /// end, and `run.pvd` (see [`dem2d::output::vtk`]); `None`: no VTK output.
     pub vtk_every: Option<u64>,
 }
 
@@ -168,7 +168,7 @@ fn prepare_dir(dir: &Path, overwrite: bool) -> Result<(), RunError> {
         .filter(|p| p.symlink_metadata().is_ok())
         .collect();
     // An earlier run's VTK output: `run.pvd` and `vtk/frame_*.vtu` (nothing else in `vtk/`).
-    present.extend(crate::output::vtk::existing_outputs(dir));
+    present.extend(dem2d::output::vtk::existing_outputs(dir));
     if present.is_empty() {
         return Ok(());
     }
@@ -638,7 +638,7 @@ mod tests {
                 "bodies": [{"shape": {"type": "circle", "r": 1}, "position": [0, 0]}]}"#,
         )
         .unwrap();
-        case.bodies[0].velocity = crate::geometry::Vec2::new(1e300, 0.0);
+        case.bodies[0].velocity = dem2d::geometry::Vec2::new(1e300, 0.0);
         case.dt = 1e10;
         case.duration = 1e11;
         let dir = std::env::temp_dir().join(format!("dem2d-runner-{}", std::process::id()));

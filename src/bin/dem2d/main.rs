@@ -1,11 +1,17 @@
 //! `dem2d` command line: parse arguments, call the library, map errors to exit codes
 //! (0 success, 1 failure while running, 2 bad input).
 
+mod area_law_report;
+mod bench;
+mod report;
+mod runner;
+mod study;
+
+use crate::runner::{RunError, RunOptions, default_out_dir, run_case, signal_name};
 use clap::{Parser, Subcommand};
 use dem2d::narrow_phase::contact;
 use dem2d::output::contacts::contact_json;
 use dem2d::output::summary::Status;
-use dem2d::runner::{RunError, RunOptions, default_out_dir, run_case, signal_name};
 use dem2d::scene::fields::parse_json;
 use dem2d::scene::{Case, parse_pairs};
 use std::io::Write;
@@ -63,6 +69,16 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Run one of the studies behind the README's tables (rolling-fig3, repose, biaxial) and
+    /// print its Markdown table; run from the repository (the studies read `cases/`).
+    Study {
+        /// Which study.
+        #[arg(value_enum)]
+        name: study::Study,
+        /// Also write the study's case files into `cases/` (repose, biaxial).
+        #[arg(long)]
+        write_cases: bool,
+    },
     /// Contact geometry of pairs of bodies: reads a JSON array of {"i": BODY, "j": BODY} from FILE
     /// (or standard input for `-`) and prints one JSON result per pair.
     Contact {
@@ -715,7 +731,7 @@ fn bench(
     } else {
         threads.to_vec()
     };
-    let opts = dem2d::bench::BenchOptions {
+    let opts = crate::bench::BenchOptions {
         shapes: shapes
             .iter()
             .map(|s| match s {
@@ -731,14 +747,14 @@ fn bench(
         cache: Some(cache.to_path_buf()),
         progress: true,
     };
-    let rows = dem2d::bench::run(&opts, &|| ALLOCATED.load(Ordering::Relaxed), &|| {
+    let rows = crate::bench::run(&opts, &|| ALLOCATED.load(Ordering::Relaxed), &|| {
         ALLOCATIONS.load(Ordering::Relaxed)
     })
     .map_err(|e| Failure {
         code: 1,
         message: e.to_string(),
     })?;
-    let md = dem2d::bench::markdown(&rows);
+    let md = crate::bench::markdown(&rows);
     print_out(&md)?;
     if let Some(path) = out {
         std::fs::write(path, &md).map_err(|e| Failure {
@@ -747,7 +763,7 @@ fn bench(
         })?;
     }
     if let Some(readme) = readme {
-        dem2d::report::update_readme(readme, &[("bench", md)]).map_err(|e| Failure {
+        crate::report::update_readme(readme, &[("bench", md)]).map_err(|e| Failure {
             code: 1,
             message: e.to_string(),
         })?;
@@ -762,7 +778,7 @@ fn figures(
     readme: Option<PathBuf>,
     (quick, png): (bool, Option<PathBuf>),
 ) -> Result<(), Failure> {
-    let opts = dem2d::report::FigureOptions {
+    let opts = crate::report::FigureOptions {
         cases,
         out,
         work,
@@ -770,7 +786,7 @@ fn figures(
         quick,
         png,
     };
-    let written = dem2d::report::figures(&opts).map_err(|e| Failure {
+    let written = crate::report::figures(&opts).map_err(|e| Failure {
         code: 1,
         message: e.to_string(),
     })?;
@@ -784,6 +800,10 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Contact { file } => run_contact(file),
+        Command::Study { name, write_cases } => {
+            study::run(*name, *write_cases);
+            Ok(())
+        }
         Command::Run {
             case,
             out,

@@ -13,16 +13,16 @@
 //! per pair, the error against wall time) go to `timings.md` and `speed_vs_error_time.svg` in
 //! the work directory, which is not tracked.
 
-use crate::contact_law::NormalForce;
-use crate::dynamics::World;
-use crate::dynamics::timestep::estimate_critical_dt;
-use crate::narrow_phase::contact;
-use crate::output::panels;
-use crate::output::plot::{self, LinePanel, SceneOptions, ScenePanel, Series};
-use crate::output::run_data::RunData;
 use crate::runner::{RunOptions, run_case};
-use crate::scene::Case;
-use crate::validation::families::{markdown_table, run_families};
+use dem2d::contact_law::NormalForce;
+use dem2d::dynamics::World;
+use dem2d::dynamics::timestep::estimate_critical_dt;
+use dem2d::narrow_phase::contact;
+use dem2d::output::panels;
+use dem2d::output::plot::{self, LinePanel, SceneOptions, ScenePanel, Series};
+use dem2d::output::run_data::RunData;
+use dem2d::scene::Case;
+use dem2d::validation::families::{markdown_table, run_families};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -744,10 +744,10 @@ fn speed_vs_error(opts: &FigureOptions) -> Result<SpeedVsError, ReportError> {
     // impact).
     let (drop, _) = load_case(&opts.cases.join("drop_rebound_mu05.json"))?;
     let mut elastic = drop.clone();
-    elastic.contact = crate::contact_law::ContactSpec::Linear {
-        kn: crate::contact_law::Scaled::OverRhoG(36400.0),
-        ks: crate::contact_law::Scaled::OverRhoG(36400.0),
-        damping: crate::contact_law::LinearDamping::Restitution(1.0),
+    elastic.contact = dem2d::contact_law::ContactSpec::Linear {
+        kn: dem2d::contact_law::Scaled::OverRhoG(36400.0),
+        ks: dem2d::contact_law::Scaled::OverRhoG(36400.0),
+        damping: dem2d::contact_law::LinearDamping::Restitution(1.0),
         friction: 0.0,
         normal_force: drop.contact.normal_force(),
         rolling: None,
@@ -761,7 +761,7 @@ fn speed_vs_error(opts: &FigureOptions) -> Result<SpeedVsError, ReportError> {
         vec![5e-7, 1e-6, 2e-6, 5e-6, 1e-5, 2e-5, 5e-5, 1e-4, 2e-4]
     };
     let dt_crit_drop = estimate_critical_dt(
-        &crate::dynamics::Bodies::new(&drop.bodies),
+        &dem2d::dynamics::Bodies::new(&drop.bodies),
         &drop.contact,
         &drop.walls,
         drop.gravity.norm(),
@@ -863,7 +863,7 @@ fn speed_vs_error(opts: &FigureOptions) -> Result<SpeedVsError, ReportError> {
         settle_dts[0] / 4.0,
         dt_crit_drop,
         estimate_critical_dt(
-            &crate::dynamics::Bodies::new(&settle.bodies),
+            &dem2d::dynamics::Bodies::new(&settle.bodies),
             &settle.contact,
             &settle.walls,
             settle.gravity.norm()
@@ -991,7 +991,7 @@ fn speed_vs_error(opts: &FigureOptions) -> Result<SpeedVsError, ReportError> {
 fn stability(opts: &FigureOptions) -> Result<(String, String, Vec<LinePanel>), ReportError> {
     note("figures: stability sweep");
     let (settle, _) = load_case(&opts.cases.join("settle3_dt1e-5.json"))?;
-    let bodies = crate::dynamics::Bodies::new(&settle.bodies);
+    let bodies = dem2d::dynamics::Bodies::new(&settle.bodies);
     let dt_crit = estimate_critical_dt(
         &bodies,
         &settle.contact,
@@ -1175,19 +1175,6 @@ fn kernel_report(quick: bool) -> (String, String) {
 }
 
 /// Replaces the README's marked sections by the tables of the same names.
-/// Replaces the README sections between `<!-- figures:NAME -->` and `<!-- /figures:NAME -->` with
-/// the Markdown of the same name (sections not in the README are left out).
 pub fn update_readme(readme: &Path, tables: &[(&str, String)]) -> Result<(), ReportError> {
-    let mut text = std::fs::read_to_string(readme).map_err(e(&readme.display().to_string()))?;
-    for (name, md) in tables {
-        let (open, close) = (
-            format!("<!-- figures:{name} -->"),
-            format!("<!-- /figures:{name} -->"),
-        );
-        if let (Some(i), Some(j)) = (text.find(&open), text.find(&close)) {
-            let start = i + open.len();
-            text.replace_range(start..j, &format!("\n{}\n", md.trim_end()));
-        }
-    }
-    std::fs::write(readme, text).map_err(e(&readme.display().to_string()))
+    dem2d::output::readme::update_readme(readme, tables).map_err(ReportError)
 }

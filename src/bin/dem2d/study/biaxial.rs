@@ -1,7 +1,7 @@
 //! A biaxial test in a box of four walls: two walls at a prescribed strain rate, two holding the
 //! confining stress.
 //!
-//! `cargo run --release --example biaxial [-- --write-case]`
+//! `dem2d study biaxial [--write-cases]`
 //!
 //! 1. **Compaction**: 400 disks (radii 0.8–1.2 cm, ρ = 2.65, friction 0.5, P's stiffness,
 //!    dashpots for e = 0.5), no gravity, start on a loose lattice in a box whose four walls
@@ -12,7 +12,7 @@
 //!    keep σ_c. Printed every 1 % of axial strain: the axial stress σ₁ (the top wall's load over
 //!    the box's width), the side walls' σ₃ and their error against σ_c, the volumetric strain.
 //!
-//! With `--write-case` the shear stage is written as `cases/biaxial_disks.json` (the compacted
+//! With `--write-cases` the shear stage is written as `cases/biaxial_disks.json` (the compacted
 //! assembly, the moving walls), an ordinary case.
 
 use dem2d::dynamics::boundary::span_length;
@@ -56,7 +56,7 @@ fn case_json(name: &str, bodies: &[BodyInit], box_: [f64; 4], motions: [Value; 4
         (
             "description",
             json!(format!(
-                "Biaxial test (examples/biaxial.rs): {} disks compacted under σ_c = {SIGMA_C:e} \
+                "Biaxial test (dem2d study biaxial): {} disks compacted under σ_c = {SIGMA_C:e} \
                  dyn/cm² by four servo walls; the top and bottom walls then approach each other at \
                  an axial strain rate of {STRAIN_RATE} /s while the side walls hold σ_c.",
                 bodies.len()
@@ -101,8 +101,7 @@ fn stresses(w: &World) -> (f64, f64, f64, f64) {
     (axial, lateral, width, height)
 }
 
-fn main() {
-    let write = std::env::args().any(|a| a == "--write-case");
+pub fn run(write: bool) {
     // A loose lattice, 2.6 cm apart, radii uniform in 0.8–1.2 (a fixed sequence).
     let mut seed = 7u64;
     let mut uniform = || {

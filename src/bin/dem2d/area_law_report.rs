@@ -1,10 +1,10 @@
 //! The area law's tables for `dem2d figures`: how its force compares with P's spring on the
 //! depth, the restitution it gives, and the energy it conserves.
 
-use crate::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
-use crate::dynamics::{BodyInit, WallSpec, World};
-use crate::geometry::support::support_local;
-use crate::geometry::{Shape, Vec2, Wall};
+use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
+use dem2d::dynamics::{BodyInit, WallSpec, World};
+use dem2d::geometry::support::support_local;
+use dem2d::geometry::{Shape, Vec2, Wall};
 use std::f64::consts::FRAC_PI_2;
 use std::fmt::Write as _;
 

@@ -9,12 +9,12 @@
 //! 10⁴ piles side by side in one wide box. Settled piles are cached as case files (they are
 //! ordinary cases: `dem2d run` runs them). The timed steps then run at the case's Δt = 1e-5 s.
 
-use crate::contact_law::NormalForce;
-use crate::dynamics::timestep::estimate_critical_dt;
-use crate::dynamics::{BodyInit, World};
-use crate::output::progress::Progress;
-use crate::scene::Case;
-use crate::scene::generate::{PileShape, PileSpec, WIDTH_10K};
+use dem2d::contact_law::NormalForce;
+use dem2d::dynamics::timestep::estimate_critical_dt;
+use dem2d::dynamics::{BodyInit, World};
+use dem2d::output::progress::Progress;
+use dem2d::scene::Case;
+use dem2d::scene::generate::{PileShape, PileSpec, WIDTH_10K};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -118,7 +118,7 @@ fn bodies_of(w: &World) -> Vec<BodyInit> {
 fn settle(spec: &PileSpec, progress: bool) -> Result<String, BenchError> {
     let case = Case::from_json(&spec.case_json()).map_err(|e| BenchError(e.to_string()))?;
     let dt_crit = estimate_critical_dt(
-        &crate::dynamics::Bodies::new(&case.bodies),
+        &dem2d::dynamics::Bodies::new(&case.bodies),
         &case.contact,
         &case.walls,
         case.gravity.norm(),
@@ -331,7 +331,7 @@ pub fn run(
 /// The rows as a Markdown table, with the speed-up over one thread where measured.
 pub fn markdown(rows: &[BenchRow]) -> String {
     let mut t = String::from(
-        "| pile | bodies | normal force | threads | particle-steps/s (M) | speed-up | contacts per body | slots per body | list builds per 1000 steps | ns per contact | heap bytes per body | allocations per step | same trajectory as 1 thread |\n|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
+        "| pile | bodies | normal force | threads | steps × median wall (s) | particle-steps/s (M) | speed-up | contacts per body | slots per body | list builds per 1000 steps | ns per contact | heap bytes per body | allocations per step | same trajectory as 1 thread |\n|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
     );
     for r in rows {
         let one = rows
@@ -352,10 +352,12 @@ pub fn markdown(rows: &[BenchRow]) -> String {
         };
         writeln!(
             t,
-            "| {kind} | {} | {} | {} | {:.2} | {speedup} | {:.2} | {:.2} | {:.1} | {:.0} | {:.0} | {:.2} | {} |",
+            "| {kind} | {} | {} | {} | {} × {:.2} | {:.2} | {speedup} | {:.2} | {:.2} | {:.1} | {:.0} | {:.0} | {:.2} | {} |",
             r.n,
             r.normal_force.as_str(),
             r.threads,
+            r.steps,
+            r.wall,
             r.particle_steps_per_second / 1e6,
             r.contacts_per_step / r.n as f64,
             r.slots_per_body,

@@ -1,6 +1,6 @@
 //! The angle of repose of a 2D heap of disks against the coefficient of rolling friction μ_r.
 //!
-//! `cargo run --release --example repose [-- --write-cases]` prints a Markdown table.
+//! `dem2d study repose [--write-cases]` prints a Markdown table.
 //!
 //! Protocol (a dam break, [`ColumnSpec`]): 300 disks (radii uniform in 0.8–1.2 cm, ρ = 2.65,
 //! Coulomb friction 0.5, P's stiffness, dashpots for e = 0.5, the area law) are settled in a
@@ -26,7 +26,7 @@ const GATE_SPEED: f64 = 100.0;
 
 /// Runs a case until P's criterion holds or its duration ends; returns the world and the time
 /// at rest.
-fn run(case: &Case) -> (dem2d::dynamics::World, Option<f64>) {
+fn run_to_rest(case: &Case) -> (dem2d::dynamics::World, Option<f64>) {
     let mut w = case.build_world();
     let mut q = case.quiescence_criterion().expect("quiescence");
     for _ in 0..case.steps() {
@@ -38,8 +38,7 @@ fn run(case: &Case) -> (dem2d::dynamics::World, Option<f64>) {
     (w, None)
 }
 
-fn main() {
-    let write = std::env::args().any(|a| a == "--write-cases");
+pub fn run(write: bool) {
     let column = ColumnSpec {
         n: 300,
         width: 20.0,
@@ -49,7 +48,7 @@ fn main() {
     // Settle the column (gate fixed), then keep the bodies' positions.
     let lattice = column.lattice_bodies();
     let settle = Case::from_json(&column.case_json("column", &lattice, 0.0, None)).unwrap();
-    let (w, rest) = run(&settle);
+    let (w, rest) = run_to_rest(&settle);
     eprintln!("column settled at t = {rest:?}");
     let settled: Vec<BodyInit> = (0..w.bodies.len())
         .map(|k| BodyInit {
@@ -89,7 +88,7 @@ fn main() {
             std::fs::write(dir.join(format!("{name}.json")), &text).expect("write case");
         }
         let case = Case::from_json(&text).expect("case");
-        let (w, rest) = run(&case);
+        let (w, rest) = run_to_rest(&case);
         let (angle, h, toe) = heap_surface(&w, 2.0);
         println!(
             "| {} | {mu_r} | {angle:.1} | {h:.1} | {toe:.1} | {} |",

@@ -1,6 +1,6 @@
 //! P Fig. 3's thrown circle and ellipse with rolling resistance: when they come to rest.
 //!
-//! `cargo run --release --example rolling_fig3` prints a Markdown table: for each shape, each
+//! `dem2d study rolling-fig3` prints a Markdown table: for each shape, each
 //! normal-force law, each rolling model and μ_r = 0.01, 0.05, the time at which P's quiescence
 //! criterion (the case's threshold, held for the case's window) first holds, in a run of up to
 //! 20 s.
@@ -19,7 +19,7 @@ fn rest_time(case: &Case, limit: f64) -> Option<(f64, f64)> {
     None
 }
 
-fn main() {
+pub fn run() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases");
     println!("| shape | normal force | rolling model | μ_r | at rest at t (s) | x at rest (cm) |");
     println!("|---|---|---|---:|---:|---:|");
