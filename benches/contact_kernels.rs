@@ -6,8 +6,8 @@
 //! - `grazing`: separated by 1e-3 of the smaller size along a direction other than the line of
 //!   centres, so that no cheap axis test rejects it and the full test runs;
 //! - `lasting` and `near, warm`: conic pairs (circle–ellipse, ellipse–ellipse) as the dynamics
-//!   sees them, with the warm start carried from a configuration one step of motion away (j
-//!   moved by 1e-4 of its size and turned by 1e-4 rad): an overlap of 1e-4 to 1e-2 of the
+//!   sees them, with the pair cache (its warm start) carried from a configuration one step of
+//!   motion away (j moved by 1e-4 of its size and turned by 1e-4 rad): an overlap of 1e-4 to 1e-2 of the
 //!   smaller size (a DEM contact's), and a grazing pair with its separating axis.
 //!
 //! Each measurement runs over a batch of 1024 random pairs of the regime (so branch prediction
@@ -27,10 +27,7 @@ use dem2d::geometry::cubic::{one_real_root, solve_cubic};
 use dem2d::geometry::overlap_area::DiskLens;
 use dem2d::geometry::support::support_local;
 use dem2d::geometry::{Pose, Shape, Vec2, Wall};
-use dem2d::narrow_phase::ellipse_ellipse::Warm;
-use dem2d::narrow_phase::{
-    ContactState, Object, contact, contact_bodies_warm, contact_bodies_with,
-};
+use dem2d::narrow_phase::{ContactState, Object, PairCache, Request, contact, contact_with};
 use dem2d::validation::rng::Rng;
 use std::hint::black_box;
 use std::time::Duration;
@@ -260,16 +257,10 @@ fn bench_kernels(c: &mut Criterion) {
                     break;
                 }
                 let (oi, oj) = pair(&mut rng, ki, kj, regime);
-                let (
-                    Object::Body {
-                        shape: si,
-                        pose: pi,
-                    },
-                    Object::Body {
-                        shape: sj,
-                        pose: pj,
-                    },
-                ) = (oi, oj)
+                let Object::Body {
+                    shape: sj,
+                    pose: pj,
+                } = oj
                 else {
                     unreachable!("body pairs")
                 };
@@ -279,8 +270,14 @@ fn bench_kernels(c: &mut Criterion) {
                     pj.position + Vec2::new(1e-4 * size, -0.7e-4 * size),
                     pj.angle() + 1e-4,
                 );
-                if let (_, Some(w)) = contact_bodies_warm(&si, &pi, &sj, &before, None) {
-                    pairs.push((si, pi, sj, pj, w));
+                let mut cache = PairCache::default();
+                let then = Object::Body {
+                    shape: sj,
+                    pose: before,
+                };
+                contact_with(&oi, &then, &mut cache, Request::CHORD);
+                if !cache.is_empty() {
+                    pairs.push((oi, oj, cache));
                 }
             }
             assert_eq!(
@@ -291,15 +288,16 @@ fn bench_kernels(c: &mut Criterion) {
             group.bench_function(BenchmarkId::new(name, rname), |b| {
                 b.iter(|| {
                     let mut acc = 0.0;
-                    for (si, pi, sj, pj, w) in &pairs {
-                        let (c, _) = contact_bodies_warm(
-                            black_box(si),
-                            black_box(pi),
-                            black_box(sj),
-                            black_box(pj),
-                            Some(*w),
+                    for (i, j, cache) in &pairs {
+                        // A copy of the cache: every iteration starts from last step's.
+                        let mut cache = *cache;
+                        let c = contact_with(
+                            black_box(i),
+                            black_box(j),
+                            black_box(&mut cache),
+                            Request::CHORD,
                         );
-                        if let Some(g) = c.geometry {
+                        if let Some(g) = c.and_then(|c| c.geometry) {
                             acc += g.depth;
                         }
                     }
@@ -314,8 +312,8 @@ fn bench_kernels(c: &mut Criterion) {
                     group.bench_function(BenchmarkId::new(name, &id), |b| {
                         b.iter(|| {
                             let mut acc = 0.0;
-                            for (si, pi, sj, pj, w) in &pairs {
-                                acc += geometry_and_law(si, pi, sj, pj, *w, nf);
+                            for (i, j, cache) in &pairs {
+                                acc += geometry_and_law(i, j, *cache, nf);
                             }
                             acc
                         })
@@ -327,20 +325,21 @@ fn bench_kernels(c: &mut Criterion) {
     group.finish();
 }
 
-/// One lasting contact's geometry (from its warm start) and linear law, at rest, under `nf`:
+/// One lasting contact's geometry (from its pair cache) and linear law, at rest, under `nf`:
 /// the normal force.
-fn geometry_and_law(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose, w: Warm, nf: NormalForce) -> f64 {
+fn geometry_and_law(i: &Object, j: &Object, mut cache: PairCache, nf: NormalForce) -> f64 {
     let area = nf == NormalForce::Area;
-    let (c, _, _) = contact_bodies_with(
-        black_box(si),
-        black_box(pi),
-        black_box(sj),
-        black_box(pj),
-        Some(w),
+    let request = Request {
         area,
-    );
-    let Some(g) = c.geometry else {
+        ..Request::CHORD
+    };
+    let c = contact_with(black_box(i), black_box(j), black_box(&mut cache), request);
+    let Some(g) = c.and_then(|c| c.geometry) else {
         return 0.0;
+    };
+    let radius = |o: &Object| match o {
+        Object::Body { shape, .. } => shape.equal_area_radius(),
+        Object::Wall(_) => f64::INFINITY,
     };
     let law = Law {
         normal: NormalPart::Linear { kn: 3.6e7 },
@@ -367,10 +366,7 @@ fn geometry_and_law(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose, w: Warm, nf: N
             length: a.length,
             rate: 0.0,
             couple: a.couple,
-            equivalent: EquivalentOverlap::Lens(DiskLens::new(
-                si.equal_area_radius(),
-                sj.equal_area_radius(),
-            )),
+            equivalent: EquivalentOverlap::Lens(DiskLens::new(radius(i), radius(j))),
         }),
         spin: 0.0,
         rolling: RollingKinematics {

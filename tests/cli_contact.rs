@@ -93,12 +93,12 @@ fn numbers_round_trip() {
     let printed = v["depth"].as_f64().unwrap();
     use dem2d::geometry::{Pose, Shape, Vec2};
     let e = Shape::Ellipse { a: 1.5, b: 1.0 };
-    let c = dem2d::narrow_phase::contact_bodies(
-        &e,
-        &Pose::new(Vec2::new(0.0, 0.0), 0.3),
-        &e,
-        &Pose::new(Vec2::new(2.2, 1.1), -0.8),
-    );
+    use dem2d::narrow_phase::{Object, contact};
+    let body = |x: f64, y: f64, angle: f64| Object::Body {
+        shape: e,
+        pose: Pose::new(Vec2::new(x, y), angle),
+    };
+    let c = contact(&body(0.0, 0.0, 0.3), &body(2.2, 1.1, -0.8)).unwrap();
     assert_eq!(printed.to_bits(), c.geometry.unwrap().depth.to_bits());
 }
 

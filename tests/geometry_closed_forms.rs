@@ -2,10 +2,28 @@
 
 use approx::assert_relative_eq;
 use dem2d::geometry::{Pose, Shape, Vec2, Wall};
-use dem2d::narrow_phase::{ContactState, Object, contact, contact_bodies, contact_wall_body};
+use dem2d::narrow_phase::{Contact, ContactState, Object, contact};
 
 fn pose(x: f64, y: f64, angle: f64) -> Pose {
     Pose::new(Vec2::new(x, y), angle)
+}
+
+/// Two bodies through the dispatcher (a one-off query: everything computed).
+fn contact_bodies(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose) -> Contact {
+    let body = |shape: &Shape, pose: &Pose| Object::Body {
+        shape: *shape,
+        pose: *pose,
+    };
+    contact(&body(si, pi), &body(sj, pj)).unwrap()
+}
+
+/// A wall (as i) and a body through the dispatcher.
+fn contact_wall_body(wall: &Wall, shape: &Shape, pose: &Pose) -> Contact {
+    let body = Object::Body {
+        shape: *shape,
+        pose: *pose,
+    };
+    contact(&Object::Wall(*wall), &body).unwrap()
 }
 
 #[test]

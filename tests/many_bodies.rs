@@ -7,7 +7,7 @@ use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
 use dem2d::dynamics::contacts::WALL_BASE;
 use dem2d::dynamics::{BodyInit, WallSpec, World};
 use dem2d::geometry::{Shape, Vec2, Wall};
-use dem2d::narrow_phase::{contact_bodies, contact_wall_body};
+use dem2d::narrow_phase::{Object, contact};
 use dem2d::scene::Case;
 use dem2d::scene::generate::{PileShape, PileSpec, R_MAX, R_MIN};
 use std::collections::BTreeSet;
@@ -89,16 +89,20 @@ fn random_scene(seed: u64, n: usize, escapees: usize) -> World {
 /// Every overlapping pair, by testing all pairs with the narrow phase (no broad phase).
 fn all_pairs(w: &World) -> BTreeSet<(u32, u32)> {
     let b = &w.bodies;
+    let body = |k: usize| Object::Body {
+        shape: b.shape[k],
+        pose: b.state[k].pose,
+    };
     let mut out = BTreeSet::new();
     for i in 0..b.len() {
         for j in i + 1..b.len() {
-            let c = contact_bodies(&b.shape[i], &b.state[i].pose, &b.shape[j], &b.state[j].pose);
+            let c = contact(&body(i), &body(j)).unwrap();
             if c.geometry.is_some_and(|g| g.depth > 0.0) {
                 out.insert((i as u32, j as u32));
             }
         }
         for (k, ws) in w.walls.iter().enumerate() {
-            let c = contact_wall_body(&ws.wall, &b.shape[i], &b.state[i].pose);
+            let c = contact(&Object::Wall(ws.wall), &body(i)).unwrap();
             if c.geometry.is_some_and(|g| g.depth > 0.0) {
                 out.insert((i as u32, WALL_BASE + k as u32));
             }

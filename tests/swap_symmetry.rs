@@ -19,7 +19,9 @@
 use dem2d::geometry::{Pose, Shape, Vec2, Wall};
 use dem2d::narrow_phase::circle_circle::overlap_circle_circle;
 use dem2d::narrow_phase::ellipse_ellipse::Warm;
-use dem2d::narrow_phase::{Contact, ContactState, Object, contact};
+use dem2d::narrow_phase::{
+    Contact, ContactState, Object, PairCache, Request, contact, contact_with,
+};
 use dem2d::validation::rng::Rng;
 
 /// The kinds of object, in the order of the generator.
@@ -329,7 +331,37 @@ fn every_pair_kind_is_swap_symmetric() {
                             name_i, name_j, pair.i, pair.j
                         ));
                     }
-                    // The dynamics' lean path for two circles.
+                    // As the dynamics asks (no chord, no area: circle pairs skip the chord),
+                    // through the dispatcher with a pair cache, both ways round.
+                    let lean = |i: &Object, j: &Object| {
+                        let request = Request {
+                            area: false,
+                            chord: false,
+                            trace: None,
+                        };
+                        contact_with(i, j, &mut PairCache::default(), request).unwrap()
+                    };
+                    let (x, y) = (lean(&pair.i, &pair.j), lean(&pair.j, &pair.i));
+                    // What is asked changes only what is added: the state, point, normal and
+                    // depth are the full query's, bit for bit.
+                    let core =
+                        |c: &Contact| (c.state, c.geometry.map(|g| (g.point, g.normal, g.depth)));
+                    if core(&x) != core(&a) {
+                        failures.push(format!(
+                            "{}–{} {cfg:?}: without chord or area {:?}, with {:?}",
+                            name_i,
+                            name_j,
+                            core(&x),
+                            core(&a)
+                        ));
+                    }
+                    if let Err(e) = compare(&x, &y, pair.identical) {
+                        failures.push(format!(
+                            "{}–{} {cfg:?} without chord or area (#{c}.{k}): {e}\n    i = {:?}\n    j = {:?}",
+                            name_i, name_j, pair.i, pair.j
+                        ));
+                    }
+                    // A circle pair's core, without the chord.
                     if let (
                         Object::Body {
                             shape: Shape::Circle { r: ri },
@@ -461,8 +493,13 @@ fn concentric_rectangles_are_swap_symmetric() {
 /// rounding, whichever order each step computes in.
 #[test]
 fn warm_start_survives_the_canonical_order_flipping_between_steps() {
-    use dem2d::narrow_phase::{computed_first, contact_bodies_traced};
+    use dem2d::narrow_phase::computed_first;
+    use std::cell::Cell;
     let s = Shape::Ellipse { a: 1.5, b: 1.0 };
+    let body = |pose: &Pose| Object::Body {
+        shape: s,
+        pose: *pose,
+    };
     let pa = Pose::new(Vec2::new(0.0, 0.0), 0.1);
     // B above A at a horizontal offset x, at the height where they first touch (bisection on
     // the state), then 1e-3 of b lower: a shallow, lasting contact the warm path takes.
@@ -471,8 +508,7 @@ fn warm_start_survives_the_canonical_order_flipping_between_steps() {
         let (mut lo, mut hi) = (0.0, 2.5);
         for _ in 0..60 {
             let mid = 0.5 * (lo + hi);
-            if contact_bodies_traced(&s, &pa, &s, &at(mid), None).0.state == ContactState::Separated
-            {
+            if contact(&body(&pa), &body(&at(mid))).unwrap().state == ContactState::Separated {
                 hi = mid;
             } else {
                 lo = mid;
@@ -485,17 +521,29 @@ fn warm_start_survives_the_canonical_order_flipping_between_steps() {
     assert!(computed_first(&s, &pa, &s, &before) && !computed_first(&s, &pa, &s, &after));
     for (from, to) in [(before, after), (after, before)] {
         for swap in [false, true] {
-            let call = |pb: &Pose, guess| {
-                if swap {
-                    contact_bodies_traced(&s, pb, &s, &pa, guess)
+            // The pair queried through the dispatcher, with B as i when `swap`; whether the
+            // cache's warm start gave the result.
+            let call = |pb: &Pose, cache: &mut PairCache| {
+                let used = Cell::new(false);
+                let request = Request {
+                    trace: Some(&used),
+                    ..Request::FULL
+                };
+                let (i, j) = if swap {
+                    (body(pb), body(&pa))
                 } else {
-                    contact_bodies_traced(&s, &pa, &s, pb, guess)
-                }
+                    (body(&pa), body(pb))
+                };
+                (contact_with(&i, &j, cache, request).unwrap(), used.get())
             };
-            let (_, warm, _) = call(&from, None);
-            assert!(matches!(warm, Some(Warm::Crossings(_))), "{warm:?}");
-            let (cold, _, _) = call(&to, None);
-            let (again, _, used) = call(&to, warm);
+            let mut cache = PairCache::default();
+            call(&from, &mut cache);
+            assert!(
+                matches!(cache.warm(), Some(Warm::Crossings(_))),
+                "{cache:?}"
+            );
+            let (cold, _) = call(&to, &mut PairCache::default());
+            let (again, used) = call(&to, &mut cache);
             assert_eq!(cold.state, ContactState::Overlap);
             assert!(used, "last step's crossings were not taken (swap {swap})");
             let (g, h) = (cold.geometry.unwrap(), again.geometry.unwrap());

@@ -87,7 +87,7 @@ impl Bodies {
             let area_radius = (area(&init.shape) / std::f64::consts::PI).sqrt();
             b.area_radius.push(area_radius);
             b.inv_area_radius.push(1.0 / area_radius);
-            b.is_circle.push(matches!(init.shape, Shape::Circle { .. }));
+            b.is_circle.push(init.shape.is_circle());
             b.state.push(BodyState {
                 pose: Pose::new(init.position, init.angle),
                 vel: init.velocity,

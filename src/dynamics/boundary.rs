@@ -132,7 +132,7 @@ impl WallSpec {
     pub fn moving(wall: Wall, spec: ContactSpec, motion: Motion) -> Self {
         let velocity = match motion {
             Motion::Velocity(v) => v,
-            _ => Vec2::zeros(),
+            Motion::Fixed | Motion::Servo(_) => Vec2::zeros(),
         };
         WallSpec {
             wall,

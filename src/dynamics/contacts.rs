@@ -17,8 +17,7 @@
 
 use super::partner::Sides;
 use crate::geometry::Vec2;
-use crate::narrow_phase::ContactState;
-use crate::narrow_phase::ellipse_ellipse::Warm;
+use crate::narrow_phase::{ContactState, PairCache};
 
 /// Makes room for `needed` elements with 1/8 headroom instead of doubling: the lists are the bulk
 /// of the memory, and they grow slowly, so that few builds reallocate.
@@ -79,39 +78,6 @@ impl Slot {
     #[inline]
     pub fn key(&self) -> (u32, u32) {
         (self.i, self.j)
-    }
-}
-
-/// A conic pair's warm start for the narrow phase ([`Warm`]: last step's chord crossings, or a
-/// separating axis stored as `[cos, sin, NaN, NaN]`), in single precision: a starting point
-/// needs no more. All NaN when there is none. Kept beside the slots, and only in scenes that
-/// have conic pairs: a disk pile neither stores nor streams it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct WarmStart(pub [f32; 4]);
-
-impl WarmStart {
-    /// No warm start.
-    pub const NONE: WarmStart = WarmStart([f32::NAN; 4]);
-
-    /// The warm start, if any.
-    #[inline]
-    pub fn get(&self) -> Option<Warm> {
-        let w = self.0.map(f64::from);
-        match (w[0].is_nan(), w[2].is_nan()) {
-            (true, _) => None,
-            (false, true) => Some(Warm::Axis([w[0], w[1]])),
-            (false, false) => Some(Warm::Crossings([[w[0], w[1]], [w[2], w[3]]])),
-        }
-    }
-
-    /// Keeps `warm` (or none) for the next step.
-    #[inline]
-    pub fn set(&mut self, warm: Option<Warm>) {
-        self.0 = match warm {
-            Some(Warm::Crossings([p, q])) => [p[0] as f32, p[1] as f32, q[0] as f32, q[1] as f32],
-            Some(Warm::Axis(a)) => [a[0] as f32, a[1] as f32, f32::NAN, f32::NAN],
-            None => [f32::NAN; 4],
-        };
     }
 }
 
@@ -224,9 +190,11 @@ pub struct ContactList {
     /// Scratch of the build (kept to avoid allocating at every build).
     pub(crate) keys: Vec<(u32, u32)>,
     pub(crate) rebuilt: Vec<Slot>,
-    /// Each slot's warm start (same index), or empty when the scene has no conic pair.
-    pub(crate) warm: Vec<WarmStart>,
-    pub(crate) rebuilt_warm: Vec<WarmStart>,
+    /// Each slot's narrow-phase pair cache (same index; conic pairs keep their warm start
+    /// there), or empty when no pair of the scene keeps anything ([`PairCache::kept_with`]): a
+    /// disk pile neither stores nor streams them.
+    pub(crate) cache: Vec<PairCache>,
+    pub(crate) rebuilt_cache: Vec<PairCache>,
     /// Each slot's rolling spring moment (EPSD, Ai et al. 2011; same index) — contact history,
     /// carried like the shear spring — or empty when no contact law of the scene has one (so
     /// that the slots, streamed every step, stay 32 bytes).
@@ -266,18 +234,18 @@ impl ContactList {
     }
 
     /// Replaces the slots by `keys` (sorted, unique), carrying every continuing slot with its
-    /// history (and its warm start when `conic`, its rolling spring when `rolling`); rebuilds
+    /// history (and its pair cache when `cached`, its rolling spring when `rolling`); rebuilds
     /// each body's adjacency for `n` bodies. Returns the history springs' energy
     /// of contacts that were active but are no longer candidates (lost, as when a contact opens).
-    pub(crate) fn rebuild_from_keys(&mut self, n: usize, conic: bool, rolling: bool) -> f64 {
+    pub(crate) fn rebuild_from_keys(&mut self, n: usize, cached: bool, rolling: bool) -> f64 {
         let mut lost = 0.0;
         self.rebuilt.clear();
         reserve_for(&mut self.rebuilt, self.keys.len());
-        self.rebuilt_warm.clear();
-        if conic {
-            reserve_for(&mut self.rebuilt_warm, self.keys.len());
+        self.rebuilt_cache.clear();
+        if cached {
+            reserve_for(&mut self.rebuilt_cache, self.keys.len());
         }
-        let carry_warm = conic && self.warm.len() == self.slots.len();
+        let carry_cache = cached && self.cache.len() == self.slots.len();
         self.rebuilt_rolling.clear();
         if rolling {
             reserve_for(&mut self.rebuilt_rolling, self.keys.len());
@@ -293,11 +261,11 @@ impl ContactList {
             }
             if old < self.slots.len() && self.slots[old].key() == (i, j) {
                 self.rebuilt.push(self.slots[old]);
-                if conic {
-                    self.rebuilt_warm.push(if carry_warm {
-                        self.warm[old]
+                if cached {
+                    self.rebuilt_cache.push(if carry_cache {
+                        self.cache[old]
                     } else {
-                        WarmStart::NONE
+                        PairCache::EMPTY
                     });
                 }
                 if rolling {
@@ -310,8 +278,8 @@ impl ContactList {
                 old += 1;
             } else {
                 self.rebuilt.push(Slot::new(i, j));
-                if conic {
-                    self.rebuilt_warm.push(WarmStart::NONE);
+                if cached {
+                    self.rebuilt_cache.push(PairCache::EMPTY);
                 }
                 if rolling {
                     self.rebuilt_rolling.push(0.0);
@@ -324,7 +292,7 @@ impl ContactList {
             }
         }
         std::mem::swap(&mut self.slots, &mut self.rebuilt);
-        std::mem::swap(&mut self.warm, &mut self.rebuilt_warm);
+        std::mem::swap(&mut self.cache, &mut self.rebuilt_cache);
         std::mem::swap(&mut self.rolling, &mut self.rebuilt_rolling);
         // The data are recomputed from the slots every step: only their number changes.
         reserve_for(&mut self.data, self.slots.len());

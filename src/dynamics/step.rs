@@ -30,29 +30,29 @@
 //! each written by one thread only); gathering each body's forces from its own slots, in key
 //! order, then the second kick and the dissipated power (bodies). Every sum (increments,
 //! energies, counters) is formed per chunk and then over the chunks in order. Nothing depends
-//! on how chunks are scheduled, so a run gives the same bits on one thread or many. Circle
-//! pairs skip the chord (nothing reads it) and circles skip their sine and cosine; conic pairs
-//! start from the last step's crossings or separating axis (see
-//! [`crate::narrow_phase::ellipse_ellipse`]).
+//! on how chunks are scheduled, so a run gives the same bits on one thread or many. Every
+//! slot's geometry comes from the narrow phase's one dispatcher
+//! ([`crate::narrow_phase::contact_with`]), asked for no chord (circle pairs then skip it) and
+//! for the overlap area only under the area law; each slot keeps the pair's opaque
+//! [`PairCache`] beside it (conic pairs start from the last step's crossings or separating
+//! axis, see [`crate::narrow_phase::ellipse_ellipse`]) when some pair of the scene keeps
+//! anything there. Circles skip their sine and cosine.
 
 use super::account::{Diagnostics, Energies};
 use super::body::Bodies;
 use super::boundary::WallSpec;
 use super::boundary::{Motion, WallLoad, servo_velocity};
 use super::broad_phase::Grid;
-use super::contacts::{ContactData, ContactExtra, ContactList, Slot, WarmStart, reserve_for};
+use super::contacts::{ContactData, ContactExtra, ContactList, Slot, reserve_for};
 use super::kinematics;
 use super::partner::{Partner, Sides};
 use crate::contact_law::{
     AreaKinematics, ContactSpec, EquivalentOverlap, History, Kinematics, Law, NormalForce,
     RollingKinematics, RollingModel,
 };
-use crate::geometry::Shape;
 use crate::geometry::overlap_area::DiskLens;
 use crate::geometry::{Pose, Vec2};
-use crate::narrow_phase::circle_circle::overlap_circle_circle;
-use crate::narrow_phase::circle_wall::overlap_wall_circle;
-use crate::narrow_phase::{ContactState, OverlapArea, contact_bodies_with, contact_wall_body_with};
+use crate::narrow_phase::{ContactState, Object, OverlapArea, PairCache, Request, contact_with};
 use rayon::prelude::*;
 use std::fmt;
 
@@ -382,19 +382,15 @@ impl Stepper {
                 }
             }
         }
-        // Conic pairs (circle–ellipse, ellipse–ellipse) carry warm starts; others need none.
-        let conic = wd
-            .bodies
-            .shape
-            .iter()
-            .any(|s| matches!(s, Shape::Ellipse { .. }));
+        // Pair caches only where some pair keeps something in them (conic pairs: warm starts).
+        let cached = wd.bodies.shape.iter().any(PairCache::kept_with);
         // Contacts with a rolling spring carry it beside the slots.
         let epsd = |spec: &ContactSpec| {
             spec.rolling()
                 .is_some_and(|r| r.model == RollingModel::Epsd)
         };
         let rolling = epsd(wd.spec) || wd.walls.iter().any(|w| epsd(&w.spec));
-        let lost = list.rebuild_from_keys(n, conic, rolling);
+        let lost = list.rebuild_from_keys(n, cached, rolling);
         wd.energies.dissipated += lost;
         list.built_at.clear();
         reserve_for(&mut list.built_at, n);
@@ -416,7 +412,7 @@ impl Stepper {
         let ContactList {
             slots,
             data,
-            warm,
+            cache,
             rolling,
             adjacency_start,
             ..
@@ -440,29 +436,29 @@ impl Stepper {
             .zip(data.par_chunks_mut(SLOT_CHUNK))
             .zip(self.slot_partials.par_iter_mut())
             .zip(self.wall_partials.par_chunks_mut(nw));
-        // One chunk of slots, with its warm starts and rolling springs when the scene keeps them.
+        // One chunk of slots, with its pair caches and rolling springs when the scene keeps them.
         let run = |slots: &mut [Slot],
                    data: &mut [ContactData],
                    part: &mut SlotPartial,
                    loads: &mut [WallLoad],
-                   mut warm: Option<&mut [WarmStart]>,
+                   mut cache: Option<&mut [PairCache]>,
                    mut rolling: Option<&mut [f64]>| {
             let mut p = SlotPartial::default();
             loads.fill(WallLoad::default());
             for (k, (slot, data)) in slots.iter_mut().zip(data).enumerate() {
-                let w = warm.as_deref_mut().map(|w| &mut w[k]);
+                let w = cache.as_deref_mut().map(|c| &mut c[k]);
                 let r = rolling.as_deref_mut().map(|r| &mut r[k]);
                 update_slot(slot, data, None, w, r, &cx, &mut p, loads);
             }
             *part = p;
         };
-        match (warm.is_empty(), rolling.is_empty()) {
+        match (cache.is_empty(), rolling.is_empty()) {
             (true, true) => chunks.for_each(|(((slots, data), part), loads)| {
                 run(slots, data, part, loads, None, None)
             }),
-            (false, true) => chunks.zip(warm.par_chunks_mut(SLOT_CHUNK)).for_each(
-                |((((slots, data), part), loads), warm)| {
-                    run(slots, data, part, loads, Some(warm), None)
+            (false, true) => chunks.zip(cache.par_chunks_mut(SLOT_CHUNK)).for_each(
+                |((((slots, data), part), loads), cache)| {
+                    run(slots, data, part, loads, Some(cache), None)
                 },
             ),
             (true, false) => chunks.zip(rolling.par_chunks_mut(SLOT_CHUNK)).for_each(
@@ -471,10 +467,10 @@ impl Stepper {
                 },
             ),
             (false, false) => chunks
-                .zip(warm.par_chunks_mut(SLOT_CHUNK))
+                .zip(cache.par_chunks_mut(SLOT_CHUNK))
                 .zip(rolling.par_chunks_mut(SLOT_CHUNK))
-                .for_each(|(((((slots, data), part), loads), warm), rolling)| {
-                    run(slots, data, part, loads, Some(warm), Some(rolling))
+                .for_each(|(((((slots, data), part), loads), cache), rolling)| {
+                    run(slots, data, part, loads, Some(cache), Some(rolling))
                 }),
         }
         let mut sum = SlotPartial::default();
@@ -514,7 +510,7 @@ impl Stepper {
         let ContactList {
             slots,
             extra,
-            warm,
+            cache,
             rolling,
             adjacency_start,
             ..
@@ -532,7 +528,7 @@ impl Stepper {
             dt: 0.0,
             adjacency_start,
         };
-        let (warm, rolling) = (&warm[..], &rolling[..]);
+        let (cache, rolling) = (&cache[..], &rolling[..]);
         slots
             .par_chunks(SLOT_CHUNK)
             .zip(extra.par_chunks_mut(SLOT_CHUNK))
@@ -541,14 +537,14 @@ impl Stepper {
                 let mut p = SlotPartial::default();
                 for (k, (slot, extra)) in slots.iter().zip(extra).enumerate() {
                     let mut copy = (*slot, ContactData::default());
-                    let mut warm_copy = warm.get(c * SLOT_CHUNK + k).copied();
+                    let mut cache_copy = cache.get(c * SLOT_CHUNK + k).copied();
                     let mut rolling_copy = rolling.get(c * SLOT_CHUNK + k).copied();
                     if slot.active {
                         update_slot(
                             &mut copy.0,
                             &mut copy.1,
                             Some(extra),
-                            warm_copy.as_mut(),
+                            cache_copy.as_mut(),
                             rolling_copy.as_mut(),
                             &cx,
                             &mut p,
@@ -673,7 +669,7 @@ struct SlotContext<'a> {
     adjacency_start: &'a [u32],
 }
 
-/// One slot's contact: geometry (narrow phase, from the slot's warm start when it has one),
+/// One slot's contact: geometry (narrow phase, from the slot's pair cache when it has one),
 /// kinematics at the contact point, the law, and the history; an inactive slot drops its
 /// history (the slot's shear spring, and the rolling spring `rolling_spring` when the scene
 /// keeps them). `extra`, when given, receives the depth, normal and stiffness; `loads` (one per
@@ -683,7 +679,7 @@ fn update_slot(
     slot: &mut Slot,
     data: &mut ContactData,
     extra: Option<&mut ContactExtra>,
-    warm_start: Option<&mut WarmStart>,
+    cache: Option<&mut PairCache>,
     rolling_spring: Option<&mut f64>,
     cx: &SlotContext,
     p: &mut SlotPartial,
@@ -706,51 +702,38 @@ fn update_slot(
         None => spec,
     };
     let area_law = governing.normal_force() == NormalForce::Area;
-    let mut warm = None;
-    // Circles take the lean path (no chord: nothing below reads it; both normal-force laws are
-    // the spring on the depth for two disks); every other pair the chord contact, with the
-    // overlap area under the area law.
-    let lean = match (sides.giver, b.shape[recv]) {
-        (Partner::Wall(w), Shape::Circle { r }) => {
-            overlap_wall_circle(&walls[w].wall, r, &b.state[recv].pose)
-                .map(|(s, pt, n, d)| (s, pt, n, d, Spring::Depth))
-        }
-        (Partner::Body(i), Shape::Circle { r: rj }) if b.is_circle[i] => {
-            let ri = b.bound[i]; // a circle's bounding radius is its radius
-            overlap_circle_circle(ri, &b.state[i].pose, rj, &b.state[recv].pose)
-                .map(|(s, pt, n, d)| (s, pt, n, d, Spring::Depth))
-        }
-        _ => {
-            let c = match sides.giver {
-                Partner::Wall(w) => contact_wall_body_with(
-                    &walls[w].wall,
-                    &b.shape[recv],
-                    &b.state[recv].pose,
-                    area_law,
-                ),
-                Partner::Body(i) => {
-                    // Conic pairs start from last step's crossings (if the contact lasts).
-                    // (Only a separating axis survives a separated step.)
-                    let guess = warm_start.as_ref().and_then(|w| w.get());
-                    let (c, next, _) = contact_bodies_with(
-                        &b.shape[i],
-                        &b.state[i].pose,
-                        &b.shape[recv],
-                        &b.state[recv].pose,
-                        guess,
-                        area_law,
-                    );
-                    warm = next;
-                    c
-                }
-            };
-            c.geometry.map(|geo| {
-                let spring = spring_of(b, sides, c.state, &geo, area_law);
-                (c.state, geo.point, geo.normal, geo.depth, spring)
-            })
-        }
+    // The narrow phase, the giver as i and the receiver as j (the normal points from the giver
+    // to the receiver, which gets +F). Under the area law two disks, or a disk and a wall, take
+    // the spring on the depth — exactly their area potential (`contact_law::normal`) — so no
+    // area is asked; nothing below reads the chord but a flat overlap's spring (rectangles,
+    // whose kernels give it anyway). Conic pairs start from the slot's pair cache (last step's
+    // crossings if the contact lasts, or a separating axis) and leave the next step's there.
+    let (shape, pose) = (b.shape[recv], b.state[recv].pose);
+    let i = match sides.giver {
+        Partner::Wall(w) => Object::Wall(walls[w].wall),
+        Partner::Body(k) => Object::Body {
+            shape: b.shape[k],
+            pose: b.state[k].pose,
+        },
     };
-    let (state, geo_point, geo_normal, depth, spring) = match lean {
+    let disks = b.is_circle[recv] && giver.is_none_or(|k| b.is_circle[k]);
+    let request = Request {
+        area: area_law && !disks,
+        chord: false,
+        trace: None,
+    };
+    let mut scratch = PairCache::EMPTY;
+    let cache = match cache {
+        Some(c) => c,
+        None => &mut scratch, // a scene with no pair that keeps anything
+    };
+    let c = contact_with(&i, &Object::Body { shape, pose }, cache, request)
+        .expect("a slot pairs a body with a body or a wall");
+    let found = c.geometry.map(|geo| {
+        let spring = spring_of(b, sides, c.state, &geo, area_law);
+        (c.state, geo.point, geo.normal, geo.depth, spring)
+    });
+    let (state, geo_point, geo_normal, depth, spring) = match found {
         Some(l) if l.3 > 0.0 => l,
         // Separated, or touching without overlap: no force, no history.
         _ => {
@@ -760,9 +743,6 @@ fn update_slot(
             *slot = Slot::new(slot.i, slot.j);
             if let Some(r) = rolling_spring {
                 *r = 0.0;
-            }
-            if let Some(w) = warm_start {
-                w.set(warm); // a separating axis, for the next step
             }
             *data = ContactData::default(); // zero forces: the gather adds them unconditionally
             if let Some(e) = extra {
@@ -774,7 +754,7 @@ fn update_slot(
     match state {
         ContactState::Deep => p.deep += 1,
         ContactState::Contained => p.contained += 1,
-        _ => {}
+        ContactState::Separated | ContactState::Touching | ContactState::Overlap => {}
     }
     // Where the force acts and along which normal: the chord midpoint and normal (the area
     // gradient's for the area law, which equal them for two crossings); for a Winkler contact
@@ -883,9 +863,6 @@ fn update_slot(
     if let Some(r) = rolling_spring {
         *r = history.rolling;
     }
-    if let Some(w) = warm_start {
-        w.set(warm);
-    }
     *data = ContactData {
         point,
         force: f,
@@ -935,12 +912,9 @@ fn spring_of(
         // The area potential: between two rectangles, the flat-equivalent overlap; otherwise
         // the equal-area disks' lens.
         (_, Some(a)) if area_law => {
-            let flat_pair = sides.giving_body().is_some_and(|k| {
-                matches!(
-                    (b.shape[k], b.shape[recv]),
-                    (Shape::Rectangle { .. }, Shape::Rectangle { .. })
-                )
-            });
+            let flat_pair = sides
+                .giving_body()
+                .is_some_and(|k| b.shape[k].is_flat_sided() && b.shape[recv].is_flat_sided());
             let equivalent = if flat_pair {
                 EquivalentOverlap::Flat(face())
             } else {

@@ -49,7 +49,7 @@ pub fn stiffness_factor(bodies: &Bodies, normal_force: NormalForce, wall: bool) 
                 r_eq_rect = r_eq_rect.min(s.equal_area_radius());
                 side_ratio = side_ratio.max(w.max(h) / (0.5 * (w + h)));
             }
-            _ => {
+            Shape::Circle { .. } | Shape::Ellipse { .. } => {
                 conics = true;
                 kappa = kappa.max(s.max_curvature_radius() / s.equal_area_radius());
                 r_eq_conic = r_eq_conic.max(s.equal_area_radius());

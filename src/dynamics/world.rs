@@ -195,7 +195,7 @@ impl World {
             ("bodies", bodies),
             (
                 "slots and contact data",
-                held(&c.slots) + held(&c.data) + held(&c.extra) + held(&c.warm) + held(&c.rolling),
+                held(&c.slots) + held(&c.data) + held(&c.extra) + held(&c.cache) + held(&c.rolling),
             ),
             (
                 "adjacency",
@@ -207,7 +207,7 @@ impl World {
                 held(&c.keys)
                     + scratch
                     + held(&c.rebuilt)
-                    + held(&c.rebuilt_warm)
+                    + held(&c.rebuilt_cache)
                     + held(&c.rebuilt_rolling)
                     + held(&c.built_at)
                     + held(&c.wall_built_at),

@@ -118,6 +118,26 @@ impl Shape {
         }
     }
 
+    /// True for a circle (whose orientation does not matter: the dynamics skips its sine and
+    /// cosine).
+    #[inline]
+    pub fn is_circle(&self) -> bool {
+        match self {
+            Shape::Circle { .. } => true,
+            Shape::Ellipse { .. } | Shape::Rectangle { .. } => false,
+        }
+    }
+
+    /// True for a shape bounded by straight faces (a rectangle): two such shapes overlap in a
+    /// polygon, and the area law takes their flat-equivalent potential.
+    #[inline]
+    pub fn is_flat_sided(&self) -> bool {
+        match self {
+            Shape::Rectangle { .. } => true,
+            Shape::Circle { .. } | Shape::Ellipse { .. } => false,
+        }
+    }
+
     /// The face length ℓ of a flat-sided shape for the Winkler contact and the area law's flat
     /// equivalent: a rectangle's mean side `(w + h)/2`, so that a square pressed flat by δ
     /// feels exactly `k_n δ`. A conic has no face: its bounding radius (no contact asks).

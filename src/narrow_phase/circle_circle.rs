@@ -4,19 +4,19 @@
 //! along the line of centres, so the chord definition gives the textbook contact exactly:
 //! normal along the line of centres, `δ = r_i + r_j − d`.
 
-use super::{Contact, ContactGeometry, ContactState, OverlapArea, TOUCH_TOL};
+use super::{Contact, ContactGeometry, ContactState, OverlapArea, Request, TOUCH_TOL};
 use crate::geometry::overlap_area::ellipse_cap;
 use crate::geometry::{Pose, Vec2};
 
-/// What the dynamics needs of a circle pair — state, contact point, normal, depth — without
-/// the chord (whose half-length costs a square root nobody then reads). `None` when separated.
-/// [`contact_circle_circle`] is this plus the chord.
+/// A circle pair's state, contact point, normal and depth, without the chord (whose half-length
+/// costs a square root the dynamics does not read). `None` when separated.
+/// [`contact_circle_circle`] is this plus what the request asks.
 ///
 /// Swap-symmetric by construction (bit for bit): every quantity is formed from expressions
 /// that are exactly symmetric in i and j (`r_i + r_j`, `c_i + c_j`, `|c_j − c_i|`) or exactly
 /// antisymmetric (`c_j − c_i`, `r_i − r_j`), so exchanging the circles negates the normal and
 /// keeps the rest.
-#[inline]
+#[inline(always)]
 pub fn overlap_circle_circle(
     ri: f64,
     pi: &Pose,
@@ -59,21 +59,18 @@ pub fn overlap_circle_circle(
     Some((state, point, n, depth))
 }
 
-/// Contact between circle i (radius `ri`) and circle j (radius `rj`), with the overlap area.
-#[inline]
-pub fn contact_circle_circle(ri: f64, pi: &Pose, rj: f64, pj: &Pose) -> Contact {
-    contact_circle_circle_with(ri, pi, rj, pj, true)
-}
-
-/// [`contact_circle_circle`], with the overlap area only when `area` is set. Swap-symmetric bit
-/// for bit, as [`overlap_circle_circle`] (the chord's two ends exchange).
-#[inline]
-pub fn contact_circle_circle_with(ri: f64, pi: &Pose, rj: f64, pj: &Pose, area: bool) -> Contact {
+/// Contact between circle i (radius `ri`) and circle j (radius `rj`): the chord when
+/// `request.chord` (otherwise both ends at the contact point, unless the area is asked), the
+/// overlap area when `request.area`. Swap-symmetric bit for bit, as [`overlap_circle_circle`]
+/// (the chord's two ends exchange).
+#[inline(always)]
+pub fn contact_circle_circle(ri: f64, pi: &Pose, rj: f64, pj: &Pose, request: &Request) -> Contact {
     let Some((state, point, n, depth)) = overlap_circle_circle(ri, pi, rj, pj) else {
         return Contact::SEPARATED;
     };
+    let area = request.area;
     let mut overlap = None;
-    let chord = if state == ContactState::Contained {
+    let chord = if state == ContactState::Contained || !(request.chord || area) {
         (point, point)
     } else {
         // Half the chord is twice the area of the triangle of sides r_i, r_j, d over d (Heron),

@@ -1,12 +1,12 @@
 //! Wall–circle contact in closed form: the chord is where the wall line cuts the circle.
 
-use super::{Contact, ContactGeometry, ContactState, OverlapArea, TOUCH_TOL};
+use super::{Contact, ContactGeometry, ContactState, OverlapArea, Request, TOUCH_TOL};
 use crate::geometry::overlap_area::ellipse_cap;
 use crate::geometry::{Pose, Vec2, Wall};
 
-/// What the dynamics needs of a wall–circle pair — state, contact point, normal, depth —
-/// without the chord. `None` when separated. [`contact_wall_circle`] is this plus the chord.
-#[inline]
+/// A wall–circle pair's state, contact point, normal and depth, without the chord. `None` when
+/// separated. [`contact_wall_circle`] is this plus what the request asks.
+#[inline(always)]
 pub fn overlap_wall_circle(
     wall: &Wall,
     r: f64,
@@ -29,21 +29,17 @@ pub fn overlap_wall_circle(
     Some((state, point, n, depth))
 }
 
-/// Contact between a wall (i) and a circle (j) of radius `r`, with the overlap area; the normal
-/// is the wall's normal.
-#[inline]
-pub fn contact_wall_circle(wall: &Wall, r: f64, pose: &Pose) -> Contact {
-    contact_wall_circle_with(wall, r, pose, true)
-}
-
-/// [`contact_wall_circle`], with the overlap area only when `area` is set.
-#[inline]
-pub fn contact_wall_circle_with(wall: &Wall, r: f64, pose: &Pose, area: bool) -> Contact {
+/// Contact between a wall (i) and a circle (j) of radius `r`; the normal is the wall's normal.
+/// The chord when `request.chord` (otherwise both ends at the contact point, unless the area is
+/// asked), the overlap area when `request.area`.
+#[inline(always)]
+pub fn contact_wall_circle(wall: &Wall, r: f64, pose: &Pose, request: &Request) -> Contact {
     let Some((state, point, n, depth)) = overlap_wall_circle(wall, r, pose) else {
         return Contact::SEPARATED;
     };
+    let area = request.area;
     let mut overlap = None;
-    let chord = if state == ContactState::Contained {
+    let chord = if state == ContactState::Contained || !(request.chord || area) {
         (point, point)
     } else {
         // The sagitta is the depth: no cancellation at small overlaps.

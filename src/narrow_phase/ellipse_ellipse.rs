@@ -22,9 +22,9 @@
 //!
 //! # Warm start (the dynamics' path)
 //! A contact that lasts moves little from one step to the next. Given last step's two crossings
-//! ([`Warm`]), [`conic_pair_traced`] first refines them by Newton's method on the two boundary
-//! equations `Q_i(p) = 1`, `Q_j(p) = 1` — a few flops per iteration, two iterations from a
-//! guess of the last step — and applies the chord definition to them. It accepts the result
+//! ([`Warm`], kept in the pair's [`super::PairCache`]), the kernel first refines them by
+//! Newton's method on the two boundary equations `Q_i(p) = 1`, `Q_j(p) = 1` — a few flops per
+//! iteration, two iterations from a guess of the last step — and applies the chord definition to them. It accepts the result
 //! only when it is certain to be the one the pencil would give, to rounding: Newton converged
 //! to two distinct points, the boundaries cross there at an angle (|sin| ≥ [`WARM_MIN_SINE`],
 //! so the points are well conditioned; grazing contacts go to the pencil, which gets the chord
@@ -34,8 +34,8 @@
 //! the pencil.
 
 use super::{
-    Contact, ContactState, LocalFrame, LocalOverlap, TOUCH_TOL, deep_fallback, deep_overlap,
-    orient_symmetric, pow2_floor,
+    Contact, ContactState, LocalFrame, LocalOverlap, Request, TOUCH_TOL, deep_fallback,
+    deep_overlap, orient_symmetric, pow2_floor,
 };
 use crate::geometry::Pose;
 use crate::geometry::conic::EllipseForm;
@@ -93,8 +93,12 @@ impl Warm {
     }
 }
 
-/// Contact between ellipse i (semi-axes `ai` along its x axis, `bi`) and ellipse j, with the
-/// overlap area.
+/// Contact between ellipse i (semi-axes `ai` along its x axis, `bi`) and ellipse j by the
+/// pencil, from the warm start `guess` (last query's [`Warm`], None for a new pair; see the
+/// module documentation); with `request.area`, the overlap area and its gradient too. Returns
+/// the contact, the warm start for the next query (a two-crossing overlap's crossings, or a
+/// separating axis) and whether `guess` gave the result.
+#[allow(clippy::too_many_arguments)] // the two ellipses, the guess and what to compute
 #[inline]
 pub fn contact_ellipse_ellipse(
     ai: f64,
@@ -103,8 +107,10 @@ pub fn contact_ellipse_ellipse(
     aj: f64,
     bj: f64,
     pj: &Pose,
-) -> Contact {
-    conic_pair(ai, bi, pi, aj, bj, pj)
+    guess: Option<Warm>,
+    request: &Request,
+) -> (Contact, Option<Warm>, bool) {
+    conic_pair(ai, bi, pi, aj, bj, pj, guess, request.area)
 }
 
 /// An ellipse placed in P's local frame (lengths scaled): semi-axes, the direction
@@ -159,13 +165,6 @@ fn chord_overlap(ei: &Placed, ej: &Placed, p: [f64; 2], e: [f64; 2], n: [f64; 2]
 fn support(a: f64, b: f64, cos: f64, sin: f64, ux: f64, uy: f64) -> f64 {
     let (pa, pb) = (a * (cos * ux + sin * uy), b * (cos * uy - sin * ux));
     (pa * pa + pb * pb).sqrt()
-}
-
-/// The pencil computation shared by ellipse–ellipse and circle–ellipse (a circle is the conic
-/// with `a = b = r`).
-#[inline]
-pub(crate) fn conic_pair(ai: f64, bi: f64, pi: &Pose, aj: f64, bj: f64, pj: &Pose) -> Contact {
-    conic_pair_traced(ai, bi, pi, aj, bj, pj, None, true).0
 }
 
 /// Refines two crossings of the boundaries `Q_i(p) = 1` (i centred at the origin) and
@@ -283,7 +282,8 @@ fn separating_axis(
     None
 }
 
-/// The pencil contact of two conics (ellipses; a circle is `a = b = r`) with a warm start:
+/// The pencil contact of two conics (ellipses; a circle is `a = b = r`), shared by
+/// ellipse–ellipse and circle–ellipse, with a warm start:
 /// `guess` is last step's [`Warm`] (None for a new contact); with `area`, the overlap area and
 /// its gradient too. Returns the contact, what the next step starts from (a two-crossing
 /// overlap's crossings, or a separating axis), and whether the result came from the warm start
@@ -291,7 +291,7 @@ fn separating_axis(
 /// the tests that hold the warm path to the same bars as the pencil.
 #[allow(clippy::too_many_arguments)] // the two ellipses, the guess and what to compute
 #[inline]
-pub fn conic_pair_traced(
+pub(crate) fn conic_pair(
     ai: f64,
     bi: f64,
     pi: &Pose,

@@ -1,22 +1,23 @@
 //! Wall–ellipse contact: the wall line ∩ the conic, in the ellipse's own frame
 //! (`x²/a² + y²/b² = 1`), where both the depth and the chord have closed forms.
 
-use super::{Contact, ContactState, LocalFrame, LocalOverlap, TOUCH_TOL, pow2_floor};
+use super::{Contact, ContactState, LocalFrame, LocalOverlap, Request, TOUCH_TOL, pow2_floor};
 use crate::geometry::overlap_area::ellipse_cap_at_depth;
 use crate::geometry::{Pose, Wall};
 
 /// Contact between a wall (i) and an ellipse (j) with semi-axes `a` (along its x axis) and `b`.
 /// The normal is the wall's normal; `δ = s(n) − h` with `h` the centre's height above the wall
-/// line and `s(n) = √(a²n_x² + b²n_y²)` the ellipse's support in its own frame.
+/// line and `s(n) = √(a²n_x² + b²n_y²)` the ellipse's support in its own frame. With
+/// `request.area`, the overlap area too (the ellipse's cap beyond the wall line).
 #[inline]
-pub fn contact_wall_ellipse(wall: &Wall, a: f64, b: f64, pose: &Pose) -> Contact {
-    wall_ellipse_with(wall, a, b, pose, true)
-}
-
-/// [`contact_wall_ellipse`], with the overlap area (the ellipse's cap beyond the wall line)
-/// only when `area` is set.
-#[inline]
-pub fn wall_ellipse_with(wall: &Wall, a: f64, b: f64, pose: &Pose, area: bool) -> Contact {
+pub fn contact_wall_ellipse(
+    wall: &Wall,
+    a: f64,
+    b: f64,
+    pose: &Pose,
+    request: &Request,
+) -> Contact {
+    let area = request.area;
     let scale = pow2_floor(a.max(b));
     let inv = 1.0 / scale;
     let (a, b) = (a * inv, b * inv);

@@ -1,5 +1,16 @@
 //! Narrow phase: for a pair of objects, whether they touch and, if so, the contact record of the
-//! chord definition. One file per pair kind; [`contact`] dispatches.
+//! chord definition. One file and one kernel per pair kind (`contact_<i>_<j>`), and one
+//! dispatcher, [`contact_with`], through which every caller goes (the dynamics, the `contact`
+//! command, the reports, the tests and benchmarks):
+//! - it takes the two [`Object`]s, an opaque per-pair cache ([`PairCache`]: what the pair kind
+//!   keeps from one query to the next, the conic pairs' warm start; parry keeps its contact
+//!   workspace so) and a [`Request`] (whether the overlap area and the chord are wanted, and
+//!   whether to report if the warm start gave the result);
+//! - it chooses the pair's canonical order ([`computed_in_order`]), calls the kernel, and turns
+//!   the result round when the pair was given the other way — the one place where the normal is
+//!   flipped and the cache re-expressed.
+//!
+//! [`contact`] is the one-off query (an empty cache, everything computed).
 //!
 //! # Conventions (for every pair kind)
 //! - The unit `normal` points from i towards j. For a wall as i it is the wall's normal; for a
@@ -20,7 +31,7 @@
 //! length and point, with the normal and the couple negated ([`Contact::swapped`]). This holds
 //! **bit for bit**, by construction: every pair is computed in one order only, and the other
 //! order is that result swapped —
-//! - a wall and a body: the wall as i ([`contact`]);
+//! - a wall and a body: the wall as i;
 //! - a circle and an ellipse: the circle as i; a rectangle and a conic: the rectangle as i;
 //! - two bodies of the same kind (ellipses, rectangles): the order of [`computed_first`], a
 //!   total order on (sizes, position, orientation) that depends on the pair alone. The kernels
@@ -29,7 +40,7 @@
 //!   threshold in the state (a concentric pair's fallback normal was even i's own x axis);
 //! - two circles: a closed form whose every term is exactly symmetric (`r_i + r_j`,
 //!   `c_i + c_j`, `|c_j − c_i|`) or antisymmetric (`c_j − c_i`, `r_i − r_j`), so no order is
-//!   chosen ([`circle_circle`]; also the dynamics' lean path).
+//!   chosen ([`circle_circle`]).
 //!
 //! The one exception is a pair of two *identical* objects (same shape in the same pose; two
 //! equal circles with one centre): i and j cannot be told apart, both orders are the same
@@ -41,7 +52,12 @@
 //! [`ContactState::Deep`] or [`ContactState::Contained`], which later stages count and report.
 
 use crate::geometry::{Pose, Shape, Vec2, Wall};
+use ellipse_ellipse::Warm;
+use std::cell::Cell;
 
+pub use cache::PairCache;
+
+pub mod cache;
 pub mod circle_circle;
 pub mod circle_ellipse;
 pub mod circle_wall;
@@ -184,10 +200,104 @@ pub enum Object {
     Wall(Wall),
 }
 
-/// Contact between two objects (at least one a body), with the overlap area; `None` for two
-/// walls.
+/// What a query computes besides the contact's state, point, normal and depth (which it always
+/// gives), and whether to report how it got them.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Request<'a> {
+    /// The overlap area and its gradient ([`ContactGeometry::area`]).
+    pub area: bool,
+    /// The chord's two ends. Without it, a pair kind whose chord costs work nobody would read
+    /// (two circles, a circle and a wall: a square root for the half-chord) may leave both ends
+    /// at the contact point; the others give the chord anyway.
+    pub chord: bool,
+    /// Where to record whether the pair cache's warm start gave the result (rather than the
+    /// computation from scratch): for the tests that hold the warm path to the same bars.
+    pub trace: Option<&'a Cell<bool>>,
+}
+
+impl Request<'static> {
+    /// Everything: the chord and the overlap area (one-off queries, the `contact` command).
+    pub const FULL: Request<'static> = Request {
+        area: true,
+        chord: true,
+        trace: None,
+    };
+    /// The chord geometry without the overlap area (what the depth law reads).
+    pub const CHORD: Request<'static> = Request {
+        area: false,
+        chord: true,
+        trace: None,
+    };
+}
+
+/// Contact between two objects from scratch (an empty [`PairCache`]), with everything
+/// ([`Request::FULL`]); `None` for two walls. See [`contact_with`].
+#[inline]
 pub fn contact(i: &Object, j: &Object) -> Option<Contact> {
+    contact_with(i, j, &mut PairCache::default(), Request::FULL)
+}
+
+/// The narrow-phase dispatcher: the contact between objects `i` and `j` (normal from i to j),
+/// computing what `request` asks, starting from what `cache` kept from the last query of this
+/// pair and leaving in it what the next query starts from; `None` for two walls (never a pair).
+///
+/// Every pair kind is computed in one order only, its canonical order ([`computed_in_order`]),
+/// by the kernel of its file; the other order is that result [`Contact::swapped`] — here, the
+/// one place where a pair is turned round. The cache always speaks of the caller's i: it is
+/// re-expressed for the kernel when the pair is computed the other way round, and back.
+/// Closed forms where they exist (a circle pair never touches the conic machinery).
+#[inline(always)]
+pub fn contact_with(
+    i: &Object,
+    j: &Object,
+    cache: &mut PairCache,
+    request: Request,
+) -> Option<Contact> {
+    let in_order = computed_in_order(i, j)?;
+    let guess = cache.warm();
+    let (c, next, used) = if in_order {
+        contact_in_order(i, j, guess, &request)
+    } else {
+        let (c, next, used) = contact_in_order(j, i, seen_from(guess, i, j), &request);
+        (c.swapped(), seen_from(next, j, i), used)
+    };
+    cache.set_warm(next);
+    if let Some(t) = request.trace {
+        t.set(used);
+    }
+    Some(c)
+}
+
+/// A warm start given relative to `from`, re-expressed relative to `to` (the pair's other
+/// object). Only body pairs carry one.
+#[inline(always)]
+fn seen_from(w: Option<Warm>, from: &Object, to: &Object) -> Option<Warm> {
+    match (from, to) {
+        (Object::Body { pose: a, .. }, Object::Body { pose: b, .. }) => {
+            w.map(|w| w.seen_from(a, b))
+        }
+        (Object::Wall(_), _) | (_, Object::Wall(_)) => w,
+    }
+}
+
+/// The kernels, for pairs in their canonical order only (see [`computed_in_order`]). Returns
+/// the contact, the warm start for the next query (conic pairs; none for the others) and
+/// whether `guess` gave the result.
+#[inline(always)]
+fn contact_in_order(
+    i: &Object,
+    j: &Object,
+    guess: Option<Warm>,
+    request: &Request,
+) -> (Contact, Option<Warm>, bool) {
+    use Shape::*;
+    let plain = |c: Contact| (c, None, false);
     match (i, j) {
+        (Object::Wall(wall), Object::Body { shape, pose }) => plain(match *shape {
+            Circle { r } => circle_wall::contact_wall_circle(wall, r, pose, request),
+            Ellipse { a, b } => ellipse_wall::contact_wall_ellipse(wall, a, b, pose, request),
+            Rectangle { w, h } => rectangle_wall::contact_wall_rectangle(wall, w, h, pose),
+        }),
         (
             Object::Body {
                 shape: si,
@@ -197,112 +307,74 @@ pub fn contact(i: &Object, j: &Object) -> Option<Contact> {
                 shape: sj,
                 pose: pj,
             },
-        ) => Some(contact_bodies(si, pi, sj, pj)),
-        (Object::Wall(w), Object::Body { shape, pose }) => Some(contact_wall_body(w, shape, pose)),
-        (Object::Body { shape, pose }, Object::Wall(w)) => {
-            Some(contact_wall_body(w, shape, pose).swapped())
+        ) => match (*si, *sj) {
+            (Circle { r: ri }, Circle { r: rj }) => plain(circle_circle::contact_circle_circle(
+                ri, pi, rj, pj, request,
+            )),
+            (Circle { r }, Ellipse { a, b }) => {
+                circle_ellipse::contact_circle_ellipse(r, pi, a, b, pj, guess, request)
+            }
+            (Ellipse { a: ai, b: bi }, Ellipse { a: aj, b: bj }) => {
+                ellipse_ellipse::contact_ellipse_ellipse(ai, bi, pi, aj, bj, pj, guess, request)
+            }
+            (Rectangle { w, h }, Circle { .. } | Ellipse { .. }) => plain(
+                rectangle_conic::contact_rectangle_conic(w, h, pi, sj, pj, request),
+            ),
+            (Rectangle { w: wi, h: hi }, Rectangle { w: wj, h: hj }) => plain(
+                rectangle_rectangle::contact_rectangle_rectangle(wi, hi, pi, wj, hj, pj, request),
+            ),
+            (Ellipse { .. }, Circle { .. })
+            | (Circle { .. } | Ellipse { .. }, Rectangle { .. }) => {
+                unreachable!("computed the other way round (computed_in_order)")
+            }
+        },
+        (Object::Body { .. } | Object::Wall(_), Object::Wall(_)) => {
+            unreachable!("a wall is computed first, and two walls are no pair")
         }
-        (Object::Wall(_), Object::Wall(_)) => None,
     }
 }
 
-/// Contact between two bodies, with the overlap area (see [`contact_bodies_with`]).
-#[inline]
-pub fn contact_bodies(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose) -> Contact {
-    contact_bodies_with(si, pi, sj, pj, None, true).0
+/// Whether the pair `(i, j)` is computed in the order given (i first), rather than as `(j, i)`
+/// and swapped; `None` for two walls. The canonical order: a wall before a body; between two
+/// kinds of body, a rectangle before a conic and a circle before an ellipse; between two bodies
+/// of the same kind, [`computed_first`] — but two circles are computed as given, their closed
+/// form being exactly symmetric (see the module documentation).
+#[inline(always)]
+pub fn computed_in_order(i: &Object, j: &Object) -> Option<bool> {
+    match (i, j) {
+        (Object::Wall(_), Object::Wall(_)) => None,
+        (Object::Wall(_), Object::Body { .. }) => Some(true),
+        (Object::Body { .. }, Object::Wall(_)) => Some(false),
+        (
+            Object::Body {
+                shape: si,
+                pose: pi,
+            },
+            Object::Body {
+                shape: sj,
+                pose: pj,
+            },
+        ) => Some(match kind_rank(si).cmp(&kind_rank(sj)) {
+            std::cmp::Ordering::Less => true,
+            std::cmp::Ordering::Greater => false,
+            std::cmp::Ordering::Equal => match si {
+                Shape::Circle { .. } => true,
+                Shape::Ellipse { .. } | Shape::Rectangle { .. } => computed_first(si, pi, sj, pj),
+            },
+        }),
+    }
 }
 
-/// [`contact_bodies_with`] without the overlap area, from a warm start (the chord geometry alone,
-/// as the depth law and the kernel benchmark use it).
-#[inline]
-pub fn contact_bodies_warm(
-    si: &Shape,
-    pi: &Pose,
-    sj: &Shape,
-    pj: &Pose,
-    guess: Option<ellipse_ellipse::Warm>,
-) -> (Contact, Option<ellipse_ellipse::Warm>) {
-    let (c, warm, _) = contact_bodies_with(si, pi, sj, pj, guess, false);
-    (c, warm)
-}
-
-/// [`contact_bodies_with`] with the overlap area, also telling whether the warm start gave the
-/// result; for the tests of the warm path.
-#[inline]
-pub fn contact_bodies_traced(
-    si: &Shape,
-    pi: &Pose,
-    sj: &Shape,
-    pj: &Pose,
-    guess: Option<ellipse_ellipse::Warm>,
-) -> (Contact, Option<ellipse_ellipse::Warm>, bool) {
-    contact_bodies_with(si, pi, sj, pj, guess, true)
-}
-
-/// Contact between two bodies, dispatched on the pair of shapes (closed forms where they exist:
-/// a circle pair never touches the conic machinery); with `area`, also the overlap area and its
-/// gradient ([`OverlapArea`]). The pairs that take the pencil (circle–ellipse and
-/// ellipse–ellipse; see [`ellipse_ellipse`]) start from `guess`, what the last step returned for
-/// this pair (None for a new contact), and return the guess for the next step; other pairs
-/// ignore it and return none. The last value tells whether the warm start gave the result.
-///
-/// Each pair is computed in one order only and the other order is its [`Contact::swapped`]
-/// (see the module documentation): a circle before an ellipse, a rectangle before a conic, and
-/// for two shapes of the same kind the order of [`computed_first`]. A guess and the returned
-/// warm start are always relative to the caller's i (re-expressed when the pair is computed the
-/// other way round), so a pair whose order flips from one step to the next keeps its warm start.
-#[inline]
-pub fn contact_bodies_with(
-    si: &Shape,
-    pi: &Pose,
-    sj: &Shape,
-    pj: &Pose,
-    guess: Option<ellipse_ellipse::Warm>,
-    area: bool,
-) -> (Contact, Option<ellipse_ellipse::Warm>, bool) {
-    use Shape::*;
-    use ellipse_ellipse::conic_pair_traced;
-    let plain = |c: Contact| (c, None, false);
-    // The pair computed as (j, i): the guess handed over relative to j, the next one handed
-    // back relative to i, the contact swapped.
-    let reversed = |(c, warm, used): (Contact, Option<ellipse_ellipse::Warm>, bool)| {
-        (c.swapped(), warm.map(|w| w.seen_from(pj, pi)), used)
-    };
-    let guess_ji = || guess.map(|w| w.seen_from(pi, pj));
-    match (*si, *sj) {
-        // Symmetric closed form: no order to choose.
-        (Circle { r: ri }, Circle { r: rj }) => plain(circle_circle::contact_circle_circle_with(
-            ri, pi, rj, pj, area,
-        )),
-        (Circle { r }, Ellipse { a, b }) => conic_pair_traced(r, r, pi, a, b, pj, guess, area),
-        (Ellipse { a, b }, Circle { r }) => {
-            reversed(conic_pair_traced(r, r, pj, a, b, pi, guess_ji(), area))
-        }
-        (Ellipse { a: ai, b: bi }, Ellipse { a: aj, b: bj }) => {
-            if computed_first(si, pi, sj, pj) {
-                conic_pair_traced(ai, bi, pi, aj, bj, pj, guess, area)
-            } else {
-                reversed(conic_pair_traced(aj, bj, pj, ai, bi, pi, guess_ji(), area))
-            }
-        }
-        (Rectangle { w, h }, Circle { .. } | Ellipse { .. }) => plain(
-            rectangle_conic::rectangle_conic_with(w, h, pi, sj, pj, area),
-        ),
-        (Circle { .. } | Ellipse { .. }, Rectangle { w, h }) => {
-            plain(rectangle_conic::rectangle_conic_with(w, h, pj, si, pi, area).swapped())
-        }
-        (Rectangle { w: wi, h: hi }, Rectangle { w: wj, h: hj }) => {
-            if computed_first(si, pi, sj, pj) {
-                plain(rectangle_rectangle::rectangle_rectangle_with(
-                    wi, hi, pi, wj, hj, pj, area,
-                ))
-            } else {
-                plain(
-                    rectangle_rectangle::rectangle_rectangle_with(wj, hj, pj, wi, hi, pi, area)
-                        .swapped(),
-                )
-            }
-        }
+/// Which of two bodies of different kinds a pair computes first: the lower rank. A rectangle
+/// comes first against a conic (its kernel cuts the conic with its edges), a circle first
+/// against an ellipse (the pencil's frame is centred on the first, and a circle's orientation
+/// is arbitrary).
+#[inline(always)]
+fn kind_rank(s: &Shape) -> u8 {
+    match s {
+        Shape::Rectangle { .. } => 0,
+        Shape::Circle { .. } => 1,
+        Shape::Ellipse { .. } => 2,
     }
 }
 
@@ -334,23 +406,6 @@ pub fn computed_first(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose) -> bool {
         }
     }
     true
-}
-
-/// Contact between a wall (as i) and a body (as j), with the overlap area: the normal is the
-/// wall's normal.
-#[inline]
-pub fn contact_wall_body(wall: &Wall, shape: &Shape, pose: &Pose) -> Contact {
-    contact_wall_body_with(wall, shape, pose, true)
-}
-
-/// [`contact_wall_body`], with the overlap area only when `area` is set.
-#[inline]
-pub fn contact_wall_body_with(wall: &Wall, shape: &Shape, pose: &Pose, area: bool) -> Contact {
-    match *shape {
-        Shape::Circle { r } => circle_wall::contact_wall_circle_with(wall, r, pose, area),
-        Shape::Ellipse { a, b } => ellipse_wall::wall_ellipse_with(wall, a, b, pose, area),
-        Shape::Rectangle { w, h } => rectangle_wall::contact_wall_rectangle(wall, w, h, pose),
-    }
 }
 
 /// Relative tolerance (of the pair's size) below which a depth counts as touching.

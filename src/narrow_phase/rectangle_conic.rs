@@ -3,33 +3,28 @@
 
 use super::rectangle_wall::corners;
 use super::{
-    Contact, ContactState, LocalFrame, LocalOverlap, TOUCH_TOL, deep_fallback, deep_overlap,
-    orient, pow2_floor,
+    Contact, ContactState, LocalFrame, LocalOverlap, Request, TOUCH_TOL, deep_fallback,
+    deep_overlap, orient, pow2_floor,
 };
 use crate::geometry::overlap_area::{ellipse_cap, ellipse_cap_at_depth, polygon_cap};
 use crate::geometry::support::support_local;
 use crate::geometry::{Pose, Shape};
 
-/// Contact between rectangle i (`w × h`) and circle or ellipse j.
+/// Contact between rectangle i (`w × h`) and circle or ellipse j; with `request.area`, the
+/// overlap area too (the rectangle's cap beyond the chord plus the conic's).
 ///
 /// # Panics
 /// If `conic` is a rectangle (the dispatcher never passes one).
 #[inline]
-pub fn contact_rectangle_conic(w: f64, h: f64, pi: &Pose, conic: &Shape, pj: &Pose) -> Contact {
-    rectangle_conic_with(w, h, pi, conic, pj, true)
-}
-
-/// [`contact_rectangle_conic`], with the overlap area (the rectangle's cap beyond the chord plus
-/// the conic's) only when `area` is set.
-#[inline]
-pub fn rectangle_conic_with(
+pub fn contact_rectangle_conic(
     w: f64,
     h: f64,
     pi: &Pose,
     conic: &Shape,
     pj: &Pose,
-    area: bool,
+    request: &Request,
 ) -> Contact {
+    let area = request.area;
     let (a, b) = match *conic {
         Shape::Circle { r } => (r, r),
         Shape::Ellipse { a, b } => (a, b),

@@ -9,8 +9,8 @@
 
 use super::rectangle_wall::corners;
 use super::{
-    Contact, ContactState, LocalFrame, LocalOverlap, TOUCH_TOL, deep_fallback, deep_overlap,
-    orient, pow2_floor,
+    Contact, ContactState, LocalFrame, LocalOverlap, Request, TOUCH_TOL, deep_fallback,
+    deep_overlap, orient, pow2_floor,
 };
 use crate::geometry::overlap_area::{polygon_area, polygon_cap};
 use crate::geometry::support::support_local;
@@ -26,7 +26,8 @@ enum Side {
     Both,
 }
 
-/// Contact between rectangle i (`wi × hi`) and rectangle j (`wj × hj`), with the overlap area.
+/// Contact between rectangle i (`wi × hi`) and rectangle j (`wj × hj`); with `request.area`,
+/// the overlap area (the clipped polygon's, exactly) and its gradient too.
 pub fn contact_rectangle_rectangle(
     wi: f64,
     hi: f64,
@@ -34,21 +35,9 @@ pub fn contact_rectangle_rectangle(
     wj: f64,
     hj: f64,
     pj: &Pose,
+    request: &Request,
 ) -> Contact {
-    rectangle_rectangle_with(wi, hi, pi, wj, hj, pj, true)
-}
-
-/// [`contact_rectangle_rectangle`], with the overlap area (the clipped polygon's, exactly) and
-/// its gradient only when `area` is set.
-pub fn rectangle_rectangle_with(
-    wi: f64,
-    hi: f64,
-    pi: &Pose,
-    wj: f64,
-    hj: f64,
-    pj: &Pose,
-    area: bool,
-) -> Contact {
+    let area = request.area;
     let dv = pj.position - pi.position;
     let (ri, rj) = (0.5 * wi.hypot(hi), 0.5 * wj.hypot(hj));
     if dv.norm_squared() > (ri + rj) * (ri + rj) {

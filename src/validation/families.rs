@@ -12,7 +12,9 @@ use super::reference::{RContact, RObj, RShape, RState, depth_along, reference_co
 use crate::geometry::support::support_local;
 use crate::geometry::{Pose, Shape, Vec2, Wall};
 use crate::narrow_phase::ellipse_ellipse::Warm;
-use crate::narrow_phase::{Contact, ContactState, Object, contact, contact_bodies_traced};
+use crate::narrow_phase::{
+    Contact, ContactState, Object, PairCache, Request, contact, contact_with,
+};
 use crate::validation::rng::Rng;
 
 const DEPTH_BAR: f64 = 1e-12;
@@ -345,20 +347,12 @@ fn check(case: &Case, rng: &mut Rng, st: &mut FamilyReport, label: &str, conditi
         }
     }
     // The warm path: the pair again, started from a perturbed copy of what the kernel carries
-    // to the next step (crossings moved by up to 1e-4·a_max, an axis turned by up to 0.02 rad:
-    // more than one step of motion), held to the same bars.
-    if let (
-        Object::Body {
-            shape: s1,
-            pose: p1,
-        },
-        Object::Body {
-            shape: s2,
-            pose: p2,
-        },
-    ) = (&oi, &oj)
-    {
-        if let (_, Some(carried), _) = contact_bodies_traced(s1, p1, s2, p2, None) {
+    // to the next step in its pair cache (crossings moved by up to 1e-4·a_max, an axis turned by
+    // up to 0.02 rad: more than one step of motion), held to the same bars.
+    if let (Object::Body { .. }, Object::Body { .. }) = (&oi, &oj) {
+        let mut cache = PairCache::default();
+        contact_with(&oi, &oj, &mut cache, Request::FULL);
+        if let Some(carried) = cache.warm() {
             let mut jitter = || (rng.uniform() - 0.5) * 2e-4 * scale;
             let guess = match carried {
                 Warm::Crossings([p, q]) => Warm::Crossings([
@@ -371,7 +365,14 @@ fn check(case: &Case, rng: &mut Rng, st: &mut FamilyReport, label: &str, conditi
                     Warm::Axis([c * ct - s * st_, s * ct + c * st_])
                 }
             };
-            let (kw, _, used) = contact_bodies_traced(s1, p1, s2, p2, Some(guess));
+            let used = std::cell::Cell::new(false);
+            let traced = Request {
+                trace: Some(&used),
+                ..Request::FULL
+            };
+            let kw = contact_with(&oi, &oj, &mut PairCache::with_warm(Some(guess)), traced)
+                .expect("a body pair");
+            let used = used.get();
             st.warm_checked += 1;
             st.warm_used += used as usize;
             if decisive && !same_state(kw.state, r.state) {
