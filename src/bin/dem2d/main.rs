@@ -80,6 +80,10 @@ enum Command {
         /// Also write the study's case files into `cases/` (repose, biaxial).
         #[arg(long)]
         write_cases: bool,
+        /// Grains per sample for the studies that take a size (biaxial-shape: rounded to a
+        /// square number, default 400; packing: default 300).
+        #[arg(long)]
+        grains: Option<usize>,
     },
     /// Contact geometry of pairs of bodies: reads a JSON array of {"i": BODY, "j": BODY} from FILE
     /// (or standard input for `-`) and prints one JSON result per pair.
@@ -841,8 +845,12 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Contact { file } => run_contact(file),
-        Command::Study { name, write_cases } => {
-            study::run(*name, *write_cases);
+        Command::Study {
+            name,
+            write_cases,
+            grains,
+        } => {
+            study::run(*name, *write_cases, *grains);
             Ok(())
         }
         Command::Run {

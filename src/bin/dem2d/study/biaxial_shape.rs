@@ -315,9 +315,14 @@ fn force_chains(results: &[&Outcome]) -> String {
     )
 }
 
-pub fn run() {
+/// Runs the study with samples of about `grains` grains (the nearest square number).
+pub fn run(grains: usize) {
     let aspects = [1.0, 1.5, 2.0, 2.5];
-    let results: Vec<Outcome> = aspects.iter().map(|&a| run_one(20, a, 0.1, true)).collect();
+    let n_side = ((grains as f64).sqrt().round() as usize).max(2);
+    let results: Vec<Outcome> = aspects
+        .iter()
+        .map(|&a| run_one(n_side, a, 0.1, true))
+        .collect();
     let mut md = String::from(
         "| α | grains | φ after compaction | Z (no rattlers) | peak (σ₁−σ₃)/(σ₁+σ₃) | φ_peak (°) | φ_res (°) | ψ (°) | a_c | a_n | a_t | ½(a_c+a_n+a_t) | LW q/p at peak | orientation order at peak | wall time (s) | particle-steps/s |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
@@ -354,8 +359,9 @@ pub fn run() {
         md,
         "\nσ_c = {SIGMA_C:e} dyn/cm², grain friction {MU} (compaction {MU_COMPACTION}), frictionless \
          walls, axial strain rate {STRAIN_RATE} /s: inertial number I = ε̇ d √(ρ/σ_c) = {:.1e} \
-         (d = 2 cm, ρ = 2.65 g/cm³). Written by `dem2d study biaxial-shape`.",
-        STRAIN_RATE * 2.0 * (2.65 / SIGMA_C).sqrt()
+         (d = 2 cm, ρ = 2.65 g/cm³). Written by `dem2d study biaxial-shape --grains {}`.",
+        STRAIN_RATE * 2.0 * (2.65 / SIGMA_C).sqrt(),
+        n_side * n_side
     )
     .expect("string");
     let series = |k: usize| -> Vec<Series> {

@@ -21,7 +21,7 @@ pub enum Study {
     /// Impact benchmarks (Chung & Ooi 2011) of a disk on a wall against closed forms; writes
     /// figures/impacts.svg and figures/impacts.md.
     Impacts,
-    /// Biaxial tests of 400 ellipses per aspect ratio (1, 1.5, 2, 2.5): stress ratio and
+    /// Biaxial tests of 400 (`--grains`) ellipses per aspect ratio (1, 1.5, 2, 2.5): stress ratio and
     /// volumetric strain, friction and dilatancy angles, fabric at the peak; writes
     /// figures/biaxial_shape.svg and figures/biaxial_shape.md.
     BiaxialShape,
@@ -30,14 +30,15 @@ pub enum Study {
     Packing,
 }
 
-/// Runs `study`; `write_cases` also writes its case files into `cases/`.
-pub fn run(study: Study, write_cases: bool) {
+/// Runs `study`; `write_cases` also writes its case files into `cases/`; `grains` sets the
+/// sample size of the studies that take one (the others ignore it).
+pub fn run(study: Study, write_cases: bool, grains: Option<usize>) {
     match study {
         Study::RollingFig3 => rolling_fig3::run(),
         Study::Repose => repose::run(write_cases),
         Study::Biaxial => biaxial::run(write_cases),
         Study::Impacts => impacts::run(),
-        Study::BiaxialShape => biaxial_shape::run(),
-        Study::Packing => packing::run(),
+        Study::BiaxialShape => biaxial_shape::run(grains.unwrap_or(400)),
+        Study::Packing => packing::run(grains.unwrap_or(packing::N)),
     }
 }

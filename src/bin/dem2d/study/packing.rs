@@ -22,7 +22,10 @@ use dem2d::scene::generate::{DENSITY, PileShape, PileSizes, PileSpec, R_SMALL};
 use std::fmt::Write as _;
 use std::time::Instant;
 
+/// Grains per pile by default (`dem2d study packing --grains N` for others).
 pub const N: usize = 300;
+/// Box width for [`N`] grains; larger piles get a box wider by √(n/N) (in whole 5 cm bins), so
+/// that the pile keeps its shape.
 pub const WIDTH: f64 = 30.0;
 pub const MARGIN: f64 = 4.0;
 pub const DURATION: f64 = 3.0;
@@ -44,7 +47,15 @@ pub struct Pile {
     pub particle_steps_per_second: f64,
 }
 
-fn bodies(aspect: f64, seed: u64, spacing: f64) -> Vec<BodyInit> {
+/// The box width for `n` grains (see [`WIDTH`]).
+pub fn width_for(n: usize) -> f64 {
+    (WIDTH / 5.0 * (n as f64 / N as f64).sqrt())
+        .round()
+        .max(WIDTH / 5.0)
+        * 5.0
+}
+
+fn bodies(aspect: f64, seed: u64, spacing: f64, n: usize, width: f64) -> Vec<BodyInit> {
     let mut state = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
     let mut uniform = move || {
         state ^= state << 13;
@@ -52,10 +63,10 @@ fn bodies(aspect: f64, seed: u64, spacing: f64) -> Vec<BodyInit> {
         state ^= state << 17;
         (state >> 11) as f64 / (1u64 << 53) as f64
     };
-    let cols = (WIDTH / spacing).floor() as usize;
-    let x0 = 0.5 * (WIDTH - cols as f64 * spacing);
+    let cols = (width / spacing).floor() as usize;
+    let x0 = 0.5 * (width - cols as f64 * spacing);
     let r6 = |x: f64| (x * 1e6).round() / 1e6;
-    (0..N)
+    (0..n)
         .map(|k| {
             let r = if uniform() < 0.5 {
                 R_SMALL
@@ -87,16 +98,17 @@ fn bodies(aspect: f64, seed: u64, spacing: f64) -> Vec<BodyInit> {
         .collect()
 }
 
-/// Pours and measures one pile.
-pub fn pour(aspect: f64, friction: f64) -> Pile {
+/// Pours and measures one pile of `n` grains.
+pub fn pour(aspect: f64, friction: f64, n: usize) -> Pile {
     let start = Instant::now();
+    let width = width_for(n);
     let mut spec = PileSpec::new(
         if aspect == 1.0 {
             PileShape::Disks
         } else {
             PileShape::Ellipses
         },
-        N,
+        n,
         1,
     );
     spec.aspect = aspect;
@@ -108,8 +120,8 @@ pub fn pour(aspect: f64, friction: f64) -> Pile {
     let text = spec.case_text(
         &format!("packing_a{aspect}_mu{friction}"),
         "packing study pile",
-        WIDTH,
-        &bodies(aspect, 5, spacing),
+        width,
+        &bodies(aspect, 5, spacing, n, width),
     );
     let case = Case::from_json(&text).expect("valid case");
     let mut w = case.build_world();
@@ -131,7 +143,7 @@ pub fn pour(aspect: f64, friction: f64) -> Pile {
     w.refresh_contact_extras();
     let frame = Frame::from_world(&w);
     // The surface: the lowest of the bins' highest grain tops.
-    let bins = (WIDTH / 5.0) as usize;
+    let bins = (width / 5.0).round() as usize;
     let mut tops = vec![0.0f64; bins];
     for b in &frame.bodies {
         let k = ((b.position.x / 5.0) as usize).min(bins - 1);
@@ -140,7 +152,7 @@ pub fn pour(aspect: f64, friction: f64) -> Pile {
     let surface = tops.iter().copied().fold(f64::INFINITY, f64::min);
     let window = Window {
         x0: MARGIN,
-        x1: WIDTH - MARGIN,
+        x1: width - MARGIN,
         y0: MARGIN,
         y1: surface - MARGIN,
     };
@@ -158,16 +170,17 @@ pub fn pour(aspect: f64, friction: f64) -> Pile {
         at_rest,
         time: w.time,
         wall_seconds: wall,
-        particle_steps_per_second: N as f64 * w.step as f64 / wall,
+        particle_steps_per_second: n as f64 * w.step as f64 / wall,
     }
 }
 
-pub fn run() {
+pub fn run(n: usize) {
     let aspects = [1.0, 1.2, 1.5, 2.0, 3.0];
+    let width = width_for(n);
     let mut piles = Vec::new();
     for mu in [0.0, 0.5] {
         for &a in &aspects {
-            let p = pour(a, mu);
+            let p = pour(a, mu, n);
             eprintln!(
                 "α = {a}, μ = {mu}: φ = {:.4}, {:.0} s",
                 p.packing, p.wall_seconds
@@ -202,9 +215,14 @@ pub fn run() {
     }
     writeln!(
         md,
-        "\n{N} bidisperse grains (1:1.4, equal numbers) per pile in a box {WIDTH} cm wide, poured \
+        "\n{n} bidisperse grains (1:1.4, equal numbers) per pile in a box {width} cm wide, poured \
          under gravity; window {MARGIN} cm from the walls, the floor and the surface. Written by \
-         `dem2d study packing`."
+         `dem2d study packing{}`.",
+        if n == N {
+            String::new()
+        } else {
+            format!(" --grains {n}")
+        }
     )
     .expect("string");
     let series = |k: usize| -> Vec<Series> {
