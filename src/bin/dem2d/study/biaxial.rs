@@ -15,8 +15,7 @@
 //! With `--write-cases` the shear stage is written as `cases/biaxial_disks.json` (the compacted
 //! assembly, the moving walls), an ordinary case.
 
-use dem2d::dynamics::boundary::span_length;
-use dem2d::dynamics::{BodyInit, Span, World};
+use dem2d::dynamics::{BodyInit, World};
 use dem2d::geometry::{Shape, Vec2};
 use dem2d::scene::Case;
 use dem2d::scene::generate::case_text_from;
@@ -88,16 +87,10 @@ fn servo(a: usize, b: usize) -> Value {
     json!({"servo": {"stress": SIGMA_C, "span": [a, b], "max_speed": 20.0}})
 }
 
-/// Axial stress (top wall over the width), lateral stress (mean of the side walls over the
-/// height), width and height.
+/// Axial stress, lateral stress, width and height of the servo box (see
+/// [`super::biaxial_shape::wall_state`]).
 fn stresses(w: &World) -> (f64, f64, f64, f64) {
-    let width = span_length(&w.walls[1].wall, &Span::Between(2, 3), &w.walls);
-    let height = span_length(&w.walls[2].wall, &Span::Between(0, 1), &w.walls);
-    let axial = w.walls[1].load.force.dot(&w.walls[1].wall.normal) / width;
-    let lateral = 0.5
-        * (w.walls[2].load.force.dot(&w.walls[2].wall.normal)
-            + w.walls[3].load.force.dot(&w.walls[3].wall.normal))
-        / height;
+    let (width, height, axial, lateral) = super::biaxial_shape::wall_state(w);
     (axial, lateral, width, height)
 }
 

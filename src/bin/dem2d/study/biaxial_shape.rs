@@ -37,8 +37,10 @@ pub const MU_COMPACTION: f64 = 0.1;
 /// Axial strain rate (1/s): I = 0.08 × 2 × √(2.65/1e5) ≈ 8.2e-4.
 pub const STRAIN_RATE: f64 = 0.08;
 
-/// Width, height, axial (top wall) and lateral (side walls) stresses.
-fn wall_state(w: &World) -> (f64, f64, f64, f64) {
+/// Width, height, axial stress (the top wall's load over the width) and lateral stress (the
+/// mean of the side walls' loads over the height) of a servo box (walls: bottom, top, left,
+/// right).
+pub fn wall_state(w: &World) -> (f64, f64, f64, f64) {
     let width = span_length(&w.walls[1].wall, &Span::Between(2, 3), &w.walls);
     let height = span_length(&w.walls[2].wall, &Span::Between(0, 1), &w.walls);
     let axial = w.walls[1].load.force.dot(&w.walls[1].wall.normal) / width;
