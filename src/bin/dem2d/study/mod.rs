@@ -39,6 +39,6 @@ pub fn run(study: Study, write_cases: bool, grains: Option<usize>) {
         Study::Biaxial => biaxial::run(write_cases),
         Study::Impacts => impacts::run(),
         Study::BiaxialShape => biaxial_shape::run(grains.unwrap_or(400)),
-        Study::Packing => packing::run(grains.unwrap_or(packing::N)),
+        Study::Packing => packing::run(grains.unwrap_or(packing::N), write_cases),
     }
 }

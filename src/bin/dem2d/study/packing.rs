@@ -11,6 +11,10 @@
 //! tops of the grains in 5 cm bins, less the margin): the packing fraction from the exact areas
 //! of the grains clipped by the window, the coordination number with and without rattlers of
 //! the grains whose centre lies in it.
+//!
+//! With `--write-cases` each pile's case is also written to `cases/packing/` (e.g.
+//! `cases/packing/packing_a1.5_mu0.5.json`): `dem2d run` on it followed by `dem2d analyze RUN_DIR
+//! --window …` with the table's window gives the row again.
 
 use dem2d::analysis::{self, Frame, Window};
 use dem2d::contact_law::NormalForce;
@@ -98,8 +102,9 @@ fn bodies(aspect: f64, seed: u64, spacing: f64, n: usize, width: f64) -> Vec<Bod
         .collect()
 }
 
-/// Pours and measures one pile of `n` grains.
-pub fn pour(aspect: f64, friction: f64, n: usize) -> Pile {
+/// Pours and measures one pile of `n` grains; with `write` its case file also goes to
+/// `cases/packing/`.
+pub fn pour(aspect: f64, friction: f64, n: usize, write: bool) -> Pile {
     let start = Instant::now();
     let width = width_for(n);
     let mut spec = PileSpec::new(
@@ -123,6 +128,12 @@ pub fn pour(aspect: f64, friction: f64, n: usize) -> Pile {
         width,
         &bodies(aspect, 5, spacing, n, width),
     );
+    if write {
+        let path = format!("cases/packing/packing_a{aspect}_mu{friction}.json");
+        std::fs::create_dir_all("cases/packing").expect("cases/packing");
+        std::fs::write(&path, &text).unwrap_or_else(|e| panic!("{path}: {e}"));
+        eprintln!("wrote {path}");
+    }
     let case = Case::from_json(&text).expect("valid case");
     let mut w = case.build_world();
     let q = case.quiescence.expect("a rest criterion");
@@ -174,13 +185,14 @@ pub fn pour(aspect: f64, friction: f64, n: usize) -> Pile {
     }
 }
 
-pub fn run(n: usize) {
+/// Runs the study with piles of `n` grains; `write` also writes their case files.
+pub fn run(n: usize, write: bool) {
     let aspects = [1.0, 1.2, 1.5, 2.0, 3.0];
     let width = width_for(n);
     let mut piles = Vec::new();
     for mu in [0.0, 0.5] {
         for &a in &aspects {
-            let p = pour(a, mu, n);
+            let p = pour(a, mu, n, write);
             eprintln!(
                 "α = {a}, μ = {mu}: φ = {:.4}, {:.0} s",
                 p.packing, p.wall_seconds
