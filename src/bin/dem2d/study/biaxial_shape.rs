@@ -76,6 +76,9 @@ pub fn compact(w: &mut World, max_time: f64) -> u64 {
 pub struct Outcome {
     pub aspect: f64,
     pub grains: usize,
+    /// The shear stage as a case file (the compacted sample at rest, the walls' motion and
+    /// servos): `dem2d run` on it repeats the shear.
+    pub shear_case: String,
     /// (axial strain, stress ratio, volumetric strain) every 0.5 %.
     pub curve: Vec<(f64, f64, f64)>,
     pub measures: Vec<Measures>,
@@ -152,6 +155,7 @@ pub fn run_one(n_side: usize, aspect: f64, strain: f64, verbose: bool) -> Outcom
     let case = Case::from_json(&text).expect("valid case");
     let mut w = case.build_world();
     w.refresh_contact_extras();
+    let shear_case = text;
     let initial = analysis::measure(&Frame::from_world(&w), None);
     let (width0, height0, _, _) = wall_state(&w);
     let area0 = width0 * height0;
@@ -159,6 +163,7 @@ pub fn run_one(n_side: usize, aspect: f64, strain: f64, verbose: bool) -> Outcom
     let mut out = Outcome {
         aspect,
         grains: n,
+        shear_case,
         initial,
         ..Default::default()
     };
@@ -317,14 +322,23 @@ fn force_chains(results: &[&Outcome]) -> String {
     )
 }
 
-/// Runs the study with samples of about `grains` grains (the nearest square number).
-pub fn run(grains: usize) {
+/// Runs the study with samples of about `grains` grains (the nearest square number); `write`
+/// also writes each α's shear stage to `cases/biaxial_shape/shear_a{α}.json`.
+pub fn run(grains: usize, write: bool) {
     let aspects = [1.0, 1.5, 2.0, 2.5];
     let n_side = ((grains as f64).sqrt().round() as usize).max(2);
     let results: Vec<Outcome> = aspects
         .iter()
         .map(|&a| run_one(n_side, a, 0.1, true))
         .collect();
+    if write {
+        std::fs::create_dir_all("cases/biaxial_shape").expect("cases/biaxial_shape");
+        for r in &results {
+            let path = format!("cases/biaxial_shape/shear_a{}.json", r.aspect);
+            std::fs::write(&path, &r.shear_case).unwrap_or_else(|e| panic!("{path}: {e}"));
+            eprintln!("wrote {path}");
+        }
+    }
     let mut md = String::from(
         "| α | grains | φ after compaction | Z (no rattlers) | peak (σ₁−σ₃)/(σ₁+σ₃) | φ_peak (°) | φ_res (°) | ψ (°) | a_c | a_n | a_t | ½(a_c+a_n+a_t) | LW q/p at peak | orientation order at peak | wall time (s) | particle-steps/s |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );

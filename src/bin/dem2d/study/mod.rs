@@ -38,7 +38,7 @@ pub fn run(study: Study, write_cases: bool, grains: Option<usize>) {
         Study::Repose => repose::run(write_cases),
         Study::Biaxial => biaxial::run(write_cases),
         Study::Impacts => impacts::run(),
-        Study::BiaxialShape => biaxial_shape::run(grains.unwrap_or(400)),
+        Study::BiaxialShape => biaxial_shape::run(grains.unwrap_or(400), write_cases),
         Study::Packing => packing::run(grains.unwrap_or(packing::N), write_cases),
     }
 }
