@@ -1,4 +1,4 @@
-//! The case files: every `cases/*.json` runs; every `cases/bad/*.json` is refused with the error
+//! The case files: every `cases/*.json` (and the studies' `cases/{repose,packing,biaxial_shape}/`) runs; every `cases/bad/*.json` is refused with the error
 //! recorded beside it in `cases/bad/expected_errors.json`; a blow-up stops with the step and the
 //! body and keeps what it wrote; and the paper's observations hold.
 
@@ -37,9 +37,13 @@ fn summary(dir: &Path) -> Value {
 #[test]
 fn every_case_runs() {
     let mut ran = 0;
-    let files = std::fs::read_dir(cases_dir())
-        .unwrap()
-        .chain(std::fs::read_dir(cases_dir().join("repose")).unwrap());
+    // The studies' case sets live in subdirectories (`dem2d study NAME --write-cases`).
+    let files = std::fs::read_dir(cases_dir()).unwrap().chain(
+        ["repose", "packing", "biaxial_shape"]
+            .iter()
+            .filter(|d| cases_dir().join(d).is_dir())
+            .flat_map(|d| std::fs::read_dir(cases_dir().join(d)).unwrap()),
+    );
     for entry in files {
         let path = entry.unwrap().path();
         if path.extension().is_none_or(|e| e != "json") {
