@@ -1,4 +1,5 @@
-//! The case files: every `cases/*.json` (and the studies' `cases/{repose,packing,biaxial_shape}/`) runs; every `cases/bad/*.json` is refused with the error
+//! The case files: every `cases/*.json` runs, and the studies' case sets in
+//! `cases/{repose,packing,biaxial_shape}/`; every `cases/bad/*.json` is refused with the error
 //! recorded beside it in `cases/bad/expected_errors.json`; a blow-up stops with the step and the
 //! body and keeps what it wrote; and the paper's observations hold.
 
