@@ -44,11 +44,11 @@ pub fn contact_wall_polygon(wall: &Wall, poly: &Polygon, pose: &Pose) -> Contact
             under.push(q[a]);
         }
         if (s[a] < 0.0) != (s[b] < 0.0) {
-            let t = s[a] / (s[a] - s[b]);
-            let x = [
-                q[a][0] + t * (q[b][0] - q[a][0]),
-                q[a][1] + t * (q[b][1] - q[a][1]),
-            ];
+            // The fraction along the edge from the edge's own direction (the wall's offset `hc`
+            // cancels from s[a] − s[b], but not its rounding).
+            let e = [q[b][0] - q[a][0], q[b][1] - q[a][1]];
+            let t = -s[a] / (nb.x * e[0] + nb.y * e[1]);
+            let x = [q[a][0] + t * e[0], q[a][1] + t * e[1]];
             // A convex polygon's boundary crosses a line at most twice.
             if nc < 2 {
                 cross[nc] = x;
