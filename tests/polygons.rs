@@ -488,3 +488,165 @@ fn the_outline_is_the_polygons_own_vertices() {
     assert_eq!(v[1], (2.0, -1.0));
     assert_eq!(v[2], (-1.0, 2.0));
 }
+
+/// Force and moment on body j from body (or wall) i as the dynamics computes them (the area
+/// law of [`area_spec`]).
+fn force_on(i: &Object, j: &Object) -> (Vec2, f64) {
+    let Object::Body { shape, pose } = *j else {
+        panic!("j must be a body")
+    };
+    let ij = init(shape, pose.position, pose.angle());
+    let w = match *i {
+        Object::Body {
+            shape: si,
+            pose: pi,
+        } => World::new(
+            &[init(si, pi.position, pi.angle()), ij],
+            vec![],
+            Vec2::zeros(),
+            area_spec(),
+            1e-6,
+        ),
+        Object::Wall(wall) => World::new(
+            &[ij],
+            vec![WallSpec::new(wall, area_spec())],
+            Vec2::zeros(),
+            area_spec(),
+            1e-6,
+        ),
+    };
+    let k = w.bodies.len() - 1;
+    (w.bodies.force[k], w.bodies.torque[k])
+}
+
+/// `W(A) = ½ k_n δ_eq(A)²` with the equal-area disks' lens (a wall: ∞), the law's potential for
+/// every pair with a polygon.
+fn potential(i: &Object, j: &Object, area: f64) -> f64 {
+    let r = |o: &Object| match o {
+        Object::Body { shape, .. } => shape.equal_area_radius(),
+        Object::Wall(_) => f64::INFINITY,
+    };
+    let lens = dem2d::geometry::overlap_area::DiskLens::new(r(i), r(j));
+    let (d, _) = lens.equivalent_depth(area);
+    0.5 * d * d
+}
+
+#[test]
+fn force_and_moment_are_minus_the_gradient_of_the_reference_area_potential() {
+    // F = −∂W/∂x_j and M = −∂W/∂θ_j with W of the double-double reference's area, by
+    // fourth-order central differences: two crossings for every pair kind (δ/b 1e-4 … 0.2), and
+    // thin polygons crossed over each other (four or more crossings: the exact gradient of the
+    // clipped polygon).
+    let mut rng = Rng(0x0016_0002);
+    let fd4 = |f: &dyn Fn(f64) -> f64, h: f64| {
+        (-f(2.0 * h) + 8.0 * f(h) - 8.0 * f(-h) + f(-2.0 * h)) / (12.0 * h)
+    };
+    let moved = |o: &Object, dx: f64, dy: f64, dt: f64| match *o {
+        Object::Body { shape, pose } => {
+            body(shape, pose.position + Vec2::new(dx, dy), pose.angle() + dt)
+        }
+        w => w,
+    };
+    let mut cases: Vec<(Object, Object)> = Vec::new();
+    for kind in [
+        Kind::Polygon,
+        Kind::Circle,
+        Kind::Ellipse,
+        Kind::Rectangle,
+        Kind::Wall,
+    ] {
+        for k in 0..24 {
+            let ratio = 10f64.powf(-4.0 + 3.3 * k as f64 / 23.0);
+            let (i, j, _) = random_pair(&mut rng, kind, ratio, 0.0);
+            cases.push((i, j));
+            cases.push((j, i));
+        }
+    }
+    // Crossed thin polygons (a thin hexagon and a thin pentagon at right angles).
+    let thin = |n: usize, a: f64, b: f64| {
+        let v: Vec<[f64; 2]> = (0..n)
+            .map(|k| {
+                let t = std::f64::consts::TAU * (k as f64 + 0.3) / n as f64;
+                [a * t.cos(), b * t.sin()]
+            })
+            .collect();
+        Shape::Polygon(Polygon::new(&v).unwrap())
+    };
+    for k in 0..16 {
+        let i = body(thin(6, 2.0, 0.3), Vec2::zeros(), rng.range(-0.2, 0.2));
+        let x = Vec2::new(rng.range(-0.3, 0.3), rng.range(-0.3, 0.3));
+        let j = body(
+            thin(5 + k % 3, 1.8, 0.25),
+            x,
+            std::f64::consts::FRAC_PI_2 + rng.range(-0.5, 0.5),
+        );
+        cases.push((i, j));
+    }
+    let (mut worst_f, mut worst_m, mut checked, mut deep, mut kinks) = (0.0f64, 0.0f64, 0, 0, 0);
+    for (i, j) in cases {
+        let Object::Body { .. } = j else { continue };
+        let c = contact(&i, &j).unwrap();
+        if !matches!(c.state, ContactState::Overlap | ContactState::Deep) {
+            continue;
+        }
+        let depth = c.geometry.unwrap().depth;
+        let (f, m) = force_on(&i, &j);
+        let w = |dx: f64, dy: f64, dt: f64| {
+            let jj = moved(&j, dx, dy, dt);
+            potential(
+                &i,
+                &j,
+                polygon_overlap(&r_obj(&i), &r_obj(&jj)).unwrap().area,
+            )
+        };
+        // Steps well inside the overlap's own scale (a vertex event within ±2h blurs the
+        // difference: such points are skipped by the check below).
+        let h = 2f64.powi((1e-3 * depth).log2().floor() as i32);
+        let grad = |h: f64| {
+            (
+                fd4(&|s| w(s, 0.0, 0.0), h),
+                fd4(&|s| w(0.0, s, 0.0), h),
+                fd4(&|s| w(0.0, 0.0, s), h),
+            )
+        };
+        let (gx, gy, gt) = grad(h);
+        let (hx, hy, ht) = grad(0.25 * h);
+        let size = match j {
+            Object::Body { shape, .. } => shape.bounding_radius(),
+            Object::Wall(_) => unreachable!(),
+        };
+        // In units of the larger of |F| and |M|/size (a symmetric crossing is a pure couple).
+        let scale = f.norm().max(m.abs() / size);
+        let ef = ((f.x + gx).powi(2) + (f.y + gy).powi(2)).sqrt() / scale;
+        let em = (m + gt).abs() / (scale * size);
+        // Two steps that disagree: a vertex event (where A's second derivative jumps) within
+        // ±2h; the differences are not the gradient there.
+        let spread = ((gx - hx).powi(2) + (gy - hy).powi(2))
+            .sqrt()
+            .max((gt - ht).abs() / size);
+        if spread > 1e-8 * scale {
+            kinks += 1;
+            continue;
+        }
+        worst_f = worst_f.max(ef);
+        worst_m = worst_m.max(em);
+        checked += 1;
+        if c.state == ContactState::Deep {
+            deep += 1;
+        }
+        assert!(
+            ef <= 1e-6 && em <= 1e-6,
+            "{:?}: force {f:?} vs −∇W ({}, {}), moment {m} vs {}: {ef:.1e}, {em:.1e}\n i = {i:?}\n j = {j:?}",
+            c.state,
+            -gx,
+            -gy,
+            -gt
+        );
+    }
+    println!(
+        "force = −∇W(A_ref): {checked} pairs with a polygon ({deep} deep; {kinks} skipped at a \
+         vertex event), worst force error \
+         {worst_f:.1e}, moment {worst_m:.1e} (of max(|F|, |M|/size), and × size)"
+    );
+    assert!(checked >= 200 && deep >= 8, "{checked} {deep}");
+}
