@@ -10,6 +10,10 @@
 //!   control, gain what the issue measured (0.10 and 0.46 of F·Δx);
 //! - **the area itself** against the reference, δ/b from 1e-9 to 0.3, at the origin and 1e6
 //!   away.
+//!
+//! Convex polygons: the closed loops for every pair kind with a polygon are here
+//! (`no_work_around_closed_loops_for_polygon_pairs`); their force = −∇W and area checks against
+//! their own double-double reference are in `tests/polygons.rs`.
 
 use dem2d::contact_law::{ContactSpec, EquivalentOverlap, LinearDamping, NormalForce, Scaled};
 use dem2d::dynamics::{BodyInit, WallSpec, World};

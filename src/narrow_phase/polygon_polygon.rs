@@ -179,13 +179,11 @@ pub fn contact_polygon_polygon(
         };
         let l = toward[0].hypot(toward[1]);
         let (n, dpt) = orient([toward[0] / l, toward[1] / l], depth);
-        let mut g = frame.geometry(inner, inner, inner, n, dpt);
-        if area {
-            g.area = Some(frame.overlap(&gradient(&edges, [c.x, c.y], inner)));
-        }
+        // No overlap area: it no longer changes, and the contact falls back to the spring on
+        // the depth (as every pair kind's containment does).
         return Contact {
             state: ContactState::Contained,
-            geometry: Some(g),
+            geometry: Some(frame.geometry(inner, inner, inner, n, dpt)),
         };
     }
     // Walk once around, starting on a non-shared edge; a change between I and J is a crossing,
