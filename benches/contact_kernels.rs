@@ -73,6 +73,11 @@ fn support_point(shape: &Shape, pose: &Pose, n: Vec2) -> Vec2 {
             Vec2::new(a * a * u.x / h, b * b * u.y / h)
         }
         Shape::Rectangle { w, h } => Vec2::new(0.5 * w * u.x.signum(), 0.5 * h * u.y.signum()),
+        Shape::Polygon(p) => *p
+            .vertices
+            .iter()
+            .max_by(|a, b| a.dot(&u).total_cmp(&b.dot(&u)))
+            .expect("vertices"),
     };
     pose.to_world_vector(p)
 }

@@ -72,6 +72,11 @@ fn demo_file_covers_every_pair_kind() {
         "circle-rectangle",
         "ellipse-rectangle",
         "rectangle-rectangle",
+        "polygon-polygon",
+        "polygon-wall",
+        "circle-polygon",
+        "ellipse-polygon",
+        "polygon-rectangle",
     ] {
         assert!(kinds.contains(expected), "demo lacks {expected}: {kinds:?}");
     }

@@ -50,6 +50,15 @@ impl Spec {
                     Shape::Circle { r } => Shape::Circle { r: r * k },
                     Shape::Ellipse { a, b } => Shape::Ellipse { a: a * k, b: b * k },
                     Shape::Rectangle { w, h } => Shape::Rectangle { w: w * k, h: h * k },
+                    Shape::Polygon(p) => Shape::Polygon(
+                        dem2d::geometry::Polygon::new(
+                            &p.vertices
+                                .iter()
+                                .map(|v| [v.x * k, v.y * k])
+                                .collect::<Vec<_>>(),
+                        )
+                        .unwrap(),
+                    ),
                 },
                 [p[0] * k, p[1] * k],
                 t,
@@ -73,6 +82,7 @@ impl Spec {
                     Shape::Circle { r } => RShape::Circle { r },
                     Shape::Ellipse { a, b } => RShape::Ellipse { a, b },
                     Shape::Rectangle { w, h } => RShape::Rectangle { w, h },
+                    Shape::Polygon(_) => unreachable!("no polygons in these families"),
                 },
                 pos,
                 angle,
@@ -85,6 +95,9 @@ impl Spec {
             Spec::Body(Shape::Circle { r }, ..) => vec![r],
             Spec::Body(Shape::Ellipse { a, b }, ..) => vec![a, b],
             Spec::Body(Shape::Rectangle { w, h }, ..) => vec![w, h],
+            Spec::Body(Shape::Polygon(p), ..) => {
+                vec![2.0 * p.inscribed_radius, 2.0 * p.bounding_radius]
+            }
             Spec::Wall(..) => vec![],
         }
     }
@@ -135,6 +148,14 @@ fn support_point(shape: &Shape, angle: f64, n: [f64; 2]) -> [f64; 2] {
             (a * a * ux / h, b * b * uy / h)
         }
         Shape::Rectangle { w, h } => (0.5 * w * ux.signum(), 0.5 * h * uy.signum()),
+        Shape::Polygon(p) => {
+            let v = p
+                .vertices
+                .iter()
+                .max_by(|a, b| (a.x * ux + a.y * uy).total_cmp(&(b.x * ux + b.y * uy)))
+                .expect("vertices");
+            (v.x, v.y)
+        }
     };
     [c * px - s * py, s * px + c * py]
 }

@@ -2,8 +2,8 @@
 //!
 //! Exchanging i and j must give the same state and depth, the same point and chord, the normal
 //! negated — and for the overlap area the same area, length and point, with the normal and the
-//! couple negated. A seeded generator draws pairs of every kind — circle, ellipse, rectangle and
-//! wall, in every combination and both orders — coincident, concentric, contained (including
+//! couple negated. A seeded generator draws pairs of every kind — circle, ellipse, rectangle,
+//! convex polygon (3 to 12 vertices on an ellipse, at any aspect) and wall, in every combination and both orders — coincident, concentric, contained (including
 //! thin ellipses inside another body), touching, overlapping from 1e-12 to 0.3 of the smaller
 //! size, deep (four crossings), separated, and any of those up to 1e6 sizes from the origin
 //! with walls whose point is up to 1e6 sizes along the line from the body.
@@ -16,7 +16,7 @@
 //! then i and j cannot be told apart, the two orders are the same computation, and the normal
 //! cannot be both `n` and `−n`; everything else is still compared.
 
-use dem2d::geometry::{Pose, Shape, Vec2, Wall};
+use dem2d::geometry::{Polygon, Pose, Shape, Vec2, Wall};
 use dem2d::narrow_phase::circle_circle::overlap_circle_circle;
 use dem2d::narrow_phase::ellipse_ellipse::Warm;
 use dem2d::narrow_phase::{
@@ -25,10 +25,30 @@ use dem2d::narrow_phase::{
 use dem2d::validation::rng::Rng;
 
 /// The kinds of object, in the order of the generator.
-const KINDS: [&str; 4] = ["circle", "ellipse", "rectangle", "wall"];
+const KINDS: [&str; 5] = ["circle", "ellipse", "rectangle", "polygon", "wall"];
 
-/// A random shape of `kind` (0 circle, 1 ellipse, 2 rectangle) of size about `s`, with an
-/// aspect ratio up to `max_aspect`.
+/// The wall's index in [`KINDS`].
+const WALL: usize = 4;
+
+/// A random convex polygon: 3 to 12 vertices on the ellipse `(a, a/aspect)`, one in each of
+/// equal sectors of eccentric angle (so never two on a line), turned by a random angle.
+fn polygon(a: f64, aspect: f64, rng: &mut Rng) -> Shape {
+    let n = 3 + (rng.uniform() * 10.0) as usize;
+    let turn = rng.angle();
+    let sector = std::f64::consts::TAU / n as f64;
+    let v: Vec<[f64; 2]> = (0..n)
+        .map(|k| {
+            let t = sector * (k as f64 + rng.range(0.1, 0.9));
+            let (x, y) = (a * t.cos(), a / aspect * t.sin());
+            let (s, c) = turn.sin_cos();
+            [c * x - s * y, s * x + c * y]
+        })
+        .collect();
+    Shape::Polygon(Polygon::new(&v).expect("points on an ellipse are in convex position"))
+}
+
+/// A random shape of `kind` (0 circle, 1 ellipse, 2 rectangle, 3 polygon) of size about `s`,
+/// with an aspect ratio up to `max_aspect`.
 fn shape(kind: usize, s: f64, max_aspect: f64, rng: &mut Rng) -> Shape {
     let aspect = (rng.uniform() * max_aspect.ln()).exp();
     match kind {
@@ -39,10 +59,11 @@ fn shape(kind: usize, s: f64, max_aspect: f64, rng: &mut Rng) -> Shape {
             a: s,
             b: s / aspect,
         },
-        _ => Shape::Rectangle {
+        2 => Shape::Rectangle {
             w: 2.0 * s,
             h: 2.0 * s / aspect,
         },
+        _ => polygon(s, aspect, rng),
     }
 }
 
@@ -53,6 +74,7 @@ fn support(shape: &Shape, angle: f64, n: [f64; 2]) -> f64 {
         Shape::Circle { r } => r,
         Shape::Ellipse { a, b } => ((a * ux) * (a * ux) + (b * uy) * (b * uy)).sqrt(),
         Shape::Rectangle { w, h } => 0.5 * (w * ux.abs() + h * uy.abs()),
+        Shape::Polygon(p) => p.support(Vec2::new(ux, uy)),
     }
 }
 
@@ -67,6 +89,14 @@ fn support_point(shape: &Shape, angle: f64, n: [f64; 2]) -> [f64; 2] {
             (a * a * ux / h, b * b * uy / h)
         }
         Shape::Rectangle { w, h } => (0.5 * w * ux.signum(), 0.5 * h * uy.signum()),
+        Shape::Polygon(p) => {
+            let v = p
+                .vertices
+                .iter()
+                .max_by(|a, b| (a.x * ux + a.y * uy).total_cmp(&(b.x * ux + b.y * uy)))
+                .expect("vertices");
+            (v.x, v.y)
+        }
     };
     [c * px - s * py, s * px + c * py]
 }
@@ -121,13 +151,13 @@ fn body(shape: Shape, p: [f64; 2], th: f64) -> Object {
     }
 }
 
-/// Draws a pair of kinds `(ki, kj)` (3 = wall) in configuration `cfg`, at `offset` from the
+/// Draws a pair of kinds `(ki, kj)` (4 = wall) in configuration `cfg`, at `offset` from the
 /// origin (a wall's point slid up to `offset` along its line), with sizes about `s`.
 fn draw(ki: usize, kj: usize, cfg: Config, offset: f64, s: f64, rng: &mut Rng) -> Pair {
     let o = unit(rng.angle());
     let far = offset * rng.uniform();
     let origin = [far * o[0], far * o[1]];
-    let (wall_i, wall_j) = (ki == 3, kj == 3);
+    let (wall_i, wall_j) = (ki == WALL, kj == WALL);
     if wall_i || wall_j {
         // A body and a wall; the wall's depth into the body set by the configuration.
         let kb = if wall_i { kj } else { ki };
@@ -135,7 +165,9 @@ fn draw(ki: usize, kj: usize, cfg: Config, offset: f64, s: f64, rng: &mut Rng) -
         let sb = shape(kb, s, aspect, rng);
         let th = rng.angle();
         let n = unit(rng.angle());
-        let h = support(&sb, th, n);
+        // The body's extent below its centre along the wall's normal (a polygon's support is
+        // not symmetric).
+        let h = support(&sb, th, [-n[0], -n[1]]);
         let small = s * 10f64.powf(rng.range(-12.0, -0.5));
         let nu = match cfg {
             Config::Identical => h, // the line through the centre
@@ -199,10 +231,11 @@ fn draw(ki: usize, kj: usize, cfg: Config, offset: f64, s: f64, rng: &mut Rng) -
                     a: len,
                     b: len / thin,
                 },
-                _ => Shape::Rectangle {
+                2 => Shape::Rectangle {
                     w: 2.0 * len,
                     h: 2.0 * len / thin,
                 },
+                _ => polygon(len, thin, rng),
             };
             let off = rng.range(0.0, 0.6) * s;
             (si, sj, [0.0; 2], [off * dir[0], off * dir[1]], ti, tj)
@@ -211,13 +244,14 @@ fn draw(ki: usize, kj: usize, cfg: Config, offset: f64, s: f64, rng: &mut Rng) -
             let thin = rng.range(3.0, 20.0);
             let si = shape(ki, s, 1.0, rng);
             let sj = shape(kj, s * rng.range(0.8, 1.2), 1.0, rng);
-            let slim = |sh: Shape| match sh {
+            let off = rng.range(0.0, 0.2) * s / thin;
+            let tj = ti + std::f64::consts::FRAC_PI_2 + rng.range(-0.5, 0.5);
+            let mut slim = |sh: Shape| match sh {
                 Shape::Circle { r } => Shape::Circle { r },
                 Shape::Ellipse { a, .. } => Shape::Ellipse { a, b: a / thin },
                 Shape::Rectangle { w, .. } => Shape::Rectangle { w, h: w / thin },
+                Shape::Polygon(p) => polygon(p.bounding_radius, thin, rng),
             };
-            let off = rng.range(0.0, 0.2) * s / thin;
-            let tj = ti + std::f64::consts::FRAC_PI_2 + rng.range(-0.5, 0.5);
             (
                 slim(si),
                 slim(sj),
@@ -310,7 +344,7 @@ fn every_pair_kind_is_swap_symmetric() {
     let mut total = 0;
     for (ki, name_i) in KINDS.iter().enumerate() {
         for (kj, name_j) in KINDS.iter().enumerate() {
-            if ki == 3 && kj == 3 {
+            if ki == WALL && kj == WALL {
                 continue;
             }
             for (c, &cfg) in CONFIGS.iter().enumerate() {
@@ -398,14 +432,15 @@ fn every_pair_kind_is_swap_symmetric() {
     for ((i, j, s), n) in &seen {
         println!("{i:>9}–{j:<9} {s:<10} {n}");
     }
+    println!("{total} pairs, each both ways round");
     // Every kind pair meets every state it can have (touching is a thin set for corners).
     for (ki, name_i) in KINDS.iter().enumerate() {
         for (kj, name_j) in KINDS.iter().enumerate() {
-            if ki == 3 && kj == 3 {
+            if ki == WALL && kj == WALL {
                 continue;
             }
             let mut wanted = vec!["separated", "overlap", "contained"];
-            if (ki == 1 || ki == 2) && (kj == 1 || kj == 2) {
+            if (1..=3).contains(&ki) && (1..=3).contains(&kj) {
                 wanted.push("deep");
             }
             for s in wanted {

@@ -136,13 +136,16 @@ pub fn anisotropy(frame: &Frame, inside: &[bool]) -> Anisotropy {
     }
 }
 
-/// The direction of a body's long axis (radians), or `None` for a circle (and a square).
+/// The direction of a body's long axis (radians), or `None` for a circle (and a square, and a
+/// polygon whose second moments of area are equal about every axis, as a regular one's).
 pub fn long_axis(shape: &Shape, angle: f64) -> Option<f64> {
     match *shape {
         Shape::Circle { .. } => None,
         Shape::Ellipse { a, b } if a != b => Some(if a > b { angle } else { angle + 0.5 * PI }),
         Shape::Rectangle { w, h } if w != h => Some(if w > h { angle } else { angle + 0.5 * PI }),
         Shape::Ellipse { .. } | Shape::Rectangle { .. } => None,
+        // The principal axis of the larger second moment of area (none for a regular polygon).
+        Shape::Polygon(p) => p.long_axis.map(|t| angle + t),
     }
 }
 

@@ -7,7 +7,8 @@
 //!   the circle adds its triangle, a piece outside adds the circular sector it subtends.
 //! - An ellipse: the affine map `x ↦ diag(1/a, 1/b) Rᵀ (x − c)` takes it to the unit disk and the
 //!   window to a parallelogram; areas scale by `ab`.
-//! - A rectangle: its outline clipped by the window (Sutherland–Hodgman), then the shoelace.
+//! - A rectangle or a polygon: its outline clipped by the window (Sutherland–Hodgman), then the
+//!   shoelace.
 
 use super::{Frame, FrameBody, Window};
 use crate::geometry::{Shape, Vec2};
@@ -118,10 +119,14 @@ pub fn clipped_area(b: &FrameBody, w: Window) -> f64 {
                 .collect();
             a * bb * disk_polygon(&poly, 1.0)
         }
-        Shape::Rectangle { w: rw, h } => {
-            let (ex, ey) = (Vec2::new(c, s) * (0.5 * rw), Vec2::new(-s, c) * (0.5 * h));
-            let p = b.position;
-            let outline = [p - ex - ey, p + ex - ey, p + ex + ey, p - ex + ey];
+        Shape::Rectangle { .. } | Shape::Polygon(_) => {
+            let outline: Vec<Vec2> = b
+                .shape
+                .corners()
+                .expect("flat-faced shapes have corners")
+                .iter()
+                .map(|v| b.position + Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y))
+                .collect();
             let clipped = clip(&outline, w);
             if clipped.len() < 3 {
                 0.0

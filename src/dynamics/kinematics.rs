@@ -28,6 +28,11 @@
 //! choice, the distance from the centroid to the contact point, is the same as ℓ at an
 //! ellipse's axes and a rectangle's face centres, and larger elsewhere.)
 //!
+//! Polygons need no special case: a vertex has infinite curvature (R = 0), which no
+//! curvature-based radius could use, but its support distance along any normal is finite — the
+//! distance from the centroid to the tangent line through that vertex — and bounded by the
+//! polygon's inscribed and bounding radii.
+//!
 //! The rolling inertia is the pair's equivalent moment of inertia for a rotation about the
 //! contact point (Ai et al.; LIGGGHTS): `1/I_r = 1/(I_i + m_i d_i²) + 1/(I_j + m_j d_j²)` with
 //! `d` the distance from each centroid to the contact point (parallel axes; a wall: ∞);

@@ -9,15 +9,18 @@ pub fn area(shape: &Shape) -> f64 {
         Shape::Circle { r } => PI * r * r,
         Shape::Ellipse { a, b } => PI * a * b,
         Shape::Rectangle { w, h } => w * h,
+        Shape::Polygon(p) => p.area, // the shoelace formula (geometry::polygon)
     }
 }
 
 /// Moment of inertia about the centroid divided by mass: disk `r²/2`, ellipse `(a² + b²)/4`,
-/// rectangle `(w² + h²)/12` (T2, in 2D).
+/// rectangle `(w² + h²)/12` (T2, in 2D), polygon `J/A` from its polar second moment of area
+/// (Eberly's polygon moments, see `geometry::polygon`).
 pub fn inertia_per_mass(shape: &Shape) -> f64 {
     match *shape {
         Shape::Circle { r } => 0.5 * r * r,
         Shape::Ellipse { a, b } => 0.25 * (a * a + b * b),
         Shape::Rectangle { w, h } => (w * w + h * h) / 12.0,
+        Shape::Polygon(p) => p.inertia_per_mass,
     }
 }

@@ -8,7 +8,9 @@ pub mod cubic;
 pub mod mass;
 pub mod overlap_area;
 pub mod pencil;
+pub mod polygon;
 pub mod shape;
 pub mod support;
 
+pub use polygon::{Polygon, PolygonError};
 pub use shape::{Pose, Shape, ShapeError, Vec2, Wall};

@@ -3,6 +3,7 @@
 //! Conventions (see the crate docs): angles in radians, counter-clockwise; a body's angle is that
 //! of its own x axis, which carries an ellipse's semi-axis `a` and a rectangle's width `w`.
 
+use super::polygon::Polygon;
 use std::fmt;
 
 /// A 2D vector (positions, directions, velocities).
@@ -17,6 +18,9 @@ pub enum Shape {
     Ellipse { a: f64, b: f64 },
     /// A rectangle of full width `w` (along the body's x axis) and full height `h`.
     Rectangle { w: f64, h: f64 },
+    /// A convex polygon (vertices counter-clockwise about the centroid, shared by every body of
+    /// this shape: see [`Polygon`]).
+    Polygon(Polygon),
 }
 
 /// Why a shape is not usable.
@@ -47,6 +51,8 @@ impl Shape {
             Shape::Circle { r } => &[("r", r)],
             Shape::Ellipse { a, b } => &[("a", a), ("b", b)],
             Shape::Rectangle { w, h } => &[("w", w), ("h", h)],
+            // Checked when it was built (`Polygon::new`).
+            Shape::Polygon(_) => &[],
         };
         for &(field, value) in fields {
             if !(value.is_finite() && value > 0.0) {
@@ -63,6 +69,7 @@ impl Shape {
             Shape::Circle { r } => r,
             Shape::Ellipse { a, b } => a.max(b),
             Shape::Rectangle { w, h } => 0.5 * w.hypot(h),
+            Shape::Polygon(p) => p.bounding_radius,
         }
     }
 
@@ -73,6 +80,7 @@ impl Shape {
             Shape::Circle { r } => r,
             Shape::Ellipse { a, b } => a.min(b),
             Shape::Rectangle { w, h } => 0.5 * w.min(h),
+            Shape::Polygon(p) => p.inscribed_radius,
         }
     }
 
@@ -83,18 +91,19 @@ impl Shape {
     }
 
     /// The largest radius of curvature of the boundary: circle `r`, ellipse `a²/b` (a ≥ b, at
-    /// the ends of the minor axis), rectangle ∞ (a face).
+    /// the ends of the minor axis), rectangle and polygon ∞ (a face).
     pub fn max_curvature_radius(&self) -> f64 {
         match *self {
             Shape::Circle { r } => r,
             Shape::Ellipse { a, b } => a.max(b) * a.max(b) / a.min(b),
-            Shape::Rectangle { .. } => f64::INFINITY,
+            Shape::Rectangle { .. } | Shape::Polygon(_) => f64::INFINITY,
         }
     }
 
     /// Centred support function `h(u) = max over the shape of u·x` for a direction `u` in the
     /// shape's own frame (not necessarily unit: the result scales with |u|): circle `r|u|`,
-    /// ellipse `√(a²u_x² + b²u_y²)`, rectangle `(w|u_x| + h|u_y|)/2`. For a unit `u` it is the
+    /// ellipse `√(a²u_x² + b²u_y²)`, rectangle `(w|u_x| + h|u_y|)/2`, polygon the largest `u·v`
+    /// over its vertices (not centrally symmetric: `h(−u) ≠ h(u)` in general). For a unit `u` it is the
     /// distance from the centroid to the tangent line whose outward normal is `u`.
     #[inline]
     pub fn support(&self, u: Vec2) -> f64 {
@@ -105,7 +114,7 @@ impl Shape {
     /// for the Hertz radius R* (T11): circle `r`; ellipse `a²b²/h³` with `h` its support along
     /// `u` (closed form at the support point); rectangle: the radius of the circle of equal
     /// area (a corner has R = 0 and a face R = ∞, neither usable in √(R*δ): a documented
-    /// choice).
+    /// choice); a polygon likewise (its vertices have R = 0, its faces R = ∞).
     #[inline]
     pub fn curvature_radius(&self, u: Vec2) -> f64 {
         match *self {
@@ -115,6 +124,7 @@ impl Shape {
                 (a * a * b * b) / (h * h * h)
             }
             Shape::Rectangle { w, h } => (w * h / std::f64::consts::PI).sqrt(),
+            Shape::Polygon(p) => (p.area / std::f64::consts::PI).sqrt(),
         }
     }
 
@@ -124,17 +134,20 @@ impl Shape {
     pub fn is_circle(&self) -> bool {
         match self {
             Shape::Circle { .. } => true,
-            Shape::Ellipse { .. } | Shape::Rectangle { .. } => false,
+            Shape::Ellipse { .. } | Shape::Rectangle { .. } | Shape::Polygon(_) => false,
         }
     }
 
-    /// True for a shape bounded by straight faces (a rectangle): two such shapes overlap in a
-    /// polygon, and the area law takes their flat-equivalent potential.
+    /// True for a shape whose contacts take the flat-faced laws (a rectangle): against a wall a
+    /// Winkler foundation, and between two such shapes the area law's flat-equivalent potential.
+    /// A polygon is *not*: it takes the laws of smooth bodies (the equal-area lens), so that a
+    /// many-sided polygon's contact converges to the smooth body's it approximates (see the
+    /// README's polygon section).
     #[inline]
     pub fn is_flat_sided(&self) -> bool {
         match self {
             Shape::Rectangle { .. } => true,
-            Shape::Circle { .. } | Shape::Ellipse { .. } => false,
+            Shape::Circle { .. } | Shape::Ellipse { .. } | Shape::Polygon(_) => false,
         }
     }
 
@@ -145,7 +158,9 @@ impl Shape {
     pub fn face_length(&self) -> f64 {
         match *self {
             Shape::Rectangle { w, h } => 0.5 * (w + h),
-            Shape::Circle { .. } | Shape::Ellipse { .. } => self.bounding_radius(),
+            Shape::Circle { .. } | Shape::Ellipse { .. } | Shape::Polygon(_) => {
+                self.bounding_radius()
+            }
         }
     }
 
@@ -163,21 +178,43 @@ impl Shape {
 
     /// The largest normal lever arm `|r × n|` a contact can have on this shape (the largest
     /// distance from the centroid to a boundary normal line): circle 0, ellipse `|a − b|`,
-    /// rectangle half its diagonal (a corner can take any normal).
+    /// rectangle half its diagonal (a corner can take any normal), polygon its bounding radius
+    /// (likewise).
     pub fn max_normal_lever(&self) -> f64 {
         match *self {
             Shape::Circle { .. } => 0.0,
             Shape::Ellipse { a, b } => (a - b).abs(),
             Shape::Rectangle { w, h } => 0.5 * w.hypot(h),
+            Shape::Polygon(p) => p.bounding_radius,
         }
     }
 
-    /// The shape's type name as written in case files (`circle`, `ellipse`, `rectangle`).
+    /// The shape's type name as written in case files (`circle`, `ellipse`, `rectangle`,
+    /// `polygon`).
     pub fn type_name(&self) -> &'static str {
         match self {
             Shape::Circle { .. } => "circle",
             Shape::Ellipse { .. } => "ellipse",
             Shape::Rectangle { .. } => "rectangle",
+            Shape::Polygon(_) => "polygon",
+        }
+    }
+
+    /// The boundary as a closed list of body-frame points for drawing, where the shape has
+    /// corners (rectangle, polygon): its vertices counter-clockwise; `None` for a conic.
+    pub fn corners(&self) -> Option<Vec<Vec2>> {
+        match *self {
+            Shape::Circle { .. } | Shape::Ellipse { .. } => None,
+            Shape::Rectangle { w, h } => {
+                let (x, y) = (0.5 * w, 0.5 * h);
+                Some(vec![
+                    Vec2::new(-x, -y),
+                    Vec2::new(x, -y),
+                    Vec2::new(x, y),
+                    Vec2::new(-x, y),
+                ])
+            }
+            Shape::Polygon(p) => Some(p.vertices.to_vec()),
         }
     }
 }

@@ -8,13 +8,15 @@ use super::shape::Shape;
 /// Centred support function of `shape` for a direction given by its components `(ux, uy)` in
 /// the shape's own frame (not necessarily unit: the result scales with |u|).
 ///
-/// circle `r|u|`; ellipse `√(a²ux² + b²uy²)`; rectangle `(w|ux| + h|uy|)/2` (the farthest corner).
+/// circle `r|u|`; ellipse `√(a²ux² + b²uy²)`; rectangle `(w|ux| + h|uy|)/2` (the farthest corner);
+/// polygon `max_k u·v_k` over its vertices.
 #[inline]
 pub fn support_local(shape: &Shape, ux: f64, uy: f64) -> f64 {
     match *shape {
         Shape::Circle { r } => r * ux.hypot(uy),
         Shape::Ellipse { a, b } => ((a * ux) * (a * ux) + (b * uy) * (b * uy)).sqrt(),
         Shape::Rectangle { w, h } => 0.5 * (w * ux.abs() + h * uy.abs()),
+        Shape::Polygon(p) => p.support(super::shape::Vec2::new(ux, uy)),
     }
 }
 

@@ -42,7 +42,7 @@ impl PairCache {
     pub fn kept_with(shape: &Shape) -> bool {
         match shape {
             Shape::Ellipse { .. } => true,
-            Shape::Circle { .. } | Shape::Rectangle { .. } => false,
+            Shape::Circle { .. } | Shape::Rectangle { .. } | Shape::Polygon(_) => false,
         }
     }
 

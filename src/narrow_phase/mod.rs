@@ -63,6 +63,10 @@ pub mod circle_ellipse;
 pub mod circle_wall;
 pub mod ellipse_ellipse;
 pub mod ellipse_wall;
+pub mod polygon_circle;
+pub mod polygon_conic;
+pub mod polygon_polygon;
+pub mod polygon_wall;
 pub mod rectangle_conic;
 pub mod rectangle_rectangle;
 pub mod rectangle_wall;
@@ -297,6 +301,7 @@ fn contact_in_order(
             Circle { r } => circle_wall::contact_wall_circle(wall, r, pose, request),
             Ellipse { a, b } => ellipse_wall::contact_wall_ellipse(wall, a, b, pose, request),
             Rectangle { w, h } => rectangle_wall::contact_wall_rectangle(wall, w, h, pose),
+            Polygon(ref p) => polygon_wall::contact_wall_polygon(wall, p, pose),
         }),
         (
             Object::Body {
@@ -323,8 +328,35 @@ fn contact_in_order(
             (Rectangle { w: wi, h: hi }, Rectangle { w: wj, h: hj }) => plain(
                 rectangle_rectangle::contact_rectangle_rectangle(wi, hi, pi, wj, hj, pj, request),
             ),
+            (Polygon(p), Circle { r }) => plain(polygon_circle::contact_polygon_circle(
+                &p, pi, r, pj, request,
+            )),
+            (Polygon(p), Ellipse { a, b }) => plain(polygon_conic::contact_polygon_ellipse(
+                &p, pi, a, b, pj, request,
+            )),
+            (Polygon(p), Polygon(q)) => plain(polygon_polygon::contact_polygon_polygon(
+                &p.vertices,
+                p.bounding_radius,
+                pi,
+                &q.vertices,
+                q.bounding_radius,
+                pj,
+                request,
+            )),
+            (Polygon(p), rect @ Rectangle { .. }) => {
+                plain(polygon_polygon::contact_polygon_polygon(
+                    &p.vertices,
+                    p.bounding_radius,
+                    pi,
+                    &rect.corners().expect("a rectangle has corners"),
+                    rect.bounding_radius(),
+                    pj,
+                    request,
+                ))
+            }
             (Ellipse { .. }, Circle { .. })
-            | (Circle { .. } | Ellipse { .. }, Rectangle { .. }) => {
+            | (Circle { .. } | Ellipse { .. }, Rectangle { .. })
+            | (Circle { .. } | Ellipse { .. } | Rectangle { .. }, Polygon(_)) => {
                 unreachable!("computed the other way round (computed_in_order)")
             }
         },
@@ -336,7 +368,8 @@ fn contact_in_order(
 
 /// Whether the pair `(i, j)` is computed in the order given (i first), rather than as `(j, i)`
 /// and swapped; `None` for two walls. The canonical order: a wall before a body; between two
-/// kinds of body, a rectangle before a conic and a circle before an ellipse; between two bodies
+/// kinds of body, a polygon before everything else, a rectangle before a conic and a circle
+/// before an ellipse; between two bodies
 /// of the same kind, [`computed_first`] — but two circles are computed as given, their closed
 /// form being exactly symmetric (see the module documentation).
 #[inline(always)]
@@ -359,29 +392,34 @@ pub fn computed_in_order(i: &Object, j: &Object) -> Option<bool> {
             std::cmp::Ordering::Greater => false,
             std::cmp::Ordering::Equal => match si {
                 Shape::Circle { .. } => true,
-                Shape::Ellipse { .. } | Shape::Rectangle { .. } => computed_first(si, pi, sj, pj),
+                Shape::Ellipse { .. } | Shape::Rectangle { .. } | Shape::Polygon(_) => {
+                    computed_first(si, pi, sj, pj)
+                }
             },
         }),
     }
 }
 
-/// Which of two bodies of different kinds a pair computes first: the lower rank. A rectangle
-/// comes first against a conic (its kernel cuts the conic with its edges), a circle first
+/// Which of two bodies of different kinds a pair computes first: the lower rank. A polygon
+/// comes first against any other body (its kernels clip or cut the other with its edges; a
+/// rectangle is passed to the polygon pair as its corners), a rectangle first against a conic (its kernel cuts the conic with its edges), a circle first
 /// against an ellipse (the pencil's frame is centred on the first, and a circle's orientation
 /// is arbitrary).
 #[inline(always)]
 fn kind_rank(s: &Shape) -> u8 {
     match s {
-        Shape::Rectangle { .. } => 0,
-        Shape::Circle { .. } => 1,
-        Shape::Ellipse { .. } => 2,
+        Shape::Polygon(_) => 0,
+        Shape::Rectangle { .. } => 1,
+        Shape::Circle { .. } => 2,
+        Shape::Ellipse { .. } => 3,
     }
 }
 
 /// Whether a pair of two bodies of the same kind is computed in the order given (i first),
 /// rather than as (j, i) and swapped: the canonical order, by the sizes (`a` then `b`, or `w`
-/// then `h`), then the position (x then y), then the orientation (cos then sin), i before j when
-/// its key is not greater. Every kernel computes in a frame centred on its first body and decides
+/// then `h`; a polygon's area then bounding radius), then the position (x then y), then the
+/// orientation (cos then sin), then (two polygons only) the vertex lists, i before j when its
+/// key is not greater. Every kernel computes in a frame centred on its first body and decides
 /// on quantities rounded in that frame, so only one order per pair makes the swap exact, in the
 /// state as in the last bit. The order depends on the pair alone (never on how it was called);
 /// two bodies with equal keys are the same object in the same place, and either order computes
@@ -393,6 +431,7 @@ pub fn computed_first(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose) -> bool {
             Shape::Circle { r } => (r, r),
             Shape::Ellipse { a, b } => (a, b),
             Shape::Rectangle { w, h } => (w, h),
+            Shape::Polygon(q) => (q.area, q.bounding_radius),
         };
         let (c, sn) = p.cos_sin();
         [u, v, p.position.x, p.position.y, c, sn]
@@ -404,6 +443,18 @@ pub fn computed_first(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose) -> bool {
             std::cmp::Ordering::Greater => return false,
             std::cmp::Ordering::Equal => {}
         }
+    }
+    if let (Shape::Polygon(p), Shape::Polygon(q)) = (si, sj) {
+        let flat = |v: &[Vec2]| v.iter().flat_map(|x| [x.x, x.y]).collect::<Vec<f64>>();
+        let (a, b) = (flat(&p.vertices), flat(&q.vertices));
+        for (x, y) in a.iter().zip(&b) {
+            match x.total_cmp(y) {
+                std::cmp::Ordering::Less => return true,
+                std::cmp::Ordering::Greater => return false,
+                std::cmp::Ordering::Equal => {}
+            }
+        }
+        return a.len() <= b.len();
     }
     true
 }

@@ -28,7 +28,9 @@ pub fn contact_rectangle_conic(
     let (a, b) = match *conic {
         Shape::Circle { r } => (r, r),
         Shape::Ellipse { a, b } => (a, b),
-        Shape::Rectangle { .. } => unreachable!("rectangle pairs go to rectangle_rectangle"),
+        Shape::Rectangle { .. } | Shape::Polygon(_) => {
+            unreachable!("rectangle and polygon pairs have their own kernels")
+        }
     };
     let dv = pi.position - pj.position; // rectangle centre relative to the conic
     let d = dv.norm();

@@ -26,8 +26,8 @@ pub const SAGITTA: f64 = 1e-3;
 pub const TURN_MAX: f64 = TAU / 72.0;
 
 /// The vertices of `shape` in its own frame (centroid at the origin, x along the body's axis),
-/// counter-clockwise from the end of its x semi-axis (a rectangle: from its lower-left corner);
-/// not closed.
+/// counter-clockwise from the end of its x semi-axis (a rectangle: from its lower-left corner; a
+/// polygon: its vertices as given, shifted to the centroid); not closed.
 pub fn body_frame_vertices(shape: &Shape) -> Vec<(f64, f64)> {
     match *shape {
         Shape::Circle { r } => (0..72)
@@ -39,6 +39,7 @@ pub fn body_frame_vertices(shape: &Shape) -> Vec<(f64, f64)> {
             let (u, v) = (0.5 * w, 0.5 * h);
             vec![(-u, -v), (u, -v), (u, v), (-u, v)]
         }
+        Shape::Polygon(p) => p.vertices.iter().map(|v| (v.x, v.y)).collect(),
     }
 }
 

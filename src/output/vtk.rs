@@ -13,8 +13,10 @@
 //!
 //! Cell data (zero where an array does not apply to a kind): `id` (body index, contact ordinal,
 //! wall index), `pair` (a contact's i and j, a wall w given as j = −1 − w), `shape` (0 circle, 1
-//! ellipse, 2 rectangle, −1 not a body), `semi_axes` (a, b: an ellipse's semi-axes, (r, r) for a
-//! circle, (w/2, h/2) for a rectangle), `angle` (rad), `velocity` (cm/s, 3 components, z = 0),
+//! ellipse, 2 rectangle, 3 polygon, −1 not a body), `semi_axes` (a, b: an ellipse's semi-axes,
+//! (r, r) for a circle, (w/2, h/2) for a rectangle, for a polygon those of the ellipse with its
+//! second moments of area, whose a lies along the polygon's long axis — the tensor below is
+//! turned by that axis), `angle` (rad), `velocity` (cm/s, 3 components, z = 0),
 //! `angular_velocity` (rad/s), `shape_tensor` — `R diag(a², b²) Rᵀ` with **semi-axes** a, b
 //! (not diameters) and R the rotation by the body's angle, as a 3 × 3 tensor with zero z row and
 //! column; the body is `{x : (x − c)ᵀ T⁻¹ (x − c) ≤ 1}` for ellipses and circles —,
@@ -205,12 +207,17 @@ impl VtkWriter {
             }
             offsets.push(connectivity.len() as i64);
             types.push(VTK_POLYGON);
-            let (kind, (sa, sb)) = match b.shape[k] {
-                Shape::Circle { r } => (0, (r, r)),
-                Shape::Ellipse { a, b } => (1, (a, b)),
-                Shape::Rectangle { w, h } => (2, (0.5 * w, 0.5 * h)),
+            let (kind, (sa, sb), turn) = match b.shape[k] {
+                Shape::Circle { r } => (0, (r, r), 0.0),
+                Shape::Ellipse { a, b } => (1, (a, b), 0.0),
+                Shape::Rectangle { w, h } => (2, (0.5 * w, 0.5 * h), 0.0),
+                Shape::Polygon(p) => (
+                    3,
+                    (p.moment_ellipse[0], p.moment_ellipse[1]),
+                    p.long_axis.unwrap_or(0.0),
+                ),
             };
-            let (sn, cs) = angle.sin_cos();
+            let (sn, cs) = (angle + turn).sin_cos();
             let (a2, b2) = (sa * sa, sb * sb);
             let (txx, tyy, txy) = (
                 a2 * cs * cs + b2 * sn * sn,

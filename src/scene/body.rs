@@ -1,11 +1,13 @@
 //! The BODY and wall forms:
 //! `{"shape": {"type": "ellipse", "a": 1.5, "b": 1.0}, "position": [x, y], "angle": θ}`
-//! (types `circle` with `r`, `ellipse` with `a`, `b`, `rectangle` with `w`, `h`) and
+//! (types `circle` with `r`, `ellipse` with `a`, `b`, `rectangle` with `w`, `h`, `polygon` with
+//! `vertices`: `[[x, y], …]`, counter-clockwise and convex, shifted to their centroid — the
+//! body's `position` is the centroid's) and
 //! `{"wall": {"point": [x, y], "normal": [nx, ny]}}`.
 
 use super::fields::{FieldError, Obj, index, number, scale, type_of, vec2};
 use super::ranges::{Placed, check_extent};
-use crate::geometry::{Pose, Shape, Vec2, Wall};
+use crate::geometry::{Polygon, PolygonError, Pose, Shape, Vec2, Wall};
 use crate::narrow_phase::Object;
 use serde_json::Value;
 
@@ -29,17 +31,48 @@ pub fn parse_shape(v: &Value, path: &str) -> Result<Shape, FieldError> {
             w: o.req_with("w", scale)?,
             h: o.req_with("h", scale)?,
         },
+        "polygon" => Shape::Polygon(o.req_with("vertices", polygon)?),
         other => {
             return Err(FieldError::new(
                 o.field_path("type"),
                 format!(
-                    "unknown shape type `{other}` (expected `circle`, `ellipse` or `rectangle`)"
+                    "unknown shape type `{other}` (expected `circle`, `ellipse`, `rectangle` or \
+                     `polygon`)"
                 ),
             ));
         }
     };
     o.finish()?;
     Ok(shape)
+}
+
+/// A polygon's `vertices`: an array of at least three `[x, y]`, counter-clockwise, convex, with
+/// no two consecutive vertices equal and no straight angle (see [`Polygon::new`]); errors name
+/// the vertex (`vertices[k]`) where one is at fault.
+fn polygon(v: &Value, path: &str) -> Result<Polygon, FieldError> {
+    let Some(items) = v.as_array() else {
+        return Err(FieldError::new(
+            path,
+            format!("must be an array of [x, y] vertices, got {}", type_of(v)),
+        ));
+    };
+    let vertices = items
+        .iter()
+        .enumerate()
+        .map(|(k, p)| vec2(p, &index(path, k)))
+        .collect::<Result<Vec<_>, _>>()?;
+    Polygon::new(&vertices).map_err(|e| {
+        let at = match e {
+            PolygonError::NonFinite(k)
+            | PolygonError::Duplicate(k)
+            | PolygonError::Collinear(k)
+            | PolygonError::NonConvex(k) => index(path, k),
+            PolygonError::TooFew(_) | PolygonError::Clockwise | PolygonError::ZeroArea => {
+                path.to_string()
+            }
+        };
+        FieldError::new(at, e.to_string())
+    })
 }
 
 /// A wall's inner object `{"point": [x, y], "normal": [nx, ny]}` (the normal need not be unit;

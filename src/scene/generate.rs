@@ -380,6 +380,11 @@ pub fn case_text_from(head: &[(&str, Value)], bodies: &[BodyInit]) -> String {
             Shape::Circle { r } => json!({"type": "circle", "r": r}),
             Shape::Ellipse { a, b } => json!({"type": "ellipse", "a": a, "b": b}),
             Shape::Rectangle { w, h } => json!({"type": "rectangle", "w": w, "h": h}),
+            // The centred vertices: the body's position is the centroid's.
+            Shape::Polygon(p) => json!({
+                "type": "polygon",
+                "vertices": p.vertices.iter().map(|v| [v.x, v.y]).collect::<Vec<_>>(),
+            }),
         };
         let body = json!({
             "shape": shape,

@@ -71,6 +71,12 @@ fn sizes(shape: &Shape) -> [(&'static str, f64); 2] {
         Shape::Circle { r } => [("r", r), ("r", r)],
         Shape::Ellipse { a, b } => [("a", a), ("b", b)],
         Shape::Rectangle { w, h } => [("w", w), ("h", h)],
+        // Its smallest width is at least twice the inscribed radius, its largest at most twice
+        // the bounding radius.
+        Shape::Polygon(p) => [
+            ("vertices", 2.0 * p.inscribed_radius),
+            ("vertices", 2.0 * p.bounding_radius),
+        ],
     }
 }
 

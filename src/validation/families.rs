@@ -46,6 +46,9 @@ impl Spec {
                     Shape::Circle { r } => RShape::Circle { r },
                     Shape::Ellipse { a, b } => RShape::Ellipse { a, b },
                     Shape::Rectangle { w, h } => RShape::Rectangle { w, h },
+                    Shape::Polygon(_) => unreachable!(
+                        "no polygon family here: polygons have validation::polygon_reference"
+                    ),
                 },
                 pos,
                 angle,
@@ -115,6 +118,14 @@ fn support_point(shape: &Shape, angle: f64, n: [f64; 2]) -> [f64; 2] {
             (a * a * ux / h, b * b * uy / h)
         }
         Shape::Rectangle { w, h } => (0.5 * w * ux.signum(), 0.5 * h * uy.signum()),
+        Shape::Polygon(p) => {
+            let v = p
+                .vertices
+                .iter()
+                .max_by(|a, b| (a.x * ux + a.y * uy).total_cmp(&(b.x * ux + b.y * uy)))
+                .expect("a polygon has vertices");
+            (v.x, v.y)
+        }
     };
     [c * px - s * py, s * px + c * py]
 }

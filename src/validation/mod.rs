@@ -13,5 +13,6 @@ pub mod dd;
 pub mod families;
 pub mod impact;
 pub mod overlap_reference;
+pub mod polygon_reference;
 pub mod reference;
 pub mod rng;

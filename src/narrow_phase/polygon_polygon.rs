@@ -1,0 +1,404 @@
+//! Polygon–polygon contact (and polygon–rectangle: a rectangle is passed as its four corners)
+//! by convex clipping, in a frame centred on i.
+//!
+//! The overlap of two convex polygons is a convex polygon: j is clipped by i's edge lines
+//! (Sutherland & Hodgman 1974), every edge of the result carrying the label of the body edge it
+//! lies on — an edge of j that survived, or a piece of i's clipping line. Its area (shoelace) is
+//! the exact overlap area, and the boundary crossings are the vertices where the labels change
+//! from i to j: each is a clipped point, computed once from the two edges that meet there. A
+//! run of edges where j's edge lies on i's (collinear faces, labelled both) counts as one
+//! crossing at its midpoint, as in [`super::rectangle_rectangle`], so two aligned stacked
+//! squares get the chord across the middle of their overlap.
+//!
+//! Separation and the touching depth come from the separating-axis test over both polygons'
+//! edge normals (exact for convex polygons); the depth of any normal from the support
+//! functions, `δ(n) = h_i(n) + h_j(−n)`.
+//!
+//! The gradient of the area for j's rigid motion is exact for any number of crossings: the
+//! integral of j's outward normal over the part of its boundary inside i, i.e. the sum of
+//! `L_e u_e` over the overlap's edges on j (halved on shared edges, where the one-sided
+//! derivatives differ).
+
+use super::{
+    Contact, ContactState, LocalFrame, LocalOverlap, Request, TOUCH_TOL, deep_fallback, orient,
+    pow2_floor,
+};
+use crate::geometry::overlap_area::polygon_area;
+use crate::geometry::{Pose, Vec2};
+
+/// Which body's boundary an edge of the overlap lies on.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Side {
+    I,
+    J,
+    Both,
+}
+
+/// The label a clipped edge carries while clipping: the body edge it lies on.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Label {
+    I(usize),
+    J(usize),
+}
+
+/// Contact between convex polygons i and j, given by their body-frame vertices
+/// (counter-clockwise about the centroid) and bounding radii; with `request.area`, the overlap
+/// area (the clipped polygon's, exactly) and its gradient too.
+pub fn contact_polygon_polygon(
+    vi: &[Vec2],
+    bound_i: f64,
+    pi: &Pose,
+    vj: &[Vec2],
+    bound_j: f64,
+    pj: &Pose,
+    request: &Request,
+) -> Contact {
+    let area = request.area;
+    let dv = pj.position - pi.position;
+    if dv.norm_squared() > (bound_i + bound_j) * (bound_i + bound_j) {
+        return Contact::SEPARATED;
+    }
+    let scale = pow2_floor(bound_i.max(bound_j));
+    let inv = 1.0 / scale;
+    let c = pi.to_body_vector(dv) * inv; // j's centroid in i's frame
+    let (ci, si) = pi.cos_sin();
+    let (cj, sj) = pj.cos_sin();
+    let (cr, sr) = (cj * ci + sj * si, sj * ci - cj * si); // j's axis in i's frame
+    let qi: Vec<[f64; 2]> = vi.iter().map(|v| [v.x * inv, v.y * inv]).collect();
+    // j's vertices relative to its centroid (rotated into i's frame), and placed.
+    let rj: Vec<[f64; 2]> = vj
+        .iter()
+        .map(|v| {
+            let (x, y) = (v.x * inv, v.y * inv);
+            [cr * x - sr * y, sr * x + cr * y]
+        })
+        .collect();
+    let qj: Vec<[f64; 2]> = rj.iter().map(|p| [c.x + p[0], c.y + p[1]]).collect();
+    let (ni, nj) = (qi.len(), qj.len());
+    let dot = |u: [f64; 2], p: [f64; 2]| u[0] * p[0] + u[1] * p[1];
+    let max_dot = |u: [f64; 2], ps: &[[f64; 2]]| {
+        ps.iter()
+            .map(|&p| dot(u, p))
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    // δ(n) = h_i(n) + h_j(−n), j's support about its centroid (the offset n·c apart).
+    let depth = |n: [f64; 2]| max_dot(n, &qi) + max_dot([-n[0], -n[1]], &rj) - dot(n, [c.x, c.y]);
+    let normal_of = |p: [f64; 2], q: [f64; 2]| {
+        let (ex, ey) = (q[0] - p[0], q[1] - p[1]);
+        let len = ex.hypot(ey);
+        [ey / len, -ex / len]
+    };
+    let ui: Vec<[f64; 2]> = (0..ni)
+        .map(|k| normal_of(qi[k], qi[(k + 1) % ni]))
+        .collect();
+    let uj: Vec<[f64; 2]> = (0..nj)
+        .map(|k| normal_of(rj[k], rj[(k + 1) % nj]))
+        .collect();
+    let di: Vec<f64> = (0..ni).map(|k| dot(ui[k], qi[k])).collect();
+    // Separating axes: i's outward face normals (n = u) and j's (n = −u).
+    let mut sat = (f64::INFINITY, [1.0, 0.0]);
+    for &u in &ui {
+        let dpt = depth(u);
+        if dpt < sat.0 {
+            sat = (dpt, u);
+        }
+    }
+    for &u in &uj {
+        let n = [-u[0], -u[1]];
+        let dpt = depth(n);
+        if dpt < sat.0 {
+            sat = (dpt, n);
+        }
+    }
+    let tol = TOUCH_TOL;
+    if sat.0 < -tol {
+        return Contact::SEPARATED;
+    }
+    let frame = LocalFrame {
+        origin: pi.position,
+        cos: ci,
+        sin: si,
+        scale,
+    };
+    let poly = clip(&qj, &qi, &ui, &di);
+    // The face normals give the exact penetration depth of two convex polygons, so "touching"
+    // is decided by it (an area test would scale with the square of a vertex's penetration).
+    if poly.len() < 3 || sat.0 <= tol {
+        let p = mean(&poly).unwrap_or([0.5 * c.x, 0.5 * c.y]);
+        return Contact {
+            state: ContactState::Touching,
+            geometry: Some(frame.geometry(p, p, p, sat.1, sat.0)),
+        };
+    }
+    // j's edges that lie on one of i's edge lines (same outward normal, same offset).
+    let twin: Vec<Option<usize>> = (0..nj)
+        .map(|k| {
+            (0..ni).find(|&m| {
+                dot(ui[m], uj[k]) >= 1.0 - 1e-12 && (dot(ui[m], qj[k]) - di[m]).abs() <= tol
+            })
+        })
+        .collect();
+    let mut edges: Vec<Edge> = Vec::with_capacity(poly.len());
+    for k in 0..poly.len() {
+        let (p, l) = poly[k];
+        let q = poly[(k + 1) % poly.len()].0;
+        if (q[0] - p[0]).abs() <= tol && (q[1] - p[1]).abs() <= tol {
+            continue;
+        }
+        let (side, i_side, j_side) = match l {
+            Label::I(m) => match twin.iter().position(|&t| t == Some(m)) {
+                Some(kj) => (Side::Both, Some(m), Some(kj)),
+                None => (Side::I, Some(m), None),
+            },
+            Label::J(kj) => match twin[kj] {
+                Some(m) => (Side::Both, Some(m), Some(kj)),
+                None => (Side::J, None, Some(kj)),
+            },
+        };
+        edges.push(Edge {
+            p,
+            q,
+            side,
+            i_side,
+            j_side,
+        });
+    }
+    let has_i = edges.iter().any(|e| e.side == Side::I);
+    let has_j = edges.iter().any(|e| e.side == Side::J);
+    if !(has_i && has_j) {
+        // The overlap is one polygon entirely: it lies inside the other.
+        let inner = if has_j || !has_i {
+            [c.x, c.y]
+        } else {
+            [0.0, 0.0]
+        };
+        let toward = if c.x == 0.0 && c.y == 0.0 {
+            [1.0, 0.0]
+        } else {
+            [c.x, c.y]
+        };
+        let l = toward[0].hypot(toward[1]);
+        let (n, dpt) = orient([toward[0] / l, toward[1] / l], depth);
+        // No overlap area: it no longer changes, and the contact falls back to the spring on
+        // the depth (as every pair kind's containment does).
+        return Contact {
+            state: ContactState::Contained,
+            geometry: Some(frame.geometry(inner, inner, inner, n, dpt)),
+        };
+    }
+    // Walk once around, starting on a non-shared edge; a change between I and J is a crossing,
+    // at the midpoint of the shared run between them (the common vertex when there is none).
+    let ne = edges.len();
+    let start = edges
+        .iter()
+        .position(|e| e.side != Side::Both)
+        .expect("has I and J edges");
+    let mut cross: Vec<Cross> = Vec::with_capacity(4);
+    let mut last = edges[start];
+    let mut run: Vec<usize> = Vec::new();
+    for step in 1..=ne {
+        let k = (start + step) % ne;
+        let e = edges[k];
+        if e.side == Side::Both {
+            run.push(k);
+            continue;
+        }
+        if e.side != last.side {
+            cross.push(if run.is_empty() {
+                let (ei, ej) = if e.side == Side::I {
+                    (e, last)
+                } else {
+                    (last, e)
+                };
+                Cross {
+                    point: e.p,
+                    i_side: ei.i_side,
+                    j_side: ej.j_side,
+                }
+            } else {
+                let r = edges[run[0]];
+                Cross {
+                    point: run_midpoint(&edges, &run),
+                    i_side: r.i_side,
+                    j_side: r.j_side,
+                }
+            });
+        }
+        last = e;
+        run.clear();
+    }
+    match cross.len() {
+        2 => {
+            let (a, b) = (cross[0], cross[1]);
+            // A chord along one face takes that face's normal exactly.
+            let nrm = match (a.i_side, b.i_side, a.j_side, b.j_side) {
+                (Some(x), Some(y), _, _) if x == y => ui[x],
+                (_, _, Some(x), Some(y)) if x == y => uj[x],
+                _ => {
+                    let d = [b.point[0] - a.point[0], b.point[1] - a.point[1]];
+                    let len = d[0].hypot(d[1]);
+                    [-d[1] / len, d[0] / len]
+                }
+            };
+            let (n, dpt) = orient(nrm, depth);
+            let mid = super::midpoint(a.point, b.point);
+            let mut g = frame.geometry(a.point, b.point, mid, n, dpt);
+            if area {
+                let pts: Vec<[f64; 2]> = poly.iter().map(|p| p.0).collect();
+                let a_poly = polygon_area(&pts);
+                g.area = Some(frame.overlap(&LocalOverlap::chord(a_poly, a.point, b.point, n)));
+            }
+            Contact {
+                state: ContactState::Overlap,
+                geometry: Some(g),
+            }
+        }
+        nc => {
+            let mut pts: Vec<[f64; 2]> = cross.iter().map(|c| c.point).collect();
+            if pts.len() < 2 {
+                pts.push(pts.first().copied().unwrap_or([0.5 * c.x, 0.5 * c.y]));
+            }
+            let (p, q, n, dpt) = deep_fallback(&mut pts, depth);
+            let mid = super::midpoint(p, q);
+            let mut g = frame.geometry(p, q, mid, n, dpt);
+            if area && nc >= 2 {
+                let m = pts
+                    .iter()
+                    .fold([0.0, 0.0], |s, p| [s[0] + p[0], s[1] + p[1]]);
+                let centre = [m[0] / nc as f64, m[1] / nc as f64];
+                g.area = Some(frame.overlap(&gradient(&edges, [c.x, c.y], centre)));
+            }
+            Contact {
+                state: ContactState::Deep,
+                geometry: Some(g),
+            }
+        }
+    }
+}
+
+/// The overlap's area and its exact gradient for j's rigid motion (see the module
+/// documentation), acting at `centre`; `c_j` is j's centroid.
+fn gradient(edges: &[Edge], c_j: [f64; 2], centre: [f64; 2]) -> LocalOverlap {
+    let mut pts: Vec<[f64; 2]> = edges.iter().map(|e| e.p).collect();
+    if pts.is_empty() {
+        pts.push(centre);
+    }
+    let area = polygon_area(&pts);
+    let (mut grad, mut turn) = ([0.0f64; 2], 0.0);
+    for e in edges {
+        let w = match e.side {
+            Side::J => 1.0,
+            Side::Both => 0.5,
+            Side::I => continue,
+        };
+        // L u with u the outward normal of a counter-clockwise edge: (e_y, −e_x).
+        let lu = [w * (e.q[1] - e.p[1]), -w * (e.q[0] - e.p[0])];
+        let m = super::midpoint(e.p, e.q);
+        grad[0] += lu[0];
+        grad[1] += lu[1];
+        turn += (m[0] - c_j[0]) * lu[1] - (m[1] - c_j[1]) * lu[0];
+    }
+    let lever = (centre[0] - c_j[0]) * grad[1] - (centre[1] - c_j[1]) * grad[0];
+    LocalOverlap {
+        area,
+        grad,
+        point: centre,
+        couple: -(turn - lever),
+        chord: None,
+    }
+}
+
+/// An edge of the intersection polygon and the sides of i and of j it lies on.
+#[derive(Clone, Copy, Debug)]
+struct Edge {
+    p: [f64; 2],
+    q: [f64; 2],
+    side: Side,
+    i_side: Option<usize>,
+    j_side: Option<usize>,
+}
+
+/// A boundary crossing and the sides of i and j it lies on.
+#[derive(Clone, Copy, Debug)]
+struct Cross {
+    point: [f64; 2],
+    i_side: Option<usize>,
+    j_side: Option<usize>,
+}
+
+/// The point halfway (by length) along a chain of consecutive edges.
+fn run_midpoint(edges: &[Edge], run: &[usize]) -> [f64; 2] {
+    let len = |e: &Edge| (e.q[0] - e.p[0]).hypot(e.q[1] - e.p[1]);
+    let total: f64 = run.iter().map(|&k| len(&edges[k])).sum();
+    let mut left = 0.5 * total;
+    for &k in run {
+        let e = &edges[k];
+        let l = len(e);
+        if left <= l {
+            let t = left / l;
+            return [
+                e.p[0] + t * (e.q[0] - e.p[0]),
+                e.p[1] + t * (e.q[1] - e.p[1]),
+            ];
+        }
+        left -= l;
+    }
+    edges[*run.last().expect("non-empty run")].q
+}
+
+/// Sutherland–Hodgman clipping of convex polygon `qj` (counter-clockwise) by the edge lines of
+/// convex polygon `qi` (outward normals `u`, offsets `d`: inside where `u·p ≤ d`). Each vertex
+/// carries the label of the edge leaving it.
+fn clip(qj: &[[f64; 2]], qi: &[[f64; 2]], u: &[[f64; 2]], d: &[f64]) -> Vec<([f64; 2], Label)> {
+    let mut buf: Vec<([f64; 2], Label)> = qj
+        .iter()
+        .enumerate()
+        .map(|(k, &p)| (p, Label::J(k)))
+        .collect();
+    let mut out = Vec::with_capacity(qj.len() + qi.len());
+    for m in 0..qi.len() {
+        out.clear();
+        let len = buf.len();
+        for k in 0..len {
+            let ((p, l), (q, _)) = (buf[k], buf[(k + 1) % len]);
+            let dp = u[m][0] * p[0] + u[m][1] * p[1] - d[m];
+            let dq = u[m][0] * q[0] + u[m][1] * q[1] - d[m];
+            let x = || {
+                let t = dp / (dp - dq);
+                [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]
+            };
+            if dp <= 0.0 {
+                if dq > 0.0 {
+                    // Leaving: along this edge to the line, then along the line.
+                    if dp < 0.0 {
+                        out.push((p, l));
+                        out.push((x(), Label::I(m)));
+                    } else {
+                        out.push((p, Label::I(m)));
+                    }
+                } else {
+                    out.push((p, l));
+                }
+            } else if dq < 0.0 {
+                // Entering: from the line's point on along this edge.
+                out.push((x(), l));
+            }
+        }
+        std::mem::swap(&mut buf, &mut out);
+        if buf.is_empty() {
+            break;
+        }
+    }
+    buf
+}
+
+fn mean(poly: &[([f64; 2], Label)]) -> Option<[f64; 2]> {
+    if poly.is_empty() {
+        return None;
+    }
+    let n = poly.len() as f64;
+    Some([
+        poly.iter().map(|p| p.0[0]).sum::<f64>() / n,
+        poly.iter().map(|p| p.0[1]).sum::<f64>() / n,
+    ])
+}
