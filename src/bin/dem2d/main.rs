@@ -443,8 +443,12 @@ fn set_threads(threads: Option<usize>) -> Result<(), Failure> {
     match threads {
         None => Ok(()),
         Some(0) => Err(Failure::input("--threads: must be at least 1".into())),
+        // The main thread is one of the pool's threads: the step's passes then start on it
+        // without handing each pass to another thread and waiting (on one thread: no rayon
+        // hand-off at all, the passes run in place).
         Some(n) => rayon::ThreadPoolBuilder::new()
             .num_threads(n)
+            .use_current_thread()
             .build_global()
             .map_err(|e| Failure::failed(format!("--threads: {e}"))),
     }
