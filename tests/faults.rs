@@ -43,7 +43,8 @@ fn summary(dir: &Path) -> Value {
 }
 
 /// Every line of a CSV file is whole: the file ends with a newline and every row has the
-/// header's number of fields, each a number. Returns the rows.
+/// header's number of fields, each a number or empty (a value the row does not carry:
+/// increments.csv's unbalanced ratio off the output steps, read as NaN). Returns the rows.
 fn whole_csv(file: &Path) -> Vec<Vec<f64>> {
     let text = std::fs::read_to_string(file).unwrap();
     assert!(text.ends_with('\n'), "{} ends mid-line", file.display());
@@ -55,6 +56,9 @@ fn whole_csv(file: &Path) -> Vec<Vec<f64>> {
             let row: Vec<f64> = l
                 .split(',')
                 .map(|v| {
+                    if v.is_empty() {
+                        return f64::NAN;
+                    }
                     v.parse()
                         .unwrap_or_else(|e| panic!("{} line {}: {e}", file.display(), k + 2))
                 })

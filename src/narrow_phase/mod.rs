@@ -204,6 +204,48 @@ pub enum Object {
     Wall(Wall),
 }
 
+/// One side of a pair, borrowed: what a caller that keeps its bodies elsewhere (the dynamics)
+/// hands the dispatcher, without copying shapes and poses into [`Object`]s.
+#[derive(Clone, Copy, Debug)]
+pub enum Side<'a> {
+    Body(&'a Shape, &'a Pose),
+    Wall(&'a Wall),
+}
+
+impl<'a> From<&'a Object> for Side<'a> {
+    #[inline(always)]
+    fn from(o: &'a Object) -> Self {
+        match o {
+            Object::Body { shape, pose } => Side::Body(shape, pose),
+            Object::Wall(w) => Side::Wall(w),
+        }
+    }
+}
+
+/// The lean contact record of the pair kinds whose contact is a closed form that needs no chord
+/// ([`overlap_lean`]): the state, the contact point, the unit normal from i to j and the depth —
+/// the fields of [`ContactGeometry`] a spring on the depth reads, without the ~200-byte
+/// [`Contact`] around them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LeanContact {
+    pub state: ContactState,
+    pub point: Vec2,
+    pub normal: Vec2,
+    pub depth: f64,
+}
+
+impl LeanContact {
+    #[inline(always)]
+    fn of((state, point, normal, depth): (ContactState, Vec2, Vec2, f64)) -> Self {
+        LeanContact {
+            state,
+            point,
+            normal,
+            depth,
+        }
+    }
+}
+
 /// What a query computes besides the contact's state, point, normal and depth (which it always
 /// gives), and whether to report how it got them.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -257,7 +299,13 @@ pub fn contact_with(
     cache: &mut PairCache,
     request: Request,
 ) -> Option<Contact> {
-    let in_order = computed_in_order(i, j)?;
+    contact_sides(i.into(), j.into(), cache, request)
+}
+
+/// [`contact_with`] for borrowed sides (the same dispatcher: [`contact_with`] is this).
+#[inline(always)]
+pub fn contact_sides(i: Side, j: Side, cache: &mut PairCache, request: Request) -> Option<Contact> {
+    let in_order = side_in_order(i, j)?;
     let guess = cache.warm();
     let (c, next, used) = if in_order {
         contact_in_order(i, j, guess, &request)
@@ -272,15 +320,43 @@ pub fn contact_with(
     Some(c)
 }
 
+/// The dispatcher's lean path, for the pair kinds whose contact is a closed form that needs
+/// no chord and keeps nothing in a [`PairCache`] — two circles, a wall and a circle (either way
+/// round): `Some` of what [`contact_with`] gives for them without a chord or an area (the same
+/// kernels, `overlap_circle_circle` and `overlap_wall_circle`, the same canonical order and the
+/// same flip: equal bit for bit, `None` inside when separated), as a [`LeanContact`]; `None`
+/// for every other pair kind (call [`contact_sides`]). A disk's area potential is the spring on
+/// its depth (`contact_law::normal`), so the dynamics needs no more for these pairs under either
+/// law.
+#[inline(always)]
+pub fn overlap_lean(i: Side, j: Side) -> Option<Option<LeanContact>> {
+    use Shape::Circle;
+    match (i, j) {
+        (Side::Body(Circle { r: ri }, pi), Side::Body(Circle { r: rj }, pj)) => {
+            Some(circle_circle::overlap_circle_circle(*ri, pi, *rj, pj).map(LeanContact::of))
+        }
+        (Side::Wall(wall), Side::Body(Circle { r }, pose)) => {
+            Some(circle_wall::overlap_wall_circle(wall, *r, pose).map(LeanContact::of))
+        }
+        (Side::Body(Circle { r }, pose), Side::Wall(wall)) => {
+            Some(circle_wall::overlap_wall_circle(wall, *r, pose).map(|o| {
+                // Computed with the wall as i and turned round, as the dispatcher does.
+                let mut c = LeanContact::of(o);
+                c.normal = -c.normal;
+                c
+            }))
+        }
+        _ => None,
+    }
+}
+
 /// A warm start given relative to `from`, re-expressed relative to `to` (the pair's other
 /// object). Only body pairs carry one.
 #[inline(always)]
-fn seen_from(w: Option<Warm>, from: &Object, to: &Object) -> Option<Warm> {
+fn seen_from(w: Option<Warm>, from: Side, to: Side) -> Option<Warm> {
     match (from, to) {
-        (Object::Body { pose: a, .. }, Object::Body { pose: b, .. }) => {
-            w.map(|w| w.seen_from(a, b))
-        }
-        (Object::Wall(_), _) | (_, Object::Wall(_)) => w,
+        (Side::Body(_, a), Side::Body(_, b)) => w.map(|w| w.seen_from(a, b)),
+        (Side::Wall(_), _) | (_, Side::Wall(_)) => w,
     }
 }
 
@@ -289,30 +365,21 @@ fn seen_from(w: Option<Warm>, from: &Object, to: &Object) -> Option<Warm> {
 /// whether `guess` gave the result.
 #[inline(always)]
 fn contact_in_order(
-    i: &Object,
-    j: &Object,
+    i: Side,
+    j: Side,
     guess: Option<Warm>,
     request: &Request,
 ) -> (Contact, Option<Warm>, bool) {
     use Shape::*;
     let plain = |c: Contact| (c, None, false);
     match (i, j) {
-        (Object::Wall(wall), Object::Body { shape, pose }) => plain(match *shape {
+        (Side::Wall(wall), Side::Body(shape, pose)) => plain(match *shape {
             Circle { r } => circle_wall::contact_wall_circle(wall, r, pose, request),
             Ellipse { a, b } => ellipse_wall::contact_wall_ellipse(wall, a, b, pose, request),
             Rectangle { w, h } => rectangle_wall::contact_wall_rectangle(wall, w, h, pose),
             Polygon(ref p) => polygon_wall::contact_wall_polygon(wall, p, pose),
         }),
-        (
-            Object::Body {
-                shape: si,
-                pose: pi,
-            },
-            Object::Body {
-                shape: sj,
-                pose: pj,
-            },
-        ) => match (*si, *sj) {
+        (Side::Body(si, pi), Side::Body(sj, pj)) => match (*si, *sj) {
             (Circle { r: ri }, Circle { r: rj }) => plain(circle_circle::contact_circle_circle(
                 ri, pi, rj, pj, request,
             )),
@@ -360,7 +427,7 @@ fn contact_in_order(
                 unreachable!("computed the other way round (computed_in_order)")
             }
         },
-        (Object::Body { .. } | Object::Wall(_), Object::Wall(_)) => {
+        (Side::Body(..) | Side::Wall(_), Side::Wall(_)) => {
             unreachable!("a wall is computed first, and two walls are no pair")
         }
     }
@@ -374,20 +441,17 @@ fn contact_in_order(
 /// form being exactly symmetric (see the module documentation).
 #[inline(always)]
 pub fn computed_in_order(i: &Object, j: &Object) -> Option<bool> {
+    side_in_order(i.into(), j.into())
+}
+
+/// [`computed_in_order`] for borrowed sides.
+#[inline(always)]
+fn side_in_order(i: Side, j: Side) -> Option<bool> {
     match (i, j) {
-        (Object::Wall(_), Object::Wall(_)) => None,
-        (Object::Wall(_), Object::Body { .. }) => Some(true),
-        (Object::Body { .. }, Object::Wall(_)) => Some(false),
-        (
-            Object::Body {
-                shape: si,
-                pose: pi,
-            },
-            Object::Body {
-                shape: sj,
-                pose: pj,
-            },
-        ) => Some(match kind_rank(si).cmp(&kind_rank(sj)) {
+        (Side::Wall(_), Side::Wall(_)) => None,
+        (Side::Wall(_), Side::Body(..)) => Some(true),
+        (Side::Body(..), Side::Wall(_)) => Some(false),
+        (Side::Body(si, pi), Side::Body(sj, pj)) => Some(match kind_rank(si).cmp(&kind_rank(sj)) {
             std::cmp::Ordering::Less => true,
             std::cmp::Ordering::Greater => false,
             std::cmp::Ordering::Equal => match si {

@@ -32,6 +32,7 @@ pub struct Increments {
     pub mean_dx: f64,
     pub mean_dy: f64,
     pub mean_dtheta: f64,
+    /// NaN on the rows that do not carry it (off the output steps).
     pub unbalanced_force_ratio: f64,
     pub contacts: u64,
 }
@@ -88,7 +89,18 @@ fn rows(file: &Path, header: &str) -> Result<Vec<Vec<f64>>, ReadError> {
     let width = header.split(',').count();
     let mut out = Vec::new();
     for (k, line) in lines.enumerate() {
-        let v: Result<Vec<f64>, _> = line.split(',').map(str::parse::<f64>).collect();
+        // An empty field is a value not written on that row (increments.csv's unbalanced ratio
+        // off the output steps): NaN.
+        let v: Result<Vec<f64>, _> = line
+            .split(',')
+            .map(|f| {
+                if f.is_empty() {
+                    Ok(f64::NAN)
+                } else {
+                    f.parse::<f64>()
+                }
+            })
+            .collect();
         let v = v.map_err(|e| bad(k + 2, format!("not a number: {e}")))?;
         if v.len() != width {
             return Err(bad(k + 2, format!("{} fields, expected {width}", v.len())));

@@ -170,12 +170,25 @@ pub fn settled_pile(
     cache: Option<&Path>,
     progress: bool,
 ) -> Result<Case, BenchError> {
+    let text = settled_pile_text(shape, n, cache, progress)?;
+    Case::from_json(&text).map_err(|e| BenchError(e.to_string()))
+}
+
+/// The settled pile of `shape` with `n` bodies as case-file text (from the cache when there;
+/// settled and cached otherwise).
+pub fn settled_pile_text(
+    shape: PileShape,
+    n: usize,
+    cache: Option<&Path>,
+    progress: bool,
+) -> Result<String, BenchError> {
     let spec = PileSpec::new(shape, n, 1);
     let file = cache.map(|d| d.join(format!("{}_settled.json", spec.name())));
     if let Some(f) = &file
         && let Ok(text) = std::fs::read_to_string(f)
     {
-        return Case::from_json(&text).map_err(|e| BenchError(format!("{}: {e}", f.display())));
+        Case::from_json(&text).map_err(|e| BenchError(format!("{}: {e}", f.display())))?;
+        return Ok(text);
     }
     let text = if n > 10_000 && n.is_multiple_of(10_000) {
         // Tiles of the settled 10⁴ pile, side by side.
@@ -209,7 +222,7 @@ pub fn settled_pile(
         }
         std::fs::write(f, &text).map_err(|e| BenchError(format!("{}: {e}", f.display())))?;
     }
-    Case::from_json(&text).map_err(|e| BenchError(e.to_string()))
+    Ok(text)
 }
 
 /// The bits of every body's state, hashed (FNV-1a): equal hashes ⇔ (with overwhelming

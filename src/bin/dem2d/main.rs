@@ -4,6 +4,7 @@
 mod analyze;
 mod area_law_report;
 mod bench;
+mod peers;
 mod report;
 mod runner;
 mod study;
@@ -239,9 +240,9 @@ enum Command {
         /// Numbers of bodies (multiples of 10 000 above 10 000: tiles of the 10⁴ pile).
         #[arg(long, value_delimiter = ',', default_value = "1000,10000,100000")]
         sizes: Vec<usize>,
-        /// Timed steps per repetition.
-        #[arg(long, default_value_t = 500)]
-        steps: u64,
+        /// Timed steps per repetition (default 500; with --peers, 10 000).
+        #[arg(long)]
+        steps: Option<u64>,
         /// Repetitions (the median is reported).
         #[arg(long, default_value_t = 3)]
         reps: usize,
@@ -258,9 +259,16 @@ enum Command {
         /// --readme is given).
         #[arg(long)]
         out: Option<PathBuf>,
-        /// README whose `<!-- figures:bench -->` section is refreshed.
+        /// README whose `<!-- figures:bench -->` section is refreshed (with --peers, the
+        /// `<!-- figures:peers -->` section).
         #[arg(long)]
         readme: Option<PathBuf>,
+        /// Instead: `dem2d run` (one thread) on the settled 10⁴-disk and 10⁴-ellipse piles
+        /// against LIGGGHTS (`liggghts`) and LAMMPS (`lmp`) on the disk pile, when installed
+        /// (decks in benches/peers/), interleaved; particle-steps per CPU-second and per
+        /// wall-second of the time loop, medians, and the ratios to LIGGGHTS.
+        #[arg(long)]
+        peers: bool,
     },
     /// Regenerate every figure and table of the README into figures/ (runs the paper's cases,
     /// the time-step sweeps and the contact-kernel report; about 10 s). The README itself is
@@ -439,8 +447,12 @@ fn set_threads(threads: Option<usize>) -> Result<(), Failure> {
     match threads {
         None => Ok(()),
         Some(0) => Err(Failure::input("--threads: must be at least 1".into())),
+        // The main thread is one of the pool's threads: the step's passes then start on it
+        // without handing each pass to another thread and waiting (on one thread: no rayon
+        // hand-off at all, the passes run in place).
         Some(n) => rayon::ThreadPoolBuilder::new()
             .num_threads(n)
+            .use_current_thread()
             .build_global()
             .map_err(|e| Failure::failed(format!("--threads: {e}"))),
     }
@@ -816,6 +828,66 @@ fn bench(
     Ok(())
 }
 
+/// `dem2d bench --peers`: see [`peers`].
+fn bench_peers(
+    shapes: &[PileShapeArg],
+    sizes: &[usize],
+    steps: u64,
+    reps: usize,
+    cache: &std::path::Path,
+    out: Option<&std::path::Path>,
+    readme: Option<&std::path::Path>,
+) -> Result<(), Failure> {
+    use dem2d::scene::generate::PileShape;
+    // The default sizes are the throughput table's; the peers compare the 10⁴ piles.
+    let n = match sizes {
+        [n] if *n >= 1 && *n <= 10_000 => *n,
+        _ if sizes == [1000, 10_000, 100_000] => 10_000,
+        _ => {
+            return Err(Failure::input(
+                "--sizes: --peers takes one pile size, 1…10000 (default 10000)".into(),
+            ));
+        }
+    };
+    if steps == 0 {
+        return Err(Failure::input("--steps: must be at least 1".into()));
+    }
+    let opts = crate::peers::PeerOptions {
+        shapes: shapes
+            .iter()
+            .map(|s| match s {
+                PileShapeArg::Disks => PileShape::Disks,
+                PileShapeArg::Ellipses => PileShape::Ellipses,
+            })
+            .collect(),
+        n,
+        steps,
+        reps,
+        cache: Some(cache.to_path_buf()),
+        progress: true,
+    };
+    let load = crate::peers::load_average();
+    let report = crate::peers::run(&opts).map_err(|e| Failure {
+        code: 1,
+        message: e.to_string(),
+    })?;
+    let md = crate::peers::markdown(&report, load.as_deref());
+    print_out(&md)?;
+    if let Some(path) = out {
+        std::fs::write(path, &md).map_err(|e| Failure {
+            code: 1,
+            message: format!("{}: cannot write: {e}", path.display()),
+        })?;
+    }
+    if let Some(readme) = readme {
+        crate::report::update_readme(readme, &[("peers", md)]).map_err(|e| Failure {
+            code: 1,
+            message: e.to_string(),
+        })?;
+    }
+    Ok(())
+}
+
 fn figures(
     out: PathBuf,
     cases: PathBuf,
@@ -944,15 +1016,36 @@ fn main() -> ExitCode {
             sizes,
             steps,
             reps,
+            threads: _,
+            normal_force: _,
+            cache,
+            out,
+            readme,
+            peers: true,
+        } => bench_peers(
+            shapes,
+            sizes,
+            steps.unwrap_or(10_000),
+            *reps,
+            cache,
+            out.as_deref(),
+            readme.as_deref(),
+        ),
+        Command::Bench {
+            shapes,
+            sizes,
+            steps,
+            reps,
             threads,
             normal_force,
             cache,
             out,
             readme,
+            peers: false,
         } => bench(
             shapes,
             sizes,
-            *steps,
+            steps.unwrap_or(500),
             *reps,
             threads,
             normal_force,

@@ -441,12 +441,13 @@ fn step_loop(
             counters.first_contact_step = Some(s);
         }
         if let Some(trigger) = watch.check(world) {
-            incs.write(world, &report)?;
+            incs.write(world, &report, true)?;
             stop = Stop::Blowup(describe(trigger, world));
             break;
         }
         if s % thin == 0 || s == steps {
-            incs.write(world, &report)?;
+            // The unbalanced ratio (a pass over every contact) only on output steps.
+            incs.write(world, &report, s % case.output_every == 0 || s == steps)?;
         }
         if s % case.output_every == 0 {
             traj.write(world)?;
@@ -470,7 +471,7 @@ fn step_loop(
                 // At rest since the first step of the streak (P's count for a window of one).
                 counters.quiescent_step = Some(s + 1 - streak);
                 if s % thin != 0 && s != steps {
-                    incs.write(world, &report)?;
+                    incs.write(world, &report, true)?;
                 }
                 stop = Stop::AtRest;
                 break;
@@ -480,7 +481,7 @@ fn step_loop(
             && sig != 0
         {
             if s % thin != 0 && s != steps {
-                incs.write(world, &report)?;
+                incs.write(world, &report, true)?;
             }
             stop = Stop::Interrupted(sig);
             break;
