@@ -681,7 +681,11 @@ impl Stepper {
 
 /// What a scene keeps beside its slots: pair caches where some pair keeps something in them
 /// (conic pairs: warm starts), rolling springs where a contact law has one (EPSD).
-pub(crate) fn kept(shapes: &[crate::geometry::Shape], spec: &ContactSpec, walls: &[WallSpec]) -> Kept {
+pub(crate) fn kept(
+    shapes: &[crate::geometry::Shape],
+    spec: &ContactSpec,
+    walls: &[WallSpec],
+) -> Kept {
     let epsd = |spec: &ContactSpec| {
         spec.rolling()
             .is_some_and(|r| r.model == RollingModel::Epsd)

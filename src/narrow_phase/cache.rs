@@ -124,10 +124,7 @@ mod tests {
         let caches = [
             PairCache::EMPTY,
             PairCache::with_warm(Some(Warm::Axis([0.6, -0.8]))),
-            PairCache::with_warm(Some(Warm::Crossings([
-                [1.0 / 3.0, -0.0],
-                [1e-40, -3.4e38],
-            ]))),
+            PairCache::with_warm(Some(Warm::Crossings([[1.0 / 3.0, -0.0], [1e-40, -3.4e38]]))),
         ];
         for c in caches {
             let back = PairCache::from_saved(c.saved());
