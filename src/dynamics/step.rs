@@ -47,6 +47,7 @@ use super::broad_phase::Grid;
 use super::contacts::{ContactData, ContactExtra, ContactList, Slot, reserve_for};
 use super::kinematics;
 use super::partner::{Partner, Sides};
+use super::restart::{Kept, RestartState};
 use crate::contact_law::{
     AreaKinematics, ContactSpec, EquivalentOverlap, History, Kinematics, Law, NormalForce,
     RollingKinematics, RollingModel,
@@ -385,14 +386,7 @@ impl Stepper {
                 }
             }
         }
-        // Pair caches only where some pair keeps something in them (conic pairs: warm starts).
-        let cached = wd.bodies.shape.iter().any(PairCache::kept_with);
-        // Contacts with a rolling spring carry it beside the slots.
-        let epsd = |spec: &ContactSpec| {
-            spec.rolling()
-                .is_some_and(|r| r.model == RollingModel::Epsd)
-        };
-        let rolling = epsd(wd.spec) || wd.walls.iter().any(|w| epsd(&w.spec));
+        let Kept { cached, rolling } = kept(&wd.bodies.shape, wd.spec, wd.walls);
         let lost = list.rebuild_from_keys(n, cached, rolling);
         wd.energies.dissipated += lost;
         list.built_at.clear();
@@ -402,6 +396,36 @@ impl Stepper {
         list.wall_built_at.clear();
         list.wall_built_at
             .extend(wd.walls.iter().map(|w| w.wall.point));
+        self.size_partials(wd);
+    }
+
+    /// Restores the neighbour list of a restart: its slots with their histories, pair caches
+    /// and contacts, what it was built from and its number of builds (the state checked by
+    /// [`RestartState::check`]).
+    pub(crate) fn restore_neighbours(&mut self, wd: &mut Parts, saved: &RestartState) {
+        let n = wd.bodies.len();
+        let max_bound = wd.bodies.bound.iter().copied().fold(0.0f64, f64::max);
+        let d0 = wd.bodies.density.first().copied();
+        self.uniform_density = d0.filter(|&d| wd.bodies.density.iter().all(|&x| x == d));
+        let Kept { cached, rolling } = kept(&wd.bodies.shape, wd.spec, wd.walls);
+        let list = &mut *wd.contacts;
+        *list = ContactList::default();
+        list.skin = SKIN_FRACTION * max_bound;
+        list.keys.extend(saved.slots.iter().map(|s| s.slot.key()));
+        list.rebuild_from_keys(n, cached, rolling);
+        for (k, s) in saved.slots.iter().enumerate() {
+            list.slots[k] = s.slot;
+            list.data[k] = s.data;
+            if cached {
+                list.cache[k] = s.cache;
+            }
+            if rolling {
+                list.rolling[k] = s.rolling;
+            }
+        }
+        list.built_at.extend_from_slice(&saved.built_at);
+        list.wall_built_at.extend_from_slice(&saved.wall_built_at);
+        list.builds = saved.builds;
         self.size_partials(wd);
     }
 
@@ -655,6 +679,23 @@ impl Stepper {
             sum.non_elastic_power += p.non_elastic_power;
         }
         sum
+    }
+}
+
+/// What a scene keeps beside its slots: pair caches where some pair keeps something in them
+/// (conic pairs: warm starts), rolling springs where a contact law has one (EPSD).
+pub(crate) fn kept(
+    shapes: &[crate::geometry::Shape],
+    spec: &ContactSpec,
+    walls: &[WallSpec],
+) -> Kept {
+    let epsd = |spec: &ContactSpec| {
+        spec.rolling()
+            .is_some_and(|r| r.model == RollingModel::Epsd)
+    };
+    Kept {
+        cached: shapes.iter().any(PairCache::kept_with),
+        rolling: epsd(spec) || walls.iter().any(|w| epsd(&w.spec)),
     }
 }
 

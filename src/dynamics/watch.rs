@@ -40,18 +40,21 @@ pub enum Trigger {
     Depth { ratio: f64 },
 }
 
-/// The state a run is checked against.
-#[derive(Clone, Debug)]
+/// The state a run is checked against (public: a restart carries it, so that a continued run
+/// is checked against the start of the whole run).
+#[derive(Clone, Debug, PartialEq)]
 pub struct BlowupWatch {
-    kinetic0: f64,
-    elastic0: f64,
-    potential0: f64,
-    total0: f64,
+    /// Kinetic, elastic, potential and total energy at the start.
+    pub kinetic0: f64,
+    pub elastic0: f64,
+    pub potential0: f64,
+    pub total0: f64,
     /// Most energy gravity has supplied so far, `max (P₀ − P)`.
-    gravity_supplied: f64,
+    pub gravity_supplied: f64,
     /// Most work the walls have done so far, `max W`.
-    boundary_supplied: f64,
-    depth_limit: f64,
+    pub boundary_supplied: f64,
+    /// Deepest overlap accepted (in units of the smaller inscribed radius of the pair).
+    pub depth_limit: f64,
 }
 
 impl BlowupWatch {

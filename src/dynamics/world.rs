@@ -4,9 +4,11 @@ pub use super::account::{Diagnostics, Energies};
 use super::body::{Bodies, BodyInit};
 pub use super::boundary::WallSpec;
 use super::contacts::ContactList;
-use super::step::{Blowup, Parts, StepReport, Stepper};
+use super::restart::{BodyRestart, RestartError, RestartState, SlotRestart, WallRestart};
+use super::step::{Blowup, Parts, StepReport, Stepper, kept};
 use crate::contact_law::ContactSpec;
-use crate::geometry::Vec2;
+use crate::geometry::{Pose, Vec2};
+use crate::narrow_phase::PairCache;
 
 /// Everything the step function evolves.
 #[derive(Clone, Debug)]
@@ -60,6 +62,101 @@ impl World {
         w.energies.kinetic = w.kinetic_energy();
         w.energies.potential = w.potential_energy();
         w
+    }
+
+    /// A world resumed from a restart taken of a world of the same scene (`bodies`, `walls`,
+    /// `gravity`, `spec`, `dt` as the case gives them; the bodies' poses and velocities are the
+    /// restart's): it steps to the same bits as the world the restart was taken from
+    /// ([`World::restart_state`]). Refused when the restart does not fit the scene.
+    pub fn resume(
+        bodies: &[BodyInit],
+        walls: Vec<WallSpec>,
+        gravity: Vec2,
+        spec: ContactSpec,
+        dt: f64,
+        saved: &RestartState,
+    ) -> Result<Self, RestartError> {
+        let shapes: Vec<_> = bodies.iter().map(|b| b.shape).collect();
+        saved.check(bodies, &walls, dt, kept(&shapes, &spec, &walls))?;
+        let mut w = World {
+            bodies: Bodies::new(bodies),
+            walls,
+            gravity,
+            spec,
+            dt,
+            time: saved.time,
+            step: saved.step,
+            contacts: ContactList::default(),
+            energies: saved.energies,
+            diagnostics: saved.diagnostics,
+            last_increments: saved.last_increments,
+            stepper: Stepper::default(),
+        };
+        for (k, r) in saved.bodies.iter().enumerate() {
+            let b = &mut w.bodies;
+            b.state[k].pose = Pose::with_frame(r.position, r.angle, r.frame);
+            b.state[k].vel = r.velocity;
+            b.state[k].omega = r.omega;
+            b.force[k] = r.force;
+            b.torque[k] = r.torque;
+        }
+        for (ws, r) in w.walls.iter_mut().zip(&saved.walls) {
+            ws.wall.point = r.point;
+            ws.velocity = r.velocity;
+            ws.load = r.load;
+        }
+        let (stepper, mut parts) = w.parts();
+        stepper.restore_neighbours(&mut parts, saved);
+        Ok(w)
+    }
+
+    /// The world's full state, from which [`World::resume`] continues exactly (see
+    /// [`super::restart`]); without the run's progress.
+    pub fn restart_state(&self) -> RestartState {
+        let b = &self.bodies;
+        let c = &self.contacts;
+        RestartState {
+            step: self.step,
+            time: self.time,
+            bodies: (0..b.len())
+                .map(|k| {
+                    let s = &b.state[k];
+                    BodyRestart {
+                        position: s.pose.position,
+                        angle: s.pose.angle(),
+                        frame: s.pose.cos_sin(),
+                        velocity: s.vel,
+                        omega: s.omega,
+                        force: b.force[k],
+                        torque: b.torque[k],
+                    }
+                })
+                .collect(),
+            walls: self
+                .walls
+                .iter()
+                .map(|ws| WallRestart {
+                    point: ws.wall.point,
+                    velocity: ws.velocity,
+                    load: ws.load,
+                })
+                .collect(),
+            slots: (0..c.slots.len())
+                .map(|k| SlotRestart {
+                    slot: c.slots[k],
+                    rolling: c.rolling_moment(k),
+                    cache: c.cache.get(k).copied().unwrap_or(PairCache::EMPTY),
+                    data: c.data[k],
+                })
+                .collect(),
+            built_at: c.built_at.clone(),
+            wall_built_at: c.wall_built_at.clone(),
+            builds: c.builds,
+            energies: self.energies,
+            diagnostics: self.diagnostics,
+            last_increments: self.last_increments,
+            run: None,
+        }
     }
 
     /// The stepper and the state it steps, borrowed apart.

@@ -258,6 +258,19 @@ impl Pose {
         }
     }
 
+    /// A pose at `position` and `angle` with the frame `(cos, sin)` as given (a restart gives
+    /// back a circle's frame, which [`Pose::moved`] keeps from its first pose). Nothing checks
+    /// that the frame is the angle's.
+    #[inline]
+    pub fn with_frame(position: Vec2, angle: f64, (cos, sin): (f64, f64)) -> Self {
+        Pose {
+            position,
+            angle,
+            cos,
+            sin,
+        }
+    }
+
     /// The angle (radians, counter-clockwise), as given (not wrapped).
     #[inline]
     pub fn angle(&self) -> f64 {

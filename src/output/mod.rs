@@ -9,6 +9,7 @@ pub mod plot;
 pub mod progress;
 pub mod readme;
 pub mod run_data;
+pub mod state;
 pub mod summary;
 pub mod trace;
 pub mod vtk;

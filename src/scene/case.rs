@@ -209,6 +209,8 @@ impl Case {
                 density,
             });
         }
+        // A state file's block (read by `scene::state`, which continues the run from it).
+        let _ = o.get("state");
         o.finish()?;
         check_steps(duration, dt)?;
         let mut placed: Vec<Placed> = bodies

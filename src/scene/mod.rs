@@ -7,7 +7,9 @@ pub mod fields;
 pub mod generate;
 pub mod ranges;
 pub mod servo_box;
+pub mod state;
 
 pub use body::{parse_object, parse_pairs, parse_shape};
 pub use case::{Case, OutputSpec};
 pub use fields::FieldError;
+pub use state::CaseFile;

@@ -16,7 +16,7 @@ use dem2d::narrow_phase::contact;
 use dem2d::output::contacts::contact_json;
 use dem2d::output::summary::Status;
 use dem2d::scene::fields::parse_json;
-use dem2d::scene::{Case, parse_pairs};
+use dem2d::scene::parse_pairs;
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -92,16 +92,23 @@ enum Command {
         /// Input file, or `-` for standard input.
         file: String,
     },
-    /// Run a case file: writes trajectory.csv, increments.csv, case.json and summary.json.
+    /// Run a case file: writes trajectory.csv, increments.csv, case.json, state.json and
+    /// summary.json. Given a state file (a run's state.json), continues that run.
     Run {
-        /// The case file (JSON, "version": 1).
+        /// The case file (JSON, "version": 1), or a run's state.json to continue from.
         case: PathBuf,
-        /// Output directory (default: runs/<case name>).
+        /// Output directory (default: runs/<case name>; for a state file
+        /// runs/<case name>_from_step_<step>).
         #[arg(long)]
         out: Option<PathBuf>,
-        /// Stop after this many steps (for quick checks; the summary says how far it got).
+        /// Stop after this many steps of this run (for quick checks, or to continue a run in
+        /// parts; the summary says how far it got).
         #[arg(long)]
         max_steps: Option<u64>,
+        /// Replace the case's duration (s): the run ends at t = DURATION (counted from the
+        /// start of the whole run, also when continuing from a state file).
+        #[arg(long)]
+        duration: Option<f64>,
         /// No progress line on stderr.
         #[arg(long)]
         quiet: bool,
@@ -463,6 +470,7 @@ struct RunArgs<'a> {
     case: &'a std::path::Path,
     out: Option<PathBuf>,
     max_steps: Option<u64>,
+    duration: Option<f64>,
     quiet: bool,
     overwrite: bool,
     vtk: bool,
@@ -474,8 +482,39 @@ struct RunArgs<'a> {
 fn run(args: RunArgs) -> Result<(), Failure> {
     let name = args.case.display().to_string();
     let text = read_input(&name)?;
-    let case = Case::from_json(&text).map_err(|e| Failure::input(format!("{name}: {e}")))?;
-    let out_dir = args.out.unwrap_or_else(|| default_out_dir(&case));
+    let file = dem2d::scene::CaseFile::from_json(&text)
+        .map_err(|e| Failure::input(format!("{name}: {e}")))?;
+    let (mut case, restart) = (file.case, file.restart);
+    if let Some(d) = args.duration {
+        if !(d.is_finite() && d > 0.0) {
+            return Err(Failure::input(format!(
+                "--duration: must be a positive time (s), got {d}"
+            )));
+        }
+        dem2d::scene::ranges::check_steps(d, case.dt)
+            .map_err(|e| Failure::input(format!("--duration: {}", e.message)))?;
+        case.duration = d;
+    }
+    if let Some(state) = &restart
+        && state.step >= case.steps()
+    {
+        return Err(Failure::input(format!(
+            "{name}: the state is at step {} (t = {} s), already at the end of the case's \
+             duration ({} s, {} steps): give --duration to run further",
+            state.step,
+            dem2d::output::trace::time_text(state.step, case.dt),
+            case.duration,
+            case.steps()
+        )));
+    }
+    let out_dir = args.out.unwrap_or_else(|| match &restart {
+        None => default_out_dir(&case),
+        Some(state) => {
+            let mut d = default_out_dir(&case).into_os_string();
+            d.push(format!("_from_step_{}", state.step));
+            PathBuf::from(d)
+        }
+    });
     if args.vtk_every == Some(0) {
         return Err(Failure::input("--vtk-every: must be at least 1".into()));
     }
@@ -498,9 +537,11 @@ fn run(args: RunArgs) -> Result<(), Failure> {
         analysis: args.analysis || case.output.analysis,
         contacts: args.contacts || case.output.contacts,
         analysis_window: case.output.analysis_window,
+        restart,
     };
     let outcome = run_case(&case, &text, &opts).map_err(|e| match e {
         RunError::Occupied { .. } => Failure::input(e.to_string()),
+        RunError::State(_) => Failure::input(format!("{name}: {e}")),
         RunError::Io(_) => Failure::failed(e.to_string()),
     })?;
     let s = &outcome.summary;
@@ -929,6 +970,7 @@ fn main() -> ExitCode {
             case,
             out,
             max_steps,
+            duration,
             quiet,
             threads,
             overwrite,
@@ -941,6 +983,7 @@ fn main() -> ExitCode {
                 case,
                 out: out.clone(),
                 max_steps: *max_steps,
+                duration: *duration,
                 quiet: *quiet,
                 overwrite: *overwrite,
                 vtk: *vtk,

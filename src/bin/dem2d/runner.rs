@@ -1,7 +1,7 @@
-//! Runs a case: builds the world, steps it until the duration ends, P's quiescence criterion
-//! holds, `--max-steps` is reached, a blow-up is detected or a stop is asked for (SIGINT,
-//! SIGTERM), and writes `trajectory.csv`, `increments.csv`, `case.json` and `summary.json` into
-//! the output directory.
+//! Runs a case: builds the world (or resumes it from a state file's state), steps it until the
+//! duration ends, P's quiescence criterion holds, `--max-steps` is reached, a blow-up is
+//! detected or a stop is asked for (SIGINT, SIGTERM), and writes `trajectory.csv`,
+//! `increments.csv`, `case.json`, `state.json` and `summary.json` into the output directory.
 //!
 //! # What a run leaves behind
 //! - A directory holding an earlier run's outputs is refused unless `overwrite` is set; then
@@ -12,13 +12,19 @@
 //!   `io_error` (see [`Status`]). A summary that still says `running` belongs to a run that was
 //!   killed.
 //! - The CSV files always end with a whole line; after a blow-up they hold everything up to it.
+//! - `state.json` (atomically, before the final summary) holds the state the run ended in, from
+//!   which `dem2d run OUT/state.json` continues exactly (see [`dem2d::output::state`]). It is
+//!   written whatever the status, but for `blowup` (a non-finite or unphysical state is nothing
+//!   to continue from: restart from an earlier state, with a smaller Δt). A continued run numbers
+//!   its steps on from the state's (the time is `step × Δt`), writes the rows of its outputs at
+//!   the same steps as the uninterrupted run, and ends at the case's duration (the whole run's).
 //! - A blow-up is detected before anything is non-finite where possible ([`BlowupWatch`]: energy
 //!   created beyond what the initial state and gravity supply, or an overlap deeper than the
 //!   bodies); the report names the step, the body and the reason.
 
 use dem2d::dynamics::timestep::estimate_critical_dt;
 use dem2d::dynamics::watch::{self, BlowupWatch, Trigger};
-use dem2d::dynamics::{Blowup, World};
+use dem2d::dynamics::{Blowup, RestartState, RunProgress, World};
 use dem2d::output::analysis::AnalysisOutput;
 use dem2d::output::progress::{self, Progress};
 use dem2d::output::summary::{DeepCounts, EnergyReport, FinalBody, Status, Summary, write_summary};
@@ -54,14 +60,18 @@ pub struct RunOptions {
     pub contacts: bool,
     /// The region of the analysis measures (`[x0, x1, y0, y1]`; default: the wall box).
     pub analysis_window: Option<[f64; 4]>,
+    /// Continue from this state (a state file's), instead of starting at t = 0.
+    pub restart: Option<RestartState>,
 }
 
 /// The files a run writes (and `dem2d plot`'s default outputs, drawn from them): what is
 /// removed from a directory before a run replaces an earlier one. The summary comes first.
-pub const OUTPUT_FILES: [&str; 11] = [
+pub const OUTPUT_FILES: [&str; 13] = [
     "summary.json",
     "summary.json.tmp",
     "case.json",
+    "state.json",
+    "state.json.tmp",
     "trajectory.csv",
     "increments.csv",
     "scene.svg",
@@ -114,6 +124,8 @@ pub enum RunError {
     Occupied { dir: PathBuf, files: Vec<String> },
     /// The directory, `case.json` or the first `summary.json` could not be written.
     Io(WriteError),
+    /// The state to continue from does not fit the case.
+    State(String),
 }
 
 impl fmt::Display for RunError {
@@ -127,6 +139,7 @@ impl fmt::Display for RunError {
                 files.join(", ")
             ),
             RunError::Io(e) => e.fmt(f),
+            RunError::State(e) => write!(f, "{e}"),
         }
     }
 }
@@ -218,29 +231,45 @@ enum Stop {
     Interrupted(i32),
 }
 
-/// What the loop counts, for the summary.
+/// What the loop counts, for the summary (and the state file).
 #[derive(Default)]
 struct Counters {
     quiescent_step: Option<u64>,
     first_contact_step: Option<u64>,
     contact_sum: u64,
     wall_seconds: f64,
+    /// Consecutive steps the quiescence criterion has held.
+    streak: u64,
+    /// The blow-up watch as the loop left it.
+    watch: Option<BlowupWatch>,
 }
 
 /// Runs `case` (whose JSON text is `case_text`, copied to the output) with `opts`.
 pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOutcome, RunError> {
     let dir = &opts.out_dir;
+    let mut world = match &opts.restart {
+        None => World::new(
+            &case.bodies,
+            case.walls.clone(),
+            case.gravity,
+            case.contact,
+            case.dt,
+        ),
+        Some(state) => World::resume(
+            &case.bodies,
+            case.walls.clone(),
+            case.gravity,
+            case.contact,
+            case.dt,
+            state,
+        )
+        .map_err(|e| RunError::State(format!("field `state.{}`: {}", e.path, e.message)))?,
+    };
+    let progress = opts.restart.as_ref().and_then(|s| s.run.clone());
     prepare_dir(dir, opts.overwrite)?;
     std::fs::create_dir_all(dir).map_err(io_at(dir))?;
     let case_file = dir.join("case.json");
     std::fs::write(&case_file, case_text).map_err(io_at(&case_file))?;
-    let mut world = World::new(
-        &case.bodies,
-        case.walls.clone(),
-        case.gravity,
-        case.contact,
-        case.dt,
-    );
     let dt_critical = estimate_critical_dt(
         &world.bodies,
         &world.spec,
@@ -255,12 +284,28 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
             case.dt, dt_critical
         ));
     }
-    world.refresh_contact_extras();
-    if let Some(w) = initial_overlap_warning(&watch::overlaps(&world)) {
-        warnings.push(w);
+    // A continued run's contacts are the run's, not bodies placed overlapping.
+    if opts.restart.is_none() {
+        world.refresh_contact_extras();
+        if let Some(w) = initial_overlap_warning(&watch::overlaps(&world)) {
+            warnings.push(w);
+        }
     }
-    let initial_total = world.energies.total();
-    let mut counters = Counters::default();
+    let initial_total = progress
+        .as_ref()
+        .map_or(world.energies.total(), |p| p.initial_total);
+    let mut counters = Counters {
+        first_contact_step: progress.as_ref().and_then(|p| p.first_contact_step),
+        contact_sum: progress.as_ref().map_or(0, |p| p.contact_sum),
+        // A run that stopped at rest asks for rest anew when continued (its window more steps);
+        // any other keeps its streak, as the uninterrupted run would.
+        streak: progress
+            .as_ref()
+            .map_or(0, |p| p.quiescence_streak)
+            .min(case.quiescence_window.saturating_sub(1)),
+        watch: progress.map(|p| p.watch),
+        ..Default::default()
+    };
     let summary = summarize(
         case,
         &world,
@@ -334,6 +379,21 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
             })
         }
     };
+    // The state before the end-of-run sample of the network's critical step below (the
+    // uninterrupted run takes none here).
+    let state_error = match &result {
+        Ok(Stop::Blowup(_)) => None,
+        _ => write_state_file(
+            dir,
+            case,
+            case_text,
+            &world,
+            &counters,
+            initial_total,
+            &result,
+        )
+        .err(),
+    };
     world.network_critical_dt();
     let observed = world.diagnostics.dt_critical_observed;
     if case.dt > observed && observed.is_finite() {
@@ -344,13 +404,14 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
             case.dt
         ));
     }
-    let (status, blowup, signal, io_error) = match result {
-        Ok(Stop::Completed) => (Status::Completed, None, None, None),
-        Ok(Stop::AtRest) => (Status::AtRest, None, None, None),
-        Ok(Stop::MaxSteps) => (Status::MaxSteps, None, None, None),
-        Ok(Stop::Blowup(b)) => (Status::Blowup, Some(b), None, None),
-        Ok(Stop::Interrupted(sig)) => (Status::Interrupted, None, Some(sig), None),
-        Err(e) => (Status::IoError, None, None, Some(e.to_string())),
+    let (status, blowup, signal, io_error) = match (result, state_error) {
+        (Ok(Stop::Completed), None) => (Status::Completed, None, None, None),
+        (Ok(Stop::AtRest), None) => (Status::AtRest, None, None, None),
+        (Ok(Stop::MaxSteps), None) => (Status::MaxSteps, None, None, None),
+        (Ok(Stop::Blowup(b)), _) => (Status::Blowup, Some(b), None, None),
+        (Ok(Stop::Interrupted(sig)), None) => (Status::Interrupted, None, Some(sig), None),
+        (Ok(_), Some(e)) => (Status::IoError, None, None, Some(e.to_string())),
+        (Err(e), _) => (Status::IoError, None, None, Some(e.to_string())),
     };
     let error = match (&blowup, signal, &io_error) {
         (Some(b), _, _) => Some(b.to_string()),
@@ -383,6 +444,54 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
     })
 }
 
+/// Writes `state.json` for a run that ended as `result` says (not a blow-up).
+fn write_state_file(
+    dir: &Path,
+    case: &Case,
+    case_text: &str,
+    world: &World,
+    counters: &Counters,
+    initial_total: f64,
+    result: &Result<Stop, WriteError>,
+) -> Result<(), WriteError> {
+    let file = Path::new("state.json");
+    let status = match result {
+        Ok(Stop::Completed) => Status::Completed,
+        Ok(Stop::AtRest) => Status::AtRest,
+        Ok(Stop::MaxSteps) => Status::MaxSteps,
+        Ok(Stop::Interrupted(_)) => Status::Interrupted,
+        Ok(Stop::Blowup(_)) => Status::Blowup,
+        Err(_) => Status::IoError,
+    };
+    let value = dem2d::scene::fields::parse_json(case_text, "").map_err(|e| WriteError {
+        file: file.to_path_buf(),
+        error: io::Error::other(format!("the case text does not parse: {e}")),
+    })?;
+    let progress = RunProgress {
+        initial_total,
+        quiescence_streak: counters.streak,
+        first_contact_step: counters.first_contact_step,
+        contact_sum: counters.contact_sum,
+        watch: counters
+            .watch
+            .clone()
+            .unwrap_or_else(|| BlowupWatch::new(world)),
+    };
+    dem2d::output::state::write_state(
+        dir,
+        &value,
+        case.duration,
+        world,
+        &case.bodies,
+        progress,
+        status.as_str(),
+    )
+    .map_err(|error| WriteError {
+        file: dir.join(file),
+        error,
+    })
+}
+
 /// `SIGINT`, `SIGTERM` or the number.
 pub fn signal_name(sig: i32) -> String {
     match sig {
@@ -407,8 +516,14 @@ fn step_loop(
     counters: &mut Counters,
     last_label: &mut Option<u64>,
 ) -> Result<Stop, WriteError> {
+    // Steps are numbered from the start of the whole run (a continued run goes on from its
+    // state's), and every cadence counts them so: a continued run writes its rows at the steps
+    // the uninterrupted run writes them.
     let case_steps = case.steps();
-    let steps = opts.max_steps.map_or(case_steps, |m| m.min(case_steps));
+    let first = world.step;
+    let steps = opts
+        .max_steps
+        .map_or(case_steps, |m| first.saturating_add(m).min(case_steps));
     let thin = steps.div_ceil(MAX_INCREMENT_ROWS).max(1);
     let vtk_every = opts.vtk_every.unwrap_or(u64::MAX).max(1);
     traj.write(world)?;
@@ -418,16 +533,18 @@ fn step_loop(
     if let Some(a) = analysis.as_deref_mut() {
         a.write(world, world.step)?;
     }
-    let mut watch = BlowupWatch::new(world);
+    // Kept in the counters, so that the state file has them however the loop ends.
+    let watch = counters
+        .watch
+        .get_or_insert_with(|| BlowupWatch::new(world));
     let start = Instant::now();
     let mut progress = Progress::new(opts.progress, Duration::from_secs(2));
-    let mut streak = 0u64;
     let mut stop = if steps < case_steps {
         Stop::MaxSteps
     } else {
         Stop::Completed
     };
-    for s in 1..=steps {
+    for s in first + 1..=steps {
         let report = match world.step() {
             Ok(r) => r,
             Err(b) => {
@@ -463,13 +580,13 @@ fn step_loop(
         }
         if let Some(q) = case.quiescence {
             if report.increments.iter().all(|&d| d <= q) {
-                streak += 1;
+                counters.streak += 1;
             } else {
-                streak = 0;
+                counters.streak = 0;
             }
-            if streak >= case.quiescence_window {
+            if counters.streak >= case.quiescence_window {
                 // At rest since the first step of the streak (P's count for a window of one).
-                counters.quiescent_step = Some(s + 1 - streak);
+                counters.quiescent_step = Some(s + 1 - counters.streak);
                 if s % thin != 0 && s != steps {
                     incs.write(world, &report, true)?;
                 }

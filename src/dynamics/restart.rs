@@ -1,0 +1,256 @@
+//! The state a run can be continued from exactly (a restart): everything the step reads that it
+//! cannot recompute from the case, so that a world resumed from it steps to the same bits as the
+//! world it was taken from.
+//!
+//! What that is, stage by stage of [`super::step`]:
+//! - every body's pose, velocity and angular velocity, and the force and moment of the last
+//!   evaluation (the first half-kick of the next step uses them; they were evaluated with the
+//!   half-step velocities, so they cannot be evaluated again from the state); a circle's frame
+//!   (the cosine and sine its pose keeps from its first pose, [`crate::geometry::Pose::moved`]);
+//! - every wall's current point, the velocity of its next drift (a servo's was set from the last
+//!   load) and that load;
+//! - the neighbour list as built: every slot (pair) in key order, active or not, with its
+//!   history — shear spring, rolling spring, the energy they hold, the geometry state — its
+//!   narrow-phase [`PairCache`] (the conic pairs' warm start: the next step's crossings are
+//!   refined from it, so the last bits of the result depend on it) and its contact this step
+//!   ([`ContactData`], for the outputs read before the next step); the positions the list was
+//!   built from (they decide when it is rebuilt, and a body's number of slots enters the rolling
+//!   kinematics) and the number of builds;
+//! - the step count (the time is `step × Δt`), the energy account and the diagnostic counters;
+//! - the run's own progress ([`RunProgress`]): the quiescence streak, the counters of the
+//!   summary and the blow-up watch's reference state.
+//!
+//! The core neither reads nor writes it: `output::state` writes it into `state.json`,
+//! `scene::state` reads it back.
+
+use super::account::{Diagnostics, Energies};
+use super::body::BodyInit;
+use super::boundary::{WallLoad, WallSpec};
+use super::contacts::{ContactData, Slot, WALL_BASE};
+use super::watch::BlowupWatch;
+use crate::geometry::Vec2;
+use crate::narrow_phase::{ContactState, PairCache};
+use std::fmt;
+
+/// One body's part of a restart.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BodyRestart {
+    pub position: Vec2,
+    pub angle: f64,
+    /// The frame `(cos, sin)` of the body's pose (`angle.sin_cos()` but for circles).
+    pub frame: (f64, f64),
+    pub velocity: Vec2,
+    pub omega: f64,
+    /// Force and moment of the last evaluation.
+    pub force: Vec2,
+    pub torque: f64,
+}
+
+/// One wall's part of a restart.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WallRestart {
+    /// The wall's point now (it starts from the case's point).
+    pub point: Vec2,
+    /// Velocity of the next drift.
+    pub velocity: Vec2,
+    /// Its contacts in the last evaluation.
+    pub load: WallLoad,
+}
+
+/// One slot of the neighbour list: the pair, its history, its pair cache and its contact.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SlotRestart {
+    pub slot: Slot,
+    /// The rolling spring moment (EPSD; 0 otherwise).
+    pub rolling: f64,
+    pub cache: PairCache,
+    pub data: ContactData,
+}
+
+/// What the run around the world keeps (the command line's step loop): restored with the world
+/// so that the continued run stops, and reports, as the uninterrupted one would.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunProgress {
+    /// `K + P + E_el + D` at t = 0 of the whole run.
+    pub initial_total: f64,
+    /// Consecutive steps the quiescence criterion has held.
+    pub quiescence_streak: u64,
+    pub first_contact_step: Option<u64>,
+    /// Σ over steps of the number of contacts (for the mean per step).
+    pub contact_sum: u64,
+    /// The blow-up watch's reference state (from t = 0 of the whole run).
+    pub watch: BlowupWatch,
+}
+
+/// A world's full state (see the module documentation).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RestartState {
+    pub step: u64,
+    /// `step × Δt` as the step computes it.
+    pub time: f64,
+    pub bodies: Vec<BodyRestart>,
+    pub walls: Vec<WallRestart>,
+    /// Every slot of the neighbour list, in key order.
+    pub slots: Vec<SlotRestart>,
+    /// Body positions and wall points when the list was built.
+    pub built_at: Vec<Vec2>,
+    pub wall_built_at: Vec<Vec2>,
+    pub builds: u64,
+    pub energies: Energies,
+    pub diagnostics: Diagnostics,
+    pub last_increments: [f64; 3],
+    /// The run's progress (`None` from [`super::World::restart_state`]: the run adds it).
+    pub run: Option<RunProgress>,
+}
+
+/// A restart that does not fit the scene it is resumed with: where (a path below the state,
+/// such as `slots[3].j`) and why.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RestartError {
+    pub path: String,
+    pub message: String,
+}
+
+impl RestartError {
+    fn new(path: impl Into<String>, message: impl Into<String>) -> Self {
+        RestartError {
+            path: path.into(),
+            message: message.into(),
+        }
+    }
+}
+
+impl fmt::Display for RestartError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.path, self.message)
+    }
+}
+
+impl std::error::Error for RestartError {}
+
+/// What the scene keeps beside its slots: pair caches (warm starts) and rolling springs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Kept {
+    pub cached: bool,
+    pub rolling: bool,
+}
+
+impl RestartState {
+    /// Checks that this state fits the scene of `bodies` and `walls` stepped with `dt`, keeping
+    /// what `kept` says: the counts, the time, the slots' keys (in order, each a pair of the
+    /// scene), and no history of a kind the scene does not keep.
+    pub(crate) fn check(
+        &self,
+        bodies: &[BodyInit],
+        walls: &[WallSpec],
+        dt: f64,
+        kept: Kept,
+    ) -> Result<(), RestartError> {
+        let (n, nw) = (bodies.len(), walls.len());
+        let count = |path: &str, got: usize, want: usize, of: &str| {
+            if got == want {
+                Ok(())
+            } else {
+                Err(RestartError::new(
+                    path,
+                    format!("has {got} entries, but the case has {want} {of}"),
+                ))
+            }
+        };
+        count("bodies", self.bodies.len(), n, "bodies")?;
+        count("walls", self.walls.len(), nw, "walls")?;
+        count("neighbour_list.built_at", self.built_at.len(), n, "bodies")?;
+        count(
+            "neighbour_list.wall_built_at",
+            self.wall_built_at.len(),
+            nw,
+            "walls",
+        )?;
+        let time = self.step as f64 * dt;
+        if self.time.to_bits() != time.to_bits() {
+            return Err(RestartError::new(
+                "time",
+                format!(
+                    "{} is not step × dt = {} × {dt:e} = {time} (a continued run keeps the time \
+                     step of the run that wrote the state)",
+                    self.time, self.step
+                ),
+            ));
+        }
+        let mut last: Option<(u32, u32)> = None;
+        for (k, s) in self.slots.iter().enumerate() {
+            let at = |f: &str| format!("contacts[{k}].{f}");
+            let (i, j) = s.slot.key();
+            if i as usize >= n {
+                return Err(RestartError::new(
+                    at("i"),
+                    format!("body {i} does not exist (the case has {n} bodies)"),
+                ));
+            }
+            if j >= WALL_BASE {
+                if (j - WALL_BASE) as usize >= nw {
+                    return Err(RestartError::new(
+                        at("wall"),
+                        format!(
+                            "wall {} does not exist (the case has {nw} walls)",
+                            j - WALL_BASE
+                        ),
+                    ));
+                }
+            } else if j as usize >= n || j <= i {
+                return Err(RestartError::new(
+                    at("j"),
+                    format!("must be a body after i = {i} and below {n}, got {j}"),
+                ));
+            }
+            if last.is_some_and(|l| l >= (i, j)) {
+                return Err(RestartError::new(
+                    at("i"),
+                    "the contacts must be listed once each, in the order of (i, j), walls after \
+                     bodies",
+                ));
+            }
+            last = Some((i, j));
+            if !kept.cached && !s.cache.is_empty() {
+                return Err(RestartError::new(
+                    at("warm"),
+                    "a warm start, but no pair of this scene keeps one (no ellipse)",
+                ));
+            }
+            if !kept.rolling && s.rolling != 0.0 {
+                return Err(RestartError::new(
+                    at("rolling"),
+                    "a rolling spring, but no contact law of this scene has one (rolling_model \
+                     `epsd`)",
+                ));
+            }
+            if !s.slot.active
+                && (s.slot.shear != 0.0 || s.slot.history_energy != 0.0 || s.rolling != 0.0)
+            {
+                return Err(RestartError::new(
+                    at("active"),
+                    "an inactive contact carries no history",
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The name of a contact's geometry state in a state file.
+pub fn state_name(s: ContactState) -> &'static str {
+    s.as_str()
+}
+
+/// The geometry state named `name` ([`state_name`]).
+pub fn state_from_name(name: &str) -> Option<ContactState> {
+    [
+        ContactState::Separated,
+        ContactState::Touching,
+        ContactState::Overlap,
+        ContactState::Deep,
+        ContactState::Contained,
+    ]
+    .into_iter()
+    .find(|s| s.as_str() == name)
+}

@@ -1,0 +1,300 @@
+//! `state.json`: the state a run ended in, as a case file that continues the run
+//! (`dem2d run RUN/state.json`).
+//!
+//! The file is the run's case — every field as the case gave it, the bodies listed with their
+//! current positions, angles and velocities — plus a `"state"` block holding the rest of the
+//! state ([`crate::dynamics::restart`]): the step and time, each body's last force and moment
+//! (and a circle's frame), each wall's current point, velocity and load, every pair of the
+//! neighbour list with its contact history and warm start, the energy account, the counters,
+//! and the run's progress. `scene::state` reads it back.
+//!
+//! Every number is written in the shortest form that reads back as the same double (ryu, as
+//! serde_json writes floats; `-0.0` stays negative, subnormals keep their bits). A warm start is
+//! single precision: its numbers are written as the doubles equal to them (read back exactly)
+//! and `null` for its NaN. One body, one contact or one position per line. The file is written
+//! atomically (a temporary file renamed over it), like `summary.json`.
+
+use crate::dynamics::restart::{RestartState, RunProgress, state_name};
+use crate::dynamics::{BodyInit, World};
+use crate::geometry::Vec2;
+use serde_json::Value;
+use std::fmt::Write as _;
+use std::io::{self, Write};
+use std::path::Path;
+
+/// The case's top-level fields in the order a state file lists them (the bodies and the state
+/// come last).
+const CASE_ORDER: [&str; 13] = [
+    "version",
+    "name",
+    "description",
+    "units",
+    "gravity",
+    "dt",
+    "duration",
+    "quiescence",
+    "quiescence_window",
+    "output_every",
+    "output",
+    "contact",
+    "walls",
+];
+
+/// A double in its shortest round-trip form (`null` if not finite).
+fn num(x: f64) -> String {
+    serde_json::to_string(&x).expect("a float serialises")
+}
+
+fn vec2(v: Vec2) -> String {
+    format!("[{}, {}]", num(v.x), num(v.y))
+}
+
+fn compact(v: &Value) -> String {
+    serde_json::to_string(v).expect("a JSON value serialises")
+}
+
+/// The text of a state file: `case` the run's case as read (its JSON), `duration` the run's
+/// duration (the case's, or the one the command line gave), `state` the world's state with the
+/// run's progress, `bodies` the case's bodies (for which of them are circles: a circle's frame
+/// is written), `status` how the run ended.
+pub fn state_text(
+    case: &Value,
+    duration: f64,
+    state: &RestartState,
+    bodies: &[BodyInit],
+    status: &str,
+) -> String {
+    let mut out = String::with_capacity(256 + 200 * (state.bodies.len() + state.slots.len()));
+    out.push_str("{\n");
+    for key in CASE_ORDER {
+        let value = match key {
+            "duration" => Some(num(duration)),
+            _ => case.get(key).map(compact),
+        };
+        if let Some(v) = value {
+            let _ = writeln!(out, "  {}: {v},", compact(&Value::from(key)));
+        }
+    }
+    // The bodies: the case's, at their current pose and velocity.
+    out.push_str("  \"bodies\": [\n");
+    let empty = Value::Object(Default::default());
+    let listed = case.get("bodies").and_then(Value::as_array);
+    for (k, b) in state.bodies.iter().enumerate() {
+        let given = listed.and_then(|l| l.get(k)).unwrap_or(&empty);
+        let mut line = String::from("{");
+        if let Some(shape) = given.get("shape") {
+            let _ = write!(line, "\"shape\": {}, ", compact(shape));
+        }
+        let _ = write!(
+            line,
+            "\"position\": {}, \"angle\": {}, \"velocity\": {}, \"omega\": {}",
+            vec2(b.position),
+            num(b.angle),
+            vec2(b.velocity),
+            num(b.omega)
+        );
+        if let Some(obj) = given.as_object() {
+            for (key, v) in obj {
+                if !["shape", "position", "angle", "velocity", "omega"].contains(&key.as_str()) {
+                    let _ = write!(
+                        line,
+                        ", {}: {}",
+                        compact(&Value::from(key.as_str())),
+                        compact(v)
+                    );
+                }
+            }
+        }
+        line.push('}');
+        let sep = if k + 1 < state.bodies.len() { "," } else { "" };
+        let _ = writeln!(out, "    {line}{sep}");
+    }
+    out.push_str("  ],\n");
+    out.push_str("  \"state\": {\n");
+    write_state_block(&mut out, state, bodies, status);
+    out.push_str("  }\n}\n");
+    out
+}
+
+fn write_state_block(out: &mut String, s: &RestartState, bodies: &[BodyInit], status: &str) {
+    let _ = writeln!(out, "    \"status\": {},", compact(&Value::from(status)));
+    let _ = writeln!(out, "    \"step\": {},", s.step);
+    let _ = writeln!(out, "    \"time\": {},", num(s.time));
+    let e = &s.energies;
+    let _ = writeln!(
+        out,
+        "    \"energies\": {{\"kinetic\": {}, \"potential\": {}, \"elastic\": {}, \"dissipated\": {}, \"boundary_work\": {}}},",
+        num(e.kinetic),
+        num(e.potential),
+        num(e.elastic),
+        num(e.dissipated),
+        num(e.boundary_work)
+    );
+    let d = &s.diagnostics;
+    let _ = writeln!(
+        out,
+        "    \"diagnostics\": {{\"max_depth_ratio\": {}, \"deep_contacts\": {}, \"contained_contacts\": {}, \"dt_critical_observed\": {}}},",
+        num(d.max_depth_ratio),
+        d.deep_contacts,
+        d.contained_contacts,
+        num(d.dt_critical_observed)
+    );
+    let [a, b, c] = s.last_increments;
+    let _ = writeln!(
+        out,
+        "    \"last_increments\": [{}, {}, {}],",
+        num(a),
+        num(b),
+        num(c)
+    );
+    if let Some(run) = &s.run {
+        write_run(out, run);
+    }
+    out.push_str("    \"walls\": [");
+    for (k, w) in s.walls.iter().enumerate() {
+        let l = &w.load;
+        let _ = write!(
+            out,
+            "{}\n      {{\"point\": {}, \"velocity\": {}, \"load\": {{\"force\": {}, \"force_non_elastic\": {}, \"stiffness\": {}, \"contacts\": {}}}}}",
+            if k > 0 { "," } else { "" },
+            vec2(w.point),
+            vec2(w.velocity),
+            vec2(l.force),
+            vec2(l.force_non_elastic),
+            num(l.stiffness),
+            l.contacts
+        );
+    }
+    out.push_str(if s.walls.is_empty() {
+        "],\n"
+    } else {
+        "\n    ],\n"
+    });
+    out.push_str("    \"bodies\": [");
+    for (k, b) in s.bodies.iter().enumerate() {
+        let _ = write!(
+            out,
+            "{}\n      {{\"force\": {}, \"torque\": {}",
+            if k > 0 { "," } else { "" },
+            vec2(b.force),
+            num(b.torque)
+        );
+        if bodies.get(k).is_some_and(|i| i.shape.is_circle()) {
+            let _ = write!(out, ", \"frame\": [{}, {}]", num(b.frame.0), num(b.frame.1));
+        }
+        out.push('}');
+    }
+    out.push_str(if s.bodies.is_empty() {
+        "],\n"
+    } else {
+        "\n    ],\n"
+    });
+    out.push_str("    \"contacts\": [");
+    for (k, c) in s.slots.iter().enumerate() {
+        let slot = &c.slot;
+        let _ = write!(
+            out,
+            "{}\n      {{\"i\": {}, ",
+            if k > 0 { "," } else { "" },
+            slot.i
+        );
+        match slot.sides().wall() {
+            Some(w) => {
+                let _ = write!(out, "\"wall\": {w}");
+            }
+            None => {
+                let _ = write!(out, "\"j\": {}", slot.j);
+            }
+        }
+        if slot.active {
+            let d = &c.data;
+            let _ = write!(
+                out,
+                ", \"active\": true, \"state\": \"{}\", \"shear\": {}, \"rolling\": {}, \"history_energy\": {}, \"point\": {}, \"force\": {}, \"force_non_elastic\": {}, \"couple\": {}, \"couple_non_elastic\": {}",
+                state_name(slot.state),
+                num(slot.shear),
+                num(c.rolling),
+                num(slot.history_energy),
+                vec2(d.point),
+                vec2(d.force),
+                vec2(d.force_non_elastic),
+                num(d.couple),
+                num(d.couple_non_elastic)
+            );
+        }
+        if !c.cache.is_empty() {
+            let w = c.cache.saved().map(|v| num(f64::from(v)));
+            let _ = write!(out, ", \"warm\": [{}, {}, {}, {}]", w[0], w[1], w[2], w[3]);
+        }
+        out.push('}');
+    }
+    out.push_str(if s.slots.is_empty() {
+        "],\n"
+    } else {
+        "\n    ],\n"
+    });
+    let _ = write!(
+        out,
+        "    \"neighbour_list\": {{\"builds\": {}, \"wall_built_at\": [{}], \"built_at\": [",
+        s.builds,
+        s.wall_built_at
+            .iter()
+            .map(|p| vec2(*p))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    for (k, p) in s.built_at.iter().enumerate() {
+        let _ = write!(out, "{}\n      {}", if k > 0 { "," } else { "" }, vec2(*p));
+    }
+    out.push_str(if s.built_at.is_empty() {
+        "]}\n"
+    } else {
+        "\n    ]}\n"
+    });
+}
+
+fn write_run(out: &mut String, r: &RunProgress) {
+    let w = &r.watch;
+    let _ = writeln!(
+        out,
+        "    \"run\": {{\"initial_total_energy\": {}, \"quiescence_streak\": {}, \"first_contact_step\": {}, \"contact_sum\": {}, \"watch\": {{\"kinetic0\": {}, \"elastic0\": {}, \"potential0\": {}, \"total0\": {}, \"gravity_supplied\": {}, \"boundary_supplied\": {}, \"depth_limit\": {}}}}},",
+        num(r.initial_total),
+        r.quiescence_streak,
+        r.first_contact_step
+            .map_or("null".to_string(), |s| s.to_string()),
+        r.contact_sum,
+        num(w.kinetic0),
+        num(w.elastic0),
+        num(w.potential0),
+        num(w.total0),
+        num(w.gravity_supplied),
+        num(w.boundary_supplied),
+        num(w.depth_limit)
+    );
+}
+
+/// Writes `state.json` into `dir` atomically (`state.json.tmp`, synced, renamed over it): the
+/// world's state with the run's progress `run` (see [`state_text`]).
+pub fn write_state(
+    dir: &Path,
+    case: &Value,
+    duration: f64,
+    world: &World,
+    bodies: &[BodyInit],
+    run: RunProgress,
+    status: &str,
+) -> io::Result<()> {
+    let mut state = world.restart_state();
+    state.run = Some(run);
+    let text = state_text(case, duration, &state, bodies, status);
+    let tmp = dir.join("state.json.tmp");
+    let result = std::fs::File::create(&tmp).and_then(|mut f| {
+        f.write_all(text.as_bytes())?;
+        f.sync_all()
+    });
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(e);
+    }
+    std::fs::rename(&tmp, dir.join("state.json"))
+}

@@ -1,0 +1,425 @@
+//! Reading a state file (`state.json`, written by `output::state` at the end of a run): a case
+//! file with a `"state"` block, from which `dem2d run` continues the run exactly. A case file
+//! without the block reads as a case.
+//!
+//! The case part is read as any case (every check applies; the bodies' positions, angles and
+//! velocities are the state's). The block's numbers are read as written — finite, of any
+//! magnitude — and every error names the field (`state.contacts[3].shear`). The block must fit
+//! the case: one entry per body and per wall, contacts between the case's bodies and walls,
+//! listed once each in key order, and the time `step × dt` (a continued run keeps the time step).
+
+use super::case::Case;
+use super::fields::{FieldError, Obj, index, join, parse_json, type_of};
+use crate::dynamics::World;
+use crate::dynamics::account::{Diagnostics, Energies};
+use crate::dynamics::boundary::WallLoad;
+use crate::dynamics::contacts::{ContactData, Slot, WALL_BASE};
+use crate::dynamics::restart::{
+    BodyRestart, RestartState, RunProgress, SlotRestart, WallRestart, state_from_name,
+};
+use crate::dynamics::watch::BlowupWatch;
+use crate::geometry::Vec2;
+use crate::narrow_phase::PairCache;
+use serde_json::Value;
+
+/// A case file, and the state it continues from when it is a state file.
+#[derive(Clone, Debug)]
+pub struct CaseFile {
+    pub case: Case,
+    /// The state block (`None` for a case that starts at t = 0).
+    pub restart: Option<RestartState>,
+    /// The file as parsed (a state file written at the end of the run repeats its fields).
+    pub value: Value,
+}
+
+impl CaseFile {
+    /// Reads a case or state file from its text.
+    pub fn from_json(text: &str) -> Result<CaseFile, FieldError> {
+        let value = parse_json(text, "")?;
+        let case = Case::from_value(&value)?;
+        let restart = match value.get("state") {
+            None => None,
+            Some(s) => {
+                let state = parse_state(s, &case)?;
+                // The same check as the world's when it resumes, named in the file's terms.
+                World::resume(
+                    &case.bodies,
+                    case.walls.clone(),
+                    case.gravity,
+                    case.contact,
+                    case.dt,
+                    &state,
+                )
+                .map_err(|e| FieldError::new(join("state", &e.path), e.message))?;
+                Some(state)
+            }
+        };
+        Ok(CaseFile {
+            case,
+            restart,
+            value,
+        })
+    }
+
+    /// The world at the start of the run: the case's at t = 0, or the state's.
+    pub fn build_world(&self) -> World {
+        match &self.restart {
+            None => self.case.build_world(),
+            Some(state) => World::resume(
+                &self.case.bodies,
+                self.case.walls.clone(),
+                self.case.gravity,
+                self.case.contact,
+                self.case.dt,
+                state,
+            )
+            .expect("checked when read"),
+        }
+    }
+}
+
+/// Any finite number (the state's numbers are what a run computed: no range applies).
+fn float(v: &Value, path: &str) -> Result<f64, FieldError> {
+    match v.as_f64() {
+        Some(x) if x.is_finite() => Ok(x),
+        _ => Err(FieldError::new(
+            path,
+            format!("must be a finite number, got {}", shown(v)),
+        )),
+    }
+}
+
+/// A number, or `null` for ∞ (a critical time step never sampled).
+fn float_or_infinity(v: &Value, path: &str) -> Result<f64, FieldError> {
+    match v {
+        Value::Null => Ok(f64::INFINITY),
+        _ => float(v, path),
+    }
+}
+
+fn whole(v: &Value, path: &str) -> Result<u64, FieldError> {
+    v.as_u64().ok_or_else(|| {
+        FieldError::new(
+            path,
+            format!("must be a whole number ≥ 0, got {}", shown(v)),
+        )
+    })
+}
+
+fn shown(v: &Value) -> String {
+    match v {
+        Value::Number(n) => n.to_string(),
+        Value::String(s) if s.starts_with('\u{1}') => s.rsplit(':').next().unwrap_or("").into(),
+        other => type_of(other).to_string(),
+    }
+}
+
+fn pair(v: &Value, path: &str) -> Result<Vec2, FieldError> {
+    let [x, y] = floats::<2>(v, path)?;
+    Ok(Vec2::new(x, y))
+}
+
+fn floats<const N: usize>(v: &Value, path: &str) -> Result<[f64; N], FieldError> {
+    match v.as_array() {
+        Some(a) if a.len() == N => {
+            let mut out = [0.0; N];
+            for (k, x) in a.iter().enumerate() {
+                out[k] = float(x, &index(path, k))?;
+            }
+            Ok(out)
+        }
+        _ => Err(FieldError::new(
+            path,
+            format!("must be an array of {N} numbers, got {}", shown_array(v)),
+        )),
+    }
+}
+
+fn shown_array(v: &Value) -> String {
+    match v {
+        Value::Array(a) => format!("an array of {} elements", a.len()),
+        other => type_of(other).to_string(),
+    }
+}
+
+fn array<'a>(v: &'a Value, path: &str) -> Result<&'a Vec<Value>, FieldError> {
+    v.as_array()
+        .ok_or_else(|| FieldError::new(path, format!("must be an array, got {}", type_of(v))))
+}
+
+/// A warm start: four single-precision numbers, `null` for NaN.
+fn warm(v: &Value, path: &str) -> Result<PairCache, FieldError> {
+    let items = match v.as_array() {
+        Some(a) if a.len() == 4 => a,
+        _ => {
+            return Err(FieldError::new(
+                path,
+                format!(
+                    "must be an array of 4 single-precision numbers or null, got {}",
+                    shown_array(v)
+                ),
+            ));
+        }
+    };
+    let mut w = [f32::NAN; 4];
+    for (k, x) in items.iter().enumerate() {
+        if x.is_null() {
+            continue;
+        }
+        let p = index(path, k);
+        let d = float(x, &p)?;
+        let f = d as f32;
+        if f64::from(f) != d {
+            return Err(FieldError::new(
+                p,
+                format!("{d} is not a single-precision number (a warm start is kept in f32)"),
+            ));
+        }
+        w[k] = f;
+    }
+    Ok(PairCache::from_saved(w))
+}
+
+/// Reads the state block of a state file whose case part is `case`.
+pub fn parse_state(v: &Value, case: &Case) -> Result<RestartState, FieldError> {
+    let mut o = Obj::new(v, "state")?;
+    o.opt_with("status", |v, p| {
+        v.as_str()
+            .map(|_| ())
+            .ok_or_else(|| FieldError::new(p, format!("must be a string, got {}", type_of(v))))
+    })?;
+    let step = o.req_with("step", whole)?;
+    let time = o.req_with("time", float)?;
+    let energies = o.req_with("energies", |v, p| {
+        let mut e = Obj::new(v, p)?;
+        let r = Energies {
+            kinetic: e.req_with("kinetic", float)?,
+            potential: e.req_with("potential", float)?,
+            elastic: e.req_with("elastic", float)?,
+            dissipated: e.req_with("dissipated", float)?,
+            boundary_work: e.req_with("boundary_work", float)?,
+        };
+        e.finish()?;
+        Ok(r)
+    })?;
+    let diagnostics = o.req_with("diagnostics", |v, p| {
+        let mut d = Obj::new(v, p)?;
+        let r = Diagnostics {
+            max_depth_ratio: d.req_with("max_depth_ratio", float)?,
+            deep_contacts: d.req_with("deep_contacts", whole)?,
+            contained_contacts: d.req_with("contained_contacts", whole)?,
+            dt_critical_observed: d.req_with("dt_critical_observed", float_or_infinity)?,
+        };
+        d.finish()?;
+        Ok(r)
+    })?;
+    let last_increments = o.req_with("last_increments", floats::<3>)?;
+    let run = o.opt_with("run", parse_run)?;
+    let walls = o.req_with("walls", |v, p| {
+        array(v, p)?
+            .iter()
+            .enumerate()
+            .map(|(k, w)| {
+                let mut w = Obj::new(w, &index(p, k))?;
+                let point = w.req_with("point", pair)?;
+                let velocity = w.req_with("velocity", pair)?;
+                let load = w.req_with("load", |v, p| {
+                    let mut l = Obj::new(v, p)?;
+                    let load = WallLoad {
+                        force: l.req_with("force", pair)?,
+                        force_non_elastic: l.req_with("force_non_elastic", pair)?,
+                        stiffness: l.req_with("stiffness", float)?,
+                        contacts: l.req_with("contacts", |v, p| {
+                            u32::try_from(whole(v, p)?)
+                                .map_err(|_| FieldError::new(p, "must be a whole number below 2³²"))
+                        })?,
+                    };
+                    l.finish()?;
+                    Ok(load)
+                })?;
+                w.finish()?;
+                Ok(WallRestart {
+                    point,
+                    velocity,
+                    load,
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()
+    })?;
+    let bodies_value = o.req("bodies")?;
+    let listed = array(bodies_value, "state.bodies")?;
+    if listed.len() != case.bodies.len() {
+        return Err(FieldError::new(
+            "state.bodies",
+            format!(
+                "has {} entries, but the case has {} bodies",
+                listed.len(),
+                case.bodies.len()
+            ),
+        ));
+    }
+    let mut bodies = Vec::with_capacity(listed.len());
+    for (k, (b, init)) in listed.iter().zip(&case.bodies).enumerate() {
+        let path = index("state.bodies", k);
+        let mut b = Obj::new(b, &path)?;
+        let force = b.req_with("force", pair)?;
+        let torque = b.req_with("torque", float)?;
+        let frame = match b.opt_with("frame", floats::<2>)? {
+            Some([c, s]) if init.shape.is_circle() => (c, s),
+            Some(_) => {
+                return Err(FieldError::new(
+                    join(&path, "frame"),
+                    "only a circle keeps a frame apart from its angle",
+                ));
+            }
+            None => {
+                let (s, c) = init.angle.sin_cos();
+                (c, s)
+            }
+        };
+        b.finish()?;
+        bodies.push(BodyRestart {
+            position: init.position,
+            angle: init.angle,
+            frame,
+            velocity: init.velocity,
+            omega: init.omega,
+            force,
+            torque,
+        });
+    }
+    let slots = o.req_with("contacts", |v, p| {
+        array(v, p)?
+            .iter()
+            .enumerate()
+            .map(|(k, c)| parse_contact(c, &index(p, k)))
+            .collect::<Result<Vec<_>, _>>()
+    })?;
+    let (builds, wall_built_at, built_at) = o.req_with("neighbour_list", |v, p| {
+        let mut l = Obj::new(v, p)?;
+        let builds = l.req_with("builds", whole)?;
+        let points = |v: &Value, p: &str| -> Result<Vec<Vec2>, FieldError> {
+            array(v, p)?
+                .iter()
+                .enumerate()
+                .map(|(k, x)| pair(x, &index(p, k)))
+                .collect()
+        };
+        let wall_built_at = l.req_with("wall_built_at", points)?;
+        let built_at = l.req_with("built_at", points)?;
+        l.finish()?;
+        Ok((builds, wall_built_at, built_at))
+    })?;
+    o.finish()?;
+    Ok(RestartState {
+        step,
+        time,
+        bodies,
+        walls,
+        slots,
+        built_at,
+        wall_built_at,
+        builds,
+        energies,
+        diagnostics,
+        last_increments,
+        run,
+    })
+}
+
+fn parse_contact(v: &Value, path: &str) -> Result<SlotRestart, FieldError> {
+    let mut c = Obj::new(v, path)?;
+    let index_of = |v: &Value, p: &str| {
+        u32::try_from(whole(v, p)?)
+            .ok()
+            .filter(|&x| x < WALL_BASE)
+            .ok_or_else(|| FieldError::new(p, "is beyond the largest index"))
+    };
+    let i = c.req_with("i", index_of)?;
+    let j = match (c.has("j"), c.has("wall")) {
+        (true, false) => c.req_with("j", index_of)?,
+        (false, true) => WALL_BASE + c.req_with("wall", index_of)?,
+        _ => {
+            return Err(FieldError::new(
+                path,
+                "must give either `j` (a body) or `wall` (a wall index)",
+            ));
+        }
+    };
+    let active = c
+        .opt_with("active", |v, p| {
+            v.as_bool().ok_or_else(|| {
+                FieldError::new(p, format!("must be true or false, got {}", type_of(v)))
+            })
+        })?
+        .unwrap_or(false);
+    let mut slot = Slot::new(i, j);
+    let mut rolling = 0.0;
+    let mut data = ContactData::default();
+    if active {
+        let state = c.req_with("state", |v, p| {
+            v.as_str().and_then(state_from_name).ok_or_else(|| {
+                FieldError::new(
+                    p,
+                    format!(
+                        "must be one of `overlap`, `deep`, `contained`, `touching`, `separated`, got {}",
+                        shown(v)
+                    ),
+                )
+            })
+        })?;
+        slot.active = true;
+        slot.state = state;
+        slot.shear = c.req_with("shear", float)?;
+        rolling = c.req_with("rolling", float)?;
+        slot.history_energy = c.req_with("history_energy", float)?;
+        data = ContactData {
+            point: c.req_with("point", pair)?,
+            force: c.req_with("force", pair)?,
+            force_non_elastic: c.req_with("force_non_elastic", pair)?,
+            couple: c.req_with("couple", float)?,
+            couple_non_elastic: c.req_with("couple_non_elastic", float)?,
+        };
+    }
+    let cache = c.opt_with("warm", warm)?.unwrap_or(PairCache::EMPTY);
+    c.finish()?;
+    Ok(SlotRestart {
+        slot,
+        rolling,
+        cache,
+        data,
+    })
+}
+
+fn parse_run(v: &Value, path: &str) -> Result<RunProgress, FieldError> {
+    let mut r = Obj::new(v, path)?;
+    let initial_total = r.req_with("initial_total_energy", float)?;
+    let quiescence_streak = r.req_with("quiescence_streak", whole)?;
+    let first_contact_step = r.req_with("first_contact_step", |v, p| match v {
+        Value::Null => Ok(None),
+        _ => whole(v, p).map(Some),
+    })?;
+    let contact_sum = r.req_with("contact_sum", whole)?;
+    let watch = r.req_with("watch", |v, p| {
+        let mut w = Obj::new(v, p)?;
+        let watch = BlowupWatch {
+            kinetic0: w.req_with("kinetic0", float)?,
+            elastic0: w.req_with("elastic0", float)?,
+            potential0: w.req_with("potential0", float)?,
+            total0: w.req_with("total0", float)?,
+            gravity_supplied: w.req_with("gravity_supplied", float)?,
+            boundary_supplied: w.req_with("boundary_supplied", float)?,
+            depth_limit: w.req_with("depth_limit", float)?,
+        };
+        w.finish()?;
+        Ok(watch)
+    })?;
+    r.finish()?;
+    Ok(RunProgress {
+        initial_total,
+        quiescence_streak,
+        first_contact_step,
+        contact_sum,
+        watch,
+    })
+}
