@@ -4,6 +4,9 @@
 //! and ellipse pairs (whose warm starts decide the last bits of their crossings), on one thread
 //! and on two; after `--max-steps` and after SIGTERM; and the state file's numbers read back as
 //! the same bits, extreme ones included. A bad state file is refused naming the field.
+// TEMPORARY (lead, merge of restart-14 in progress): the command-line tests below are still
+// being written on the branch; remove this line at the next merge.
+#![allow(unused_imports, dead_code)]
 
 use dem2d::dynamics::World;
 use dem2d::scene::CaseFile;
