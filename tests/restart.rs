@@ -134,3 +134,146 @@ fn a_resumed_world_steps_to_the_same_bits_on_one_and_two_threads() {
     library_round_trip(1);
     library_round_trip(2);
 }
+
+/// The data rows of a CSV file (without its header) whose step (first column) is in
+/// `(after, upto]`.
+fn rows_between(file: &Path, after: u64, upto: u64) -> Vec<String> {
+    std::fs::read_to_string(file)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .filter(|l| {
+            let step = l.split(',').next().unwrap().parse::<u64>().unwrap();
+            after < step && step <= upto
+        })
+        .map(str::to_string)
+        .collect()
+}
+
+/// The rows of a CSV file at step `at`.
+fn rows_at(file: &Path, at: u64) -> Vec<String> {
+    std::fs::read_to_string(file)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .filter(|l| l.split(',').next().unwrap().parse::<u64>().unwrap() == at)
+        .map(str::to_string)
+        .collect()
+}
+
+fn json(file: &Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(file).unwrap()).unwrap()
+}
+
+/// A summary without what measures the machine (wall time, speed).
+fn summary_facts(dir: &Path) -> Value {
+    let mut s = json(&dir.join("summary.json"));
+    let o = s.as_object_mut().unwrap();
+    o.remove("wall_seconds");
+    o.remove("particle_steps_per_second");
+    s
+}
+
+fn run_ok(args: &[&str]) -> String {
+    let (code, out, err) = dem2d(args);
+    assert_eq!(code, 0, "dem2d {}: {err}", args.join(" "));
+    out
+}
+
+/// The continued run `rest` (from `first`'s state at step `b`, to step `c`) wrote the
+/// uninterrupted run's rows after B: trajectory and increments byte for byte; it starts with the
+/// state it continues from (the first part's last rows). When it runs to the end, the same
+/// summary (but for the machine's timings) and the same final `state.json`.
+fn check_continuation(whole: &Path, first: &Path, rest: &Path, (b, c): (u64, u64), end: bool) {
+    for csv in ["trajectory.csv", "increments.csv"] {
+        let want = rows_between(&whole.join(csv), b, c);
+        assert!(!want.is_empty(), "{csv}: rows after step {b}");
+        let got = rows_between(&rest.join(csv), b, u64::MAX);
+        assert_eq!(got, want, "{csv} after step {b}");
+    }
+    let traj = "trajectory.csv";
+    assert_eq!(rows_at(&rest.join(traj), b), rows_at(&first.join(traj), b));
+    if end {
+        assert_eq!(summary_facts(rest), summary_facts(whole));
+        assert_eq!(
+            std::fs::read_to_string(rest.join("state.json")).unwrap(),
+            std::fs::read_to_string(whole.join("state.json")).unwrap()
+        );
+    }
+}
+
+#[test]
+fn a_run_continued_from_its_state_file_writes_the_uninterrupted_runs_rows_on_1_and_2_threads() {
+    let dir = scratch("cli");
+    let case = dir.join("pile.json");
+    std::fs::write(&case, pile_case(0.26)).unwrap();
+    let case = case.to_str().unwrap();
+    let mut trajectories = Vec::new();
+    for threads in ["1", "2"] {
+        let out = |name: &str| dir.join(format!("{name}_{threads}"));
+        let (ac, ab, bc) = (out("ac"), out("ab"), out("bc"));
+        let common = ["--quiet", "--threads", threads];
+        let run = |args: &[&str]| run_ok(&[args, &common[..]].concat());
+        run(&["run", case, "--out", ac.to_str().unwrap()]);
+        run(&[
+            "run",
+            case,
+            "--out",
+            ab.to_str().unwrap(),
+            "--max-steps",
+            "9000",
+        ]);
+        let state = json(&ab.join("state.json"));
+        assert_eq!(state["state"]["status"], "max_steps");
+        assert_eq!(state["state"]["step"], 9000);
+        let open: Vec<&Value> = state["state"]["contacts"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|c| c["active"] == true)
+            .collect();
+        assert!(open.len() > 20, "open contacts at B: {}", open.len());
+        assert!(open.iter().any(|c| c["warm"].is_array()), "warm starts");
+        // B → C in two parts: --max-steps counts this run's steps.
+        let b2 = out("b2");
+        let printed = run(&[
+            "run",
+            ab.join("state.json").to_str().unwrap(),
+            "--out",
+            b2.to_str().unwrap(),
+            "--max-steps",
+            "1500",
+        ]);
+        assert!(
+            printed.contains("10500 steps (stopped by --max-steps)"),
+            "{printed}"
+        );
+        run(&[
+            "run",
+            b2.join("state.json").to_str().unwrap(),
+            "--out",
+            bc.to_str().unwrap(),
+        ]);
+        assert_eq!(json(&bc.join("summary.json"))["status"], "completed");
+        check_continuation(&ac, &ab, &b2, (9000, 10500), false);
+        check_continuation(&ac, &b2, &bc, (10500, 13000), true);
+        trajectories.push(std::fs::read(ac.join("trajectory.csv")).unwrap());
+    }
+    assert_eq!(trajectories[0], trajectories[1], "1 and 2 threads");
+    // A completed run's state is at the end of the duration: continuing it needs --duration.
+    let done = dir.join("ac_1").join("state.json");
+    let (code, _, err) = dem2d(&["run", done.to_str().unwrap(), "--quiet"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("give --duration to run further"), "{err}");
+    let longer = dir.join("longer");
+    run_ok(&[
+        "run",
+        done.to_str().unwrap(),
+        "--out",
+        longer.to_str().unwrap(),
+        "--duration",
+        "0.27",
+        "--quiet",
+    ]);
+    assert_eq!(json(&longer.join("summary.json"))["steps"], 13500);
+}
