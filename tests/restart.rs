@@ -277,3 +277,151 @@ fn a_run_continued_from_its_state_file_writes_the_uninterrupted_runs_rows_on_1_a
     ]);
     assert_eq!(json(&longer.join("summary.json"))["steps"], 13500);
 }
+
+#[test]
+fn a_run_stopped_by_sigterm_leaves_a_state_that_continues_it_exactly() {
+    let dir = scratch("sigterm");
+    let case = dir.join("pile.json");
+    std::fs::write(&case, pile_case(20.0)).unwrap();
+    let case = case.to_str().unwrap();
+    let stopped = dir.join("stopped");
+    let mut child = Command::new(bin())
+        .args([
+            "run",
+            case,
+            "--out",
+            stopped.to_str().unwrap(),
+            "--quiet",
+            "--threads",
+            "2",
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let deadline = Instant::now() + Duration::from_secs(60);
+    while !std::fs::read_to_string(stopped.join("summary.json"))
+        .is_ok_and(|t| t.contains("\"running\""))
+    {
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "ended before the signal"
+        );
+        assert!(Instant::now() < deadline, "never started");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    std::thread::sleep(Duration::from_millis(300));
+    assert!(
+        Command::new("kill")
+            .args(["-TERM", &child.id().to_string()])
+            .status()
+            .unwrap()
+            .success()
+    );
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(143),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let s = json(&stopped.join("summary.json"));
+    assert_eq!(s["status"], "interrupted");
+    let b = s["steps"].as_u64().unwrap();
+    let state = json(&stopped.join("state.json"));
+    assert_eq!(state["state"]["status"], "interrupted");
+    assert_eq!(state["state"]["step"], b);
+    assert!(b > 0, "{b}");
+    // The uninterrupted run to B + 2000, and the continuation for 2000 steps.
+    let (whole, rest) = (dir.join("whole"), dir.join("rest"));
+    let c = b + 2000;
+    run_ok(&[
+        "run",
+        case,
+        "--out",
+        whole.to_str().unwrap(),
+        "--max-steps",
+        &c.to_string(),
+        "--quiet",
+    ]);
+    let out = run_ok(&[
+        "run",
+        stopped.join("state.json").to_str().unwrap(),
+        "--out",
+        rest.to_str().unwrap(),
+        "--max-steps",
+        "2000",
+        "--quiet",
+        "--threads",
+        "1",
+    ]);
+    assert!(out.contains(&format!("{c} steps")), "{out}");
+    check_continuation(&whole, &stopped, &rest, (b, c), true);
+}
+
+#[test]
+fn extreme_numbers_read_back_as_the_same_bits() {
+    let file = CaseFile::from_json(&pile_case(0.3)).unwrap();
+    let mut w = file.build_world();
+    for _ in 0..9000 {
+        w.step().unwrap();
+    }
+    let mut state = w.restart_state();
+    state.run = Some(dem2d::dynamics::RunProgress {
+        initial_total: -1e300,
+        quiescence_streak: u64::MAX,
+        first_contact_step: None,
+        contact_sum: 1 << 60,
+        watch: dem2d::dynamics::watch::BlowupWatch::new(&w),
+    });
+    let sub = f64::from_bits(1); // 5e-324, the smallest subnormal
+    state.bodies[0].velocity = dem2d::geometry::Vec2::new(-0.0, sub);
+    state.bodies[0].omega = -2.5e-310;
+    state.bodies[1].force = dem2d::geometry::Vec2::new(1e300, -0.0);
+    state.bodies[1].torque = -f64::MAX;
+    state.energies.dissipated = f64::MIN_POSITIVE;
+    state.diagnostics.dt_critical_observed = f64::INFINITY;
+    state.last_increments = [0.0, -0.0, 1.0 / 3.0];
+    let k = state.slots.iter().position(|s| s.slot.active).unwrap();
+    state.slots[k].slot.shear = -1e-320;
+    state.slots[k].slot.history_energy = 1e300;
+    state.slots[k].rolling = -0.0;
+    state.slots[k].data.couple = 0.1 + 0.2;
+    state.slots[k].cache =
+        dem2d::narrow_phase::PairCache::from_saved([-0.0, f32::from_bits(1), f32::MAX, f32::NAN]);
+    let text = dem2d::output::state::state_text(
+        &file.value,
+        file.case.duration,
+        &state,
+        &file.case.bodies,
+        "max_steps",
+    );
+    for literal in [
+        "-0.0",
+        "5e-324",
+        "1e+300",
+        "-1.7976931348623157e+308",
+        "1.401298464324817e-45",
+    ] {
+        assert!(text.contains(literal), "{literal}");
+    }
+    let read = CaseFile::from_json(&text).unwrap();
+    let back = read.restart.unwrap();
+    assert_eq!(format!("{back:?}"), format!("{state:?}"));
+    // Bit for bit where Debug could hide it.
+    assert_eq!(back.bodies[0].velocity.x.to_bits(), (-0.0f64).to_bits());
+    assert_eq!(back.slots[k].rolling.to_bits(), (-0.0f64).to_bits());
+    let warm = back.slots[k].cache.saved();
+    assert_eq!(warm[0].to_bits(), (-0.0f32).to_bits());
+    assert_eq!(warm[1].to_bits(), 1);
+    assert!(warm[3].is_nan());
+    // And the file it makes is the same file.
+    let again = dem2d::output::state::state_text(
+        &read.value,
+        read.case.duration,
+        &back,
+        &read.case.bodies,
+        "max_steps",
+    );
+    assert_eq!(again, text);
+}
