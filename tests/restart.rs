@@ -425,3 +425,94 @@ fn extreme_numbers_read_back_as_the_same_bits() {
     );
     assert_eq!(again, text);
 }
+
+#[test]
+fn a_bad_state_file_is_refused_naming_the_file_and_the_field() {
+    let dir = scratch("bad");
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/bad/state_time.json");
+    let out = dir.join("out");
+    let (code, stdout, err) = dem2d(&[
+        "run",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(stdout.is_empty());
+    assert!(err.contains(file.to_str().unwrap()), "{err}");
+    assert!(err.contains("field `state.time`"), "{err}");
+    assert!(!out.exists(), "nothing written");
+}
+
+/// 10⁴ bodies in contact — a lattice of ellipses and disks, each touching its neighbours —
+/// after a few steps: the state file's size and the time to write and to read it (printed:
+/// `cargo test --release --test restart ten_thousand -- --nocapture`), and the resumed world
+/// is the same.
+#[test]
+fn a_ten_thousand_body_state_is_written_and_read_back() {
+    let mut bodies = Vec::new();
+    for row in 0..100 {
+        for col in 0..100 {
+            let (x, y) = (1.0 + 1.18 * col as f64, 0.399 + 0.79 * row as f64);
+            let shape = if (row + col) % 3 == 0 {
+                r#"{"type": "circle", "r": 0.4}"#
+            } else {
+                r#"{"type": "ellipse", "a": 0.6, "b": 0.4}"#
+            };
+            bodies.push(format!(r#"{{"shape": {shape}, "position": [{x}, {y}]}}"#));
+        }
+    }
+    let text = format!(
+        r#"{{"version": 1, "name": "lattice_10k", "gravity": [0, -980], "dt": 1e-5, "duration": 1,
+  "contact": {{"model": "linear", "kn_over_rho_g": 36400, "eta_n_over_rho_g": 10, "friction": 0.5,
+               "rolling_model": "epsd", "rolling_friction": 0.05}},
+  "walls": [{{"point": [0, 0], "normal": [0, 1]}}, {{"point": [0.4, 0], "normal": [1, 0]}},
+            {{"point": [118.2, 0], "normal": [-1, 0]}}],
+  "bodies": [{}]}}"#,
+        bodies.join(",\n")
+    );
+    let file = CaseFile::from_json(&text).unwrap();
+    let mut w = file.build_world();
+    for _ in 0..20 {
+        w.step().unwrap();
+    }
+    let state = w.restart_state();
+    let active = state.slots.iter().filter(|s| s.slot.active).count();
+    assert!(active > 10_000, "{active} contacts");
+    let dir = scratch("ten_thousand");
+    let t = Instant::now();
+    dem2d::output::state::write_state(
+        &dir,
+        &file.value,
+        file.case.duration,
+        &w,
+        &file.case.bodies,
+        dem2d::dynamics::RunProgress {
+            initial_total: 0.0,
+            quiescence_streak: 0,
+            first_contact_step: Some(1),
+            contact_sum: 0,
+            watch: dem2d::dynamics::watch::BlowupWatch::new(&w),
+        },
+        "max_steps",
+    )
+    .unwrap();
+    let write = t.elapsed();
+    let bytes = std::fs::metadata(dir.join("state.json")).unwrap().len();
+    let t = Instant::now();
+    let text = std::fs::read_to_string(dir.join("state.json")).unwrap();
+    let read = CaseFile::from_json(&text).unwrap();
+    let resumed = read.build_world();
+    let read_time = t.elapsed();
+    println!(
+        "10⁴ bodies, {} slots ({active} contacts): state.json {:.1} MB, written in {:.0} ms, read and resumed in {:.0} ms",
+        state.slots.len(),
+        bytes as f64 / 1e6,
+        write.as_secs_f64() * 1e3,
+        read_time.as_secs_f64() * 1e3
+    );
+    let mut back = resumed.restart_state();
+    back.run = None;
+    assert_eq!(format!("{back:?}"), format!("{state:?}"));
+    assert!(write < Duration::from_secs(20) && read_time < Duration::from_secs(20));
+}
