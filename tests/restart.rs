@@ -563,3 +563,38 @@ fn a_biaxial_test_with_servo_walls_continues_exactly_with_every_output() {
     assert!(rest.len() >= 2);
     assert_eq!(&rest[1..], &whole[whole.len() + 1 - rest.len()..]);
 }
+
+/// A run that came to rest ends its state there; continued, it asks for rest anew (P's window
+/// of one step: it stops after one more step at rest), and reports the speed of its own steps.
+#[test]
+fn a_run_at_rest_continues_and_asks_for_rest_anew() {
+    let dir = scratch("at_rest");
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/settle3_dt1e-5.json");
+    let (a, b) = (dir.join("a"), dir.join("b"));
+    run_ok(&[
+        "run",
+        case.to_str().unwrap(),
+        "--out",
+        a.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let state = json(&a.join("state.json"));
+    assert_eq!(state["state"]["status"], "at_rest");
+    assert_eq!(state["state"]["step"], 7493);
+    assert_eq!(state["state"]["run"]["quiescence_streak"], 1);
+    let out = run_ok(&[
+        "run",
+        a.join("state.json").to_str().unwrap(),
+        "--out",
+        b.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(out.contains("7494 steps"), "{out}");
+    assert!(out.contains("at rest at step 7494"), "{out}");
+    let s = json(&b.join("summary.json"));
+    assert_eq!(s["status"], "at_rest");
+    // One step of three bodies: the speed is of this run's steps, not the whole run's.
+    let rate = s["particle_steps_per_second"].as_f64().unwrap();
+    let wall = s["wall_seconds"].as_f64().unwrap();
+    assert!((rate * wall - 3.0).abs() < 1e-6, "{rate} × {wall}");
+}
