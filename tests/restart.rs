@@ -327,6 +327,14 @@ fn a_run_stopped_by_sigterm_leaves_a_state_that_continues_it_exactly() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains(&format!(
+            "continue with `dem2d run {}`",
+            stopped.join("state.json").display()
+        )),
+        "{err}"
+    );
     let s = json(&stopped.join("summary.json"));
     assert_eq!(s["status"], "interrupted");
     let b = s["steps"].as_u64().unwrap();
