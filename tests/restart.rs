@@ -606,3 +606,47 @@ fn a_run_at_rest_continues_and_asks_for_rest_anew() {
     let wall = s["wall_seconds"].as_f64().unwrap();
     assert!((rate * wall - 3.0).abs() < 1e-6, "{rate} × {wall}");
 }
+
+/// A blow-up leaves no state to continue from (nor one of an earlier run in the directory).
+#[test]
+fn a_blow_up_writes_no_state_file() {
+    let dir = scratch("blowup");
+    let case = dir.join("blowup.json");
+    let text = |dt: &str| {
+        format!(
+            r#"{{"version": 1, "name": "blowup", "gravity": [0, 0], "dt": {dt}, "duration": 10.0,
+      "contact": {{"model": "linear", "kn": 1e9, "eta_n": 0, "friction": 0}},
+      "walls": [{{"point": [0, 0], "normal": [1, 0]}}, {{"point": [3.99, 0], "normal": [-1, 0]}}],
+      "bodies": [{{"shape": {{"type": "circle", "r": 1}}, "position": [1, 0]}},
+                 {{"shape": {{"type": "circle", "r": 1}}, "position": [3, 0]}}]}}"#
+        )
+    };
+    // Δt well below the critical step: two steps and a state; far above it: a blow-up.
+    let stable = dir.join("stable.json");
+    std::fs::write(&stable, text("1e-6")).unwrap();
+    std::fs::write(&case, text("1e-3")).unwrap();
+    let out = dir.join("out");
+    let case = case.to_str().unwrap();
+    run_ok(&[
+        "run",
+        stable.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--max-steps",
+        "2",
+        "--quiet",
+    ]);
+    assert!(out.join("state.json").exists());
+    let (code, _, err) = dem2d(&[
+        "run",
+        case,
+        "--out",
+        out.to_str().unwrap(),
+        "--overwrite",
+        "--quiet",
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert_eq!(json(&out.join("summary.json"))["status"], "blowup");
+    assert!(!out.join("state.json").exists());
+    assert!(!out.join("state.json.tmp").exists());
+}
