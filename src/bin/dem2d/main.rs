@@ -573,9 +573,10 @@ fn run(args: RunArgs) -> Result<(), Failure> {
         return Err(Failure {
             code: (128 + sig).clamp(0, 255) as u8,
             message: format!(
-                "{name}: interrupted by {} after step {}; {kept}",
+                "{name}: interrupted by {} after step {}; {kept} (continue with `dem2d run {}`)",
                 signal_name(sig),
-                s.steps
+                s.steps,
+                out_dir.join("state.json").display()
             ),
         });
     }

@@ -242,6 +242,8 @@ struct Counters {
     streak: u64,
     /// The blow-up watch as the loop left it.
     watch: Option<BlowupWatch>,
+    /// The step this run started from (0, or a state file's).
+    start_step: u64,
 }
 
 /// Runs `case` (whose JSON text is `case_text`, copied to the output) with `opts`.
@@ -301,8 +303,10 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
         // any other keeps its streak, as the uninterrupted run would.
         streak: progress
             .as_ref()
-            .map_or(0, |p| p.quiescence_streak)
-            .min(case.quiescence_window.saturating_sub(1)),
+            .map(|p| p.quiescence_streak)
+            .filter(|&s| s < case.quiescence_window)
+            .unwrap_or(0),
+        start_step: world.step,
         watch: progress.map(|p| p.watch),
         ..Default::default()
     };
@@ -773,7 +777,7 @@ fn summarize(
             .filter(|v| v.is_finite()),
         warnings: warnings.to_vec(),
         wall_seconds: counters.wall_seconds,
-        particle_steps_per_second: b.len() as f64 * world.step as f64
+        particle_steps_per_second: b.len() as f64 * (world.step - counters.start_step) as f64
             / counters.wall_seconds.max(1e-9),
         contacts_per_step: counters.contact_sum as f64 / done as f64,
         error,
