@@ -54,6 +54,9 @@ pub struct BenchRow {
     /// Median wall time of one repetition (s).
     pub wall: f64,
     pub particle_steps_per_second: f64,
+    /// Particle-steps per CPU-second of the process (all its threads), median over the
+    /// repetitions: on a shared machine, steadier than the wall-clock rate.
+    pub particle_steps_per_cpu_second: f64,
     /// Contacts (body–body and body–wall) per step, mean over the timed steps.
     pub contacts_per_step: f64,
     /// Wall time per contact-step (ns): the whole step's cost divided by its contacts.
@@ -275,22 +278,26 @@ pub fn run(
                             w.step().map_err(|b| BenchError(b.to_string()))?;
                         }
                         let mut walls = Vec::with_capacity(opts.reps.max(1));
+                        let mut cpus = Vec::with_capacity(opts.reps.max(1));
                         let mut contacts = 0u64;
                         let builds = w.contacts.builds;
                         let allocs = allocations();
                         for _ in 0..opts.reps.max(1) {
-                            let start = Instant::now();
+                            let (start, cpu) = (Instant::now(), process_cpu_seconds());
                             for _ in 0..opts.steps {
                                 let r = w.step().map_err(|b| BenchError(b.to_string()))?;
                                 contacts += r.contacts as u64;
                             }
                             walls.push(start.elapsed().as_secs_f64());
+                            cpus.push(process_cpu_seconds() - cpu);
                         }
                         let allocs = allocations() - allocs;
                         let builds = w.contacts.builds - builds;
                         let bytes = heap().saturating_sub(before);
                         walls.sort_by(f64::total_cmp);
                         let wall = walls[walls.len() / 2];
+                        cpus.sort_by(f64::total_cmp);
+                        let cpu = cpus[cpus.len() / 2];
                         let total_steps = opts.steps * opts.reps.max(1) as u64;
                         let contacts_per_step = contacts as f64 / total_steps as f64;
                         let hash = state_hash(&w);
@@ -303,6 +310,7 @@ pub fn run(
                             steps: opts.steps,
                             wall,
                             particle_steps_per_second: n as f64 * opts.steps as f64 / wall,
+                            particle_steps_per_cpu_second: n as f64 * opts.steps as f64 / cpu,
                             contacts_per_step,
                             ns_per_contact: wall * 1e9
                                 / (opts.steps as f64 * contacts_per_step).max(1.0),
@@ -325,10 +333,11 @@ pub fn run(
                             .map(|(p, b)| format!("{p} {b:.0}"))
                             .collect();
                         eprintln!(
-                            "{:?} n = {n}, {} law, {threads} thread(s): {:.2} M particle-steps/s; heap {:.0} B/body ({})",
+                            "{:?} n = {n}, {} law, {threads} thread(s): {:.2} M particle-steps/s ({:.2} M per CPU-second); heap {:.0} B/body ({})",
                             shape,
                             normal_force.as_str(),
                             row.particle_steps_per_second / 1e6,
+                            row.particle_steps_per_cpu_second / 1e6,
                             row.bytes_per_body,
                             parts.join(", ")
                         );
@@ -341,10 +350,21 @@ pub fn run(
     Ok(rows)
 }
 
+/// CPU seconds used by this process so far (all threads).
+fn process_cpu_seconds() -> f64 {
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: clock_gettime writes into the timespec we own; the clock id is valid.
+    unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut t) };
+    t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
+}
+
 /// The rows as a Markdown table, with the speed-up over one thread where measured.
 pub fn markdown(rows: &[BenchRow]) -> String {
     let mut t = String::from(
-        "| pile | bodies | normal force | threads | steps × median wall (s) | particle-steps/s (M) | speed-up | contacts per body | slots per body | list builds per 1000 steps | ns per contact | heap bytes per body | allocations per step | same trajectory as 1 thread |\n|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
+        "| pile | bodies | normal force | threads | steps × median wall (s) | particle-steps/s (M) | per CPU-second (M) | speed-up | contacts per body | slots per body | list builds per 1000 steps | ns per contact | heap bytes per body | allocations per step | same trajectory as 1 thread |\n|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
     );
     for r in rows {
         let one = rows
@@ -365,13 +385,14 @@ pub fn markdown(rows: &[BenchRow]) -> String {
         };
         writeln!(
             t,
-            "| {kind} | {} | {} | {} | {} × {:.2} | {:.2} | {speedup} | {:.2} | {:.2} | {:.1} | {:.0} | {:.0} | {:.2} | {} |",
+            "| {kind} | {} | {} | {} | {} × {:.2} | {:.2} | {:.2} | {speedup} | {:.2} | {:.2} | {:.1} | {:.0} | {:.0} | {:.2} | {} |",
             r.n,
             r.normal_force.as_str(),
             r.threads,
             r.steps,
             r.wall,
             r.particle_steps_per_second / 1e6,
+            r.particle_steps_per_cpu_second / 1e6,
             r.contacts_per_step / r.n as f64,
             r.slots_per_body,
             r.builds_per_1000_steps,

@@ -452,7 +452,10 @@ fn run_contact(file: &str) -> Result<(), Failure> {
 /// Sizes the global thread pool (`None`: rayon's default, one thread per core).
 fn set_threads(threads: Option<usize>) -> Result<(), Failure> {
     match threads {
-        None => Ok(()),
+        None => rayon::ThreadPoolBuilder::new()
+            .use_current_thread()
+            .build_global()
+            .map_err(|e| Failure::failed(format!("thread pool: {e}"))),
         Some(0) => Err(Failure::input("--threads: must be at least 1".into())),
         // The main thread is one of the pool's threads: the step's passes then start on it
         // without handing each pass to another thread and waiting (on one thread: no rayon
