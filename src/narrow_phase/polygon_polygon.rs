@@ -130,7 +130,18 @@ pub fn contact_polygon_polygon(
         sin: si,
         scale,
     };
-    let poly = clip(&qj, &qi, &ui, &di);
+    // Only i's faces that j reaches past clip anything: the others' half-planes hold all of j
+    // (and so every point clipping makes on j's edges). Which they are follows from j's support
+    // along each face normal, walked as above; a margin keeps a face whose line j touches to
+    // within rounding among the clipping ones.
+    let mut active = vec![false; ni];
+    let mut kj = argmax(&qj, ui[0]);
+    for (k, &u) in ui.iter().enumerate() {
+        let (next, h) = walk(&qj, u, kj);
+        kj = next;
+        active[k] = h > di[k] - 1e-12;
+    }
+    let poly = clip(&qj, &ui, &di, &active);
     // The face normals give the exact penetration depth of two convex polygons, so "touching"
     // is decided by it (an area test would scale with the square of a vertex's penetration).
     if poly.len() < 3 || sat.0 <= tol {
@@ -387,16 +398,19 @@ fn run_midpoint(edges: &[Edge], run: &[usize]) -> [f64; 2] {
 }
 
 /// Sutherland–Hodgman clipping of convex polygon `qj` (counter-clockwise) by the edge lines of
-/// convex polygon `qi` (outward normals `u`, offsets `d`: inside where `u·p ≤ d`). Each vertex
-/// carries the label of the edge leaving it.
-fn clip(qj: &[[f64; 2]], qi: &[[f64; 2]], u: &[[f64; 2]], d: &[f64]) -> Vec<([f64; 2], Label)> {
+/// convex polygon i (outward normals `u`, offsets `d`: inside where `u·p ≤ d`) marked `active`
+/// (the others would keep every point). Each vertex carries the label of the edge leaving it.
+fn clip(qj: &[[f64; 2]], u: &[[f64; 2]], d: &[f64], active: &[bool]) -> Vec<([f64; 2], Label)> {
     let mut buf: Vec<([f64; 2], Label)> = qj
         .iter()
         .enumerate()
         .map(|(k, &p)| (p, Label::J(k)))
         .collect();
-    let mut out = Vec::with_capacity(qj.len() + qi.len());
-    for m in 0..qi.len() {
+    let mut out = Vec::with_capacity(qj.len() + u.len());
+    for m in 0..u.len() {
+        if !active[m] {
+            continue;
+        }
         out.clear();
         let len = buf.len();
         for k in 0..len {
