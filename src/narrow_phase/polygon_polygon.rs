@@ -34,11 +34,13 @@ enum Side {
     Both,
 }
 
-/// The label a clipped edge carries while clipping: the body edge it lies on.
+/// The label a clipped edge carries while clipping: the body edge it lies on, or the line
+/// outside i that first cuts j down (which never survives i's faces).
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 enum Label {
     I(usize),
     J(usize),
+    Outside,
 }
 
 /// Contact between convex polygons i and j, given by their body-frame vertices
@@ -141,7 +143,12 @@ pub fn contact_polygon_polygon(
         kj = next;
         active[k] = h > di[k] - 1e-12;
     }
-    let poly = clip(&qj, &ui, &di, &active);
+    // The overlap lies in i, so on i's side of i's support line along the least-penetration
+    // normal; j is cut there first (the line moved out by 1e-9 of the size, so that it lies
+    // strictly outside i and none of it survives i's faces): of a many-sided j only the few
+    // vertices within the overlap's depth of its extreme remain for the faces of i to clip.
+    let slab = (sat.1, max_dot(sat.1, &qi) + 1e-9);
+    let poly = clip(&qj, slab, &ui, &di, &active);
     // The face normals give the exact penetration depth of two convex polygons, so "touching"
     // is decided by it (an area test would scale with the square of a vertex's penetration).
     if poly.len() < 3 || sat.0 <= tol {
@@ -172,6 +179,9 @@ pub fn contact_polygon_polygon(
                 Some(m) => (Side::Both, Some(m), Some(kj)),
                 None => (Side::J, None, Some(kj)),
             },
+            // Outside i by construction: were a piece to survive (it cannot), it would lie on
+            // i's boundary.
+            Label::Outside => (Side::I, None, None),
         };
         edges.push(Edge {
             p,
@@ -400,23 +410,32 @@ fn run_midpoint(edges: &[Edge], run: &[usize]) -> [f64; 2] {
 /// Sutherland–Hodgman clipping of convex polygon `qj` (counter-clockwise) by the edge lines of
 /// convex polygon i (outward normals `u`, offsets `d`: inside where `u·p ≤ d`) marked `active`
 /// (the others would keep every point). Each vertex carries the label of the edge leaving it.
-fn clip(qj: &[[f64; 2]], u: &[[f64; 2]], d: &[f64], active: &[bool]) -> Vec<([f64; 2], Label)> {
+fn clip(
+    qj: &[[f64; 2]],
+    slab: ([f64; 2], f64),
+    u: &[[f64; 2]],
+    d: &[f64],
+    active: &[bool],
+) -> Vec<([f64; 2], Label)> {
     let mut buf: Vec<([f64; 2], Label)> = qj
         .iter()
         .enumerate()
         .map(|(k, &p)| (p, Label::J(k)))
         .collect();
     let mut out = Vec::with_capacity(qj.len() + u.len());
-    for m in 0..u.len() {
-        if !active[m] {
-            continue;
-        }
+    // The slab's line first (labelled `Outside`: it lies outside i), then i's active faces.
+    let planes = std::iter::once((slab.0, slab.1, Label::Outside)).chain(
+        (0..u.len())
+            .filter(|&m| active[m])
+            .map(|m| (u[m], d[m], Label::I(m))),
+    );
+    for (um, dm, lm) in planes {
         out.clear();
         let len = buf.len();
         for k in 0..len {
             let ((p, l), (q, _)) = (buf[k], buf[(k + 1) % len]);
-            let dp = u[m][0] * p[0] + u[m][1] * p[1] - d[m];
-            let dq = u[m][0] * q[0] + u[m][1] * q[1] - d[m];
+            let dp = um[0] * p[0] + um[1] * p[1] - dm;
+            let dq = um[0] * q[0] + um[1] * q[1] - dm;
             let x = || {
                 let t = dp / (dp - dq);
                 [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]
@@ -426,9 +445,9 @@ fn clip(qj: &[[f64; 2]], u: &[[f64; 2]], d: &[f64], active: &[bool]) -> Vec<([f6
                     // Leaving: along this edge to the line, then along the line.
                     if dp < 0.0 {
                         out.push((p, l));
-                        out.push((x(), Label::I(m)));
+                        out.push((x(), lm));
                     } else {
-                        out.push((p, Label::I(m)));
+                        out.push((p, lm));
                     }
                 } else {
                     out.push((p, l));
