@@ -43,18 +43,26 @@ enum Label {
     Outside,
 }
 
-/// Contact between convex polygons i and j, given by their body-frame vertices
-/// (counter-clockwise about the centroid) and bounding radii; with `request.area`, the overlap
-/// area (the clipped polygon's, exactly) and its gradient too.
+/// One side of a polygon pair: body-frame vertices (counter-clockwise about the centroid), the
+/// outward unit normals of its edges (edge k from vertex k to k + 1) and its bounding radius.
+#[derive(Clone, Copy, Debug)]
+pub struct ConvexSide<'a> {
+    pub vertices: &'a [Vec2],
+    pub normals: &'a [Vec2],
+    pub bound: f64,
+}
+
+/// Contact between convex polygons i and j; with `request.area`, the overlap area (the clipped
+/// polygon's, exactly) and its gradient too.
 pub fn contact_polygon_polygon(
-    vi: &[Vec2],
-    bound_i: f64,
+    side_i: ConvexSide,
     pi: &Pose,
-    vj: &[Vec2],
-    bound_j: f64,
+    side_j: ConvexSide,
     pj: &Pose,
     request: &Request,
 ) -> Contact {
+    let (vi, bound_i) = (side_i.vertices, side_i.bound);
+    let (vj, bound_j) = (side_j.vertices, side_j.bound);
     let area = request.area;
     let dv = pj.position - pi.position;
     if dv.norm_squared() > (bound_i + bound_j) * (bound_i + bound_j) {
@@ -85,16 +93,12 @@ pub fn contact_polygon_polygon(
     };
     // δ(n) = h_i(n) + h_j(−n), j's support about its centroid (the offset n·c apart).
     let depth = |n: [f64; 2]| max_dot(n, &qi) + max_dot([-n[0], -n[1]], &rj) - dot(n, [c.x, c.y]);
-    let normal_of = |p: [f64; 2], q: [f64; 2]| {
-        let (ex, ey) = (q[0] - p[0], q[1] - p[1]);
-        let len = ex.hypot(ey);
-        [ey / len, -ex / len]
-    };
-    let ui: Vec<[f64; 2]> = (0..ni)
-        .map(|k| normal_of(qi[k], qi[(k + 1) % ni]))
-        .collect();
-    let uj: Vec<[f64; 2]> = (0..nj)
-        .map(|k| normal_of(rj[k], rj[(k + 1) % nj]))
+    // Face normals: i's as stored (its frame is the local one), j's turned into it.
+    let ui: Vec<[f64; 2]> = side_i.normals.iter().map(|u| [u.x, u.y]).collect();
+    let uj: Vec<[f64; 2]> = side_j
+        .normals
+        .iter()
+        .map(|u| [cr * u.x - sr * u.y, sr * u.x + cr * u.y])
         .collect();
     let di: Vec<f64> = (0..ni).map(|k| dot(ui[k], qi[k])).collect();
     // Separating axes: i's outward face normals (n = u) and j's (n = −u). Along i's face k the
