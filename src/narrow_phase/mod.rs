@@ -402,21 +402,29 @@ fn contact_in_order(
                 &p, pi, a, b, pj, request,
             )),
             (Polygon(p), Polygon(q)) => plain(polygon_polygon::contact_polygon_polygon(
-                &p.vertices,
-                p.bounding_radius,
+                polygon_side(&p),
                 pi,
-                &q.vertices,
-                q.bounding_radius,
+                polygon_side(&q),
                 pj,
                 request,
             )),
-            (Polygon(p), rect @ Rectangle { .. }) => {
+            (Polygon(p), Rectangle { w, h }) => {
+                let (x, y) = (0.5 * w, 0.5 * h);
+                let corners = [
+                    Vec2::new(-x, -y),
+                    Vec2::new(x, -y),
+                    Vec2::new(x, y),
+                    Vec2::new(-x, y),
+                ];
+                let rect = polygon_polygon::ConvexSide {
+                    vertices: &corners,
+                    normals: &RECTANGLE_NORMALS,
+                    bound: 0.5 * w.hypot(h),
+                };
                 plain(polygon_polygon::contact_polygon_polygon(
-                    &p.vertices,
-                    p.bounding_radius,
+                    polygon_side(&p),
                     pi,
-                    &rect.corners().expect("a rectangle has corners"),
-                    rect.bounding_radius(),
+                    rect,
                     pj,
                     request,
                 ))
@@ -430,6 +438,25 @@ fn contact_in_order(
         (Side::Body(..) | Side::Wall(_), Side::Wall(_)) => {
             unreachable!("a wall is computed first, and two walls are no pair")
         }
+    }
+}
+
+/// A rectangle's outward edge normals, its corners counter-clockwise from `(−w/2, −h/2)`.
+const RECTANGLE_NORMALS: [Vec2; 4] = [
+    Vec2::new(0.0, -1.0),
+    Vec2::new(1.0, 0.0),
+    Vec2::new(0.0, 1.0),
+    Vec2::new(-1.0, 0.0),
+];
+
+/// A polygon as one side of the polygon pair kernel.
+#[inline]
+fn polygon_side(p: &crate::geometry::Polygon) -> polygon_polygon::ConvexSide<'static> {
+    let d = p.data();
+    polygon_polygon::ConvexSide {
+        vertices: &d.vertices,
+        normals: &d.normals,
+        bound: d.bounding_radius,
     }
 }
 

@@ -34,25 +34,35 @@ enum Side {
     Both,
 }
 
-/// The label a clipped edge carries while clipping: the body edge it lies on.
+/// The label a clipped edge carries while clipping: the body edge it lies on, or the line
+/// outside i that first cuts j down (which never survives i's faces).
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 enum Label {
     I(usize),
     J(usize),
+    Outside,
 }
 
-/// Contact between convex polygons i and j, given by their body-frame vertices
-/// (counter-clockwise about the centroid) and bounding radii; with `request.area`, the overlap
-/// area (the clipped polygon's, exactly) and its gradient too.
+/// One side of a polygon pair: body-frame vertices (counter-clockwise about the centroid), the
+/// outward unit normals of its edges (edge k from vertex k to k + 1) and its bounding radius.
+#[derive(Clone, Copy, Debug)]
+pub struct ConvexSide<'a> {
+    pub vertices: &'a [Vec2],
+    pub normals: &'a [Vec2],
+    pub bound: f64,
+}
+
+/// Contact between convex polygons i and j; with `request.area`, the overlap area (the clipped
+/// polygon's, exactly) and its gradient too.
 pub fn contact_polygon_polygon(
-    vi: &[Vec2],
-    bound_i: f64,
+    side_i: ConvexSide,
     pi: &Pose,
-    vj: &[Vec2],
-    bound_j: f64,
+    side_j: ConvexSide,
     pj: &Pose,
     request: &Request,
 ) -> Contact {
+    let (vi, bound_i) = (side_i.vertices, side_i.bound);
+    let (vj, bound_j) = (side_j.vertices, side_j.bound);
     let area = request.area;
     let dv = pj.position - pi.position;
     if dv.norm_squared() > (bound_i + bound_j) * (bound_i + bound_j) {
@@ -83,31 +93,37 @@ pub fn contact_polygon_polygon(
     };
     // δ(n) = h_i(n) + h_j(−n), j's support about its centroid (the offset n·c apart).
     let depth = |n: [f64; 2]| max_dot(n, &qi) + max_dot([-n[0], -n[1]], &rj) - dot(n, [c.x, c.y]);
-    let normal_of = |p: [f64; 2], q: [f64; 2]| {
-        let (ex, ey) = (q[0] - p[0], q[1] - p[1]);
-        let len = ex.hypot(ey);
-        [ey / len, -ex / len]
-    };
-    let ui: Vec<[f64; 2]> = (0..ni)
-        .map(|k| normal_of(qi[k], qi[(k + 1) % ni]))
-        .collect();
-    let uj: Vec<[f64; 2]> = (0..nj)
-        .map(|k| normal_of(rj[k], rj[(k + 1) % nj]))
+    // Face normals: i's as stored (its frame is the local one), j's turned into it.
+    let ui: Vec<[f64; 2]> = side_i.normals.iter().map(|u| [u.x, u.y]).collect();
+    let uj: Vec<[f64; 2]> = side_j
+        .normals
+        .iter()
+        .map(|u| [cr * u.x - sr * u.y, sr * u.x + cr * u.y])
         .collect();
     let di: Vec<f64> = (0..ni).map(|k| dot(ui[k], qi[k])).collect();
-    // Separating axes: i's outward face normals (n = u) and j's (n = −u).
+    // Separating axes: i's outward face normals (n = u) and j's (n = −u). Along i's face k the
+    // depth is `d_k + h_j(−u_k) − u_k·c` (i's support along its own face normal is the face's
+    // offset), along j's face `h_i(u_k) + e_k + u_k·c` likewise; the other body's support is
+    // found by walking its vertices forward from the last axis's (the axes turn
+    // counter-clockwise, and so does a convex polygon's support point): O(n_i + n_j) for all
+    // axes rather than O((n_i + n_j)²).
     let mut sat = (f64::INFINITY, [1.0, 0.0]);
-    for &u in &ui {
-        let dpt = depth(u);
+    let mut kj = argmax(&rj, [-ui[0][0], -ui[0][1]]);
+    for (k, &u) in ui.iter().enumerate() {
+        let (next, hj) = walk(&rj, [-u[0], -u[1]], kj);
+        kj = next;
+        let dpt = di[k] + hj - dot(u, [c.x, c.y]);
         if dpt < sat.0 {
             sat = (dpt, u);
         }
     }
-    for &u in &uj {
-        let n = [-u[0], -u[1]];
-        let dpt = depth(n);
+    let mut ki = argmax(&qi, [-uj[0][0], -uj[0][1]]);
+    for (k, &u) in uj.iter().enumerate() {
+        let (next, hi) = walk(&qi, [-u[0], -u[1]], ki);
+        ki = next;
+        let dpt = hi + dot(u, rj[k]) + dot(u, [c.x, c.y]);
         if dpt < sat.0 {
-            sat = (dpt, n);
+            sat = (dpt, [-u[0], -u[1]]);
         }
     }
     let tol = TOUCH_TOL;
@@ -120,7 +136,23 @@ pub fn contact_polygon_polygon(
         sin: si,
         scale,
     };
-    let poly = clip(&qj, &qi, &ui, &di);
+    // Only i's faces that j reaches past clip anything: the others' half-planes hold all of j
+    // (and so every point clipping makes on j's edges). Which they are follows from j's support
+    // along each face normal, walked as above; a margin keeps a face whose line j touches to
+    // within rounding among the clipping ones.
+    let mut active = vec![false; ni];
+    let mut kj = argmax(&qj, ui[0]);
+    for (k, &u) in ui.iter().enumerate() {
+        let (next, h) = walk(&qj, u, kj);
+        kj = next;
+        active[k] = h > di[k] - 1e-12;
+    }
+    // The overlap lies in i, so on i's side of i's support line along the least-penetration
+    // normal; j is cut there first (the line moved out by 1e-9 of the size, so that it lies
+    // strictly outside i and none of it survives i's faces): of a many-sided j only the few
+    // vertices within the overlap's depth of its extreme remain for the faces of i to clip.
+    let slab = (sat.1, max_dot(sat.1, &qi) + 1e-9);
+    let poly = clip(&qj, slab, &ui, &di, &active);
     // The face normals give the exact penetration depth of two convex polygons, so "touching"
     // is decided by it (an area test would scale with the square of a vertex's penetration).
     if poly.len() < 3 || sat.0 <= tol {
@@ -130,14 +162,11 @@ pub fn contact_polygon_polygon(
             geometry: Some(frame.geometry(p, p, p, sat.1, sat.0)),
         };
     }
-    // j's edges that lie on one of i's edge lines (same outward normal, same offset).
-    let twin: Vec<Option<usize>> = (0..nj)
-        .map(|k| {
-            (0..ni).find(|&m| {
-                dot(ui[m], uj[k]) >= 1.0 - 1e-12 && (dot(ui[m], qj[k]) - di[m]).abs() <= tol
-            })
-        })
-        .collect();
+    // j's edge k lies on i's edge line m (same outward normal, same offset): asked only of the
+    // overlap's edges.
+    let twins = |m: usize, k: usize| {
+        dot(ui[m], uj[k]) >= 1.0 - 1e-12 && (dot(ui[m], qj[k]) - di[m]).abs() <= tol
+    };
     let mut edges: Vec<Edge> = Vec::with_capacity(poly.len());
     for k in 0..poly.len() {
         let (p, l) = poly[k];
@@ -146,14 +175,17 @@ pub fn contact_polygon_polygon(
             continue;
         }
         let (side, i_side, j_side) = match l {
-            Label::I(m) => match twin.iter().position(|&t| t == Some(m)) {
+            Label::I(m) => match (0..nj).find(|&kj| twins(m, kj)) {
                 Some(kj) => (Side::Both, Some(m), Some(kj)),
                 None => (Side::I, Some(m), None),
             },
-            Label::J(kj) => match twin[kj] {
+            Label::J(kj) => match (0..ni).find(|&m| twins(m, kj)) {
                 Some(m) => (Side::Both, Some(m), Some(kj)),
                 None => (Side::J, None, Some(kj)),
             },
+            // Outside i by construction: were a piece to survive (it cannot), it would lie on
+            // i's boundary.
+            Label::Outside => (Side::I, None, None),
         };
         edges.push(Edge {
             p,
@@ -326,6 +358,39 @@ struct Cross {
     j_side: Option<usize>,
 }
 
+/// The index of the point of `pts` farthest along `u`.
+fn argmax(pts: &[[f64; 2]], u: [f64; 2]) -> usize {
+    let mut best = (0, f64::NEG_INFINITY);
+    for (k, p) in pts.iter().enumerate() {
+        let v = u[0] * p[0] + u[1] * p[1];
+        if v > best.1 {
+            best = (k, v);
+        }
+    }
+    best.0
+}
+
+/// The support of the convex polygon `pts` (counter-clockwise) along `u`, walking forward from
+/// vertex `start` while `u·p` grows: `(index, u·p)`. Exact when `start` is the support of a
+/// direction at most a half turn clockwise of `u` (the walk of [`contact_polygon_polygon`]'s
+/// separating axes); a rounding-level plateau may stop it a vertex early, which changes the
+/// value by rounding only.
+fn walk(pts: &[[f64; 2]], u: [f64; 2], start: usize) -> (usize, f64) {
+    let n = pts.len();
+    let at = |k: usize| u[0] * pts[k][0] + u[1] * pts[k][1];
+    let (mut k, mut best) = (start, at(start));
+    for _ in 0..n {
+        let next = if k + 1 == n { 0 } else { k + 1 };
+        let v = at(next);
+        if v > best {
+            (k, best) = (next, v);
+        } else {
+            break;
+        }
+    }
+    (k, best)
+}
+
 /// The point halfway (by length) along a chain of consecutive edges.
 fn run_midpoint(edges: &[Edge], run: &[usize]) -> [f64; 2] {
     let len = |e: &Edge| (e.q[0] - e.p[0]).hypot(e.q[1] - e.p[1]);
@@ -347,22 +412,34 @@ fn run_midpoint(edges: &[Edge], run: &[usize]) -> [f64; 2] {
 }
 
 /// Sutherland–Hodgman clipping of convex polygon `qj` (counter-clockwise) by the edge lines of
-/// convex polygon `qi` (outward normals `u`, offsets `d`: inside where `u·p ≤ d`). Each vertex
-/// carries the label of the edge leaving it.
-fn clip(qj: &[[f64; 2]], qi: &[[f64; 2]], u: &[[f64; 2]], d: &[f64]) -> Vec<([f64; 2], Label)> {
+/// convex polygon i (outward normals `u`, offsets `d`: inside where `u·p ≤ d`) marked `active`
+/// (the others would keep every point). Each vertex carries the label of the edge leaving it.
+fn clip(
+    qj: &[[f64; 2]],
+    slab: ([f64; 2], f64),
+    u: &[[f64; 2]],
+    d: &[f64],
+    active: &[bool],
+) -> Vec<([f64; 2], Label)> {
     let mut buf: Vec<([f64; 2], Label)> = qj
         .iter()
         .enumerate()
         .map(|(k, &p)| (p, Label::J(k)))
         .collect();
-    let mut out = Vec::with_capacity(qj.len() + qi.len());
-    for m in 0..qi.len() {
+    let mut out = Vec::with_capacity(qj.len() + u.len());
+    // The slab's line first (labelled `Outside`: it lies outside i), then i's active faces.
+    let planes = std::iter::once((slab.0, slab.1, Label::Outside)).chain(
+        (0..u.len())
+            .filter(|&m| active[m])
+            .map(|m| (u[m], d[m], Label::I(m))),
+    );
+    for (um, dm, lm) in planes {
         out.clear();
         let len = buf.len();
         for k in 0..len {
             let ((p, l), (q, _)) = (buf[k], buf[(k + 1) % len]);
-            let dp = u[m][0] * p[0] + u[m][1] * p[1] - d[m];
-            let dq = u[m][0] * q[0] + u[m][1] * q[1] - d[m];
+            let dp = um[0] * p[0] + um[1] * p[1] - dm;
+            let dq = um[0] * q[0] + um[1] * q[1] - dm;
             let x = || {
                 let t = dp / (dp - dq);
                 [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]
@@ -372,9 +449,9 @@ fn clip(qj: &[[f64; 2]], qi: &[[f64; 2]], u: &[[f64; 2]], d: &[f64]) -> Vec<([f6
                     // Leaving: along this edge to the line, then along the line.
                     if dp < 0.0 {
                         out.push((p, l));
-                        out.push((x(), Label::I(m)));
+                        out.push((x(), lm));
                     } else {
-                        out.push((p, Label::I(m)));
+                        out.push((p, lm));
                     }
                 } else {
                     out.push((p, l));
