@@ -896,6 +896,8 @@ pub struct Series {
     pub markers: bool,
     /// Hollow markers (e.g. "did not converge").
     pub hollow: bool,
+    /// Text drawn beside each point (empty: none); index k labels `points[k]`.
+    pub point_labels: Vec<String>,
 }
 
 /// A panel of line series.
@@ -1242,6 +1244,26 @@ where
                     .label(s.label.clone())
                     .legend(move |(x, y)| Circle::new((x + 9 * S as i32, y), 4 * S, style));
             }
+        }
+        if !s.point_labels.is_empty() {
+            let font = ("sans-serif", 12 * S).into_font().color(&col);
+            chart
+                .draw_series(
+                    s.points
+                        .iter()
+                        .zip(&s.point_labels)
+                        .filter(|((x, y), _)| {
+                            x.is_finite()
+                                && y.is_finite()
+                                && (!p.log_x || *x > 0.0)
+                                && (!p.log_y || *y > 0.0)
+                        })
+                        .map(|(&q, l)| {
+                            EmptyElement::at(q)
+                                + Text::new(l.clone(), (6 * S as i32, -14 * S as i32), font.clone())
+                        }),
+                )
+                .map_err(err)?;
         }
         labelled |= !s.label.is_empty();
     }

@@ -928,6 +928,7 @@ fn speed_vs_error(opts: &FigureOptions) -> Result<SpeedVsError, ReportError> {
         line: true,
         markers: true,
         hollow: false,
+        point_labels: Vec::new(),
     };
     // Two decades of headroom above the data for the legends.
     let all = apex_pts
@@ -1092,6 +1093,7 @@ fn stability(opts: &FigureOptions) -> Result<(String, String, Vec<LinePanel>), R
             line: true,
             markers: true,
             hollow: false,
+            point_labels: Vec::new(),
         }],
         vlines: vlines.clone(),
         ..Default::default()
@@ -1113,6 +1115,7 @@ fn stability(opts: &FigureOptions) -> Result<(String, String, Vec<LinePanel>), R
                 line: false,
                 markers: true,
                 hollow: false,
+                point_labels: Vec::new(),
             },
             Series {
                 label: "never at rest in 0.5 s".into(),
@@ -1121,6 +1124,7 @@ fn stability(opts: &FigureOptions) -> Result<(String, String, Vec<LinePanel>), R
                 line: false,
                 markers: true,
                 hollow: true,
+                point_labels: Vec::new(),
             },
         ],
         hlines: vec![(q, format!("threshold {q:e}"))],

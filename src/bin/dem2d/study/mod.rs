@@ -7,6 +7,7 @@ pub mod biaxial_shape;
 pub mod impacts;
 pub mod packing;
 pub mod repose;
+pub mod representation;
 pub mod rolling_fig3;
 
 /// The studies `dem2d study` runs.
@@ -28,6 +29,10 @@ pub enum Study {
     /// Packing fraction and coordination of bidisperse grains poured into a box against the
     /// aspect ratio (1–3), frictionless and μ = 0.5; writes figures/packing.svg and .md.
     Packing,
+    /// The ellipse as the exact conic against equal-area 8–128-gons: P Fig. 2's drop (α = 1.5,
+    /// 2, 3), P Fig. 4's settling and a poured pile of 300 (`--grains`) grains; error against
+    /// cost; writes figures/representation_pareto.svg and figures/representation.md.
+    Representation,
 }
 
 /// Runs `study`; `write_cases` also writes its case files into `cases/`; `grains` sets the
@@ -40,5 +45,6 @@ pub fn run(study: Study, write_cases: bool, grains: Option<usize>) {
         Study::Impacts => impacts::run(),
         Study::BiaxialShape => biaxial_shape::run(grains.unwrap_or(400), write_cases),
         Study::Packing => packing::run(grains.unwrap_or(packing::N), write_cases),
+        Study::Representation => representation::run(grains.unwrap_or(packing::N)),
     }
 }

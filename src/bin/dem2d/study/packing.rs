@@ -49,6 +49,9 @@ pub struct Pile {
     pub time: f64,
     pub wall_seconds: f64,
     pub particle_steps_per_second: f64,
+    /// Steps run and the mean number of contacts per step (walls included).
+    pub steps: u64,
+    pub contacts_per_step: f64,
 }
 
 /// The box width for `n` grains (see [`WIDTH`]).
@@ -105,6 +108,19 @@ fn bodies(aspect: f64, seed: u64, spacing: f64, n: usize, width: f64) -> Vec<Bod
 /// Pours and measures one pile of `n` grains; with `write` its case file also goes to
 /// `cases/packing/`.
 pub fn pour(aspect: f64, friction: f64, n: usize, write: bool) -> Pile {
+    pour_shaped(aspect, friction, n, write, &|s| s)
+}
+
+/// [`pour`] with each grain's shape passed through `shape` first (the representation study
+/// turns the ellipses into polygons); the rest of the pile — positions, orientations,
+/// velocities, laws, window — is [`pour`]'s.
+pub fn pour_shaped(
+    aspect: f64,
+    friction: f64,
+    n: usize,
+    write: bool,
+    shape: &dyn Fn(Shape) -> Shape,
+) -> Pile {
     let start = Instant::now();
     let width = width_for(n);
     let mut spec = PileSpec::new(
@@ -126,7 +142,13 @@ pub fn pour(aspect: f64, friction: f64, n: usize, write: bool) -> Pile {
         &format!("packing_a{aspect}_mu{friction}"),
         "packing study pile",
         width,
-        &bodies(aspect, 5, spacing, n, width),
+        &bodies(aspect, 5, spacing, n, width)
+            .into_iter()
+            .map(|b| BodyInit {
+                shape: shape(b.shape),
+                ..b
+            })
+            .collect::<Vec<_>>(),
     );
     if write {
         let path = format!("cases/packing/packing_a{aspect}_mu{friction}.json");
@@ -139,8 +161,10 @@ pub fn pour(aspect: f64, friction: f64, n: usize, write: bool) -> Pile {
     let q = case.quiescence.expect("a rest criterion");
     let mut streak = 0;
     let mut at_rest = false;
+    let mut contacts = 0usize;
     for _ in 0..case.steps() {
         let r = w.step().expect("finite");
+        contacts += r.contacts;
         if r.increments.iter().all(|&d| d <= q) {
             streak += 1;
         } else {
@@ -182,6 +206,8 @@ pub fn pour(aspect: f64, friction: f64, n: usize, write: bool) -> Pile {
         time: w.time,
         wall_seconds: wall,
         particle_steps_per_second: n as f64 * w.step as f64 / wall,
+        steps: w.step,
+        contacts_per_step: contacts as f64 / w.step.max(1) as f64,
     }
 }
 
