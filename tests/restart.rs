@@ -34,7 +34,7 @@ fn scratch(name: &str) -> PathBuf {
     d
 }
 
-/// A pile in a box: 24 bodies — circles, ellipses and two rectangles — dropped onto a floor
+/// A pile in a box: 24 bodies — circles, ellipses, a rectangle and a hexagon — dropped onto a floor
 /// between two walls, frictional (μ = 0.5) with EPSD rolling springs, so that by step 9000 it
 /// is a heap of lasting contacts, sliding and sticking, between ellipses (warm starts), circles
 /// and the walls.
@@ -47,7 +47,8 @@ fn pile_case(duration: f64) -> String {
             let y = 0.8 + 1.3 * row as f64;
             let shape = match k % 5 {
                 0 | 3 => r#"{"type": "circle", "r": 0.5}"#.to_string(),
-                4 if k == 9 || k == 19 => r#"{"type": "rectangle", "w": 0.9, "h": 0.6}"#.into(),
+                4 if k == 9 => r#"{"type": "rectangle", "w": 0.9, "h": 0.6}"#.into(),
+                4 if k == 19 => r#"{"type": "polygon", "vertices": [[0.5, 0], [0.25, 0.433], [-0.25, 0.433], [-0.5, 0], [-0.25, -0.433], [0.25, -0.433]]}"#.into(),
                 _ => r#"{"type": "ellipse", "a": 0.6, "b": 0.4}"#.to_string(),
             };
             bodies.push(format!(
