@@ -353,9 +353,9 @@ fn figures_quick_writes_every_figure_and_table_of_the_readme() {
     }
     for part in readme.split("<!-- figures:").skip(1) {
         let name = part.split(" -->").next().unwrap();
-        // The throughput and kernel-speed tables are `dem2d bench`'s and `cargo bench`'s
-        // (minutes of timing), not `figures`'.
-        if name != "bench" && name != "kernel_speed" {
+        // The throughput, peers and kernel-speed tables are `dem2d bench`'s, `dem2d bench
+        // --peers`' and `cargo bench`'s (minutes of timing), not `figures`'.
+        if name != "bench" && name != "peers" && name != "kernel_speed" {
             wanted.push(format!("{name}.md"));
         }
     }
