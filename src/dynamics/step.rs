@@ -457,16 +457,18 @@ impl Stepper {
             // a short loop whose square roots and divisions overlap from slot to slot (inside
             // the long per-slot pass each waited for its own; 10⁴ disks: 8 % faster). The same
             // kernels on the same inputs: the same bits. Without circles no pair is lean.
-            let mut lean = [None; SLOT_CHUNK];
-            if circles {
+            let lean = circles.then(|| {
+                let mut lean = [None; SLOT_CHUNK];
                 for (l, slot) in lean.iter_mut().zip(slots.iter()) {
                     *l = lean_of(slot, &cx);
                 }
-            }
+                lean
+            });
             for (k, (slot, data)) in slots.iter_mut().zip(data).enumerate() {
                 let w = cache.as_deref_mut().map(|c| &mut c[k]);
                 let r = rolling.as_deref_mut().map(|r| &mut r[k]);
-                update_slot(slot, data, None, w, r, &cx, &mut p, loads, lean[k]);
+                let l = lean.as_ref().and_then(|l| l[k]);
+                update_slot(slot, data, None, w, r, &cx, &mut p, loads, l);
             }
             *part = p;
         };
