@@ -461,7 +461,7 @@ fn the_lean_path_equals_the_dispatcher() {
                         let lean = overlap_lean(Side::from(i), Side::from(j));
                         assert_eq!(lean.is_some(), lean_kind, "{ki}–{kj} {cfg:?}");
                         let Some(lean) = lean else { continue };
-                        let full = contact_with(i, j, &mut PairCache::EMPTY, request).unwrap();
+                        let full = contact_with(i, j, &mut PairCache::default(), request).unwrap();
                         match (lean, full.geometry) {
                             (None, None) => assert_eq!(full.state, ContactState::Separated),
                             (Some(l), Some(g)) => {
