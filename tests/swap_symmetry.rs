@@ -20,7 +20,7 @@ use dem2d::geometry::{Polygon, Pose, Shape, Vec2, Wall};
 use dem2d::narrow_phase::circle_circle::overlap_circle_circle;
 use dem2d::narrow_phase::ellipse_ellipse::Warm;
 use dem2d::narrow_phase::{
-    Contact, ContactState, Object, PairCache, Request, contact, contact_with,
+    Contact, ContactState, Object, PairCache, Request, Side, contact, contact_with, overlap_lean,
 };
 use dem2d::validation::rng::Rng;
 
@@ -470,6 +470,56 @@ fn every_pair_kind_is_swap_symmetric() {
 /// `overlap` the other, with a zero-length chord outside the thin ellipse (a line of the pencil
 /// within rounding of tangency to the outer ellipse, where the thin one almost touches it from
 /// inside, taken for an external tangency).
+/// The dispatcher's lean path (what the stepper takes for two circles and for a circle and a
+/// wall) gives, in both orders, bit for bit the state, point, normal and depth of
+/// `contact_with` asked for no chord and no area — and is declined for every other pair kind.
+#[test]
+fn the_lean_path_equals_the_dispatcher() {
+    let mut rng = Rng(0x1EA7_0015_u64);
+    let request = Request {
+        area: false,
+        chord: false,
+        trace: None,
+    };
+    for ki in 0..4 {
+        for kj in 0..4 {
+            if ki == 3 && kj == 3 {
+                continue;
+            }
+            let lean_kind = matches!((ki, kj), (0, 0) | (0, 3) | (3, 0));
+            for &cfg in CONFIGS.iter() {
+                for k in 0..40 {
+                    let offset = [0.0, 0.0, 1e3, 1e6][k % 4];
+                    let s = rng.range(0.5, 2.0);
+                    let pair = draw(ki, kj, cfg, offset, s, &mut rng);
+                    for (i, j) in [(&pair.i, &pair.j), (&pair.j, &pair.i)] {
+                        let lean = overlap_lean(Side::from(i), Side::from(j));
+                        assert_eq!(lean.is_some(), lean_kind, "{ki}–{kj} {cfg:?}");
+                        let Some(lean) = lean else { continue };
+                        let full = contact_with(i, j, &mut PairCache::default(), request).unwrap();
+                        match (lean, full.geometry) {
+                            (None, None) => assert_eq!(full.state, ContactState::Separated),
+                            (Some(l), Some(g)) => {
+                                assert_eq!(l.state, full.state, "{ki}–{kj} {cfg:?}");
+                                for (x, y) in [
+                                    (l.point.x, g.point.x),
+                                    (l.point.y, g.point.y),
+                                    (l.normal.x, g.normal.x),
+                                    (l.normal.y, g.normal.y),
+                                    (l.depth, g.depth),
+                                ] {
+                                    assert_eq!(x.to_bits(), y.to_bits(), "{ki}–{kj} {cfg:?}");
+                                }
+                            }
+                            (l, g) => panic!("{ki}–{kj} {cfg:?}: lean {l:?}, full {g:?}"),
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn thin_ellipse_inside_another_is_contained_both_ways() {
     let outer = body(
