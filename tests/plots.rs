@@ -340,12 +340,13 @@ fn figures_quick_writes_every_figure_and_table_of_the_readme() {
     for part in readme.split("](figures/").skip(1) {
         let name = part.split(')').next().unwrap().to_string();
         // The ParaView picture is pvpython's (figures/scripts/paraview_render.py); the research
-        // workflows' figures are `dem2d study impacts|biaxial-shape|packing`'s (minutes of runs).
+        // workflows' figures are `dem2d study impacts|biaxial-shape|packing|representation`'s (minutes of runs).
         let study = [
             "impacts.svg",
             "biaxial_shape.svg",
             "force_chains.svg",
             "packing.svg",
+            "representation_pareto.svg",
         ];
         if !name.starts_with("paraview_") && !study.contains(&name.as_str()) {
             wanted.push(name);
