@@ -569,7 +569,8 @@ pub fn run(grains: usize) {
             log_x: true,
             log_y: true,
             series,
-            legend: plot::Legend::UpperRight,
+            y_range: Some((1e-3, 1e1)),
+            legend: plot::Legend::LowerRight,
             ..Default::default()
         }
     };
@@ -608,7 +609,7 @@ pub fn run(grains: usize) {
             1e9 * ell.wall_seconds / (ell.steps as f64 * ell.contacts_per_step),
             "exact conic's cost".into(),
         )],
-        legend: plot::Legend::UpperRight,
+        legend: plot::Legend::UpperLeft,
         ..Default::default()
     };
     let panels = [
