@@ -721,3 +721,31 @@ fn undamped_frictionless_polygons_conserve_energy_to_second_order() {
         assert!(order > 1.5 && drift[2] < 1e-4, "{name}: {drift:?}");
     }
 }
+
+/// The representation study's polygons (`dem2d study representation`): vertices on the ellipse
+/// scaled by `s = √(π / (½ n sin(2π/n)))`, area exactly the ellipse's `πab` (the closed form,
+/// against the shoelace area the shape table computes), for every n, aspect ratio and phase the
+/// study uses.
+#[test]
+fn equal_area_polygons_have_the_ellipse_area() {
+    use std::f64::consts::PI;
+    for n in [8usize, 16, 32, 64, 128] {
+        for alpha in [1.5f64, 2.0, 3.0] {
+            let (a, b) = ((1.5 * alpha).sqrt(), (1.5 / alpha).sqrt());
+            for phase in [0.0, PI / n as f64] {
+                let p = Polygon::equal_area_ellipse(n, a, b, phase).unwrap();
+                let area = PI * a * b;
+                assert!(
+                    (p.area - area).abs() <= 1e-12 * area,
+                    "n = {n}, α = {alpha}: {} against πab = {area}",
+                    p.area
+                );
+                let s = (PI / (0.5 * n as f64 * (2.0 * PI / n as f64).sin())).sqrt();
+                for v in p.vertices.iter() {
+                    let r = (v.x / (s * a)).powi(2) + (v.y / (s * b)).powi(2);
+                    assert!((r - 1.0).abs() < 1e-12, "n = {n}: vertex off the ellipse");
+                }
+            }
+        }
+    }
+}
