@@ -481,12 +481,12 @@ fn the_lean_path_equals_the_dispatcher() {
         chord: false,
         trace: None,
     };
-    for ki in 0..4 {
-        for kj in 0..4 {
-            if ki == 3 && kj == 3 {
+    for ki in 0..KINDS.len() {
+        for kj in 0..KINDS.len() {
+            if ki == WALL && kj == WALL {
                 continue;
             }
-            let lean_kind = matches!((ki, kj), (0, 0) | (0, 3) | (3, 0));
+            let lean_kind = matches!((ki, kj), (0, 0) | (0, WALL) | (WALL, 0));
             for &cfg in CONFIGS.iter() {
                 for k in 0..40 {
                     let offset = [0.0, 0.0, 1e3, 1e6][k % 4];

@@ -362,15 +362,23 @@ impl Stepper {
         }
     }
 
+    /// The facts of the scene that the slot pass relies on, noted whenever the neighbour list
+    /// is made (built or restored from a restart): whether every body has one density, and
+    /// whether any body is a circle (then circle pairs take the narrow phase's lean path —
+    /// which pairs take it decides the last bits, so a restored list must note it too).
+    fn note_scene(&mut self, wd: &Parts) {
+        let d0 = wd.bodies.density.first().copied();
+        self.uniform_density = d0.filter(|&d| wd.bodies.density.iter().all(|&x| x == d));
+        self.circles = wd.bodies.is_circle.iter().any(|&c| c);
+    }
+
     /// Rebuilds the neighbour list from the current positions (body pairs from the grid, then
     /// each body's walls after its body partners: key order), carrying histories over.
     pub(crate) fn rebuild_neighbours(&mut self, wd: &mut Parts) {
         let n = wd.bodies.len();
         let max_bound = wd.bodies.bound.iter().copied().fold(0.0f64, f64::max);
         let skin = SKIN_FRACTION * max_bound;
-        let d0 = wd.bodies.density.first().copied();
-        self.uniform_density = d0.filter(|&d| wd.bodies.density.iter().all(|&x| x == d));
-        self.circles = wd.bodies.is_circle.iter().any(|&c| c);
+        self.note_scene(wd);
         let list = &mut *wd.contacts;
         list.skin = skin;
         self.grid.pairs(wd.bodies, skin, &mut self.pair_scratch);
@@ -409,8 +417,7 @@ impl Stepper {
     pub(crate) fn restore_neighbours(&mut self, wd: &mut Parts, saved: &RestartState) {
         let n = wd.bodies.len();
         let max_bound = wd.bodies.bound.iter().copied().fold(0.0f64, f64::max);
-        let d0 = wd.bodies.density.first().copied();
-        self.uniform_density = d0.filter(|&d| wd.bodies.density.iter().all(|&x| x == d));
+        self.note_scene(wd);
         let Kept { cached, rolling } = kept(&wd.bodies.shape, wd.spec, wd.walls);
         let list = &mut *wd.contacts;
         *list = ContactList::default();
