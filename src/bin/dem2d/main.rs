@@ -856,7 +856,17 @@ fn bench(
         code: 1,
         message: e.to_string(),
     })?;
-    let md = crate::bench::markdown(&rows);
+    publish_table(crate::bench::markdown(&rows), "bench", out, readme)
+}
+
+/// Prints a Markdown table, writes it to `out` and refreshes the README section `section`
+/// (`<!-- figures:SECTION -->`) when asked.
+fn publish_table(
+    md: String,
+    section: &str,
+    out: Option<&std::path::Path>,
+    readme: Option<&std::path::Path>,
+) -> Result<(), Failure> {
     print_out(&md)?;
     if let Some(path) = out {
         std::fs::write(path, &md).map_err(|e| Failure {
@@ -865,7 +875,7 @@ fn bench(
         })?;
     }
     if let Some(readme) = readme {
-        crate::report::update_readme(readme, &[("bench", md)]).map_err(|e| Failure {
+        crate::report::update_readme(readme, &[(section, md)]).map_err(|e| Failure {
             code: 1,
             message: e.to_string(),
         })?;
@@ -916,21 +926,12 @@ fn bench_peers(
         code: 1,
         message: e.to_string(),
     })?;
-    let md = crate::peers::markdown(&report, load.as_deref());
-    print_out(&md)?;
-    if let Some(path) = out {
-        std::fs::write(path, &md).map_err(|e| Failure {
-            code: 1,
-            message: format!("{}: cannot write: {e}", path.display()),
-        })?;
-    }
-    if let Some(readme) = readme {
-        crate::report::update_readme(readme, &[("peers", md)]).map_err(|e| Failure {
-            code: 1,
-            message: e.to_string(),
-        })?;
-    }
-    Ok(())
+    publish_table(
+        crate::peers::markdown(&report, load.as_deref()),
+        "peers",
+        out,
+        readme,
+    )
 }
 
 fn figures(
