@@ -20,7 +20,8 @@ use dem2d::geometry::{Polygon, Pose, Shape, Vec2, Wall};
 use dem2d::narrow_phase::circle_circle::overlap_circle_circle;
 use dem2d::narrow_phase::ellipse_ellipse::Warm;
 use dem2d::narrow_phase::{
-    Contact, ContactState, Object, PairCache, Request, Side, contact, contact_with, overlap_lean,
+    Contact, ContactState, Object, PairCache, Request, Side, conic_lean, contact, contact_with,
+    overlap_lean,
 };
 use dem2d::validation::rng::Rng;
 
@@ -518,6 +519,92 @@ fn the_lean_path_equals_the_dispatcher() {
             }
         }
     }
+}
+
+/// The conic pairs' lean record (what the stepper takes for circle–ellipse and ellipse–ellipse)
+/// gives, in both orders, with and without the area, from a new pair and again from the warm
+/// start the first query left, bit for bit the state, point, normal, depth and area of
+/// `contact_with` asked for the same — and leaves the same warm start; declined for every
+/// other pair kind.
+#[test]
+fn the_conic_lean_record_equals_the_dispatcher() {
+    let mut rng = Rng(0xC0_71C5_u64);
+    let bits = |x: f64| x.to_bits();
+    let (mut compared, mut warm) = (0, 0);
+    for ki in 0..KINDS.len() {
+        for kj in 0..KINDS.len() {
+            if ki == WALL && kj == WALL {
+                continue;
+            }
+            let conic = matches!((ki, kj), (0, 1) | (1, 0) | (1, 1));
+            for &cfg in CONFIGS.iter() {
+                for k in 0..40 {
+                    let offset = [0.0, 0.0, 1e3, 1e6][k % 4];
+                    let s = rng.range(0.5, 2.0);
+                    let pair = draw(ki, kj, cfg, offset, s, &mut rng);
+                    for area in [false, true] {
+                        let request = Request {
+                            area,
+                            chord: false,
+                            trace: None,
+                        };
+                        for (i, j) in [(&pair.i, &pair.j), (&pair.j, &pair.i)] {
+                            let (mut lean_cache, mut full_cache) =
+                                (PairCache::default(), PairCache::default());
+                            // A new pair, then the same pair from what the first query kept.
+                            for _ in 0..2 {
+                                let lean =
+                                    conic_lean(Side::from(i), Side::from(j), &mut lean_cache, area);
+                                assert_eq!(lean.is_some(), conic, "{ki}–{kj} {cfg:?}");
+                                let Some(lean) = lean else { break };
+                                let full = contact_with(i, j, &mut full_cache, request).unwrap();
+                                assert_eq!(lean_cache, full_cache, "{ki}–{kj} {cfg:?}");
+                                warm += usize::from(!full_cache.is_empty());
+                                compared += 1;
+                                match (lean, full.geometry) {
+                                    (None, None) => {
+                                        assert_eq!(full.state, ContactState::Separated)
+                                    }
+                                    (Some(l), Some(g)) => {
+                                        assert_eq!(l.state, full.state, "{ki}–{kj} {cfg:?}");
+                                        let (la, ga) = (l.area, g.area);
+                                        assert_eq!(la.is_some(), ga.is_some());
+                                        let mut pairs = vec![
+                                            (l.point.x, g.point.x),
+                                            (l.point.y, g.point.y),
+                                            (l.normal.x, g.normal.x),
+                                            (l.normal.y, g.normal.y),
+                                            (l.depth, g.depth),
+                                        ];
+                                        if let (Some(la), Some(ga)) = (la, ga) {
+                                            pairs.extend([
+                                                (la.area, ga.area),
+                                                (la.length, ga.length),
+                                                (la.normal.x, ga.normal.x),
+                                                (la.normal.y, ga.normal.y),
+                                                (la.point.x, ga.point.x),
+                                                (la.point.y, ga.point.y),
+                                                (la.couple, ga.couple),
+                                            ]);
+                                        }
+                                        for (x, y) in pairs {
+                                            assert_eq!(bits(x), bits(y), "{ki}–{kj} {cfg:?}");
+                                        }
+                                    }
+                                    (l, g) => panic!("{ki}–{kj} {cfg:?}: lean {l:?}, full {g:?}"),
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // The comparison reached the conic pairs and their warm starts.
+    assert!(
+        compared > 1000 && warm > 300,
+        "{compared} compared, {warm} warm"
+    );
 }
 
 #[test]

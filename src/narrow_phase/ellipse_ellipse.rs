@@ -34,7 +34,7 @@
 //! the pencil.
 
 use super::{
-    Contact, ContactState, LocalFrame, LocalOverlap, Request, TOUCH_TOL, deep_fallback,
+    Contact, ContactState, LocalFrame, LocalOverlap, Record, Request, TOUCH_TOL, deep_fallback,
     deep_overlap, orient_symmetric, pow2_floor,
 };
 use crate::geometry::Pose;
@@ -288,10 +288,11 @@ fn separating_axis(
 /// its gradient too. Returns the contact, what the next step starts from (a two-crossing
 /// overlap's crossings, or a separating axis), and whether the result came from the warm start
 /// (the refined crossings, or the carried separating axis) rather than from the pencil — for
-/// the tests that hold the warm path to the same bars as the pencil.
+/// the tests that hold the warm path to the same bars as the pencil. `R` is the record built:
+/// the full [`Contact`] or the dynamics' lean one ([`super::Record`]).
 #[allow(clippy::too_many_arguments)] // the two ellipses, the guess and what to compute
 #[inline]
-pub(crate) fn conic_pair(
+pub(crate) fn conic_pair<R: Record>(
     ai: f64,
     bi: f64,
     pi: &Pose,
@@ -300,11 +301,11 @@ pub(crate) fn conic_pair(
     pj: &Pose,
     guess: Option<Warm>,
     area: bool,
-) -> (Contact, Option<Warm>, bool) {
+) -> (R, Option<Warm>, bool) {
     // Bounding circles first, here where it inlines: separated pairs cost a few ns.
     let (ri, rj) = (ai.max(bi), aj.max(bj));
     if (pj.position - pi.position).norm_squared() > (ri + rj) * (ri + rj) {
-        return (Contact::SEPARATED, None, false);
+        return (R::SEPARATED, None, false);
     }
     let mut used_warm = false;
     let (c, w) = conic_pair_inner(ai, bi, pi, aj, bj, pj, guess, area, &mut used_warm);
@@ -312,7 +313,7 @@ pub(crate) fn conic_pair(
 }
 
 #[allow(clippy::too_many_arguments)] // the two ellipses, the guess, and what was used
-fn conic_pair_inner(
+fn conic_pair_inner<R: Record>(
     ai: f64,
     bi: f64,
     pi: &Pose,
@@ -322,12 +323,12 @@ fn conic_pair_inner(
     guess: Option<Warm>,
     want_area: bool,
     used_warm: &mut bool,
-) -> (Contact, Option<Warm>) {
+) -> (R, Option<Warm>) {
     let dv = pj.position - pi.position;
     let d = dv.norm();
     let (ri, rj) = (ai.max(bi), aj.max(bj));
     if d > ri + rj {
-        return (Contact::SEPARATED, None); // bounding circles
+        return (R::SEPARATED, None); // bounding circles
     }
     // P's local frame: x axis from O_i through O_j (α of Fig. 1); any axis when concentric.
     let (ca, sa) = if d > 0.0 {
@@ -344,7 +345,7 @@ fn conic_pair_inner(
     // step ago, so this test would almost surely fail).
     let lasting = matches!(guess, Some(Warm::Crossings(_)));
     if !lasting && support(ai, bi, cti, sti, 1.0, 0.0) + support(aj, bj, ctj, stj, 1.0, 0.0) < d {
-        return (Contact::SEPARATED, None);
+        return (R::SEPARATED, None);
     }
     let scale = pow2_floor(ri.max(rj));
     let inv = 1.0 / scale;
@@ -411,18 +412,12 @@ fn conic_pair_inner(
             if dpt > tol && dpt <= WARM_MAX_DEPTH * bi.min(bj) {
                 let mid = super::midpoint(p, q);
                 *used_warm = true;
-                let mut g = frame.geometry(p, q, mid, n, dpt);
+                let mut c = R::local(&frame, ContactState::Overlap, p, q, mid, n, dpt);
                 if want_area {
                     let o = chord_overlap(&placed_i, &placed_j, p, [ex, ey], n);
-                    g.area = Some(frame.overlap(&o));
+                    c.set_area(frame.overlap(&o));
                 }
-                return (
-                    Contact {
-                        state: ContactState::Overlap,
-                        geometry: Some(g),
-                    },
-                    Some(Warm::Crossings([to_warm(p), to_warm(q)])),
-                );
+                return (c, Some(Warm::Crossings([to_warm(p), to_warm(q)])));
             }
         }
     } else {
@@ -435,7 +430,7 @@ fn conic_pair_inner(
         let (ei, ej) = ((ai, bi, cti, sti), (aj, bj, ctj, stj));
         if let Some(axis) = separating_axis(ei, ej, d, start, tol, iterations) {
             *used_warm = matches!(guess, Some(Warm::Axis(_)));
-            return (Contact::SEPARATED, Some(Warm::Axis(axis)));
+            return (R::SEPARATED, Some(Warm::Axis(axis)));
         }
     }
 
@@ -530,7 +525,7 @@ fn conic_pair_inner(
             let (p, q, n, dpt) = deep_fallback(&mut crossings, depth);
             if dpt > tol {
                 let mid = super::midpoint(p, q);
-                let mut g = frame.geometry(p, q, mid, n, dpt);
+                let mut c = R::local(&frame, ContactState::Deep, p, q, mid, n, dpt);
                 if want_area {
                     let placed = [placed_i, placed_j];
                     let o = deep_overlap(
@@ -539,15 +534,9 @@ fn conic_pair_inner(
                         |k, u, m| placed[k].height(u, m),
                         |k, p, q, u| placed[k].cap(p, [q[0] - p[0], q[1] - p[1]], u),
                     );
-                    g.area = Some(frame.overlap(&o));
+                    c.set_area(frame.overlap(&o));
                 }
-                return (
-                    Contact {
-                        state: ContactState::Deep,
-                        geometry: Some(g),
-                    },
-                    None,
-                );
+                return (c, None);
             }
             None
         }
@@ -576,7 +565,7 @@ fn conic_pair_inner(
             };
             let warm = (state == ContactState::Overlap && n_cross == 2)
                 .then(|| Warm::Crossings([to_warm(p), to_warm(q)]));
-            let mut g = frame.geometry(p, q, cut.mid, n, dpt);
+            let mut c = R::local(&frame, state, p, q, cut.mid, n, dpt);
             if want_area && state == ContactState::Overlap {
                 // The caps follow the crossings to first order (A changes by L × their shift), and
                 // the pencil's crossings carry the rounding of λ and of the splitting (up to
@@ -593,17 +582,11 @@ fn conic_pair_inner(
                     }
                 };
                 let o = chord_overlap(&placed_i, &placed_j, p0, e, n);
-                g.area = Some(frame.overlap(&o));
+                c.set_area(frame.overlap(&o));
             }
-            return (
-                Contact {
-                    state,
-                    geometry: Some(g),
-                },
-                warm,
-            );
+            return (c, warm);
         } else {
-            return (Contact::SEPARATED, None);
+            return (R::SEPARATED, None);
         }
     }
     // No crossing: nested or apart. With no crossing, the two solids meet only if one lies
@@ -615,7 +598,7 @@ fn conic_pair_inner(
         || form_i.quad(d, 0.0) < 1.0 // c_j in i
         || form_j.quad(-d, 0.0) < 1.0; // c_i in j
     if !nested {
-        return (Contact::SEPARATED, None);
+        return (R::SEPARATED, None);
     }
     let (n, dpt) = oriented([1.0, 0.0]);
     let inner = if aj * bj <= ai * bi {
@@ -624,10 +607,7 @@ fn conic_pair_inner(
         [0.0, 0.0]
     };
     (
-        Contact {
-            state: ContactState::Contained,
-            geometry: Some(frame.geometry(inner, inner, inner, n, dpt)),
-        },
+        R::local(&frame, ContactState::Contained, inner, inner, inner, n, dpt),
         None,
     )
 }
