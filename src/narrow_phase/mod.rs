@@ -59,6 +59,7 @@ pub use cache::PairCache;
 
 pub mod cache;
 pub mod circle_circle;
+pub mod clump;
 pub mod circle_ellipse;
 pub mod circle_wall;
 pub mod ellipse_ellipse;
@@ -373,11 +374,16 @@ fn contact_in_order(
     use Shape::*;
     let plain = |c: Contact| (c, None, false);
     match (i, j) {
+        // A clump's contacts are its members' (circles): the deepest, for a one-record query.
+        (Side::Body(Clump(_), _), _) | (_, Side::Body(Clump(_), _)) => {
+            plain(clump::contact_clump(i, j, request))
+        }
         (Side::Wall(wall), Side::Body(shape, pose)) => plain(match *shape {
             Circle { r } => circle_wall::contact_wall_circle(wall, r, pose, request),
             Ellipse { a, b } => ellipse_wall::contact_wall_ellipse(wall, a, b, pose, request),
             Rectangle { w, h } => rectangle_wall::contact_wall_rectangle(wall, w, h, pose),
             Polygon(ref p) => polygon_wall::contact_wall_polygon(wall, p, pose),
+            Clump(_) => unreachable!("matched above"),
         }),
         (Side::Body(si, pi), Side::Body(sj, pj)) => match (*si, *sj) {
             (Circle { r: ri }, Circle { r: rj }) => plain(circle_circle::contact_circle_circle(
@@ -429,6 +435,7 @@ fn contact_in_order(
                     request,
                 ))
             }
+            (Clump(_), _) | (_, Clump(_)) => unreachable!("matched above"),
             (Ellipse { .. }, Circle { .. })
             | (Circle { .. } | Ellipse { .. }, Rectangle { .. })
             | (Circle { .. } | Ellipse { .. } | Rectangle { .. }, Polygon(_)) => {
@@ -483,9 +490,10 @@ fn side_in_order(i: Side, j: Side) -> Option<bool> {
             std::cmp::Ordering::Greater => false,
             std::cmp::Ordering::Equal => match si {
                 Shape::Circle { .. } => true,
-                Shape::Ellipse { .. } | Shape::Rectangle { .. } | Shape::Polygon(_) => {
-                    computed_first(si, pi, sj, pj)
-                }
+                Shape::Ellipse { .. }
+                | Shape::Rectangle { .. }
+                | Shape::Polygon(_)
+                | Shape::Clump(_) => computed_first(si, pi, sj, pj),
             },
         }),
     }
@@ -503,6 +511,7 @@ fn kind_rank(s: &Shape) -> u8 {
         Shape::Rectangle { .. } => 1,
         Shape::Circle { .. } => 2,
         Shape::Ellipse { .. } => 3,
+        Shape::Clump(_) => 4,
     }
 }
 
@@ -523,6 +532,7 @@ pub fn computed_first(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose) -> bool {
             Shape::Ellipse { a, b } => (a, b),
             Shape::Rectangle { w, h } => (w, h),
             Shape::Polygon(q) => (q.area, q.bounding_radius),
+            Shape::Clump(q) => (q.area, q.bounding_radius),
         };
         let (c, sn) = p.cos_sin();
         [u, v, p.position.x, p.position.y, c, sn]
