@@ -116,7 +116,10 @@ impl Slot {
     /// The members `(of i, of j)` packed in `sub`.
     #[inline]
     pub fn members(&self) -> (usize, usize) {
-        (((self.sub >> 16) & 0x7FFF) as usize, (self.sub & 0xFFFF) as usize)
+        (
+            ((self.sub >> 16) & 0x7FFF) as usize,
+            (self.sub & 0xFFFF) as usize,
+        )
     }
 }
 

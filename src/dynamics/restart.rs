@@ -206,8 +206,8 @@ impl RestartState {
             if last.is_some_and(|l| l >= (i, j, sub)) {
                 return Err(RestartError::new(
                     at("i"),
-                    "the contacts must be listed once each, in the order of (i, j, sub), walls \
-                     after bodies",
+                    "the contacts must be listed once each, in the order of (i, j), walls after \
+                     bodies",
                 ));
             }
             last = Some((i, j, sub));
@@ -225,7 +225,11 @@ impl RestartState {
                 ));
             }
             let (a, b) = s.slot.members();
-            let b_max = if j >= WALL_BASE { 1 } else { member_count(j as usize) };
+            let b_max = if j >= WALL_BASE {
+                1
+            } else {
+                member_count(j as usize)
+            };
             if a >= member_count(i as usize) || b >= b_max {
                 return Err(RestartError::new(
                     at("sub"),

@@ -381,7 +381,9 @@ impl Clump {
                 }
             } else if t1 == 2.0 * PI
                 && t0 > 0.0
-                && pieces.iter().any(|p| p.0 == k && p.1 == 0.0 && p.2 < 2.0 * PI)
+                && pieces
+                    .iter()
+                    .any(|p| p.0 == k && p.1 == 0.0 && p.2 < 2.0 * PI)
             {
                 continue;
             }
@@ -436,22 +438,39 @@ fn arc_moments(c: [f64; 2], r: f64, t0: f64, t1: f64) -> [f64; 6] {
         let s2 = (2.0 * t).sin();
         let s4 = (4.0 * t).sin();
         [
-            s,                                  // 0: ∫c
-            -co,                                // 1: ∫s
-            0.5 * t + 0.25 * s2,                // 2: ∫c²
-            0.5 * t - 0.25 * s2,                // 3: ∫s²
-            s - s * s * s / 3.0,                // 4: ∫c³
-            -co + co * co * co / 3.0,           // 5: ∫s³
-            0.375 * t + 0.25 * s2 + s4 / 32.0,  // 6: ∫c⁴
-            0.375 * t - 0.25 * s2 + s4 / 32.0,  // 7: ∫s⁴
-            t,                                  // 8: ∫1
-            0.5 * s * s,                        // 9: ∫cs
-            -co * co * co / 3.0,                // 10: ∫c² s
-            -co.powi(4) / 4.0,                  // 11: ∫c³ s
+            s,                                 // 0: ∫c
+            -co,                               // 1: ∫s
+            0.5 * t + 0.25 * s2,               // 2: ∫c²
+            0.5 * t - 0.25 * s2,               // 3: ∫s²
+            s - s * s * s / 3.0,               // 4: ∫c³
+            -co + co * co * co / 3.0,          // 5: ∫s³
+            0.375 * t + 0.25 * s2 + s4 / 32.0, // 6: ∫c⁴
+            0.375 * t - 0.25 * s2 + s4 / 32.0, // 7: ∫s⁴
+            t,                                 // 8: ∫1
+            0.5 * s * s,                       // 9: ∫cs
+            -co * co * co / 3.0,               // 10: ∫c² s
+            -co.powi(4) / 4.0,                 // 11: ∫c³ s
         ]
     };
+    // A whole circle takes the exact integrals over a period (no rounding of sin 2π etc.):
+    // a lone member's centroid is exactly its centre, and disjoint members sum exactly.
+    const FULL: [f64; 12] = [
+        0.0,
+        0.0,
+        PI,
+        PI,
+        0.0,
+        0.0,
+        0.75 * PI,
+        0.75 * PI,
+        2.0 * PI,
+        0.0,
+        0.0,
+        0.0,
+    ];
     let (p0, p1) = (prim(t0), prim(t1));
-    let i = |k: usize| p1[k] - p0[k];
+    let whole = t0 == 0.0 && t1 == 2.0 * PI;
+    let i = |k: usize| if whole { FULL[k] } else { p1[k] - p0[k] };
     // A = ½ r ∫ (cx c + cy s + r) dt
     let area = 0.5 * r * (cx * i(0) + cy * i(1) + r * i(8));
     // ∫∫x = ½ r ∫ (cx + r c)² c dt
@@ -460,10 +479,16 @@ fn arc_moments(c: [f64; 2], r: f64, t0: f64, t1: f64) -> [f64; 6] {
     let my = 0.5 * r * (cy * cy * i(1) + 2.0 * cy * r * i(3) + r * r * i(5));
     // ∫∫x² = ⅓ r ∫ (cx + r c)³ c dt
     let mxx = r / 3.0
-        * (cx.powi(3) * i(0) + 3.0 * cx * cx * r * i(2) + 3.0 * cx * r * r * i(4) + r.powi(3) * i(6));
+        * (cx.powi(3) * i(0)
+            + 3.0 * cx * cx * r * i(2)
+            + 3.0 * cx * r * r * i(4)
+            + r.powi(3) * i(6));
     // ∫∫y² = ⅓ r ∫ (cy + r s)³ s dt
     let myy = r / 3.0
-        * (cy.powi(3) * i(1) + 3.0 * cy * cy * r * i(3) + 3.0 * cy * r * r * i(5) + r.powi(3) * i(7));
+        * (cy.powi(3) * i(1)
+            + 3.0 * cy * cy * r * i(3)
+            + 3.0 * cy * r * r * i(5)
+            + r.powi(3) * i(7));
     // ∫∫xy = ½ r ∫ (cx + r c)² (cy + r s) c dt
     //      = ½ r ∫ (cx² cy c + cx² r cs + 2cx r cy c² + 2cx r² c²s + r² cy c³ + r³ c³s) dt
     let mxy = 0.5

@@ -3,8 +3,8 @@
 //!
 //! Nothing here knows about mass, velocity, time steps, materials or files.
 
-pub mod conic;
 pub mod clump;
+pub mod conic;
 pub mod cubic;
 pub mod mass;
 pub mod overlap_area;

@@ -43,9 +43,10 @@ impl PairCache {
         match shape {
             Shape::Ellipse { .. } => true,
             // A clump's contacts are its member disks'.
-            Shape::Circle { .. } | Shape::Rectangle { .. } | Shape::Polygon(_) | Shape::Clump(_) => {
-                false
-            }
+            Shape::Circle { .. }
+            | Shape::Rectangle { .. }
+            | Shape::Polygon(_)
+            | Shape::Clump(_) => false,
         }
     }
 

@@ -59,9 +59,9 @@ pub use cache::PairCache;
 
 pub mod cache;
 pub mod circle_circle;
-pub mod clump;
 pub mod circle_ellipse;
 pub mod circle_wall;
+pub mod clump;
 pub mod ellipse_ellipse;
 pub mod ellipse_wall;
 pub mod polygon_circle;

@@ -216,11 +216,7 @@ impl VtkWriter {
                     (p.moment_ellipse[0], p.moment_ellipse[1]),
                     p.long_axis.unwrap_or(0.0),
                 ),
-                Shape::Clump(c) => (
-                    4,
-                    (c.moment_ellipse[0], c.moment_ellipse[1]),
-                    c.long_axis,
-                ),
+                Shape::Clump(c) => (4, (c.moment_ellipse[0], c.moment_ellipse[1]), c.long_axis),
             };
             let (sn, cs) = (angle + turn).sin_cos();
             let (a2, b2) = (sa * sa, sb * sb);

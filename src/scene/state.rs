@@ -356,7 +356,10 @@ fn parse_contact(v: &Value, path: &str) -> Result<SlotRestart, FieldError> {
     let sub = c
         .opt_with("members", |v, p| {
             let m = v.as_array().filter(|a| a.len() == 2).ok_or_else(|| {
-                FieldError::new(p, format!("must be [member of i, member of j], got {}", shown(v)))
+                FieldError::new(
+                    p,
+                    format!("must be [member of i, member of j], got {}", shown(v)),
+                )
             })?;
             let member = |k: usize| {
                 let at = format!("{p}[{k}]");

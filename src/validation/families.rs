@@ -130,7 +130,10 @@ fn support_point(shape: &Shape, angle: f64, n: [f64; 2]) -> [f64; 2] {
             let n = ux.hypot(uy);
             let (m, r) = (0..cl.len())
                 .map(|k| cl.member(k))
-                .max_by(|a, b| (a.0.x * ux + a.0.y * uy + a.1 * n).total_cmp(&(b.0.x * ux + b.0.y * uy + b.1 * n)))
+                .max_by(|a, b| {
+                    (a.0.x * ux + a.0.y * uy + a.1 * n)
+                        .total_cmp(&(b.0.x * ux + b.0.y * uy + b.1 * n))
+                })
                 .expect("a clump has members");
             (m.x + r * ux / n, m.y + r * uy / n)
         }
