@@ -409,3 +409,10 @@ fn a_dropped_clump_comes_to_rest_and_its_energy_account_closes() {
     assert!(d4 < d / 3.0, "{d} {d4}");
     assert!(d < 1.5 * dc, "{d} {dc}");
 }
+
+#[test]
+fn a_slot_stays_32_bytes() {
+    // The member pair rides in the padding: the slots, streamed every step, do not grow.
+    assert_eq!(std::mem::size_of::<dem2d::dynamics::contacts::Slot>(), 32);
+    assert_eq!(std::mem::size_of::<Shape>(), 24);
+}

@@ -779,46 +779,79 @@ fn lean_of(slot: &Slot, cx: &SlotContext) -> Option<Option<LeanContact>> {
     overlap_lean(i, j)
 }
 
-/// [`lean_of`] for a slot of a clump pair: its member pair's.
+/// [`lean_of`] for a slot of a clump pair: its member pair's contact, always `Some` — the
+/// lean path's when the member's partner is a circle or a wall (or another clump's member), the
+/// full dispatcher's otherwise (a member against an ellipse, a rectangle or a polygon, from an
+/// empty pair cache). So [`update_slot`] takes every clump slot's contact as given here, with
+/// the spring on its depth (`Spring::Depth`): a member is a disk, whose area potential against
+/// a wall or a disk *is* that spring; against an ellipse, a rectangle or a polygon the area law
+/// would take the lens potential, which clump members do not (a documented limitation).
 #[inline(never)]
 fn lean_of_members(slot: &Slot, cx: &SlotContext) -> Option<Option<LeanContact>> {
-    let mut store = EMPTY_MEMBERS;
-    let (i, j) = member_sides(cx.bodies, cx.walls, slot, &mut store);
-    overlap_lean(i, j)
+    let store = placed_members(cx.bodies, slot);
+    let (i, j) = member_sides(cx.bodies, cx.walls, slot, &store);
+    if let Some(lean) = overlap_lean(i, j) {
+        return Some(lean);
+    }
+    let request = Request {
+        area: false,
+        chord: false,
+        trace: None,
+    };
+    let c = crate::narrow_phase::clump::contact_member(i, j, &request);
+    Some(c.geometry.map(|g| LeanContact {
+        state: c.state,
+        point: g.point,
+        normal: g.normal,
+        depth: g.depth,
+    }))
 }
 
-/// Room for the member circles of a clump slot's two sides.
+/// The member circles of a clump slot's two sides, `[giver, receiver]`, each placed at its
+/// world centre (a side that is not a clump: unused).
 type MemberStore = [(Shape, Pose); 2];
-const EMPTY_MEMBERS: MemberStore = [(Shape::Circle { r: 0.0 }, Pose::IDENTITY); 2];
+
+/// [`MemberStore`] for a clump slot.
+#[inline(never)]
+fn placed_members(b: &Bodies, slot: &Slot) -> MemberStore {
+    let sides = Sides::of_slot(slot.i, slot.j);
+    let (of_i, of_j) = slot.members();
+    let place = |k: usize, m: usize| match b.shape[k].clump() {
+        Some(c) => crate::narrow_phase::clump::member(&c, m, &b.state[k].pose),
+        None => (Shape::Circle { r: 0.0 }, Pose::IDENTITY),
+    };
+    match sides.giver {
+        // The receiver is body i against a wall (its member `of_i`).
+        Partner::Wall(_) => [
+            (Shape::Circle { r: 0.0 }, Pose::IDENTITY),
+            place(sides.receiver, of_i),
+        ],
+        Partner::Body(k) => [place(k, of_i), place(sides.receiver, of_j)],
+    }
+}
 
 /// The sides of a clump pair's slot as the narrow phase takes them (giver as i, receiver as j,
-/// as [`sides_of`]), each clump replaced by the slot's member: a circle at its world centre.
+/// as [`sides_of`]), each clump replaced by the slot's member from `store`
+/// ([`placed_members`]): a circle at its world centre.
 fn member_sides<'a>(
     b: &'a Bodies,
     walls: &'a [WallSpec],
     slot: &Slot,
-    store: &'a mut MemberStore,
+    store: &'a MemberStore,
 ) -> (Side<'a>, Side<'a>) {
     let sides = Sides::of_slot(slot.i, slot.j);
-    let (of_i, of_j) = slot.members();
-    // The receiver is body j, or body i against a wall (whose member is then `of_i`).
-    let (m_giver, m_recv) = match sides.giver {
-        Partner::Wall(_) => (0, of_i),
-        Partner::Body(_) => (of_i, of_j),
-    };
-    let [s0, s1] = store;
-    let side = |k: usize, m: usize, s: &'a mut (Shape, Pose)| match b.shape[k].clump() {
-        Some(c) => {
-            *s = crate::narrow_phase::clump::member(&c, m, &b.state[k].pose);
+    let side = |k: usize, s: &'a (Shape, Pose)| {
+        if b.shape[k].clump().is_some() {
             Side::Body(&s.0, &s.1)
+        } else {
+            Side::Body(&b.shape[k], &b.state[k].pose)
         }
-        None => Side::Body(&b.shape[k], &b.state[k].pose),
     };
     let i = match sides.giver {
         Partner::Wall(w) => Side::Wall(&walls[w].wall),
-        Partner::Body(k) => side(k, m_giver, s0),
+        Partner::Body(k) => side(k, &store[0]),
     };
-    (i, side(sides.receiver, m_recv, s1))
+    (i, side(sides.receiver, &store[1]))
 }
 
 /// The member-pair keys of the body pair `(i, j)` when either is a clump (every member pair
@@ -858,7 +891,8 @@ fn clump_keys(b: &Bodies, i: u32, j: u32, skin: f64, keys: &mut Vec<(u32, u32, u
 /// history (the slot's shear spring, and the rolling spring `rolling_spring` when the scene
 /// keeps them). `extra`, when given, receives the depth, normal and stiffness; `loads` (one per
 /// wall, or empty) the sums of each wall's contacts; `lean` is the pair through the narrow
-/// phase's lean path ([`lean_of`], computed by the caller).
+/// phase's lean path ([`lean_of`], computed by the caller; for a clump pair's slot always
+/// `Some`: its member pair's contact, [`lean_of_members`]).
 #[allow(clippy::too_many_arguments)]
 fn update_slot(
     slot: &mut Slot,
@@ -909,12 +943,7 @@ fn update_slot(
                 Some(c) => c,
                 None => &mut scratch, // a scene with no pair that keeps anything
             };
-            let mut store = EMPTY_MEMBERS;
-            let (i, j) = if slot.sub != 0 {
-                member_sides(b, walls, slot, &mut store)
-            } else {
-                sides_of(b, walls, sides)
-            };
+            let (i, j) = sides_of(b, walls, sides);
             let c = contact_sides(i, j, cache, request)
                 .expect("a slot pairs a body with a body or a wall");
             c.geometry.map(|geo| {

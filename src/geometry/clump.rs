@@ -167,8 +167,9 @@ impl Clump {
         (self.0.centres[k], self.0.radii[k])
     }
 
-    /// Support `max over members of u·c_k + r_k|u|` (u in the body frame, any length).
-    #[inline]
+    /// Support `max over members of u·c_k + r_k|u|` (u in the body frame, any length). Not
+    /// inlined: it must not weigh on the inlining of the support function's other arms.
+    #[inline(never)]
     pub fn support(&self, u: Vec2) -> f64 {
         let n = u.norm();
         self.0

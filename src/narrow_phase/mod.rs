@@ -213,6 +213,20 @@ pub enum Side<'a> {
     Wall(&'a Wall),
 }
 
+impl Object {
+    /// True for a clump.
+    #[inline]
+    pub fn is_clump(&self) -> bool {
+        matches!(
+            self,
+            Object::Body {
+                shape: Shape::Clump(_),
+                ..
+            }
+        )
+    }
+}
+
 impl<'a> From<&'a Object> for Side<'a> {
     #[inline(always)]
     fn from(o: &'a Object) -> Self {
@@ -300,10 +314,17 @@ pub fn contact_with(
     cache: &mut PairCache,
     request: Request,
 ) -> Option<Contact> {
+    if i.is_clump() || j.is_clump() {
+        // A clump's contacts are its members' (circles): the deepest, for one record.
+        return Some(clump::contact_clump(i.into(), j.into(), &request));
+    }
     contact_sides(i.into(), j.into(), cache, request)
 }
 
-/// [`contact_with`] for borrowed sides (the same dispatcher: [`contact_with`] is this).
+/// [`contact_with`] for borrowed sides (the same dispatcher: [`contact_with`] is this), for
+/// every pair but one with a clump (panics): a clump's contacts are its members', which its
+/// callers (the dynamics, [`contact_with`]) resolve first — so that the step's copy of this
+/// dispatcher has no trace of clumps.
 #[inline(always)]
 pub fn contact_sides(i: Side, j: Side, cache: &mut PairCache, request: Request) -> Option<Contact> {
     let in_order = side_in_order(i, j)?;
@@ -374,16 +395,12 @@ fn contact_in_order(
     use Shape::*;
     let plain = |c: Contact| (c, None, false);
     match (i, j) {
-        // A clump's contacts are its members' (circles): the deepest, for a one-record query.
-        (Side::Body(Clump(_), _), _) | (_, Side::Body(Clump(_), _)) => {
-            plain(clump::contact_clump(i, j, request))
-        }
         (Side::Wall(wall), Side::Body(shape, pose)) => plain(match *shape {
             Circle { r } => circle_wall::contact_wall_circle(wall, r, pose, request),
             Ellipse { a, b } => ellipse_wall::contact_wall_ellipse(wall, a, b, pose, request),
             Rectangle { w, h } => rectangle_wall::contact_wall_rectangle(wall, w, h, pose),
             Polygon(ref p) => polygon_wall::contact_wall_polygon(wall, p, pose),
-            Clump(_) => unreachable!("matched above"),
+            Clump(_) => unreachable!("a clump is resolved into its members first (contact_with)"),
         }),
         (Side::Body(si, pi), Side::Body(sj, pj)) => match (*si, *sj) {
             (Circle { r: ri }, Circle { r: rj }) => plain(circle_circle::contact_circle_circle(
@@ -435,7 +452,9 @@ fn contact_in_order(
                     request,
                 ))
             }
-            (Clump(_), _) | (_, Clump(_)) => unreachable!("matched above"),
+            (Clump(_), _) | (_, Clump(_)) => {
+                unreachable!("a clump is resolved into its members first (contact_with)")
+            }
             (Ellipse { .. }, Circle { .. })
             | (Circle { .. } | Ellipse { .. }, Rectangle { .. })
             | (Circle { .. } | Ellipse { .. } | Rectangle { .. }, Polygon(_)) => {
