@@ -598,7 +598,6 @@ pub fn run(grains: usize) {
                 line: true,
                 markers: true,
                 hollow: true,
-                ..Default::default()
             });
         }
         let ell: Vec<&DropRow> = drops
