@@ -290,7 +290,9 @@ fn separating_axis(
 /// (the refined crossings, or the carried separating axis) rather than from the pencil — for
 /// the tests that hold the warm path to the same bars as the pencil.
 #[allow(clippy::too_many_arguments)] // the two ellipses, the guess and what to compute
-#[inline]
+// Out of line, as the compiler chose for it before the clumps added call sites of the circle
+// kernels: inlined into the step's `update_slot` it made the 10⁴-ellipse pile ~8 % slower.
+#[inline(never)]
 pub(crate) fn conic_pair(
     ai: f64,
     bi: f64,
