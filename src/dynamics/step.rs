@@ -786,6 +786,7 @@ fn lean_of(slot: &Slot, cx: &SlotContext) -> Option<Option<LeanContact>> {
 /// the spring on its depth (`Spring::Depth`): a member is a disk, whose area potential against
 /// a wall or a disk *is* that spring; against an ellipse, a rectangle or a polygon the area law
 /// would take the lens potential, which clump members do not (a documented limitation).
+#[cold]
 #[inline(never)]
 fn lean_of_members(slot: &Slot, cx: &SlotContext) -> Option<Option<LeanContact>> {
     let store = placed_members(cx.bodies, slot);

@@ -289,7 +289,8 @@ fn separating_axis(
 /// overlap's crossings, or a separating axis), and whether the result came from the warm start
 /// (the refined crossings, or the carried separating axis) rather than from the pencil — for
 /// the tests that hold the warm path to the same bars as the pencil.
-#[allow(clippy::too_many_arguments)] // the two ellipses, the guess and what to compute
+#[allow(clippy::too_many_arguments)]
+// the two ellipses, the guess and what to compute
 // Out of line, as the compiler chose for it before the clumps added call sites of the circle
 // kernels: inlined into the step's `update_slot` it made the 10⁴-ellipse pile ~8 % slower.
 #[inline(never)]
