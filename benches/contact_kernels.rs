@@ -78,6 +78,7 @@ fn support_point(shape: &Shape, pose: &Pose, n: Vec2) -> Vec2 {
             .iter()
             .max_by(|a, b| a.dot(&u).total_cmp(&b.dot(&u)))
             .expect("vertices"),
+        Shape::Clump(_) => unreachable!("no clumps among the kernels"),
     };
     pose.to_world_vector(p)
 }

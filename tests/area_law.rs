@@ -54,6 +54,7 @@ fn r_shape(s: &Shape) -> RShape {
         Shape::Ellipse { a, b } => RShape::Ellipse { a, b },
         Shape::Rectangle { w, h } => RShape::Rectangle { w, h },
         Shape::Polygon(_) => unreachable!("polygons have their own reference (tests/polygons.rs)"),
+        Shape::Clump(_) => unreachable!("clumps: tests/clumps.rs"),
     }
 }
 

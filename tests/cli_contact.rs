@@ -286,3 +286,30 @@ fn an_endless_input_is_refused_at_the_size_limit() {
         "{err}"
     );
 }
+
+#[test]
+fn a_clump_pair_prints_every_member_contact() {
+    // Two members r = 0.5 at (±0.6, 0) about the centroid at height 0.45 on a floor: each
+    // overlaps the floor by 0.05, at x = ±0.6; the record is the deepest (the first of equals).
+    let input = r#"[{"i": {"wall": {"point": [0, 0], "normal": [0, 1]}},
+                     "j": {"shape": {"type": "clump", "disks": [{"center": [-0.6, 0], "r": 0.5}, {"center": [0.6, 0], "r": 0.5}]},
+                           "position": [2, 0.45]}}]"#;
+    let (code, out, err) = dem2d(&["contact", "-"], input);
+    assert_eq!(code, 0, "{err}");
+    let v: Value = serde_json::from_str(out.trim()).unwrap();
+    let members = v["members"].as_array().unwrap();
+    assert_eq!(members.len(), 2);
+    for (k, m) in members.iter().enumerate() {
+        assert_eq!(m["j_member"].as_u64(), Some(k as u64));
+        assert_eq!(m["i_member"].as_u64(), Some(0));
+        assert!((m["depth"].as_f64().unwrap() - 0.05).abs() < 1e-15, "{m}");
+        let x = m["point"][0].as_f64().unwrap();
+        assert!(
+            (x - (2.0 + if k == 0 { -0.6 } else { 0.6 })).abs() < 1e-15,
+            "{m}"
+        );
+        assert_eq!(m["normal"][1].as_f64(), Some(1.0));
+    }
+    assert_eq!(v["depth"], members[0]["depth"]);
+    assert_eq!(v["point"], members[0]["point"]);
+}

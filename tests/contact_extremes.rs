@@ -50,6 +50,7 @@ impl Spec {
                     Shape::Circle { r } => Shape::Circle { r: r * k },
                     Shape::Ellipse { a, b } => Shape::Ellipse { a: a * k, b: b * k },
                     Shape::Rectangle { w, h } => Shape::Rectangle { w: w * k, h: h * k },
+                    Shape::Clump(_) => unreachable!("no clumps in these families"),
                     Shape::Polygon(p) => Shape::Polygon(
                         dem2d::geometry::Polygon::new(
                             &p.vertices
@@ -82,7 +83,9 @@ impl Spec {
                     Shape::Circle { r } => RShape::Circle { r },
                     Shape::Ellipse { a, b } => RShape::Ellipse { a, b },
                     Shape::Rectangle { w, h } => RShape::Rectangle { w, h },
-                    Shape::Polygon(_) => unreachable!("no polygons in these families"),
+                    Shape::Polygon(_) | Shape::Clump(_) => {
+                        unreachable!("no polygons or clumps in these families")
+                    }
                 },
                 pos,
                 angle,
@@ -97,6 +100,9 @@ impl Spec {
             Spec::Body(Shape::Rectangle { w, h }, ..) => vec![w, h],
             Spec::Body(Shape::Polygon(p), ..) => {
                 vec![2.0 * p.inscribed_radius, 2.0 * p.bounding_radius]
+            }
+            Spec::Body(Shape::Clump(c), ..) => {
+                vec![2.0 * c.smallest_radius, 2.0 * c.bounding_radius]
             }
             Spec::Wall(..) => vec![],
         }
@@ -156,6 +162,7 @@ fn support_point(shape: &Shape, angle: f64, n: [f64; 2]) -> [f64; 2] {
                 .expect("vertices");
             (v.x, v.y)
         }
+        Shape::Clump(_) => unreachable!("no clumps in these families"),
     };
     [c * px - s * py, s * px + c * py]
 }

@@ -233,8 +233,8 @@ fn generated_piles_start_without_overlap_inside_their_box() {
                     assert!((a / b - spec.aspect).abs() < 1e-12 * spec.aspect);
                     (a * b).sqrt()
                 }
-                Shape::Rectangle { .. } | Shape::Polygon(_) => {
-                    panic!("no rectangles or polygons in a pile")
+                Shape::Rectangle { .. } | Shape::Polygon(_) | Shape::Clump(_) => {
+                    panic!("no rectangles, polygons or clumps in a pile")
                 }
             };
             match spec.sizes {

@@ -67,6 +67,7 @@ fn r_obj(o: &Object) -> PObj {
                     angle,
                 },
                 Shape::Ellipse { a, b } => PObj::Ellipse { a, b, pos, angle },
+                Shape::Clump(_) => unreachable!("no clumps in the polygon tests"),
                 Shape::Rectangle { .. } | Shape::Polygon(_) => PObj::Polygon {
                     vertices: shape
                         .corners()

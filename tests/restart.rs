@@ -48,6 +48,7 @@ fn pile_case(duration: f64) -> String {
             let shape = match k % 5 {
                 0 | 3 => r#"{"type": "circle", "r": 0.5}"#.to_string(),
                 4 if k == 9 => r#"{"type": "rectangle", "w": 0.9, "h": 0.6}"#.into(),
+                4 if k == 4 || k == 14 => r#"{"type": "clump", "disks": [{"center": [-0.35, 0], "r": 0.4}, {"center": [0.3, 0.05], "r": 0.35}, {"center": [0, 0.3], "r": 0.25}]}"#.into(),
                 4 if k == 19 => r#"{"type": "polygon", "vertices": [[0.5, 0], [0.25, 0.433], [-0.25, 0.433], [-0.5, 0], [-0.25, -0.433], [0.25, -0.433]]}"#.into(),
                 _ => r#"{"type": "ellipse", "a": 0.6, "b": 0.4}"#.to_string(),
             };
@@ -107,6 +108,12 @@ fn library_round_trip(threads: usize) {
         assert!(active.iter().any(|s| s.slot.shear != 0.0), "shear springs");
         assert!(active.iter().any(|s| s.rolling != 0.0), "rolling springs");
         assert!(active.iter().any(|s| !s.cache.is_empty()), "warm starts");
+        assert!(
+            active
+                .iter()
+                .any(|s| s.slot.sub != 0 && s.slot.shear != 0.0),
+            "clump member contacts with their shear springs"
+        );
         let written = dem2d::output::state::state_text(
             &file.value,
             file.case.duration,

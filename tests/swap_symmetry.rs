@@ -76,6 +76,7 @@ fn support(shape: &Shape, angle: f64, n: [f64; 2]) -> f64 {
         Shape::Ellipse { a, b } => ((a * ux) * (a * ux) + (b * uy) * (b * uy)).sqrt(),
         Shape::Rectangle { w, h } => 0.5 * (w * ux.abs() + h * uy.abs()),
         Shape::Polygon(p) => p.support(Vec2::new(ux, uy)),
+        Shape::Clump(c) => c.support(Vec2::new(ux, uy)),
     }
 }
 
@@ -98,6 +99,7 @@ fn support_point(shape: &Shape, angle: f64, n: [f64; 2]) -> [f64; 2] {
                 .expect("vertices");
             (v.x, v.y)
         }
+        Shape::Clump(_) => unreachable!("clumps: tests/clumps.rs"),
     };
     [c * px - s * py, s * px + c * py]
 }
@@ -252,6 +254,7 @@ fn draw(ki: usize, kj: usize, cfg: Config, offset: f64, s: f64, rng: &mut Rng) -
                 Shape::Ellipse { a, .. } => Shape::Ellipse { a, b: a / thin },
                 Shape::Rectangle { w, .. } => Shape::Rectangle { w, h: w / thin },
                 Shape::Polygon(p) => polygon(p.bounding_radius, thin, rng),
+                Shape::Clump(_) => unreachable!("clumps: tests/clumps.rs"),
             };
             (
                 slim(si),

@@ -146,6 +146,10 @@ pub fn long_axis(shape: &Shape, angle: f64) -> Option<f64> {
         Shape::Ellipse { .. } | Shape::Rectangle { .. } => None,
         // The principal axis of the larger second moment of area (none for a regular polygon).
         Shape::Polygon(p) => p.long_axis.map(|t| angle + t),
+        // Likewise for the union of a clump's disks.
+        Shape::Clump(c) => {
+            (c.moment_ellipse[0] > c.moment_ellipse[1] * (1.0 + 1e-12)).then(|| angle + c.long_axis)
+        }
     }
 }
 

@@ -119,6 +119,45 @@ pub fn clipped_area(b: &FrameBody, w: Window) -> f64 {
                 .collect();
             a * bb * disk_polygon(&poly, 1.0)
         }
+        Shape::Clump(cl) => {
+            // Exact when the bounding circle is wholly inside or outside the window; otherwise
+            // the midpoint rule on a 512 × 512 grid over the bounding square (an approximation:
+            // the union of overlapping disks clipped to a rectangle has no closed form here).
+            let rb = cl.bounding_radius;
+            let p = b.position;
+            if p.x - rb >= w.x0 && p.x + rb <= w.x1 && p.y - rb >= w.y0 && p.y + rb <= w.y1 {
+                return cl.area;
+            }
+            if p.x + rb <= w.x0 || p.x - rb >= w.x1 || p.y + rb <= w.y0 || p.y - rb >= w.y1 {
+                return 0.0;
+            }
+            let world: Vec<(Vec2, f64)> = cl
+                .centres
+                .iter()
+                .zip(cl.radii.iter())
+                .map(|(m, &r)| (p + Vec2::new(c * m.x - s * m.y, s * m.x + c * m.y), r))
+                .collect();
+            const N: usize = 512;
+            let h = 2.0 * rb / N as f64;
+            let mut hits = 0usize;
+            for ix in 0..N {
+                let x = p.x - rb + (ix as f64 + 0.5) * h;
+                if x < w.x0 || x > w.x1 {
+                    continue;
+                }
+                for iy in 0..N {
+                    let y = p.y - rb + (iy as f64 + 0.5) * h;
+                    if y < w.y0 || y > w.y1 {
+                        continue;
+                    }
+                    let q = Vec2::new(x, y);
+                    if world.iter().any(|(m, r)| (q - m).norm_squared() <= r * r) {
+                        hits += 1;
+                    }
+                }
+            }
+            hits as f64 * h * h
+        }
         Shape::Rectangle { .. } | Shape::Polygon(_) => {
             let outline: Vec<Vec2> = b
                 .shape

@@ -14,6 +14,20 @@
 //! contacts: results do not depend on the number of threads. For each body the list also keeps
 //! its slots in key order (`adjacency`), so that forces are gathered per body, in parallel,
 //! without two threads writing to the same body.
+//!
+//! # Clumps: one slot per member pair
+//! A clump's contacts are its member disks' (`geometry::clump`), and a clump pair can touch at
+//! several places at once, each contact with its own shear spring. So a slot's key is
+//! `(i, j, sub)`: `sub` packs the member of i (bits 16–30) and the member of j (low 16 bits;
+//! 0 for a wall) with bit 31 set, and is 0 for a pair with no clump. A clump pair is then several slots with
+//! the same `(i, j)`, each an ordinary contact between two circles (or a circle and the other
+//! shape) whose force and moment go to the bodies with the lever arm from each body's
+//! centroid to the contact point, as for any contact. Which member pairs get a slot is decided
+//! at the build, rotation-invariantly (a clump turning in place between builds moves its
+//! members, not its centroid, and the rebuild test watches only centroids): member `a` of i and
+//! `b` of j get a slot when `|x_i − x_j| ≤ (|c_a| + r_a) + (|c_b| + r_b) + skin`, member `a` and
+//! a wall when the wall is within `|c_a| + r_a + skin` of the centroid — every member pair that
+//! can touch before the next build, however the bodies turn.
 
 use super::partner::Sides;
 use crate::geometry::Vec2;
@@ -37,6 +51,8 @@ pub struct Slot {
     pub i: u32,
     /// Second body, or `WALL_BASE + w` for wall `w`.
     pub j: u32,
+    /// The member pair of a clump pair ([`Slot::sub_of`]); 0 when neither body is a clump.
+    pub sub: u32,
     /// The pair overlaps this step (its [`ContactData`] describes the contact).
     pub active: bool,
     /// Geometry state (overlap, deep, contained, …).
@@ -50,11 +66,17 @@ pub struct Slot {
 }
 
 impl Slot {
-    /// An inactive slot for pair `(i, j)`.
+    /// An inactive slot for pair `(i, j)` (no clump: `sub` 0).
     pub fn new(i: u32, j: u32) -> Self {
+        Slot::with_sub(i, j, 0)
+    }
+
+    /// An inactive slot for member pair `sub` of pair `(i, j)`.
+    pub fn with_sub(i: u32, j: u32, sub: u32) -> Self {
         Slot {
             i,
             j,
+            sub,
             active: false,
             state: ContactState::Separated,
             shear: 0.0,
@@ -74,10 +96,30 @@ impl Slot {
         Sides::of_slot(self.i, self.j)
     }
 
-    /// The pair's key.
+    /// The slot's key: the pair and its member pair.
     #[inline]
-    pub fn key(&self) -> (u32, u32) {
-        (self.i, self.j)
+    pub fn key(&self) -> (u32, u32, u32) {
+        (self.i, self.j, self.sub)
+    }
+
+    /// `sub` for member `a` of body i and member `b` of body j (0 for a wall or a body that is
+    /// not a clump) of a pair with a clump: [`Slot::CLUMP`] set, so that `sub != 0` exactly for
+    /// the slots of clump pairs.
+    #[inline]
+    pub fn sub_of(a: usize, b: usize) -> u32 {
+        Self::CLUMP | ((a as u32) << 16) | b as u32
+    }
+
+    /// The bit of `sub` set for every slot of a clump pair.
+    pub const CLUMP: u32 = 1 << 31;
+
+    /// The members `(of i, of j)` packed in `sub`.
+    #[inline]
+    pub fn members(&self) -> (usize, usize) {
+        (
+            ((self.sub >> 16) & 0x7FFF) as usize,
+            (self.sub & 0xFFFF) as usize,
+        )
     }
 }
 
@@ -188,7 +230,7 @@ pub struct ContactList {
     /// Number of builds so far.
     pub builds: u64,
     /// Scratch of the build (kept to avoid allocating at every build).
-    pub(crate) keys: Vec<(u32, u32)>,
+    pub(crate) keys: Vec<(u32, u32, u32)>,
     pub(crate) rebuilt: Vec<Slot>,
     /// Each slot's narrow-phase pair cache (same index; conic pairs keep their warm start
     /// there), or empty when no pair of the scene keeps anything ([`PairCache::kept_with`]): a
@@ -252,14 +294,14 @@ impl ContactList {
         }
         let carry_rolling = rolling && self.rolling.len() == self.slots.len();
         let mut old = 0;
-        for &(i, j) in &self.keys {
-            while old < self.slots.len() && self.slots[old].key() < (i, j) {
+        for &(i, j, sub) in &self.keys {
+            while old < self.slots.len() && self.slots[old].key() < (i, j, sub) {
                 if self.slots[old].active {
                     lost += self.slots[old].history_energy;
                 }
                 old += 1;
             }
-            if old < self.slots.len() && self.slots[old].key() == (i, j) {
+            if old < self.slots.len() && self.slots[old].key() == (i, j, sub) {
                 self.rebuilt.push(self.slots[old]);
                 if cached {
                     self.rebuilt_cache.push(if carry_cache {
@@ -277,7 +319,7 @@ impl ContactList {
                 }
                 old += 1;
             } else {
-                self.rebuilt.push(Slot::new(i, j));
+                self.rebuilt.push(Slot::with_sub(i, j, sub));
                 if cached {
                     self.rebuilt_cache.push(PairCache::EMPTY);
                 }

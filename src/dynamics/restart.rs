@@ -177,10 +177,10 @@ impl RestartState {
                 ),
             ));
         }
-        let mut last: Option<(u32, u32)> = None;
+        let mut last: Option<(u32, u32, u32)> = None;
         for (k, s) in self.slots.iter().enumerate() {
             let at = |f: &str| format!("contacts[{k}].{f}");
-            let (i, j) = s.slot.key();
+            let (i, j, sub) = s.slot.key();
             if i as usize >= n {
                 return Err(RestartError::new(
                     at("i"),
@@ -203,14 +203,43 @@ impl RestartState {
                     format!("must be a body after i = {i} and below {n}, got {j}"),
                 ));
             }
-            if last.is_some_and(|l| l >= (i, j)) {
+            if last.is_some_and(|l| l >= (i, j, sub)) {
                 return Err(RestartError::new(
                     at("i"),
                     "the contacts must be listed once each, in the order of (i, j), walls after \
                      bodies",
                 ));
             }
-            last = Some((i, j));
+            last = Some((i, j, sub));
+            let member_count = |k: usize| bodies[k].shape.clump().map_or(1, |c| c.len());
+            let clump_pair = bodies[i as usize].shape.clump().is_some()
+                || (j < WALL_BASE && bodies[j as usize].shape.clump().is_some());
+            if clump_pair != (sub != 0) {
+                return Err(RestartError::new(
+                    at("members"),
+                    if clump_pair {
+                        "a clump pair's contact must give its `members`"
+                    } else {
+                        "`members` is only for the contacts of clumps"
+                    },
+                ));
+            }
+            let (a, b) = s.slot.members();
+            let b_max = if j >= WALL_BASE {
+                1
+            } else {
+                member_count(j as usize)
+            };
+            if a >= member_count(i as usize) || b >= b_max {
+                return Err(RestartError::new(
+                    at("sub"),
+                    format!(
+                        "member pair ({a}, {b}) does not exist (body {i} has {} members, the \
+                         other side {b_max})",
+                        member_count(i as usize)
+                    ),
+                ));
+            }
             if !kept.cached && !s.cache.is_empty() {
                 return Err(RestartError::new(
                     at("warm"),

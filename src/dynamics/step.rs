@@ -53,7 +53,7 @@ use crate::contact_law::{
     RollingKinematics, RollingModel,
 };
 use crate::geometry::overlap_area::DiskLens;
-use crate::geometry::{Pose, Vec2};
+use crate::geometry::{Pose, Shape, Vec2};
 use crate::narrow_phase::{
     ContactState, LeanContact, OverlapArea, PairCache, Request, Side, conic_lean, contact_sides,
     overlap_lean,
@@ -167,6 +167,8 @@ pub struct Stepper {
     /// Some body is a circle (checked at each list build): some pair may take the narrow
     /// phase's lean path.
     circles: bool,
+    /// Some body is a clump (checked at each list build): the list holds member-pair slots.
+    clumps: bool,
 }
 
 impl Stepper {
@@ -371,6 +373,9 @@ impl Stepper {
         let d0 = wd.bodies.density.first().copied();
         self.uniform_density = d0.filter(|&d| wd.bodies.density.iter().all(|&x| x == d));
         self.circles = wd.bodies.is_circle.iter().any(|&c| c);
+        // A clump's contacts are its members', circles: they take the lean path too.
+        self.clumps = wd.bodies.shape.iter().any(|s| s.clump().is_some());
+        self.circles |= self.clumps;
     }
 
     /// Rebuilds the neighbour list from the current positions (body pairs from the grid, then
@@ -388,14 +393,27 @@ impl Stepper {
         let mut next = 0;
         for i in 0..n {
             while next < self.pair_scratch.len() && self.pair_scratch[next].0 as usize == i {
-                list.keys.push(self.pair_scratch[next]);
+                let (a, b) = self.pair_scratch[next];
+                if self.clumps {
+                    clump_keys(wd.bodies, a, b, skin, &mut list.keys);
+                } else {
+                    list.keys.push((a, b, 0));
+                }
                 next += 1;
             }
             let (x, r) = (wd.bodies.state[i].pose.position, wd.bodies.bound[i]);
             for (w, ws) in wd.walls.iter().enumerate() {
-                if ws.wall.signed_distance(x) <= r + skin {
-                    list.keys
-                        .push((i as u32, super::contacts::WALL_BASE + w as u32));
+                let wj = super::contacts::WALL_BASE + w as u32;
+                let d = ws.wall.signed_distance(x);
+                if d <= r + skin {
+                    match wd.bodies.shape[i].clump() {
+                        None => list.keys.push((i as u32, wj, 0)),
+                        // The members that can reach the wall however the clump turns.
+                        Some(c) => list.keys.extend((0..c.len()).filter_map(|k| {
+                            let (ck, rk) = c.member(k);
+                            (d <= ck.norm() + rk + skin).then(|| (i as u32, wj, Slot::sub_of(k, 0)))
+                        })),
+                    }
                 }
             }
         }
@@ -755,8 +773,119 @@ fn sides_of<'a>(b: &'a Bodies, walls: &'a [WallSpec], sides: Sides) -> (Side<'a>
 /// circles or a circle and a wall, `None` for the other pair kinds.
 #[inline(always)]
 fn lean_of(slot: &Slot, cx: &SlotContext) -> Option<Option<LeanContact>> {
+    if slot.sub != 0 {
+        return lean_of_members(slot, cx);
+    }
     let (i, j) = sides_of(cx.bodies, cx.walls, Sides::of_slot(slot.i, slot.j));
     overlap_lean(i, j)
+}
+
+/// [`lean_of`] for a slot of a clump pair: its member pair's contact, always `Some` — the
+/// lean path's when the member's partner is a circle or a wall (or another clump's member), the
+/// full dispatcher's otherwise (a member against an ellipse, a rectangle or a polygon, from an
+/// empty pair cache). So [`update_slot`] takes every clump slot's contact as given here, with
+/// the spring on its depth (`Spring::Depth`): a member is a disk, whose area potential against
+/// a wall or a disk *is* that spring; against an ellipse, a rectangle or a polygon the area law
+/// would take the lens potential, which clump members do not (a documented limitation).
+#[cold]
+#[inline(never)]
+fn lean_of_members(slot: &Slot, cx: &SlotContext) -> Option<Option<LeanContact>> {
+    let store = placed_members(cx.bodies, slot);
+    let (i, j) = member_sides(cx.bodies, cx.walls, slot, &store);
+    if let Some(lean) = overlap_lean(i, j) {
+        return Some(lean);
+    }
+    let request = Request {
+        area: false,
+        chord: false,
+        trace: None,
+    };
+    let c = crate::narrow_phase::clump::contact_member(i, j, &request);
+    Some(c.geometry.map(|g| LeanContact {
+        state: c.state,
+        point: g.point,
+        normal: g.normal,
+        depth: g.depth,
+    }))
+}
+
+/// The member circles of a clump slot's two sides, `[giver, receiver]`, each placed at its
+/// world centre (a side that is not a clump: unused).
+type MemberStore = [(Shape, Pose); 2];
+
+/// [`MemberStore`] for a clump slot.
+#[inline(never)]
+fn placed_members(b: &Bodies, slot: &Slot) -> MemberStore {
+    let sides = Sides::of_slot(slot.i, slot.j);
+    let (of_i, of_j) = slot.members();
+    let place = |k: usize, m: usize| match b.shape[k].clump() {
+        Some(c) => crate::narrow_phase::clump::member(&c, m, &b.state[k].pose),
+        None => (Shape::Circle { r: 0.0 }, Pose::IDENTITY),
+    };
+    match sides.giver {
+        // The receiver is body i against a wall (its member `of_i`).
+        Partner::Wall(_) => [
+            (Shape::Circle { r: 0.0 }, Pose::IDENTITY),
+            place(sides.receiver, of_i),
+        ],
+        Partner::Body(k) => [place(k, of_i), place(sides.receiver, of_j)],
+    }
+}
+
+/// The sides of a clump pair's slot as the narrow phase takes them (giver as i, receiver as j,
+/// as [`sides_of`]), each clump replaced by the slot's member from `store`
+/// ([`placed_members`]): a circle at its world centre.
+fn member_sides<'a>(
+    b: &'a Bodies,
+    walls: &'a [WallSpec],
+    slot: &Slot,
+    store: &'a MemberStore,
+) -> (Side<'a>, Side<'a>) {
+    let sides = Sides::of_slot(slot.i, slot.j);
+    let side = |k: usize, s: &'a (Shape, Pose)| {
+        if b.shape[k].clump().is_some() {
+            Side::Body(&s.0, &s.1)
+        } else {
+            Side::Body(&b.shape[k], &b.state[k].pose)
+        }
+    };
+    let i = match sides.giver {
+        Partner::Wall(w) => Side::Wall(&walls[w].wall),
+        Partner::Body(k) => side(k, &store[0]),
+    };
+    (i, side(sides.receiver, &store[1]))
+}
+
+/// The member-pair keys of the body pair `(i, j)` when either is a clump (every member pair
+/// that can touch before the next build however the bodies turn: see `contacts`), else
+/// `(i, j, 0)`.
+fn clump_keys(b: &Bodies, i: u32, j: u32, skin: f64, keys: &mut Vec<(u32, u32, u32)>) {
+    let (ci, cj) = (b.shape[i as usize].clump(), b.shape[j as usize].clump());
+    if ci.is_none() && cj.is_none() {
+        keys.push((i, j, 0));
+        return;
+    }
+    let d = (b.state[i as usize].pose.position - b.state[j as usize].pose.position).norm();
+    // A side's members: (reach from its centroid) per member; the whole body for a non-clump.
+    let reach = |k: u32, c: Option<crate::geometry::Clump>| -> Vec<f64> {
+        match c {
+            Some(c) => (0..c.len())
+                .map(|m| {
+                    let (cm, rm) = c.member(m);
+                    cm.norm() + rm
+                })
+                .collect(),
+            None => vec![b.bound[k as usize]],
+        }
+    };
+    let (ri, rj) = (reach(i, ci), reach(j, cj));
+    for (a, &ra) in ri.iter().enumerate() {
+        for (bb, &rb) in rj.iter().enumerate() {
+            if d <= ra + rb + skin {
+                keys.push((i, j, Slot::sub_of(a, bb)));
+            }
+        }
+    }
 }
 
 /// One slot's contact: geometry (narrow phase, from the slot's pair cache when it has one),
@@ -764,7 +893,8 @@ fn lean_of(slot: &Slot, cx: &SlotContext) -> Option<Option<LeanContact>> {
 /// history (the slot's shear spring, and the rolling spring `rolling_spring` when the scene
 /// keeps them). `extra`, when given, receives the depth, normal and stiffness; `loads` (one per
 /// wall, or empty) the sums of each wall's contacts; `lean` is the pair through the narrow
-/// phase's lean path ([`lean_of`], computed by the caller).
+/// phase's lean path ([`lean_of`], computed by the caller; for a clump pair's slot always
+/// `Some`: its member pair's contact, [`lean_of_members`]).
 #[allow(clippy::too_many_arguments)]
 fn update_slot(
     slot: &mut Slot,
@@ -848,7 +978,7 @@ fn update_slot(
             if slot.active {
                 p.lost_history += slot.history_energy;
             }
-            *slot = Slot::new(slot.i, slot.j);
+            *slot = Slot::with_sub(slot.i, slot.j, slot.sub);
             if let Some(r) = rolling_spring {
                 *r = 0.0;
             }
@@ -963,6 +1093,7 @@ fn update_slot(
     *slot = Slot {
         i: slot.i,
         j: slot.j,
+        sub: slot.sub,
         active: true,
         state,
         shear: history.shear,

@@ -73,6 +73,13 @@ pub fn stiffness_factor(bodies: &Bodies, normal_force: NormalForce, wall: bool) 
                 r_eq_rect = r_eq_rect.min(s.equal_area_radius());
                 side_ratio = side_ratio.max(w.max(h) / (0.5 * (w + h)));
             }
+            Shape::Clump(c) => {
+                // Every contact is a member disk's (κ = 1), but up to every member of a clump
+                // can press on one wall or body at once: their springs act in parallel.
+                conics = true;
+                kappa = kappa.max(1.0);
+                face = face.max(c.len() as f64);
+            }
             Shape::Circle { .. } | Shape::Ellipse { .. } => {
                 conics = true;
                 kappa = kappa.max(s.max_curvature_radius() / s.equal_area_radius());

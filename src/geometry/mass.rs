@@ -10,6 +10,7 @@ pub fn area(shape: &Shape) -> f64 {
         Shape::Ellipse { a, b } => PI * a * b,
         Shape::Rectangle { w, h } => w * h,
         Shape::Polygon(p) => p.area, // the shoelace formula (geometry::polygon)
+        Shape::Clump(c) => c.area,   // the union's, exactly (geometry::clump)
     }
 }
 
@@ -22,5 +23,6 @@ pub fn inertia_per_mass(shape: &Shape) -> f64 {
         Shape::Ellipse { a, b } => 0.25 * (a * a + b * b),
         Shape::Rectangle { w, h } => (w * w + h * h) / 12.0,
         Shape::Polygon(p) => p.inertia_per_mass,
+        Shape::Clump(c) => c.inertia_per_mass,
     }
 }

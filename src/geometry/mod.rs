@@ -3,6 +3,7 @@
 //!
 //! Nothing here knows about mass, velocity, time steps, materials or files.
 
+pub mod clump;
 pub mod conic;
 pub mod cubic;
 pub mod mass;
@@ -12,5 +13,6 @@ pub mod polygon;
 pub mod shape;
 pub mod support;
 
+pub use clump::{Clump, ClumpError};
 pub use polygon::{Polygon, PolygonError};
 pub use shape::{Pose, Shape, ShapeError, Vec2, Wall};

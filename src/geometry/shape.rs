@@ -3,6 +3,7 @@
 //! Conventions (see the crate docs): angles in radians, counter-clockwise; a body's angle is that
 //! of its own x axis, which carries an ellipse's semi-axis `a` and a rectangle's width `w`.
 
+use super::clump::Clump;
 use super::polygon::Polygon;
 use std::fmt;
 
@@ -21,6 +22,9 @@ pub enum Shape {
     /// A convex polygon (vertices counter-clockwise about the centroid, shared by every body of
     /// this shape: see [`Polygon`]).
     Polygon(Polygon),
+    /// A rigid clump of disks (member centres about the union's centroid: see [`Clump`]).
+    /// Its contacts are its members' (each a circle), computed per member.
+    Clump(Clump),
 }
 
 /// Why a shape is not usable.
@@ -52,7 +56,7 @@ impl Shape {
             Shape::Ellipse { a, b } => &[("a", a), ("b", b)],
             Shape::Rectangle { w, h } => &[("w", w), ("h", h)],
             // Checked when it was built (`Polygon::new`).
-            Shape::Polygon(_) => &[],
+            Shape::Polygon(_) | Shape::Clump(_) => &[],
         };
         for &(field, value) in fields {
             if !(value.is_finite() && value > 0.0) {
@@ -70,6 +74,7 @@ impl Shape {
             Shape::Ellipse { a, b } => a.max(b),
             Shape::Rectangle { w, h } => 0.5 * w.hypot(h),
             Shape::Polygon(p) => p.bounding_radius,
+            Shape::Clump(c) => c.bounding_radius,
         }
     }
 
@@ -81,6 +86,9 @@ impl Shape {
             Shape::Ellipse { a, b } => a.min(b),
             Shape::Rectangle { w, h } => 0.5 * w.min(h),
             Shape::Polygon(p) => p.inscribed_radius,
+            // Not the largest circle about the centroid inside the union (the centroid may lie
+            // outside it): the smallest member, the size scale of a member contact's depth.
+            Shape::Clump(c) => c.smallest_radius,
         }
     }
 
@@ -97,6 +105,8 @@ impl Shape {
             Shape::Circle { r } => r,
             Shape::Ellipse { a, b } => a.max(b) * a.max(b) / a.min(b),
             Shape::Rectangle { .. } | Shape::Polygon(_) => f64::INFINITY,
+            // Every contact is a member's: its largest member.
+            Shape::Clump(c) => c.radii.iter().copied().fold(0.0, f64::max),
         }
     }
 
@@ -125,6 +135,9 @@ impl Shape {
             }
             Shape::Rectangle { w, h } => (w * h / std::f64::consts::PI).sqrt(),
             Shape::Polygon(p) => (p.area / std::f64::consts::PI).sqrt(),
+            // A member contact takes its member's radius (the dynamics asks the member, a
+            // circle); for the whole clump, the equal-area radius.
+            Shape::Clump(c) => (c.area / std::f64::consts::PI).sqrt(),
         }
     }
 
@@ -134,7 +147,22 @@ impl Shape {
     pub fn is_circle(&self) -> bool {
         match self {
             Shape::Circle { .. } => true,
-            Shape::Ellipse { .. } | Shape::Rectangle { .. } | Shape::Polygon(_) => false,
+            Shape::Ellipse { .. }
+            | Shape::Rectangle { .. }
+            | Shape::Polygon(_)
+            | Shape::Clump(_) => false,
+        }
+    }
+
+    /// True for a clump (whose contacts are its members').
+    #[inline]
+    pub fn clump(&self) -> Option<Clump> {
+        match self {
+            Shape::Clump(c) => Some(*c),
+            Shape::Circle { .. }
+            | Shape::Ellipse { .. }
+            | Shape::Rectangle { .. }
+            | Shape::Polygon(_) => None,
         }
     }
 
@@ -147,7 +175,9 @@ impl Shape {
     pub fn is_flat_sided(&self) -> bool {
         match self {
             Shape::Rectangle { .. } => true,
-            Shape::Circle { .. } | Shape::Ellipse { .. } | Shape::Polygon(_) => false,
+            Shape::Circle { .. } | Shape::Ellipse { .. } | Shape::Polygon(_) | Shape::Clump(_) => {
+                false
+            }
         }
     }
 
@@ -158,7 +188,7 @@ impl Shape {
     pub fn face_length(&self) -> f64 {
         match *self {
             Shape::Rectangle { w, h } => 0.5 * (w + h),
-            Shape::Circle { .. } | Shape::Ellipse { .. } | Shape::Polygon(_) => {
+            Shape::Circle { .. } | Shape::Ellipse { .. } | Shape::Polygon(_) | Shape::Clump(_) => {
                 self.bounding_radius()
             }
         }
@@ -186,6 +216,8 @@ impl Shape {
             Shape::Ellipse { a, b } => (a - b).abs(),
             Shape::Rectangle { w, h } => 0.5 * w.hypot(h),
             Shape::Polygon(p) => p.bounding_radius,
+            // A member's normal passes through its centre: the farthest member centre.
+            Shape::Clump(c) => c.centres.iter().map(|x| x.norm()).fold(0.0, f64::max),
         }
     }
 
@@ -197,6 +229,7 @@ impl Shape {
             Shape::Ellipse { .. } => "ellipse",
             Shape::Rectangle { .. } => "rectangle",
             Shape::Polygon(_) => "polygon",
+            Shape::Clump(_) => "clump",
         }
     }
 
@@ -204,7 +237,7 @@ impl Shape {
     /// corners (rectangle, polygon): its vertices counter-clockwise; `None` for a conic.
     pub fn corners(&self) -> Option<Vec<Vec2>> {
         match *self {
-            Shape::Circle { .. } | Shape::Ellipse { .. } => None,
+            Shape::Circle { .. } | Shape::Ellipse { .. } | Shape::Clump(_) => None,
             Shape::Rectangle { w, h } => {
                 let (x, y) = (0.5 * w, 0.5 * h);
                 Some(vec![
@@ -233,6 +266,14 @@ pub struct Pose {
 }
 
 impl Pose {
+    /// The pose at the origin with angle 0.
+    pub const IDENTITY: Pose = Pose {
+        position: Vec2::new(0.0, 0.0),
+        angle: 0.0,
+        cos: 1.0,
+        sin: 0.0,
+    };
+
     /// A pose at `position` whose x axis is at `angle` (radians, counter-clockwise) from the world x axis.
     #[inline]
     pub fn new(position: Vec2, angle: f64) -> Self {

@@ -17,6 +17,7 @@ pub fn support_local(shape: &Shape, ux: f64, uy: f64) -> f64 {
         Shape::Ellipse { a, b } => ((a * ux) * (a * ux) + (b * uy) * (b * uy)).sqrt(),
         Shape::Rectangle { w, h } => 0.5 * (w * ux.abs() + h * uy.abs()),
         Shape::Polygon(p) => p.support(super::shape::Vec2::new(ux, uy)),
+        Shape::Clump(c) => c.support(super::shape::Vec2::new(ux, uy)),
     }
 }
 

@@ -42,7 +42,11 @@ impl PairCache {
     pub fn kept_with(shape: &Shape) -> bool {
         match shape {
             Shape::Ellipse { .. } => true,
-            Shape::Circle { .. } | Shape::Rectangle { .. } | Shape::Polygon(_) => false,
+            // A clump's contacts are its member disks'.
+            Shape::Circle { .. }
+            | Shape::Rectangle { .. }
+            | Shape::Polygon(_)
+            | Shape::Clump(_) => false,
         }
     }
 

@@ -61,6 +61,7 @@ pub mod cache;
 pub mod circle_circle;
 pub mod circle_ellipse;
 pub mod circle_wall;
+pub mod clump;
 pub mod ellipse_ellipse;
 pub mod ellipse_wall;
 pub mod polygon_circle;
@@ -210,6 +211,20 @@ pub enum Object {
 pub enum Side<'a> {
     Body(&'a Shape, &'a Pose),
     Wall(&'a Wall),
+}
+
+impl Object {
+    /// True for a clump.
+    #[inline]
+    pub fn is_clump(&self) -> bool {
+        matches!(
+            self,
+            Object::Body {
+                shape: Shape::Clump(_),
+                ..
+            }
+        )
+    }
 }
 
 impl<'a> From<&'a Object> for Side<'a> {
@@ -402,10 +417,17 @@ pub fn contact_with(
     cache: &mut PairCache,
     request: Request,
 ) -> Option<Contact> {
+    if i.is_clump() || j.is_clump() {
+        // A clump's contacts are its members' (circles): the deepest, for one record.
+        return Some(clump::contact_clump(i.into(), j.into(), &request));
+    }
     contact_sides(i.into(), j.into(), cache, request)
 }
 
-/// [`contact_with`] for borrowed sides (the same dispatcher: [`contact_with`] is this).
+/// [`contact_with`] for borrowed sides (the same dispatcher: [`contact_with`] is this), for
+/// every pair but one with a clump (panics): a clump's contacts are its members', which its
+/// callers (the dynamics, [`contact_with`]) resolve first — so that the step's copy of this
+/// dispatcher has no trace of clumps.
 #[inline(always)]
 pub fn contact_sides(i: Side, j: Side, cache: &mut PairCache, request: Request) -> Option<Contact> {
     let in_order = side_in_order(i, j)?;
@@ -527,6 +549,7 @@ fn contact_in_order(
             Ellipse { a, b } => ellipse_wall::contact_wall_ellipse(wall, a, b, pose, request),
             Rectangle { w, h } => rectangle_wall::contact_wall_rectangle(wall, w, h, pose),
             Polygon(ref p) => polygon_wall::contact_wall_polygon(wall, p, pose),
+            Clump(_) => unreachable!("a clump is resolved into its members first (contact_with)"),
         }),
         (Side::Body(si, pi), Side::Body(sj, pj)) => match (*si, *sj) {
             (Circle { r: ri }, Circle { r: rj }) => plain(circle_circle::contact_circle_circle(
@@ -577,6 +600,9 @@ fn contact_in_order(
                     pj,
                     request,
                 ))
+            }
+            (Clump(_), _) | (_, Clump(_)) => {
+                unreachable!("a clump is resolved into its members first (contact_with)")
             }
             (Ellipse { .. }, Circle { .. })
             | (Circle { .. } | Ellipse { .. }, Rectangle { .. })
@@ -632,9 +658,10 @@ fn side_in_order(i: Side, j: Side) -> Option<bool> {
             std::cmp::Ordering::Greater => false,
             std::cmp::Ordering::Equal => match si {
                 Shape::Circle { .. } => true,
-                Shape::Ellipse { .. } | Shape::Rectangle { .. } | Shape::Polygon(_) => {
-                    computed_first(si, pi, sj, pj)
-                }
+                Shape::Ellipse { .. }
+                | Shape::Rectangle { .. }
+                | Shape::Polygon(_)
+                | Shape::Clump(_) => computed_first(si, pi, sj, pj),
             },
         }),
     }
@@ -652,6 +679,7 @@ fn kind_rank(s: &Shape) -> u8 {
         Shape::Rectangle { .. } => 1,
         Shape::Circle { .. } => 2,
         Shape::Ellipse { .. } => 3,
+        Shape::Clump(_) => 4,
     }
 }
 
@@ -672,6 +700,7 @@ pub fn computed_first(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose) -> bool {
             Shape::Ellipse { a, b } => (a, b),
             Shape::Rectangle { w, h } => (w, h),
             Shape::Polygon(q) => (q.area, q.bounding_radius),
+            Shape::Clump(q) => (q.area, q.bounding_radius),
         };
         let (c, sn) = p.cos_sin();
         [u, v, p.position.x, p.position.y, c, sn]

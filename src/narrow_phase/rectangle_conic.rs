@@ -28,8 +28,8 @@ pub fn contact_rectangle_conic(
     let (a, b) = match *conic {
         Shape::Circle { r } => (r, r),
         Shape::Ellipse { a, b } => (a, b),
-        Shape::Rectangle { .. } | Shape::Polygon(_) => {
-            unreachable!("rectangle and polygon pairs have their own kernels")
+        Shape::Rectangle { .. } | Shape::Polygon(_) | Shape::Clump(_) => {
+            unreachable!("rectangle, polygon and clump pairs have their own kernels")
         }
     };
     let dv = pi.position - pj.position; // rectangle centre relative to the conic

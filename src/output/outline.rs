@@ -40,6 +40,15 @@ pub fn body_frame_vertices(shape: &Shape) -> Vec<(f64, f64)> {
             vec![(-u, -v), (u, -v), (u, v), (-u, v)]
         }
         Shape::Polygon(p) => p.vertices.iter().map(|v| (v.x, v.y)).collect(),
+        // The union's boundary (its exposed arcs, a vertex at most every 5°); a clump whose
+        // union is not one loop (a member apart, a hole) gives its loops one after another, so
+        // the picture joins them by a segment.
+        Shape::Clump(c) => c
+            .boundary_loops(TURN_MAX)
+            .into_iter()
+            .flatten()
+            .map(|v| (v.x, v.y))
+            .collect(),
     }
 }
 

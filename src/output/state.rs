@@ -206,6 +206,11 @@ fn write_state_block(out: &mut String, s: &RestartState, bodies: &[BodyInit], st
                 let _ = write!(out, "\"j\": {}", slot.j);
             }
         }
+        if slot.sub != 0 {
+            // A clump pair's member pair (absent for other pairs).
+            let (a, b) = slot.members();
+            let _ = write!(out, ", \"members\": [{a}, {b}]");
+        }
         if slot.active {
             let d = &c.data;
             let _ = write!(

@@ -13,7 +13,7 @@
 //!
 //! Cell data (zero where an array does not apply to a kind): `id` (body index, contact ordinal,
 //! wall index), `pair` (a contact's i and j, a wall w given as j = −1 − w), `shape` (0 circle, 1
-//! ellipse, 2 rectangle, 3 polygon, −1 not a body), `semi_axes` (a, b: an ellipse's semi-axes,
+//! ellipse, 2 rectangle, 3 polygon, 4 clump, −1 not a body), `semi_axes` (a, b: an ellipse's semi-axes,
 //! (r, r) for a circle, (w/2, h/2) for a rectangle, for a polygon those of the ellipse with its
 //! second moments of area, whose a lies along the polygon's long axis — the tensor below is
 //! turned by that axis), `angle` (rad), `velocity` (cm/s, 3 components, z = 0),
@@ -216,6 +216,7 @@ impl VtkWriter {
                     (p.moment_ellipse[0], p.moment_ellipse[1]),
                     p.long_axis.unwrap_or(0.0),
                 ),
+                Shape::Clump(c) => (4, (c.moment_ellipse[0], c.moment_ellipse[1]), c.long_axis),
             };
             let (sn, cs) = (angle + turn).sin_cos();
             let (a2, b2) = (sa * sa, sb * sb);

@@ -2,12 +2,13 @@
 //! `{"shape": {"type": "ellipse", "a": 1.5, "b": 1.0}, "position": [x, y], "angle": θ}`
 //! (types `circle` with `r`, `ellipse` with `a`, `b`, `rectangle` with `w`, `h`, `polygon` with
 //! `vertices`: `[[x, y], …]`, counter-clockwise and convex, shifted to their centroid — the
-//! body's `position` is the centroid's) and
+//! body's `position` is the centroid's, `clump` with `disks`: `[{"center": [x, y], "r": r}, …]`,
+//! shifted to the centroid of their union — the body's `position` is that centroid's) and
 //! `{"wall": {"point": [x, y], "normal": [nx, ny]}}`.
 
 use super::fields::{FieldError, Obj, index, number, scale, type_of, vec2};
 use super::ranges::{Placed, check_extent};
-use crate::geometry::{Polygon, PolygonError, Pose, Shape, Vec2, Wall};
+use crate::geometry::{Clump, ClumpError, Polygon, PolygonError, Pose, Shape, Vec2, Wall};
 use crate::narrow_phase::Object;
 use serde_json::Value;
 
@@ -32,12 +33,13 @@ pub fn parse_shape(v: &Value, path: &str) -> Result<Shape, FieldError> {
             h: o.req_with("h", scale)?,
         },
         "polygon" => Shape::Polygon(o.req_with("vertices", polygon)?),
+        "clump" => Shape::Clump(o.req_with("disks", clump)?),
         other => {
             return Err(FieldError::new(
                 o.field_path("type"),
                 format!(
-                    "unknown shape type `{other}` (expected `circle`, `ellipse`, `rectangle` or \
-                     `polygon`)"
+                    "unknown shape type `{other}` (expected `circle`, `ellipse`, `rectangle`, \
+                     `polygon` or `clump`)"
                 ),
             ));
         }
@@ -70,6 +72,40 @@ fn polygon(v: &Value, path: &str) -> Result<Polygon, FieldError> {
             PolygonError::TooFew(_) | PolygonError::Clockwise | PolygonError::ZeroArea => {
                 path.to_string()
             }
+        };
+        FieldError::new(at, e.to_string())
+    })
+}
+
+/// A clump's `disks`: a non-empty array of `{"center": [x, y], "r": r}` (finite centres, `r`
+/// positive and finite; see [`Clump::new`]); errors name the disk's field (`disks[k].r`).
+fn clump(v: &Value, path: &str) -> Result<Clump, FieldError> {
+    let Some(items) = v.as_array() else {
+        return Err(FieldError::new(
+            path,
+            format!(
+                "must be an array of {{\"center\": [x, y], \"r\": r}} disks, got {}",
+                type_of(v)
+            ),
+        ));
+    };
+    let disks = items
+        .iter()
+        .enumerate()
+        .map(|(k, d)| {
+            let at = index(path, k);
+            let mut o = Obj::new(d, &at)?;
+            let center = o.req_with("center", vec2)?;
+            let r = o.req_with("r", number)?;
+            o.finish()?;
+            Ok((center, r))
+        })
+        .collect::<Result<Vec<_>, FieldError>>()?;
+    Clump::new(&disks).map_err(|e| {
+        let at = match e {
+            ClumpError::NonFiniteCentre(k) => format!("{}.center", index(path, k)),
+            ClumpError::BadRadius(k, _) => format!("{}.r", index(path, k)),
+            ClumpError::Empty | ClumpError::TooMany(_) => path.to_string(),
         };
         FieldError::new(at, e.to_string())
     })

@@ -385,6 +385,13 @@ pub fn case_text_from(head: &[(&str, Value)], bodies: &[BodyInit]) -> String {
                 "type": "polygon",
                 "vertices": p.vertices.iter().map(|v| [v.x, v.y]).collect::<Vec<_>>(),
             }),
+            // The centred members: the body's position is the union's centroid.
+            Shape::Clump(c) => json!({
+                "type": "clump",
+                "disks": c.centres.iter().zip(c.radii.iter())
+                    .map(|(v, r)| json!({"center": [v.x, v.y], "r": r}))
+                    .collect::<Vec<_>>(),
+            }),
         };
         let body = json!({
             "shape": shape,

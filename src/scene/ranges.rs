@@ -77,6 +77,11 @@ fn sizes(shape: &Shape) -> [(&'static str, f64); 2] {
             ("vertices", 2.0 * p.inscribed_radius),
             ("vertices", 2.0 * p.bounding_radius),
         ],
+        // Its members' sizes: the smallest member's diameter, the bounding diameter.
+        Shape::Clump(c) => [
+            ("disks", 2.0 * c.smallest_radius),
+            ("disks", 2.0 * c.bounding_radius),
+        ],
     }
 }
 

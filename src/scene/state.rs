@@ -353,7 +353,27 @@ fn parse_contact(v: &Value, path: &str) -> Result<SlotRestart, FieldError> {
             })
         })?
         .unwrap_or(false);
-    let mut slot = Slot::new(i, j);
+    let sub = c
+        .opt_with("members", |v, p| {
+            let m = v.as_array().filter(|a| a.len() == 2).ok_or_else(|| {
+                FieldError::new(
+                    p,
+                    format!("must be [member of i, member of j], got {}", shown(v)),
+                )
+            })?;
+            let member = |k: usize| {
+                let at = format!("{p}[{k}]");
+                whole(&m[k], &at).and_then(|x| {
+                    usize::try_from(x)
+                        .ok()
+                        .filter(|&x| x < crate::geometry::clump::MAX_MEMBERS)
+                        .ok_or_else(|| FieldError::new(at, "is beyond the largest member index"))
+                })
+            };
+            Ok(Slot::sub_of(member(0)?, member(1)?))
+        })?
+        .unwrap_or(0);
+    let mut slot = Slot::with_sub(i, j, sub);
     let mut rolling = 0.0;
     let mut data = ContactData::default();
     if active {

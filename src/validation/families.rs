@@ -46,8 +46,8 @@ impl Spec {
                     Shape::Circle { r } => RShape::Circle { r },
                     Shape::Ellipse { a, b } => RShape::Ellipse { a, b },
                     Shape::Rectangle { w, h } => RShape::Rectangle { w, h },
-                    Shape::Polygon(_) => unreachable!(
-                        "no polygon family here: polygons have validation::polygon_reference"
+                    Shape::Polygon(_) | Shape::Clump(_) => unreachable!(
+                        "no polygon or clump family here (a clump's contacts are circles')"
                     ),
                 },
                 pos,
@@ -125,6 +125,17 @@ fn support_point(shape: &Shape, angle: f64, n: [f64; 2]) -> [f64; 2] {
                 .max_by(|a, b| (a.x * ux + a.y * uy).total_cmp(&(b.x * ux + b.y * uy)))
                 .expect("a polygon has vertices");
             (v.x, v.y)
+        }
+        Shape::Clump(cl) => {
+            let n = ux.hypot(uy);
+            let (m, r) = (0..cl.len())
+                .map(|k| cl.member(k))
+                .max_by(|a, b| {
+                    (a.0.x * ux + a.0.y * uy + a.1 * n)
+                        .total_cmp(&(b.0.x * ux + b.0.y * uy + b.1 * n))
+                })
+                .expect("a clump has members");
+            (m.x + r * ux / n, m.y + r * uy / n)
         }
     };
     [c * px - s * py, s * px + c * py]

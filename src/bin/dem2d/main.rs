@@ -444,7 +444,30 @@ fn run_contact(file: &str) -> Result<(), Failure> {
     let failed = |e: std::io::Error| Failure::failed(format!("standard output: cannot write: {e}"));
     for (i, j) in &pairs {
         let c = contact(i, j).expect("parse_pairs rejects wall–wall pairs");
-        writeln!(out, "{}", contact_json(&c)).map_err(failed)?;
+        if i.is_clump() || j.is_clump() {
+            // A clump pair: its deepest member contact, and every member pair's under
+            // `members` (with `i_member`, `j_member`; 0 for a side that is not a clump).
+            let mut v: serde_json::Value =
+                serde_json::from_str(&contact_json(&c)).expect("a record");
+            let members = dem2d::narrow_phase::clump::member_contacts(
+                i.into(),
+                j.into(),
+                dem2d::narrow_phase::Request::FULL,
+            )
+            .into_iter()
+            .map(|(a, b, m)| {
+                let mut r: serde_json::Value =
+                    serde_json::from_str(&contact_json(&m)).expect("a record");
+                r["i_member"] = a.into();
+                r["j_member"] = b.into();
+                r
+            })
+            .collect::<Vec<_>>();
+            v["members"] = members.into();
+            writeln!(out, "{v}").map_err(failed)?;
+        } else {
+            writeln!(out, "{}", contact_json(&c)).map_err(failed)?;
+        }
     }
     out.flush().map_err(failed)
 }

@@ -1,6 +1,5 @@
 //! Issue 16, item 3: the ellipse as the exact conic against equal-area convex polygons of 8, 16,
-//! 32, 64 and 128 vertices — error against cost. (Clumps of disks, the other representation the
-//! issue names, do not exist in dem2d and are not part of the study.)
+//! 32, 64 and 128 vertices and equal-area clumps of 3, 5, 9 and 17 disks — error against cost.
 //!
 //! `dem2d study representation` writes `figures/representation_pareto.svg` (and a PNG into
 //! `target/figure-png/`) and `figures/representation.md`, and prints the tables.
@@ -10,6 +9,12 @@
 //! `(a cos u_k, b sin u_k)`, scaled about the centre by `s = √(π / (½ n sin(2π/n)))` so that the
 //! polygon's area `s² · ½ n ab sin(2π/n)` equals the ellipse's `πab` (s = 1.054 at n = 8, 1.0008 at
 //! 64). Its mass is therefore the ellipse's; its moment of inertia differs by O(1/n²).
+//!
+//! **The clump** ([`Clump::ellipse_fit`]): k disks centred on the major axis between the
+//! centres of curvature of its ends, each the largest disk about its centre inside the ellipse,
+//! all scaled about the centre so that the union's exact area is `πab`. Its mass is the
+//! ellipse's; its contacts are its members' (several at once against the floor). It has no phase:
+//! one run per case. It is in the drop and the settling, not in the pile (time).
 //!
 //! **Scenes**, all from the paper's cases in `cases/` with only the shapes replaced:
 //! - P Fig. 2's drop (`drop_rebound_mu01.json`, `drop_rebound_mu05.json`: P's spring on the
@@ -39,6 +44,7 @@
 //! it.
 
 use super::packing;
+use dem2d::geometry::clump::{Clump, ClumpData};
 use dem2d::geometry::polygon::{Polygon, PolygonData};
 use dem2d::geometry::{Shape, Vec2};
 use dem2d::output::plot::{self, LinePanel, Series};
@@ -55,6 +61,8 @@ pub const NS: [usize; 5] = [8, 16, 32, 64, 128];
 /// Polygon vertex counts of the pile (the 64- and 128-gon piles take too long for the shared
 /// development machine: a 60-grain pile of 32-gons took 44 s against the ellipses' 3 s).
 pub const PILE_NS: [usize; 3] = [8, 16, 32];
+/// Clump member counts.
+pub const KS: [usize; 4] = [3, 5, 9, 17];
 /// The drop's window (s): release at 5 cm, first contact at 0.089 s, three bounces.
 pub const WINDOW: f64 = 0.3;
 
@@ -63,6 +71,7 @@ pub const WINDOW: f64 = 0.3;
 pub enum Rep {
     Ellipse,
     Polygon(usize),
+    Clump(usize),
 }
 
 impl Rep {
@@ -70,6 +79,7 @@ impl Rep {
         match self {
             Rep::Ellipse => "ellipse (exact conic)".into(),
             Rep::Polygon(n) => format!("{n}-gon"),
+            Rep::Clump(k) => format!("{k}-disk clump"),
         }
     }
     fn shape(self, a: f64, b: f64, phase_half_step: bool) -> Shape {
@@ -79,6 +89,7 @@ impl Rep {
                 let phase = if phase_half_step { PI / n as f64 } else { 0.0 };
                 Shape::Polygon(Polygon::equal_area_ellipse(n, a, b, phase).expect("convex"))
             }
+            Rep::Clump(k) => Shape::Clump(Clump::new(&Clump::ellipse_fit(k, a, b)).expect("disks")),
         }
     }
     /// Bytes of the shape table's entry (zero for the ellipse, whose semi-axes live in the
@@ -88,6 +99,10 @@ impl Rep {
             Rep::Ellipse => 0,
             Rep::Polygon(n) => {
                 std::mem::size_of::<PolygonData>() + 2 * n * std::mem::size_of::<Vec2>()
+            }
+            Rep::Clump(k) => {
+                std::mem::size_of::<ClumpData>()
+                    + k * (std::mem::size_of::<Vec2>() + std::mem::size_of::<f64>())
             }
         }
     }
@@ -99,6 +114,12 @@ fn shape_json(s: Shape) -> Value {
         Shape::Polygon(p) => json!({
             "type": "polygon",
             "vertices": p.vertices.iter().map(|v| [v.x, v.y]).collect::<Vec<_>>(),
+        }),
+        Shape::Clump(c) => json!({
+            "type": "clump",
+            "disks": c.centres.iter().zip(c.radii.iter())
+                .map(|(v, r)| json!({"center": [v.x, v.y], "r": r}))
+                .collect::<Vec<_>>(),
         }),
         other => panic!("not an ellipse representation: {other:?}"),
     }
@@ -275,6 +296,7 @@ fn e(v: f64) -> String {
 pub fn run(grains: usize) {
     let reps: Vec<Rep> = std::iter::once(Rep::Ellipse)
         .chain(NS.iter().map(|&n| Rep::Polygon(n)))
+        .chain(KS.iter().map(|&k| Rep::Clump(k)))
         .collect();
     let shape_slot = std::mem::size_of::<Shape>();
     let mut md = String::new();
@@ -301,15 +323,21 @@ pub fn run(grains: usize) {
             });
             for &rep in &reps[1..] {
                 let (mut errors, mut ns, mut sps) = ([0.0; 3], 0.0, 0.0);
-                for half in [false, true] {
+                // A clump has no phase: one run.
+                let phases: &[bool] = match rep {
+                    Rep::Clump(_) => &[false],
+                    Rep::Ellipse | Rep::Polygon(_) => &[false, true],
+                };
+                let w = 1.0 / phases.len() as f64;
+                for &half in phases {
                     let start = Instant::now();
                     let d = drop_run(mu, rep.shape(a, b, half), 1);
-                    sps += 0.5 * d.pos.len() as f64 / start.elapsed().as_secs_f64();
+                    sps += w * d.pos.len() as f64 / start.elapsed().as_secs_f64();
                     let err = drop_errors(&d, &reference);
                     for k in 0..3 {
-                        errors[k] += 0.5 * err[k] / if k == 1 { 1.0 } else { b };
+                        errors[k] += w * err[k] / if k == 1 { 1.0 } else { b };
                     }
-                    ns += 0.5 * d.ns_per_contact;
+                    ns += w * d.ns_per_contact;
                 }
                 drops.push(DropRow {
                     alpha,
@@ -327,7 +355,9 @@ pub fn run(grains: usize) {
         md,
         "**P Fig. 2's drop**, first {WINDOW} s, Δt = 1e-5 s for every representation, ellipses \
          of the case's area πab = 1.5π cm² (a = √(1.5α), b = √(1.5/α) cm). Errors against the \
-         ellipse's run at the same Δt (polygons: mean over the phases 0 and π/n); the ellipse's \
+         ellipse's run at the same Δt (polygons: mean over the phases 0 and π/n; clumps: one run, \
+         several member contacts with the floor at once, ns per contact per *body* contact, a \
+         non-positive value is timing noise and is not drawn); the ellipse's \
          row gives its own time-step error (against Δt/4). ns per contact: median wall time of a \
          step with a contact less that of a free-flight step (machine-dependent: 2 shared \
          cores). Bytes per body: the `Shape` slot ({shape_slot} B for every representation) + \
@@ -506,8 +536,8 @@ pub fn run(grains: usize) {
     }
     writeln!(
         md,
-        "\nWritten by `dem2d study representation{}`. Clumps of disks are not a representation \
-         dem2d has, so they are not in the study.",
+        "\nWritten by `dem2d study representation{}`. The clumps (`Clump::ellipse_fit`) are in the \
+         drop and the settling, not in the pile.",
         if grains == packing::N {
             String::new()
         } else {
@@ -524,7 +554,7 @@ pub fn run(grains: usize) {
             .map(|(c, &alpha)| {
                 let rows: Vec<&DropRow> = drops
                     .iter()
-                    .filter(|d| d.mu == mu && d.alpha == alpha && d.rep != Rep::Ellipse)
+                    .filter(|d| d.mu == mu && d.alpha == alpha && matches!(d.rep, Rep::Polygon(_)))
                     .collect();
                 Series {
                     label: format!("n-gon, α = {alpha}"),
@@ -536,7 +566,7 @@ pub fn run(grains: usize) {
                         .iter()
                         .map(|d| match d.rep {
                             Rep::Polygon(n) => format!("{n}"),
-                            Rep::Ellipse => String::new(),
+                            Rep::Ellipse | Rep::Clump(_) => String::new(),
                         })
                         .collect(),
                     color: c,
@@ -546,6 +576,38 @@ pub fn run(grains: usize) {
                 }
             })
             .collect();
+        // Clumps: the same colour per α, hollow markers without lines (their cost is not
+        // monotone in k), labelled "k d"; a non-positive cost (timing noise: a contact step
+        // measured faster than a free-flight one) cannot be drawn on the log axis.
+        for (c, &alpha) in ALPHAS.iter().enumerate() {
+            let rows: Vec<&DropRow> = drops
+                .iter()
+                .filter(|d| {
+                    d.mu == mu
+                        && d.alpha == alpha
+                        && matches!(d.rep, Rep::Clump(_))
+                        && d.ns_per_contact > 0.0
+                })
+                .collect();
+            series.push(Series {
+                label: format!("k-disk clump, α = {alpha}"),
+                points: rows
+                    .iter()
+                    .map(|d| (d.ns_per_contact, d.errors[0]))
+                    .collect(),
+                point_labels: rows
+                    .iter()
+                    .map(|d| match d.rep {
+                        Rep::Clump(k) => format!("{k}d"),
+                        Rep::Ellipse | Rep::Polygon(_) => String::new(),
+                    })
+                    .collect(),
+                color: c,
+                line: false,
+                markers: true,
+                hollow: true,
+            });
+        }
         let ell: Vec<&DropRow> = drops
             .iter()
             .filter(|d| d.mu == mu && d.rep == Rep::Ellipse)
@@ -597,7 +659,7 @@ pub fn run(grains: usize) {
                 .iter()
                 .map(|p| match p.rep {
                     Rep::Polygon(n) => format!("{n}"),
-                    Rep::Ellipse => String::new(),
+                    Rep::Ellipse | Rep::Clump(_) => String::new(),
                 })
                 .collect(),
             color: 0,
