@@ -631,7 +631,8 @@ pub fn run(grains: usize) {
             log_x: true,
             log_y: true,
             series,
-            y_range: Some((1e-3, 1e1)),
+            // Down to 1e-4: the legend (lower right) then sits below every point.
+            y_range: Some((1e-4, 1e1)),
             legend: plot::Legend::LowerRight,
             ..Default::default()
         }
@@ -684,7 +685,7 @@ pub fn run(grains: usize) {
         "target/figure-png/representation_pareto.png",
     ] {
         std::fs::create_dir_all("target/figure-png").expect("target/figure-png");
-        plot::line_panels(std::path::Path::new(path), (1500, 500), (1, 3), &panels).expect(path);
+        plot::line_panels(std::path::Path::new(path), (1500, 620), (1, 3), &panels).expect(path);
     }
     std::fs::write("figures/representation.md", &md).expect("figures/representation.md");
     print!("{md}");
