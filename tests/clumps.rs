@@ -417,13 +417,15 @@ fn a_slot_stays_32_bytes() {
     assert_eq!(std::mem::size_of::<Shape>(), 24);
 }
 
-
 /// `cases/drop_rebound_clump9.json` is what its description says: P's ellipse (1.5, 1) as the
 /// 9-disk equal-area fit, whose union's exact area is πab (against the closed form πab, not the
 /// fit's own scaling).
 #[test]
 fn the_clump_drop_case_is_the_nine_disk_fit_of_p_s_ellipse() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cases/drop_rebound_clump9.json");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/cases/drop_rebound_clump9.json"
+    );
     let case = dem2d::scene::Case::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();
     let Shape::Clump(c) = case.bodies[0].shape else {
         panic!("not a clump")
@@ -433,7 +435,10 @@ fn the_clump_drop_case_is_the_nine_disk_fit_of_p_s_ellipse() {
     for (k, (centre, r)) in fit.iter().enumerate() {
         let (ck, rk) = c.member(k);
         // Centres as given (the fit is symmetric about its centroid, so no shift).
-        assert!((ck.x - centre[0]).abs() <= 1e-15 && ck.y.abs() <= 1e-15, "{k}: {ck:?}");
+        assert!(
+            (ck.x - centre[0]).abs() <= 1e-15 && ck.y.abs() <= 1e-15,
+            "{k}: {ck:?}"
+        );
         assert!((rk - r).abs() <= 1e-15 * r, "{k}: {rk} {r}");
     }
     let (area, ..) = dem2d::geometry::clump::union_moments(&fit);
