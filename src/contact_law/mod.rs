@@ -79,8 +79,8 @@ impl NormalForce {
     }
 }
 
-/// How an overlap area A maps to the overlap the spring acts on, `δ_eq(A)`, and
-/// `L_eq = dA/dδ_eq`.
+/// How an overlap area A maps to the overlap the spring acts on, `δ_eq(A)`, and its
+/// compliance `dδ_eq/dA = 1/L_eq`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum EquivalentOverlap {
     /// The overlap of two disks (the bodies' equal-area radii; ∞ for a wall) whose lens has area
@@ -94,12 +94,15 @@ pub enum EquivalentOverlap {
 }
 
 impl EquivalentOverlap {
-    /// `(δ_eq, L_eq)` for the overlap area `area`.
+    /// `(δ_eq, dδ_eq/dA)` for the overlap area `area`.
     #[inline]
     pub fn depth_for_area(&self, area: f64) -> (f64, f64) {
         match *self {
             EquivalentOverlap::Lens(lens) => lens.equivalent_depth(area),
-            EquivalentOverlap::Flat(ell) => (area / ell, ell),
+            EquivalentOverlap::Flat(ell) => {
+                let g = 1.0 / ell;
+                (area * g, g)
+            }
         }
     }
 }
@@ -157,8 +160,9 @@ pub struct SpringOverlap {
     pub rho: f64,
     /// The overlap whose product with `depth` gives twice the spring's energy over `k_n`.
     pub energy_depth: f64,
-    /// `L_eq = dA/dδ_eq` and the gradient's couple (area law; 1 and 0 for the depth).
-    pub chord: f64,
+    /// The compliance `dδ_eq/dA = 1/L_eq` and the gradient's couple (area law; 1 and 0 for
+    /// the depth).
+    pub compliance: f64,
     pub couple: f64,
 }
 
@@ -174,11 +178,9 @@ impl SpringOverlap {
         if self.couple == 0.0 {
             return (0.0, 0.0);
         }
-        let lambda = ((spring + eta / self.rho.max(1e-3) * self.rate) / self.chord).max(0.0);
-        (
-            lambda * self.couple,
-            (lambda - spring / self.chord) * self.couple,
-        )
+        let g = self.compliance;
+        let lambda = ((spring + eta / self.rho.max(1e-3) * self.rate) * g).max(0.0);
+        (lambda * self.couple, (lambda - spring * g) * self.couple)
     }
 }
 
@@ -193,17 +195,17 @@ impl Kinematics {
                 rate: -self.vn,
                 rho: 1.0,
                 energy_depth: self.energy_depth,
-                chord: 1.0,
+                compliance: 1.0,
                 couple: 0.0,
             },
             Some(a) => {
-                let (delta, chord) = a.equivalent.depth_for_area(a.area);
+                let (delta, compliance) = a.equivalent.depth_for_area(a.area);
                 SpringOverlap {
                     depth: delta,
-                    rate: a.rate * (1.0 / chord),
-                    rho: a.length * (1.0 / chord),
+                    rate: a.rate * compliance,
+                    rho: a.length * compliance,
                     energy_depth: delta,
-                    chord,
+                    compliance,
                     couple: a.couple,
                 }
             }

@@ -64,8 +64,8 @@ pub fn stiffness_factor(bodies: &Bodies, normal_force: NormalForce, wall: bool) 
                 if normal_force == NormalForce::Area {
                     let r = s.equal_area_radius();
                     let lens = DiskLens::new(r, if wall { f64::INFINITY } else { r });
-                    let (_, l_eq) = lens.equivalent_depth(p.longest_edge * delta);
-                    face = face.max((p.longest_edge / l_eq).powi(2));
+                    let (_, compliance) = lens.equivalent_depth(p.longest_edge * delta);
+                    face = face.max((p.longest_edge * compliance).powi(2));
                 }
             }
             Shape::Rectangle { w, h } => {

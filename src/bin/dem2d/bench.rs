@@ -72,6 +72,8 @@ pub struct BenchRow {
     pub breakdown: Vec<(&'static str, f64)>,
     /// The final state is bit-identical to the first thread count's.
     pub identical: bool,
+    /// A hash of the final state's bits (positions, velocities, forces).
+    pub hash: u64,
 }
 
 /// An error of the bench command, as text.
@@ -262,70 +264,59 @@ pub fn run(
     for &shape in &opts.shapes {
         for &n in &opts.sizes {
             let settled = settled_pile(shape, n, opts.cache.as_deref(), opts.progress)?;
-            for &normal_force in &opts.normal_forces {
-                let case = settled.clone().with_normal_force(normal_force);
-                let mut reference_hash = None;
-                for &threads in &opts.threads {
-                    let pool = rayon::ThreadPoolBuilder::new()
-                        .num_threads(threads)
-                        .build()
-                        .map_err(|e| BenchError(format!("thread pool of {threads}: {e}")))?;
-                    let row = pool.install(|| -> Result<BenchRow, BenchError> {
+            // Several laws are timed interleaved — one block of steps of each in turn, every
+            // repetition — so that a change of the machine's load hits them alike and their
+            // ratio is what the table can be trusted for.
+            let mut reference_hash: Vec<Option<u64>> = vec![None; opts.normal_forces.len()];
+            for &threads in &opts.threads {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .map_err(|e| BenchError(format!("thread pool of {threads}: {e}")))?;
+                let timed = pool.install(|| -> Result<Vec<BenchRow>, BenchError> {
+                    let reps = opts.reps.max(1);
+                    let mut runs = Vec::with_capacity(opts.normal_forces.len());
+                    for &normal_force in &opts.normal_forces {
+                        let case = settled.clone().with_normal_force(normal_force);
                         let before = heap();
                         let mut w = world_of(&case, case.dt);
                         // Warm-up: contact histories, buffers at their working sizes.
                         for _ in 0..opts.steps.min(200) {
                             w.step().map_err(|b| BenchError(b.to_string()))?;
                         }
-                        let mut walls = Vec::with_capacity(opts.reps.max(1));
-                        let mut cpus = Vec::with_capacity(opts.reps.max(1));
-                        let mut contacts = 0u64;
+                        let bytes = heap().saturating_sub(before);
                         let builds = w.contacts.builds;
-                        let allocs = allocations();
-                        for _ in 0..opts.reps.max(1) {
+                        runs.push(LawRun {
+                            normal_force,
+                            w,
+                            bytes,
+                            builds,
+                            walls: Vec::with_capacity(reps),
+                            cpus: Vec::with_capacity(reps),
+                            contacts: 0,
+                            allocations: 0,
+                        });
+                    }
+                    for _ in 0..reps {
+                        for run in &mut runs {
+                            let allocs = allocations();
                             let (start, cpu) = (Instant::now(), process_cpu_seconds());
                             for _ in 0..opts.steps {
-                                let r = w.step().map_err(|b| BenchError(b.to_string()))?;
-                                contacts += r.contacts as u64;
+                                let r = run.w.step().map_err(|b| BenchError(b.to_string()))?;
+                                run.contacts += r.contacts as u64;
                             }
-                            walls.push(start.elapsed().as_secs_f64());
-                            cpus.push(process_cpu_seconds() - cpu);
+                            run.walls.push(start.elapsed().as_secs_f64());
+                            run.cpus.push(process_cpu_seconds() - cpu);
+                            run.allocations += allocations() - allocs;
                         }
-                        let allocs = allocations() - allocs;
-                        let builds = w.contacts.builds - builds;
-                        let bytes = heap().saturating_sub(before);
-                        walls.sort_by(f64::total_cmp);
-                        let wall = walls[walls.len() / 2];
-                        cpus.sort_by(f64::total_cmp);
-                        let cpu = cpus[cpus.len() / 2];
-                        let total_steps = opts.steps * opts.reps.max(1) as u64;
-                        let contacts_per_step = contacts as f64 / total_steps as f64;
-                        let hash = state_hash(&w);
-                        let identical = *reference_hash.get_or_insert(hash) == hash;
-                        Ok(BenchRow {
-                            shape,
-                            n,
-                            normal_force,
-                            threads,
-                            steps: opts.steps,
-                            wall,
-                            particle_steps_per_second: n as f64 * opts.steps as f64 / wall,
-                            particle_steps_per_cpu_second: n as f64 * opts.steps as f64 / cpu,
-                            contacts_per_step,
-                            ns_per_contact: wall * 1e9
-                                / (opts.steps as f64 * contacts_per_step).max(1.0),
-                            bytes_per_body: bytes as f64 / n as f64,
-                            slots_per_body: w.contacts.slots.len() as f64 / n as f64,
-                            builds_per_1000_steps: 1000.0 * builds as f64 / total_steps as f64,
-                            allocations_per_step: allocs as f64 / total_steps as f64,
-                            breakdown: w
-                                .heap_breakdown()
-                                .iter()
-                                .map(|&(part, bytes)| (part, bytes as f64 / n as f64))
-                                .collect(),
-                            identical,
-                        })
-                    })?;
+                    }
+                    Ok(runs
+                        .into_iter()
+                        .map(|run| run.row(shape, n, threads, opts.steps))
+                        .collect())
+                })?;
+                for (k, mut row) in timed.into_iter().enumerate() {
+                    row.identical = *reference_hash[k].get_or_insert(row.hash) == row.hash;
                     if opts.progress {
                         let parts: Vec<String> = row
                             .breakdown
@@ -333,11 +324,12 @@ pub fn run(
                             .map(|(p, b)| format!("{p} {b:.0}"))
                             .collect();
                         eprintln!(
-                            "{:?} n = {n}, {} law, {threads} thread(s): {:.2} M particle-steps/s ({:.2} M per CPU-second); heap {:.0} B/body ({})",
+                            "{:?} n = {n}, {} law, {threads} thread(s): {:.2} M particle-steps/s ({:.2} M per CPU-second, {:.0} ns per contact); heap {:.0} B/body ({})",
                             shape,
-                            normal_force.as_str(),
+                            row.normal_force.as_str(),
                             row.particle_steps_per_second / 1e6,
                             row.particle_steps_per_cpu_second / 1e6,
+                            row.ns_per_contact,
                             row.bytes_per_body,
                             parts.join(", ")
                         );
@@ -347,7 +339,60 @@ pub fn run(
             }
         }
     }
+    rows.sort_by_key(|r| (r.shape as u8, r.n, r.normal_force as u8, r.threads));
     Ok(rows)
+}
+
+/// One law's world during an interleaved timing, and what its blocks measured.
+struct LawRun {
+    normal_force: NormalForce,
+    w: World,
+    bytes: usize,
+    builds: u64,
+    walls: Vec<f64>,
+    cpus: Vec<f64>,
+    contacts: u64,
+    allocations: usize,
+}
+
+impl LawRun {
+    /// The table row: medians of the blocks (`identical` is set by the caller, which compares
+    /// thread counts).
+    fn row(mut self, shape: PileShape, n: usize, threads: usize, steps: u64) -> BenchRow {
+        self.walls.sort_by(f64::total_cmp);
+        self.cpus.sort_by(f64::total_cmp);
+        let (wall, cpu) = (
+            self.walls[self.walls.len() / 2],
+            self.cpus[self.cpus.len() / 2],
+        );
+        let total_steps = steps * self.walls.len() as u64;
+        let contacts_per_step = self.contacts as f64 / total_steps as f64;
+        let w = &self.w;
+        BenchRow {
+            shape,
+            n,
+            normal_force: self.normal_force,
+            threads,
+            steps,
+            wall,
+            particle_steps_per_second: n as f64 * steps as f64 / wall,
+            particle_steps_per_cpu_second: n as f64 * steps as f64 / cpu,
+            contacts_per_step,
+            ns_per_contact: wall * 1e9 / (steps as f64 * contacts_per_step).max(1.0),
+            bytes_per_body: self.bytes as f64 / n as f64,
+            slots_per_body: w.contacts.slots.len() as f64 / n as f64,
+            builds_per_1000_steps: 1000.0 * (w.contacts.builds - self.builds) as f64
+                / total_steps as f64,
+            allocations_per_step: self.allocations as f64 / total_steps as f64,
+            breakdown: w
+                .heap_breakdown()
+                .iter()
+                .map(|&(part, bytes)| (part, bytes as f64 / n as f64))
+                .collect(),
+            identical: true,
+            hash: state_hash(w),
+        }
+    }
 }
 
 /// CPU seconds used by this process so far (all threads).
