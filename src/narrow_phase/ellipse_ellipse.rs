@@ -141,7 +141,7 @@ impl Placed {
 
     /// Area of the ellipse beyond the chord from `p` (on its boundary) by `e`, on the side
     /// towards `u`: the minor cap, or the rest when its centre is on that side.
-    #[inline]
+    #[inline(always)]
     fn cap(&self, p: [f64; 2], e: [f64; 2], u: [f64; 2]) -> f64 {
         let (c, s) = (self.cos, self.sin);
         let body = move |v: [f64; 2]| [c * v[0] + s * v[1], -s * v[0] + c * v[1]];
@@ -153,7 +153,7 @@ impl Placed {
 
 /// The overlap of two crossings p, p + e with chord normal `n` (i → j): the cap of i beyond the
 /// chord towards j and the cap of j towards i.
-#[inline]
+#[inline(always)]
 fn chord_overlap(ei: &Placed, ej: &Placed, p: [f64; 2], e: [f64; 2], n: [f64; 2]) -> LocalOverlap {
     let area = ei.cap(p, e, n) + ej.cap(p, e, [-n[0], -n[1]]);
     LocalOverlap::chord(area, p, [p[0] + e[0], p[1] + e[1]], n)

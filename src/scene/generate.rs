@@ -48,6 +48,8 @@ pub struct PileSpec {
     /// The rest criterion (cm per step; the mean speed is this over Δt) and the longest run (s).
     pub quiescence: f64,
     pub duration: f64,
+    /// Time step (s).
+    pub dt: f64,
 }
 
 impl PileSpec {
@@ -63,6 +65,7 @@ impl PileSpec {
             normal_force: NormalForce::Area,
             quiescence: QUIESCENCE,
             duration: DURATION,
+            dt: DT,
         }
     }
 }
@@ -269,6 +272,9 @@ impl PileSpec {
         if self.duration != DURATION {
             c += &format!(" --duration {}", self.duration);
         }
+        if self.dt != DT {
+            c += &format!(" --dt {}", self.dt);
+        }
         c
     }
 
@@ -306,11 +312,12 @@ impl PileSpec {
              velocities of up to {V_MAX} cm/s, settling under gravity. Linear law on the {nf} \
              (normal_force): Kn/ρg = Ks/ρg = {KN_OVER_RHO_G} cm, ρ = {DENSITY} g/cm³, friction \
              {friction}, and a constant dashpot η_n = η_s = {eta:.1} (g/s per unit thickness) that \
-             gives restitution {RESTITUTION} for a body of r = 1 cm against a wall (T12). Δt = {DT} s. \
+             gives restitution {RESTITUTION} for a body of r = 1 cm against a wall (T12). Δt = {dt} s. \
              At rest when the mean increments per step stay below {q} cm (a mean speed of {v} cm/s) \
              for {QUIESCENCE_WINDOW} steps; at most {duration} s. Written by `{command}`.",
             q = self.quiescence,
-            v = round6(self.quiescence / DT),
+            v = round6(self.quiescence / self.dt),
+            dt = self.dt,
             duration = self.duration,
             n = self.n,
             nf = match self.normal_force {
@@ -337,7 +344,7 @@ impl PileSpec {
             ("description", json!(description)),
             ("units", json!("cm")),
             ("gravity", json!([0.0, -G])),
-            ("dt", json!(DT)),
+            ("dt", json!(self.dt)),
             ("duration", json!(self.duration)),
             ("quiescence", json!(self.quiescence)),
             ("quiescence_window", json!(QUIESCENCE_WINDOW)),

@@ -221,13 +221,16 @@ enum Command {
         /// What the normal spring acts on: the overlap area (conservative) or the depth (P).
         #[arg(long, value_enum, default_value = "area")]
         normal_force: NormalForceArg,
-        /// Rest criterion: mean increment per step (cm) held for 1000 steps (1e-7 at Δt = 1e-5 s
-        /// is a mean speed of 0.01 cm/s).
-        #[arg(long, default_value_t = 1e-7)]
-        quiescence: f64,
+        /// Rest criterion: mean increment per step (cm) held for 1000 steps (default: a mean speed
+        /// of 0.01 cm/s, 1e-7 cm per step at Δt = 1e-5 s).
+        #[arg(long)]
+        quiescence: Option<f64>,
         /// Longest run (s of simulated time).
         #[arg(long, default_value_t = 4.0)]
         duration: f64,
+        /// Time step (s).
+        #[arg(long, default_value_t = 1e-5)]
+        dt: f64,
         /// Output file (default: standard output).
         #[arg(long)]
         out: Option<PathBuf>,
@@ -772,7 +775,7 @@ fn generate(
     n: usize,
     seed: u64,
     (aspect, sizes, friction, normal_force): (f64, PileSizesArg, f64, NormalForceArg),
-    (quiescence, duration): (f64, f64),
+    (quiescence, duration, dt): (Option<f64>, f64, f64),
     out: Option<&std::path::Path>,
 ) -> Result<(), Failure> {
     use dem2d::scene::generate::{PileShape, PileSizes, PileSpec};
@@ -804,6 +807,14 @@ fn generate(
     };
     spec.friction = friction;
     spec.normal_force = normal_force.into();
+    // The pile's stiffness puts its a-priori critical step near 1e-4 s.
+    if !(dt.is_finite() && dt > 0.0 && dt <= 1e-4) {
+        return Err(Failure::input(format!(
+            "--dt: must be in (0, 1e-4] s, got {dt}"
+        )));
+    }
+    // The default rest criterion is a mean speed (0.01 cm/s), whatever the step.
+    let quiescence = quiescence.unwrap_or(spec.quiescence * dt / spec.dt);
     if !(quiescence.is_finite() && quiescence > 0.0) {
         return Err(Failure::input(format!(
             "--quiescence: must be positive, got {quiescence}"
@@ -816,6 +827,7 @@ fn generate(
     }
     spec.quiescence = quiescence;
     spec.duration = duration;
+    spec.dt = dt;
     let text = spec.case_json();
     match out {
         Some(path) => std::fs::write(path, text).map_err(|e| Failure {
@@ -1074,12 +1086,13 @@ fn main() -> ExitCode {
             normal_force,
             quiescence,
             duration,
+            dt,
         } => generate(
             *shape,
             *n,
             *seed,
             (*aspect, *sizes, *friction, *normal_force),
-            (*quiescence, *duration),
+            (*quiescence, *duration, *dt),
             out.as_deref(),
         ),
         Command::Bench {
