@@ -105,7 +105,7 @@ pub fn ellipse_cap(a: f64, b: f64, p: [f64; 2], e: [f64; 2], major: bool) -> f64
 /// [`ellipse_cap`] for a caller that already holds `inv2 = [1/a², 1/b²]` (the conic pair's
 /// forms): the chord's image on the unit disk has length² `e_x²/a² + e_y²/b²` without a division,
 /// and the end point `p` is computed only when needed (a chord near the centre).
-#[inline]
+#[inline(always)]
 pub fn ellipse_cap_inverse(
     a: f64,
     b: f64,
