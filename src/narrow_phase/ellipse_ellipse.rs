@@ -113,8 +113,9 @@ pub fn contact_ellipse_ellipse(
     conic_pair(ai, bi, pi, aj, bj, pj, guess, request.area)
 }
 
-/// An ellipse placed in P's local frame (lengths scaled): semi-axes, the direction
-/// `(cos, sin)` of its `a` axis, and its centre `(x, 0)` on the line of centres.
+/// An ellipse placed in a pair's frame (lengths scaled): semi-axes, the direction `(cos, sin)`
+/// of its `a` axis, and its centre `(x, y)` — in P's local frame `(x, 0)` on the line of
+/// centres, in body i's own frame (the warm path) anywhere.
 #[derive(Clone, Copy, Debug)]
 struct Placed {
     a: f64,
@@ -124,6 +125,7 @@ struct Placed {
     cos: f64,
     sin: f64,
     x: f64,
+    y: f64,
 }
 
 impl Placed {
@@ -136,7 +138,7 @@ impl Placed {
     /// `max over the ellipse of u·(p − m)` for a unit `u`.
     #[inline]
     fn height(&self, u: [f64; 2], m: [f64; 2]) -> f64 {
-        self.support(u) + u[0] * (self.x - m[0]) - u[1] * m[1]
+        self.support(u) + u[0] * (self.x - m[0]) + u[1] * (self.y - m[1])
     }
 
     /// Area of the ellipse beyond the chord from `p` (on its boundary) by `e`, on the side
@@ -145,7 +147,7 @@ impl Placed {
     fn cap(&self, p: [f64; 2], e: [f64; 2], u: [f64; 2]) -> f64 {
         let (c, s) = (self.cos, self.sin);
         let body = move |v: [f64; 2]| [c * v[0] + s * v[1], -s * v[0] + c * v[1]];
-        let rel = [p[0] - self.x, p[1]];
+        let rel = [p[0] - self.x, p[1] - self.y];
         let major = u[0] * rel[0] + u[1] * rel[1] < 0.0;
         ellipse_cap_inverse(self.a, self.b, self.inv2, || body(rel), body(e), major)
     }
@@ -168,7 +170,7 @@ fn support(a: f64, b: f64, cos: f64, sin: f64, ux: f64, uy: f64) -> f64 {
 }
 
 /// Refines two crossings of the boundaries `Q_i(p) = 1` (i centred at the origin) and
-/// `Q_j(p − (d, 0)) = 1` by Newton's method. `None` unless both converge to distinct, well
+/// `Q_j(p − c) = 1` (j centred at `c`: `(d, 0)` in P's local frame) by Newton's method. `None` unless both converge to distinct, well
 /// conditioned points (see the module documentation).
 ///
 /// The two crossings are independent Newton iterations; they are advanced side by side, so
@@ -177,7 +179,7 @@ fn support(a: f64, b: f64, cos: f64, sin: f64, ux: f64, uy: f64) -> f64 {
 fn newton_crossings(
     fi: &EllipseForm,
     fj: &EllipseForm,
-    d: f64,
+    c: [f64; 2],
     guess: [[f64; 2]; 2],
 ) -> Option<[[f64; 2]; 2]> {
     // Half the gradient of the form, `(A x + B y, B x + C y)`, and half the residual below:
@@ -189,8 +191,11 @@ fn newton_crossings(
     // One Newton step from `p`: `None` if the crossing there is grazing (or not finite).
     let step = |p: [f64; 2]| -> Option<[f64; 2]> {
         let (x, y) = (p[0], p[1]);
-        let (f1, f2) = (0.5 * (fi.quad(x, y) - 1.0), 0.5 * (fj.quad(x - d, y) - 1.0));
-        let (g1, g2) = (half_grad(fi, x, y), half_grad(fj, x - d, y));
+        let (f1, f2) = (
+            0.5 * (fi.quad(x, y) - 1.0),
+            0.5 * (fj.quad(x - c[0], y - c[1]) - 1.0),
+        );
+        let (g1, g2) = (half_grad(fi, x, y), half_grad(fj, x - c[0], y - c[1]));
         let det = g1[0] * g2[1] - g1[1] * g2[0];
         let norms = (g1[0] * g1[0] + g1[1] * g1[1]) * (g2[0] * g2[0] + g2[1] * g2[1]);
         if !det.is_finite() || det * det < WARM_MIN_SINE * WARM_MIN_SINE * norms {
@@ -297,6 +302,94 @@ fn separating_axis(
     None
 }
 
+/// The warm path of a lasting contact (see the module documentation), in body i's own frame
+/// (centred on i, x axis along i's `a` axis, lengths divided by `scale`): last step's crossings
+/// `guess` (kept in that frame, unscaled) refined by Newton's method, and the chord definition
+/// applied to them; `None` unless the result is accepted.
+///
+/// No line of centres is needed here: in this frame i's form is diagonal, j's centre is
+/// `u = R(−θ_i)(c_j − c_i)` and its axis is at the relative angle φ, so the frame costs no
+/// square root and no division (P's local frame, which the pencil needs, costs one of each and
+/// lies on the path to every Newton step). The crossings are as well conditioned in either
+/// frame, and both are centred on i, so the results agree with the pencil's to rounding.
+/// `(ai, bi, aj, bj)` are the semi-axes (unscaled), `dv = c_j − c_i`, `(scale, inv)` the power
+/// of two and its reciprocal. Returns the contact and the next step's warm start.
+#[inline(always)]
+fn warm_crossings<R: Record>(
+    (ai, bi, aj, bj): (f64, f64, f64, f64),
+    pi: &Pose,
+    dv: crate::geometry::Vec2,
+    (cphi, sphi): (f64, f64),
+    (scale, inv): (f64, f64),
+    guess: [[f64; 2]; 2],
+    want_area: bool,
+) -> Option<(R, Warm)> {
+    let (ci, si) = pi.cos_sin();
+    let (ai, bi, aj, bj) = (ai * inv, bi * inv, aj * inv, bj * inv);
+    // j's centre in i's frame (scaled).
+    let u = [(ci * dv.x + si * dv.y) * inv, (ci * dv.y - si * dv.x) * inv];
+    let inv_i = [1.0 / (ai * ai), 1.0 / (bi * bi)];
+    let inv_j = [1.0 / (aj * aj), 1.0 / (bj * bj)];
+    // P(7) in i's own frame (θ = 0: the diagonal form) and j's at the angle φ.
+    let form_i = EllipseForm::from_inverse_squares(inv_i[0], inv_i[1], 1.0, 0.0);
+    let form_j = EllipseForm::from_inverse_squares(inv_j[0], inv_j[1], cphi, sphi);
+    // The guess is kept unscaled in this frame: scaling by a power of two is exact.
+    let start = guess.map(|q| [q[0] * inv, q[1] * inv]);
+    let [p, q] = newton_crossings(&form_i, &form_j, u, start)?;
+    let (ex, ey) = (q[0] - p[0], q[1] - p[1]);
+    let inv_len = 1.0 / (ex * ex + ey * ey).sqrt(); // order one: no `hypot` needed
+    let n = [-ey * inv_len, ex * inv_len];
+    // Depth along ±n: the centred supports (both ellipses symmetric) minus n·u.
+    let supports = support(ai, bi, 1.0, 0.0, n[0], n[1]) + support(aj, bj, cphi, sphi, n[0], n[1]);
+    let (n, dpt) = orient_symmetric(n, supports, n[0] * u[0] + n[1] * u[1]);
+    if !(dpt > TOUCH_TOL && dpt <= WARM_MAX_DEPTH * bi.min(bj)) {
+        return None;
+    }
+    let frame = LocalFrame {
+        origin: pi.position,
+        cos: ci,
+        sin: si,
+        scale,
+    };
+    let mid = super::midpoint(p, q);
+    let mut c = R::local(&frame, ContactState::Overlap, p, q, mid, n, dpt);
+    if want_area {
+        let placed_i = Placed {
+            a: ai,
+            b: bi,
+            inv2: inv_i,
+            cos: 1.0,
+            sin: 0.0,
+            x: 0.0,
+            y: 0.0,
+        };
+        let placed_j = Placed {
+            a: aj,
+            b: bj,
+            inv2: inv_j,
+            cos: cphi,
+            sin: sphi,
+            x: u[0],
+            y: u[1],
+        };
+        let o = chord_overlap(&placed_i, &placed_j, p, [ex, ey], n);
+        c.set_area(frame.overlap(&o));
+    }
+    let unscaled = |p: [f64; 2]| [p[0] * scale, p[1] * scale];
+    Some((c, Warm::Crossings([unscaled(p), unscaled(q)])))
+}
+
+/// `1/x` for a power of two `x` (as [`pow2_floor`] gives), exactly, without a division.
+#[inline(always)]
+fn pow2_recip(x: f64) -> f64 {
+    let e = (x.to_bits() >> 52) & 0x7FF;
+    if (1..=2045).contains(&e) {
+        f64::from_bits((2046 - e) << 52) // 2^(e − 1023) → 2^(1023 − e)
+    } else {
+        1.0 / x
+    }
+}
+
 /// The pencil contact of two conics (ellipses; a circle is `a = b = r`), shared by
 /// ellipse–ellipse and circle–ellipse, with a warm start:
 /// `guess` is last step's [`Warm`] (None for a new contact); with `area`, the overlap area and
@@ -340,8 +433,29 @@ fn conic_pair_inner<R: Record>(
     used_warm: &mut bool,
 ) -> (R, Option<Warm>) {
     let dv = pj.position - pi.position;
-    let d = dv.norm();
     let (ri, rj) = (ai.max(bi), aj.max(bj));
+    let (ci, si) = pi.cos_sin();
+    let (cj, sj) = pj.cos_sin();
+    // Relative angle φ from i's a axis to j's a axis (frame independent).
+    let (cphi, sphi) = (cj * ci + sj * si, sj * ci - cj * si);
+    let scale = pow2_floor(ri.max(rj));
+    let inv = pow2_recip(scale);
+    if let Some(Warm::Crossings(g)) = guess {
+        let warm = warm_crossings::<R>(
+            (ai, bi, aj, bj),
+            pi,
+            dv,
+            (cphi, sphi),
+            (scale, inv),
+            g,
+            want_area,
+        );
+        if let Some((c, next)) = warm {
+            *used_warm = true;
+            return (c, Some(next));
+        }
+    }
+    let d = dv.norm();
     if d > ri + rj {
         return (R::SEPARATED, None); // bounding circles
     }
@@ -351,8 +465,6 @@ fn conic_pair_inner<R: Record>(
     } else {
         (1.0, 0.0)
     };
-    let (ci, si) = pi.cos_sin();
-    let (cj, sj) = pj.cos_sin();
     // θ_n = (body angle) − α, by the angle-difference formulas.
     let (cti, sti) = (ci * ca + si * sa, si * ca - ci * sa);
     let (ctj, stj) = (cj * ca + sj * sa, sj * ca - cj * sa);
@@ -362,8 +474,6 @@ fn conic_pair_inner<R: Record>(
     if !lasting && support(ai, bi, cti, sti, 1.0, 0.0) + support(aj, bj, ctj, stj, 1.0, 0.0) < d {
         return (R::SEPARATED, None);
     }
-    let scale = pow2_floor(ri.max(rj));
-    let inv = 1.0 / scale;
     let (ai, bi, aj, bj, d) = (ai * inv, bi * inv, aj * inv, bj * inv, d * inv);
     let frame = LocalFrame {
         origin: pi.position,
@@ -372,8 +482,6 @@ fn conic_pair_inner<R: Record>(
         scale,
     };
 
-    // Relative angle φ from i's a axis to j's a axis (frame independent).
-    let (cphi, sphi) = (cj * ci + sj * si, sj * ci - cj * si);
     let inv_i = [1.0 / (ai * ai), 1.0 / (bi * bi)];
     let inv_j = [1.0 / (aj * aj), 1.0 / (bj * bj)];
     let form_i = EllipseForm::from_inverse_squares(inv_i[0], inv_i[1], cti, sti); // P(5), P(7)
@@ -399,6 +507,7 @@ fn conic_pair_inner<R: Record>(
         cos: cti,
         sin: sti,
         x: 0.0,
+        y: 0.0,
     };
     let placed_j = Placed {
         a: aj,
@@ -407,35 +516,12 @@ fn conic_pair_inner<R: Record>(
         cos: ctj,
         sin: stj,
         x: d,
+        y: 0.0,
     };
 
-    // The warm paths (see the module documentation): a lasting contact's crossings refined; a
-    // separated pair's separating axis confirmed or turned until it separates.
-    if let Some(Warm::Crossings(g)) = guess {
-        let from_warm = |q: [f64; 2]| {
-            [
-                (cti * q[0] - sti * q[1]) * inv,
-                (sti * q[0] + cti * q[1]) * inv,
-            ]
-        };
-        if let Some([p, q]) =
-            newton_crossings(&form_i, &form_j, d, [from_warm(g[0]), from_warm(g[1])])
-        {
-            let (ex, ey) = (q[0] - p[0], q[1] - p[1]);
-            let inv_len = 1.0 / (ex * ex + ey * ey).sqrt(); // order one: no `hypot` needed
-            let (n, dpt) = oriented([-ey * inv_len, ex * inv_len]);
-            if dpt > tol && dpt <= WARM_MAX_DEPTH * bi.min(bj) {
-                let mid = super::midpoint(p, q);
-                *used_warm = true;
-                let mut c = R::local(&frame, ContactState::Overlap, p, q, mid, n, dpt);
-                if want_area {
-                    let o = chord_overlap(&placed_i, &placed_j, p, [ex, ey], n);
-                    c.set_area(frame.overlap(&o));
-                }
-                return (c, Some(Warm::Crossings([to_warm(p), to_warm(q)])));
-            }
-        }
-    } else {
+    // A separated pair's warm path (see the module documentation): its separating axis
+    // confirmed or turned until it separates. (A lasting contact's was tried above.)
+    if !lasting {
         // From last step's axis, a full search; from the line of centres (already tested
         // above), a short one: a cold overlapping pair should not pay much before the pencil.
         let (start, iterations) = match guess {
@@ -589,7 +675,7 @@ fn conic_pair_inner<R: Record>(
                 // to ε/sin(crossing angle). Grazing crossings, where Newton is ill-conditioned,
                 // keep the pencil's, with the chord vector from the half-length rather than from
                 // two rounded end points.
-                let (p0, e) = match newton_crossings(&form_i, &form_j, d, [p, q]) {
+                let (p0, e) = match newton_crossings(&form_i, &form_j, [d, 0.0], [p, q]) {
                     Some([a, b]) => (a, [b[0] - a[0], b[1] - a[1]]),
                     None => {
                         let s = 2.0 * cut.half_sq.max(0.0).sqrt();
