@@ -337,11 +337,15 @@ fn warm_crossings<R: Record>(
     let start = guess.map(|q| [q[0] * inv, q[1] * inv]);
     let [p, q] = newton_crossings(&form_i, &form_j, u, start)?;
     let (ex, ey) = (q[0] - p[0], q[1] - p[1]);
+    // The depth along ±n, n = m/|m| with m = (−e_y, e_x) ⊥ the chord: the centred supports
+    // (both ellipses symmetric) minus n·u. Supports are positively homogeneous, so they are
+    // taken along m and the sum divided by |m|: the three square roots do not wait on one
+    // another.
+    let m = [-ey, ex];
     let inv_len = 1.0 / (ex * ex + ey * ey).sqrt(); // order one: no `hypot` needed
-    let n = [-ey * inv_len, ex * inv_len];
-    // Depth along ±n: the centred supports (both ellipses symmetric) minus n·u.
-    let supports = support(ai, bi, 1.0, 0.0, n[0], n[1]) + support(aj, bj, cphi, sphi, n[0], n[1]);
-    let (n, dpt) = orient_symmetric(n, supports, n[0] * u[0] + n[1] * u[1]);
+    let supports = support(ai, bi, 1.0, 0.0, m[0], m[1]) + support(aj, bj, cphi, sphi, m[0], m[1]);
+    let (m, dpt_m) = orient_symmetric(m, supports, m[0] * u[0] + m[1] * u[1]);
+    let (n, dpt) = ([m[0] * inv_len, m[1] * inv_len], dpt_m * inv_len);
     if !(dpt > TOUCH_TOL && dpt <= WARM_MAX_DEPTH * bi.min(bj)) {
         return None;
     }
