@@ -24,7 +24,9 @@
 //! A contact that lasts moves little from one step to the next. Given last step's two crossings
 //! ([`Warm`], kept in the pair's [`super::PairCache`]), the kernel first refines them by
 //! Newton's method on the two boundary equations `Q_i(p) = 1`, `Q_j(p) = 1` — a few flops per
-//! iteration, two iterations from a guess of the last step — and applies the chord definition to them. It accepts the result
+//! iteration, two iterations from a guess of the last step, both crossings side by side — and
+//! applies the chord definition to them, all in body i's own frame (no line of centres, so no
+//! square root or division before the first Newton step; see [`warm_crossings`]). It accepts the result
 //! only when it is certain to be the one the pencil would give, to rounding: Newton converged
 //! to two distinct points, the boundaries cross there at an angle (|sin| ≥ [`WARM_MIN_SINE`],
 //! so the points are well conditioned; grazing contacts go to the pencil, which gets the chord
