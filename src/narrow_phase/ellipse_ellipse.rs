@@ -314,19 +314,24 @@ fn separating_axis(
 /// square root and no division (P's local frame, which the pencil needs, costs one of each and
 /// lies on the path to every Newton step). The crossings are as well conditioned in either
 /// frame, and both are centred on i, so the results agree with the pencil's to rounding.
-/// `(ai, bi, aj, bj)` are the semi-axes (unscaled), `dv = c_j − c_i`, `(scale, inv)` the power
-/// of two and its reciprocal. Returns the contact and the next step's warm start.
+/// `(ai, bi, aj, bj)` are the semi-axes (unscaled), `dv = c_j − c_i`, `scale` the pair's power
+/// of two ([`pow2_floor`] of the larger bounding radius). Returns the contact and the next
+/// step's warm start.
 #[inline(always)]
 fn warm_crossings<R: Record>(
     (ai, bi, aj, bj): (f64, f64, f64, f64),
     pi: &Pose,
+    pj: &Pose,
     dv: crate::geometry::Vec2,
-    (cphi, sphi): (f64, f64),
-    (scale, inv): (f64, f64),
+    scale: f64,
     guess: [[f64; 2]; 2],
     want_area: bool,
 ) -> Option<(R, Warm)> {
+    let inv = pow2_recip(scale);
     let (ci, si) = pi.cos_sin();
+    let (cj, sj) = pj.cos_sin();
+    // Relative angle φ from i's a axis to j's a axis (frame independent).
+    let (cphi, sphi) = (cj * ci + sj * si, sj * ci - cj * si);
     let (ai, bi, aj, bj) = (ai * inv, bi * inv, aj * inv, bj * inv);
     // j's centre in i's frame (scaled).
     let u = [(ci * dv.x + si * dv.y) * inv, (ci * dv.y - si * dv.x) * inv];
@@ -417,9 +422,18 @@ pub(crate) fn conic_pair<R: Record>(
     area: bool,
 ) -> (R, Option<Warm>, bool) {
     // Bounding circles first, here where it inlines: separated pairs cost a few ns.
+    let dv = pj.position - pi.position;
     let (ri, rj) = (ai.max(bi), aj.max(bj));
-    if (pj.position - pi.position).norm_squared() > (ri + rj) * (ri + rj) {
+    if dv.norm_squared() > (ri + rj) * (ri + rj) {
         return (R::SEPARATED, None, false);
+    }
+    // A lasting contact's warm path, here too: the dynamics' common case then inlines into its
+    // caller, and its record is built in place rather than returned through another call.
+    if let Some(Warm::Crossings(g)) = guess {
+        let scale = pow2_floor(ri.max(rj));
+        if let Some((c, next)) = warm_crossings::<R>((ai, bi, aj, bj), pi, pj, dv, scale, g, area) {
+            return (c, Some(next), true);
+        }
     }
     let mut used_warm = false;
     let (c, w) = conic_pair_inner(ai, bi, pi, aj, bj, pj, guess, area, &mut used_warm);
@@ -446,21 +460,7 @@ fn conic_pair_inner<R: Record>(
     let (cphi, sphi) = (cj * ci + sj * si, sj * ci - cj * si);
     let scale = pow2_floor(ri.max(rj));
     let inv = pow2_recip(scale);
-    if let Some(Warm::Crossings(g)) = guess {
-        let warm = warm_crossings::<R>(
-            (ai, bi, aj, bj),
-            pi,
-            dv,
-            (cphi, sphi),
-            (scale, inv),
-            g,
-            want_area,
-        );
-        if let Some((c, next)) = warm {
-            *used_warm = true;
-            return (c, Some(next));
-        }
-    }
+    // (A lasting contact's warm path was tried by [`conic_pair`].)
     let d = dv.norm();
     if d > ri + rj {
         return (R::SEPARATED, None); // bounding circles
