@@ -178,6 +178,9 @@ fn support(a: f64, b: f64, cos: f64, sin: f64, ux: f64, uy: f64) -> f64 {
 /// The two crossings are independent Newton iterations; they are advanced side by side, so
 /// that the processor overlaps their dependent chains (each iteration's division waits on the
 /// last), each stopping on its own test exactly as it would alone.
+///
+/// Inlined: its callers have just computed the forms, which then stay in registers.
+#[inline(always)]
 fn newton_crossings(
     fi: &EllipseForm,
     fj: &EllipseForm,
