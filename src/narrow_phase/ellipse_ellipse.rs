@@ -24,7 +24,9 @@
 //! A contact that lasts moves little from one step to the next. Given last step's two crossings
 //! ([`Warm`], kept in the pair's [`super::PairCache`]), the kernel first refines them by
 //! Newton's method on the two boundary equations `Q_i(p) = 1`, `Q_j(p) = 1` — a few flops per
-//! iteration, two iterations from a guess of the last step — and applies the chord definition to them. It accepts the result
+//! iteration, two iterations from a guess of the last step, both crossings side by side — and
+//! applies the chord definition to them, all in body i's own frame (no line of centres, so no
+//! square root or division before the first Newton step; see [`warm_crossings`]). It accepts the result
 //! only when it is certain to be the one the pencil would give, to rounding: Newton converged
 //! to two distinct points, the boundaries cross there at an angle (|sin| ≥ [`WARM_MIN_SINE`],
 //! so the points are well conditioned; grazing contacts go to the pencil, which gets the chord
@@ -113,8 +115,9 @@ pub fn contact_ellipse_ellipse(
     conic_pair(ai, bi, pi, aj, bj, pj, guess, request.area)
 }
 
-/// An ellipse placed in P's local frame (lengths scaled): semi-axes, the direction
-/// `(cos, sin)` of its `a` axis, and its centre `(x, 0)` on the line of centres.
+/// An ellipse placed in a pair's frame (lengths scaled): semi-axes, the direction `(cos, sin)`
+/// of its `a` axis, and its centre `(x, y)` — in P's local frame `(x, 0)` on the line of
+/// centres, in body i's own frame (the warm path) anywhere.
 #[derive(Clone, Copy, Debug)]
 struct Placed {
     a: f64,
@@ -124,6 +127,7 @@ struct Placed {
     cos: f64,
     sin: f64,
     x: f64,
+    y: f64,
 }
 
 impl Placed {
@@ -136,7 +140,7 @@ impl Placed {
     /// `max over the ellipse of u·(p − m)` for a unit `u`.
     #[inline]
     fn height(&self, u: [f64; 2], m: [f64; 2]) -> f64 {
-        self.support(u) + u[0] * (self.x - m[0]) - u[1] * m[1]
+        self.support(u) + u[0] * (self.x - m[0]) + u[1] * (self.y - m[1])
     }
 
     /// Area of the ellipse beyond the chord from `p` (on its boundary) by `e`, on the side
@@ -145,7 +149,7 @@ impl Placed {
     fn cap(&self, p: [f64; 2], e: [f64; 2], u: [f64; 2]) -> f64 {
         let (c, s) = (self.cos, self.sin);
         let body = move |v: [f64; 2]| [c * v[0] + s * v[1], -s * v[0] + c * v[1]];
-        let rel = [p[0] - self.x, p[1]];
+        let rel = [p[0] - self.x, p[1] - self.y];
         let major = u[0] * rel[0] + u[1] * rel[1] < 0.0;
         ellipse_cap_inverse(self.a, self.b, self.inv2, || body(rel), body(e), major)
     }
@@ -168,46 +172,67 @@ fn support(a: f64, b: f64, cos: f64, sin: f64, ux: f64, uy: f64) -> f64 {
 }
 
 /// Refines two crossings of the boundaries `Q_i(p) = 1` (i centred at the origin) and
-/// `Q_j(p − (d, 0)) = 1` by Newton's method. `None` unless both converge to distinct, well
+/// `Q_j(p − c) = 1` (j centred at `c`: `(d, 0)` in P's local frame) by Newton's method. `None` unless both converge to distinct, well
 /// conditioned points (see the module documentation).
+///
+/// The two crossings are independent Newton iterations; they are advanced side by side, so
+/// that the processor overlaps their dependent chains (each iteration's division waits on the
+/// last), each stopping on its own test exactly as it would alone.
+///
+/// Inlined: its callers have just computed the forms, which then stay in registers.
+#[inline(always)]
 fn newton_crossings(
     fi: &EllipseForm,
     fj: &EllipseForm,
-    d: f64,
+    c: [f64; 2],
     guess: [[f64; 2]; 2],
 ) -> Option<[[f64; 2]; 2]> {
-    let grad = |f: &EllipseForm, x: f64, y: f64| {
-        [
-            2.0 * (f.a_coef * x + f.b_coef * y),
-            2.0 * (f.b_coef * x + f.c_coef * y),
-        ]
+    // Half the gradient of the form, `(A x + B y, B x + C y)`, and half the residual below:
+    // the Newton step of `Q − 1 = 0` with both halved is the same step, bit for bit (halving
+    // is exact), for two fewer roundings' worth of doubling on each iteration's chain.
+    let half_grad = |f: &EllipseForm, x: f64, y: f64| {
+        [f.a_coef * x + f.b_coef * y, f.b_coef * x + f.c_coef * y]
+    };
+    // One Newton step from `p`: `None` if the crossing there is grazing (or not finite).
+    let step = |p: [f64; 2]| -> Option<[f64; 2]> {
+        let (x, y) = (p[0], p[1]);
+        let (f1, f2) = (
+            0.5 * (fi.quad(x, y) - 1.0),
+            0.5 * (fj.quad(x - c[0], y - c[1]) - 1.0),
+        );
+        let (g1, g2) = (half_grad(fi, x, y), half_grad(fj, x - c[0], y - c[1]));
+        let det = g1[0] * g2[1] - g1[1] * g2[0];
+        let norms = (g1[0] * g1[0] + g1[1] * g1[1]) * (g2[0] * g2[0] + g2[1] * g2[1]);
+        if !det.is_finite() || det * det < WARM_MIN_SINE * WARM_MIN_SINE * norms {
+            return None; // grazing (or not finite): ill-conditioned crossing
+        }
+        let inv_det = 1.0 / det;
+        Some([
+            (g1[1] * f2 - g2[1] * f1) * inv_det,
+            (g2[0] * f1 - g1[0] * f2) * inv_det,
+        ])
     };
     let mut out = guess;
-    for p in &mut out {
-        let mut converged = false;
-        for _ in 0..6 {
-            let (x, y) = (p[0], p[1]);
-            let (f1, f2) = (fi.quad(x, y) - 1.0, fj.quad(x - d, y) - 1.0);
-            let (g1, g2) = (grad(fi, x, y), grad(fj, x - d, y));
-            let det = g1[0] * g2[1] - g1[1] * g2[0];
-            let norms = (g1[0] * g1[0] + g1[1] * g1[1]) * (g2[0] * g2[0] + g2[1] * g2[1]);
-            if !det.is_finite() || det * det < WARM_MIN_SINE * WARM_MIN_SINE * norms {
-                return None; // grazing (or not finite): ill-conditioned crossing
+    let mut done = [false; 2];
+    for _ in 0..6 {
+        let steps = [step(out[0]), step(out[1])];
+        for k in 0..2 {
+            if done[k] {
+                continue;
             }
-            let inv_det = 1.0 / det;
-            let dx = (g1[1] * f2 - g2[1] * f1) * inv_det;
-            let dy = (g2[0] * f1 - g1[0] * f2) * inv_det;
-            p[0] += dx;
-            p[1] += dy;
+            let [dx, dy] = steps[k]?;
+            let (x, y) = (out[k][0], out[k][1]);
+            out[k][0] += dx;
+            out[k][1] += dy;
             // Quadratic convergence: after a step this small the error is below rounding.
-            if dx * dx + dy * dy <= 1e-18 * (1.0 + x * x + y * y) {
-                converged = true;
-                break;
-            }
+            done[k] = dx * dx + dy * dy <= 1e-18 * (1.0 + x * x + y * y);
         }
-        if !converged {
-            return None;
+        if done[0] && done[1] {
+            break;
         }
+    }
+    if !(done[0] && done[1]) {
+        return None;
     }
     // Lengths here are of order one (the frame is scaled): no over- or underflow to guard
     // against, so squares rather than `hypot`.
@@ -282,6 +307,103 @@ fn separating_axis(
     None
 }
 
+/// The warm path of a lasting contact (see the module documentation), in body i's own frame
+/// (centred on i, x axis along i's `a` axis, lengths divided by `scale`): last step's crossings
+/// `guess` (kept in that frame, unscaled) refined by Newton's method, and the chord definition
+/// applied to them; `None` unless the result is accepted.
+///
+/// No line of centres is needed here: in this frame i's form is diagonal, j's centre is
+/// `u = R(−θ_i)(c_j − c_i)` and its axis is at the relative angle φ, so the frame costs no
+/// square root and no division (P's local frame, which the pencil needs, costs one of each and
+/// lies on the path to every Newton step). The crossings are as well conditioned in either
+/// frame, and both are centred on i, so the results agree with the pencil's to rounding.
+/// `(ai, bi, aj, bj)` are the semi-axes (unscaled), `dv = c_j − c_i`, `scale` the pair's power
+/// of two ([`pow2_floor`] of the larger bounding radius). Returns the contact and the next
+/// step's warm start.
+#[inline(always)]
+fn warm_crossings<R: Record>(
+    (ai, bi, aj, bj): (f64, f64, f64, f64),
+    pi: &Pose,
+    pj: &Pose,
+    dv: crate::geometry::Vec2,
+    scale: f64,
+    guess: [[f64; 2]; 2],
+    want_area: bool,
+) -> Option<(R, Warm)> {
+    let inv = pow2_recip(scale);
+    let (ci, si) = pi.cos_sin();
+    let (cj, sj) = pj.cos_sin();
+    // Relative angle φ from i's a axis to j's a axis (frame independent).
+    let (cphi, sphi) = (cj * ci + sj * si, sj * ci - cj * si);
+    let (ai, bi, aj, bj) = (ai * inv, bi * inv, aj * inv, bj * inv);
+    // j's centre in i's frame (scaled).
+    let u = [(ci * dv.x + si * dv.y) * inv, (ci * dv.y - si * dv.x) * inv];
+    let inv_i = [1.0 / (ai * ai), 1.0 / (bi * bi)];
+    let inv_j = [1.0 / (aj * aj), 1.0 / (bj * bj)];
+    // P(7) in i's own frame (θ = 0: the diagonal form) and j's at the angle φ.
+    let form_i = EllipseForm::from_inverse_squares(inv_i[0], inv_i[1], 1.0, 0.0);
+    let form_j = EllipseForm::from_inverse_squares(inv_j[0], inv_j[1], cphi, sphi);
+    // The guess is kept unscaled in this frame: scaling by a power of two is exact.
+    let start = guess.map(|q| [q[0] * inv, q[1] * inv]);
+    let [p, q] = newton_crossings(&form_i, &form_j, u, start)?;
+    let (ex, ey) = (q[0] - p[0], q[1] - p[1]);
+    // The depth along ±n, n = m/|m| with m = (−e_y, e_x) ⊥ the chord: the centred supports
+    // (both ellipses symmetric) minus n·u. Supports are positively homogeneous, so they are
+    // taken along m and the sum divided by |m|: the three square roots do not wait on one
+    // another.
+    let m = [-ey, ex];
+    let inv_len = 1.0 / (ex * ex + ey * ey).sqrt(); // order one: no `hypot` needed
+    let supports = support(ai, bi, 1.0, 0.0, m[0], m[1]) + support(aj, bj, cphi, sphi, m[0], m[1]);
+    let (m, dpt_m) = orient_symmetric(m, supports, m[0] * u[0] + m[1] * u[1]);
+    let (n, dpt) = ([m[0] * inv_len, m[1] * inv_len], dpt_m * inv_len);
+    if !(dpt > TOUCH_TOL && dpt <= WARM_MAX_DEPTH * bi.min(bj)) {
+        return None;
+    }
+    let frame = LocalFrame {
+        origin: pi.position,
+        cos: ci,
+        sin: si,
+        scale,
+    };
+    let mid = super::midpoint(p, q);
+    let mut c = R::local(&frame, ContactState::Overlap, p, q, mid, n, dpt);
+    if want_area {
+        let placed_i = Placed {
+            a: ai,
+            b: bi,
+            inv2: inv_i,
+            cos: 1.0,
+            sin: 0.0,
+            x: 0.0,
+            y: 0.0,
+        };
+        let placed_j = Placed {
+            a: aj,
+            b: bj,
+            inv2: inv_j,
+            cos: cphi,
+            sin: sphi,
+            x: u[0],
+            y: u[1],
+        };
+        let o = chord_overlap(&placed_i, &placed_j, p, [ex, ey], n);
+        c.set_area(frame.overlap(&o));
+    }
+    let unscaled = |p: [f64; 2]| [p[0] * scale, p[1] * scale];
+    Some((c, Warm::Crossings([unscaled(p), unscaled(q)])))
+}
+
+/// `1/x` for a power of two `x` (as [`pow2_floor`] gives), exactly, without a division.
+#[inline(always)]
+fn pow2_recip(x: f64) -> f64 {
+    let e = (x.to_bits() >> 52) & 0x7FF;
+    if (1..=2045).contains(&e) {
+        f64::from_bits((2046 - e) << 52) // 2^(e − 1023) → 2^(1023 − e)
+    } else {
+        1.0 / x
+    }
+}
+
 /// The pencil contact of two conics (ellipses; a circle is `a = b = r`), shared by
 /// ellipse–ellipse and circle–ellipse, with a warm start:
 /// `guess` is last step's [`Warm`] (None for a new contact); with `area`, the overlap area and
@@ -303,9 +425,18 @@ pub(crate) fn conic_pair<R: Record>(
     area: bool,
 ) -> (R, Option<Warm>, bool) {
     // Bounding circles first, here where it inlines: separated pairs cost a few ns.
+    let dv = pj.position - pi.position;
     let (ri, rj) = (ai.max(bi), aj.max(bj));
-    if (pj.position - pi.position).norm_squared() > (ri + rj) * (ri + rj) {
+    if dv.norm_squared() > (ri + rj) * (ri + rj) {
         return (R::SEPARATED, None, false);
+    }
+    // A lasting contact's warm path, here too: the dynamics' common case then inlines into its
+    // caller, and its record is built in place rather than returned through another call.
+    if let Some(Warm::Crossings(g)) = guess {
+        let scale = pow2_floor(ri.max(rj));
+        if let Some((c, next)) = warm_crossings::<R>((ai, bi, aj, bj), pi, pj, dv, scale, g, area) {
+            return (c, Some(next), true);
+        }
     }
     let mut used_warm = false;
     let (c, w) = conic_pair_inner(ai, bi, pi, aj, bj, pj, guess, area, &mut used_warm);
@@ -325,8 +456,15 @@ fn conic_pair_inner<R: Record>(
     used_warm: &mut bool,
 ) -> (R, Option<Warm>) {
     let dv = pj.position - pi.position;
-    let d = dv.norm();
     let (ri, rj) = (ai.max(bi), aj.max(bj));
+    let (ci, si) = pi.cos_sin();
+    let (cj, sj) = pj.cos_sin();
+    // Relative angle φ from i's a axis to j's a axis (frame independent).
+    let (cphi, sphi) = (cj * ci + sj * si, sj * ci - cj * si);
+    let scale = pow2_floor(ri.max(rj));
+    let inv = pow2_recip(scale);
+    // (A lasting contact's warm path was tried by [`conic_pair`].)
+    let d = dv.norm();
     if d > ri + rj {
         return (R::SEPARATED, None); // bounding circles
     }
@@ -336,8 +474,6 @@ fn conic_pair_inner<R: Record>(
     } else {
         (1.0, 0.0)
     };
-    let (ci, si) = pi.cos_sin();
-    let (cj, sj) = pj.cos_sin();
     // θ_n = (body angle) − α, by the angle-difference formulas.
     let (cti, sti) = (ci * ca + si * sa, si * ca - ci * sa);
     let (ctj, stj) = (cj * ca + sj * sa, sj * ca - cj * sa);
@@ -347,8 +483,6 @@ fn conic_pair_inner<R: Record>(
     if !lasting && support(ai, bi, cti, sti, 1.0, 0.0) + support(aj, bj, ctj, stj, 1.0, 0.0) < d {
         return (R::SEPARATED, None);
     }
-    let scale = pow2_floor(ri.max(rj));
-    let inv = 1.0 / scale;
     let (ai, bi, aj, bj, d) = (ai * inv, bi * inv, aj * inv, bj * inv, d * inv);
     let frame = LocalFrame {
         origin: pi.position,
@@ -357,8 +491,6 @@ fn conic_pair_inner<R: Record>(
         scale,
     };
 
-    // Relative angle φ from i's a axis to j's a axis (frame independent).
-    let (cphi, sphi) = (cj * ci + sj * si, sj * ci - cj * si);
     let inv_i = [1.0 / (ai * ai), 1.0 / (bi * bi)];
     let inv_j = [1.0 / (aj * aj), 1.0 / (bj * bj)];
     let form_i = EllipseForm::from_inverse_squares(inv_i[0], inv_i[1], cti, sti); // P(5), P(7)
@@ -384,6 +516,7 @@ fn conic_pair_inner<R: Record>(
         cos: cti,
         sin: sti,
         x: 0.0,
+        y: 0.0,
     };
     let placed_j = Placed {
         a: aj,
@@ -392,35 +525,12 @@ fn conic_pair_inner<R: Record>(
         cos: ctj,
         sin: stj,
         x: d,
+        y: 0.0,
     };
 
-    // The warm paths (see the module documentation): a lasting contact's crossings refined; a
-    // separated pair's separating axis confirmed or turned until it separates.
-    if let Some(Warm::Crossings(g)) = guess {
-        let from_warm = |q: [f64; 2]| {
-            [
-                (cti * q[0] - sti * q[1]) * inv,
-                (sti * q[0] + cti * q[1]) * inv,
-            ]
-        };
-        if let Some([p, q]) =
-            newton_crossings(&form_i, &form_j, d, [from_warm(g[0]), from_warm(g[1])])
-        {
-            let (ex, ey) = (q[0] - p[0], q[1] - p[1]);
-            let inv_len = 1.0 / (ex * ex + ey * ey).sqrt(); // order one: no `hypot` needed
-            let (n, dpt) = oriented([-ey * inv_len, ex * inv_len]);
-            if dpt > tol && dpt <= WARM_MAX_DEPTH * bi.min(bj) {
-                let mid = super::midpoint(p, q);
-                *used_warm = true;
-                let mut c = R::local(&frame, ContactState::Overlap, p, q, mid, n, dpt);
-                if want_area {
-                    let o = chord_overlap(&placed_i, &placed_j, p, [ex, ey], n);
-                    c.set_area(frame.overlap(&o));
-                }
-                return (c, Some(Warm::Crossings([to_warm(p), to_warm(q)])));
-            }
-        }
-    } else {
+    // A separated pair's warm path (see the module documentation): its separating axis
+    // confirmed or turned until it separates. (A lasting contact's was tried above.)
+    if !lasting {
         // From last step's axis, a full search; from the line of centres (already tested
         // above), a short one: a cold overlapping pair should not pay much before the pencil.
         let (start, iterations) = match guess {
@@ -574,7 +684,7 @@ fn conic_pair_inner<R: Record>(
                 // to ε/sin(crossing angle). Grazing crossings, where Newton is ill-conditioned,
                 // keep the pencil's, with the chord vector from the half-length rather than from
                 // two rounded end points.
-                let (p0, e) = match newton_crossings(&form_i, &form_j, d, [p, q]) {
+                let (p0, e) = match newton_crossings(&form_i, &form_j, [d, 0.0], [p, q]) {
                     Some([a, b]) => (a, [b[0] - a[0], b[1] - a[1]]),
                     None => {
                         let s = 2.0 * cut.half_sq.max(0.0).sqrt();

@@ -504,7 +504,14 @@ pub fn conic_lean(
             (c.map(LeanConic::swapped), seen_from(next, j, i))
         }
         (Ellipse { a: ai, b: bi }, Ellipse { a: aj, b: bj }) => {
-            if computed_first(si, pi, sj, pj) {
+            // [`computed_first`], whose first key is `a`: two ellipses of different `a` (most
+            // pairs of a polydisperse scene) are decided by it alone, here where it inlines.
+            let first = match ai.total_cmp(&aj) {
+                std::cmp::Ordering::Less => true,
+                std::cmp::Ordering::Greater => false,
+                std::cmp::Ordering::Equal => computed_first(si, pi, sj, pj),
+            };
+            if first {
                 let (c, next, _) = ellipse_ellipse::conic_pair(ai, bi, pi, aj, bj, pj, guess, area);
                 (c, next)
             } else {
