@@ -442,18 +442,29 @@ fn bench_cubic(c: &mut Criterion) {
     group.finish();
 }
 
-/// Reads criterion's median estimates, prints the ns/pair table, writes it to
-/// `figures/kernel_speed.md` and refreshes the README's `kernel_speed` section.
-fn print_table() {
+/// Reads criterion's median estimates written by this run (`since` its start), prints the ns/pair
+/// table and, when every cell was measured, writes it to `figures/kernel_speed.md` and refreshes
+/// the README's `kernel_speed` section (a filtered run prints only: it must neither blank the
+/// published table nor mix in an earlier run's estimates).
+fn print_table(since: std::time::SystemTime) {
     use std::fmt::Write as _;
     let mut md = String::new();
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/criterion");
+    let missing = std::cell::Cell::new(0usize);
     let median = |group: &str, id: &str| -> Option<f64> {
         let p = dir.join(group).join(id).join("new/estimates.json");
-        let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(p).ok()?).ok()?;
-        v["median"]["point_estimate"]
-            .as_f64()
-            .map(|ns| ns / BATCH as f64)
+        let fresh = std::fs::metadata(&p)
+            .and_then(|m| m.modified())
+            .is_ok_and(|t| t >= since);
+        let v = fresh
+            .then(|| std::fs::read_to_string(&p).ok())
+            .flatten()
+            .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+            .and_then(|v| v["median"]["point_estimate"].as_f64());
+        if v.is_none() {
+            missing.set(missing.get() + 1);
+        }
+        v.map(|ns| ns / BATCH as f64)
     };
     let fmt = |x: Option<f64>| x.map_or("–".to_string(), |v| format!("{v:.1}"));
     writeln!(
@@ -504,6 +515,13 @@ fn print_table() {
     )
     .unwrap();
     println!("\n{md}");
+    if missing.get() > 0 {
+        eprintln!(
+            "{} entries not measured by this run (a filtered run?): figures/kernel_speed.md and the README left as they were",
+            missing.get()
+        );
+        return;
+    }
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let out = root.join("figures/kernel_speed.md");
     if let Err(e) = std::fs::write(&out, &md) {
@@ -517,6 +535,7 @@ fn print_table() {
 }
 
 fn main() {
+    let start = std::time::SystemTime::now();
     let mut c = Criterion::default()
         .configure_from_args()
         .warm_up_time(Duration::from_millis(500))
@@ -525,5 +544,5 @@ fn main() {
     bench_kernels(&mut c);
     bench_cubic(&mut c);
     c.final_summary();
-    print_table();
+    print_table(start);
 }
