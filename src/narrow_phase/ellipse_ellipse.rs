@@ -131,6 +131,21 @@ struct Placed {
 }
 
 impl Placed {
+    /// An ellipse of semi-axes `a`, `b` (with `inv2 = [1/a², 1/b²]`) whose `a` axis is at
+    /// `(cos, sin)` and whose centre is at `centre`, in the pair's frame.
+    #[inline(always)]
+    fn at(a: f64, b: f64, inv2: [f64; 2], (cos, sin): (f64, f64), centre: [f64; 2]) -> Self {
+        Placed {
+            a,
+            b,
+            inv2,
+            cos,
+            sin,
+            x: centre[0],
+            y: centre[1],
+        }
+    }
+
     /// Centred support along `u`.
     #[inline]
     fn support(&self, u: [f64; 2]) -> f64 {
@@ -368,24 +383,8 @@ fn warm_crossings<R: Record>(
     let mid = super::midpoint(p, q);
     let mut c = R::local(&frame, ContactState::Overlap, p, q, mid, n, dpt);
     if want_area {
-        let placed_i = Placed {
-            a: ai,
-            b: bi,
-            inv2: inv_i,
-            cos: 1.0,
-            sin: 0.0,
-            x: 0.0,
-            y: 0.0,
-        };
-        let placed_j = Placed {
-            a: aj,
-            b: bj,
-            inv2: inv_j,
-            cos: cphi,
-            sin: sphi,
-            x: u[0],
-            y: u[1],
-        };
+        let placed_i = Placed::at(ai, bi, inv_i, (1.0, 0.0), [0.0, 0.0]);
+        let placed_j = Placed::at(aj, bj, inv_j, (cphi, sphi), u);
         let o = chord_overlap(&placed_i, &placed_j, p, [ex, ey], n);
         c.set_area(frame.overlap(&o));
     }
@@ -509,24 +508,8 @@ fn conic_pair_inner<R: Record>(
         ]
     };
     let tol = TOUCH_TOL;
-    let placed_i = Placed {
-        a: ai,
-        b: bi,
-        inv2: inv_i,
-        cos: cti,
-        sin: sti,
-        x: 0.0,
-        y: 0.0,
-    };
-    let placed_j = Placed {
-        a: aj,
-        b: bj,
-        inv2: inv_j,
-        cos: ctj,
-        sin: stj,
-        x: d,
-        y: 0.0,
-    };
+    let placed_i = Placed::at(ai, bi, inv_i, (cti, sti), [0.0, 0.0]);
+    let placed_j = Placed::at(aj, bj, inv_j, (ctj, stj), [d, 0.0]);
 
     // A separated pair's warm path (see the module documentation): its separating axis
     // confirmed or turned until it separates. (A lasting contact's was tried above.)
