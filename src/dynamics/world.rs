@@ -301,13 +301,7 @@ impl World {
             ("grid", grid),
             (
                 "build scratch",
-                held(&c.keys)
-                    + scratch
-                    + held(&c.rebuilt)
-                    + held(&c.rebuilt_cache)
-                    + held(&c.rebuilt_rolling)
-                    + held(&c.built_at)
-                    + held(&c.wall_built_at),
+                held(&c.keys) + scratch + held(&c.built_at) + held(&c.wall_built_at),
             ),
         ]
     }

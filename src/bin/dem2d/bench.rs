@@ -61,7 +61,9 @@ pub struct BenchRow {
     pub contacts_per_step: f64,
     /// Wall time per contact-step (ns): the whole step's cost divided by its contacts.
     pub ns_per_contact: f64,
-    /// Heap bytes held by the world (bodies, contacts, broad phase, buffers) per body.
+    /// Heap bytes held by the world (bodies, contacts, broad phase, buffers) per body: the
+    /// larger of the allocator's count after the warm-up and the world's own account after
+    /// the timed steps (so that a buffer first grown at a later list build counts).
     pub bytes_per_body: f64,
     /// Neighbour-list slots (candidate pairs) per body, and list builds per 1000 steps.
     pub slots_per_body: f64,
@@ -368,6 +370,8 @@ impl LawRun {
         let total_steps = steps * self.walls.len() as u64;
         let contacts_per_step = self.contacts as f64 / total_steps as f64;
         let w = &self.w;
+        let breakdown = w.heap_breakdown();
+        let held: usize = breakdown.iter().map(|&(_, bytes)| bytes).sum();
         BenchRow {
             shape,
             n,
@@ -379,13 +383,12 @@ impl LawRun {
             particle_steps_per_cpu_second: n as f64 * steps as f64 / cpu,
             contacts_per_step,
             ns_per_contact: wall * 1e9 / (steps as f64 * contacts_per_step).max(1.0),
-            bytes_per_body: self.bytes as f64 / n as f64,
+            bytes_per_body: self.bytes.max(held) as f64 / n as f64,
             slots_per_body: w.contacts.slots.len() as f64 / n as f64,
             builds_per_1000_steps: 1000.0 * (w.contacts.builds - self.builds) as f64
                 / total_steps as f64,
             allocations_per_step: self.allocations as f64 / total_steps as f64,
-            breakdown: w
-                .heap_breakdown()
+            breakdown: breakdown
                 .iter()
                 .map(|&(part, bytes)| (part, bytes as f64 / n as f64))
                 .collect(),
