@@ -290,8 +290,8 @@ impl ContactList {
         let carry_cache = cached && self.cache.len() == old_len;
         let carry_rolling = rolling && self.rolling.len() == old_len;
         // The new list is the merge of the sorted keys with the old slots (sorted by key),
-        // written over the old slots in place — no second list to carry them through (at 10⁵
-        // ellipses that list and its caches were 130 of the 1003 heap bytes per body) — once
+        // written over the old slots in place — no second list to carry them through (at 10⁴
+        // ellipses that list and its caches held 146 of the 992 heap bytes per body) — once
         // the old ones have been moved up by `lead`, the most the merge's output ever runs
         // ahead of the old slots it has read. The first pass finds `lead`, and the history
         // energy of the slots that drop out, in the old list's order.
@@ -352,7 +352,8 @@ impl ContactList {
             }
         }
         self.slots.truncate(new_len);
-        // Kept values are carried above; a list that kept none starts every slot empty.
+        // Carried values are in place above (the resizes drop the shifted tail); a list that
+        // kept none starts every slot empty, and a scene that keeps none has none.
         if !carry_cache {
             self.cache.clear();
         }
@@ -360,7 +361,6 @@ impl ContactList {
             reserve_for(&mut self.cache, new_len);
             self.cache.resize(new_len, PairCache::EMPTY);
         }
-        self.cache.truncate(new_len);
         if !carry_rolling {
             self.rolling.clear();
         }
@@ -368,7 +368,6 @@ impl ContactList {
             reserve_for(&mut self.rolling, new_len);
             self.rolling.resize(new_len, 0.0);
         }
-        self.rolling.truncate(new_len);
         // The data are recomputed from the slots every step: only their number changes.
         reserve_for(&mut self.data, self.slots.len());
         self.data.resize(self.slots.len(), ContactData::default());
