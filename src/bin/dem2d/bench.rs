@@ -74,8 +74,6 @@ pub struct BenchRow {
     pub breakdown: Vec<(&'static str, f64)>,
     /// The final state is bit-identical to the first thread count's.
     pub identical: bool,
-    /// A hash of the final state's bits (positions, velocities, forces).
-    pub hash: u64,
 }
 
 /// An error of the bench command, as text.
@@ -314,11 +312,11 @@ pub fn run(
                     }
                     Ok(runs
                         .into_iter()
-                        .map(|run| run.row(shape, n, threads, opts.steps))
+                        .zip(reference_hash.iter_mut())
+                        .map(|(run, reference)| run.row(shape, n, threads, opts.steps, reference))
                         .collect())
                 })?;
-                for (k, mut row) in timed.into_iter().enumerate() {
-                    row.identical = *reference_hash[k].get_or_insert(row.hash) == row.hash;
+                for row in timed {
                     if opts.progress {
                         let parts: Vec<String> = row
                             .breakdown
@@ -358,9 +356,16 @@ struct LawRun {
 }
 
 impl LawRun {
-    /// The table row: medians of the blocks (`identical` is set by the caller, which compares
-    /// thread counts).
-    fn row(mut self, shape: PileShape, n: usize, threads: usize, steps: u64) -> BenchRow {
+    /// The table row: medians of the blocks; `reference` is the hash of the final state's bits
+    /// (positions, velocities, forces) at the first thread count, set by the first row.
+    fn row(
+        mut self,
+        shape: PileShape,
+        n: usize,
+        threads: usize,
+        steps: u64,
+        reference: &mut Option<u64>,
+    ) -> BenchRow {
         self.walls.sort_by(f64::total_cmp);
         self.cpus.sort_by(f64::total_cmp);
         let (wall, cpu) = (
@@ -392,8 +397,10 @@ impl LawRun {
                 .iter()
                 .map(|&(part, bytes)| (part, bytes as f64 / n as f64))
                 .collect(),
-            identical: true,
-            hash: state_hash(w),
+            identical: {
+                let hash = state_hash(w);
+                *reference.get_or_insert(hash) == hash
+            },
         }
     }
 }
