@@ -187,7 +187,7 @@ impl SpringOverlap {
 impl Kinematics {
     /// The overlap the normal spring acts on: the depth `(δ, −v_n, ρ = 1)`, or for the area law
     /// `(δ_eq, Ȧ/L_eq, ρ = L/L_eq)`.
-    #[inline]
+    #[inline(always)]
     pub fn spring_overlap(&self) -> SpringOverlap {
         match &self.area {
             None => SpringOverlap {
@@ -347,5 +347,61 @@ impl Law {
     /// Coulomb friction coefficient μ.
     pub fn friction(&self) -> f64 {
         self.tangential.friction
+    }
+}
+
+/// A [`Law`] of the commonest kind — a linear spring, constant dashpots, a constant shear
+/// spring with its slider, no rolling part — held as its numbers alone. [`LinearDashpots::law`]
+/// rebuilds the [`Law`] with its kinds written out, so that where it is inlined the compiler
+/// knows every part and [`Law::force`] compiles to that law's arithmetic alone: the same code
+/// and the same bits as the general law, without its dispatch (the step's path for disk scenes).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LinearDashpots {
+    pub kn: f64,
+    pub eta_n: f64,
+    pub eta_s: f64,
+    pub ks: f64,
+    pub friction: f64,
+}
+
+impl LinearDashpots {
+    /// The law's numbers, when it is of this kind.
+    pub fn of(law: &Law) -> Option<Self> {
+        match *law {
+            Law {
+                normal: NormalPart::Linear { kn },
+                damping: DampingPart::Dashpots { eta_n, eta_s },
+                tangential:
+                    TangentialPart {
+                        stiffness: ShearStiffness::Constant(ks),
+                        friction,
+                    },
+                rolling: None,
+            } => Some(LinearDashpots {
+                kn,
+                eta_n,
+                eta_s,
+                ks,
+                friction,
+            }),
+            _ => None,
+        }
+    }
+
+    /// The law itself.
+    #[inline(always)]
+    pub fn law(&self) -> Law {
+        Law {
+            normal: NormalPart::Linear { kn: self.kn },
+            damping: DampingPart::Dashpots {
+                eta_n: self.eta_n,
+                eta_s: self.eta_s,
+            },
+            tangential: TangentialPart {
+                stiffness: ShearStiffness::Constant(self.ks),
+                friction: self.friction,
+            },
+            rolling: None,
+        }
     }
 }

@@ -57,7 +57,7 @@ pub struct Relative {
 }
 
 /// The relative motion of the two sides at `point`.
-#[inline]
+#[inline(always)]
 pub fn relative(b: &Bodies, walls: &[WallSpec], sides: Sides, point: Vec2) -> Relative {
     let recv = sides.receiver;
     let mut velocity = b.point_velocity(recv, point - b.state[recv].pose.position);
