@@ -58,6 +58,7 @@ use crate::narrow_phase::{
     ContactState, LeanContact, OverlapArea, PairCache, Request, Side, conic_lean, contact_sides,
     overlap_lean,
 };
+use crate::narrow_phase::{circle_circle::overlap_circle_circle, circle_wall::overlap_wall_circle};
 use rayon::prelude::*;
 use std::fmt;
 
@@ -173,6 +174,9 @@ pub struct Stepper {
     circles: bool,
     /// Some body is a clump (checked at each list build): the list holds member-pair slots.
     clumps: bool,
+    /// Every body is a circle (checked at each list build): with linear laws the slot pass
+    /// takes [`update_disk_slot`].
+    disks: bool,
 }
 
 impl Stepper {
@@ -379,6 +383,7 @@ impl Stepper {
         let d0 = wd.bodies.density.first().copied();
         self.uniform_density = d0.filter(|&d| wd.bodies.density.iter().all(|&x| x == d));
         self.circles = wd.bodies.is_circle.iter().any(|&c| c);
+        self.disks = wd.bodies.is_circle.iter().all(|&c| c);
         // A clump's contacts are its members', circles: they take the lean path too.
         self.clumps = wd.bodies.shape.iter().any(|s| s.clump().is_some());
         self.circles |= self.clumps;
@@ -496,6 +501,7 @@ impl Stepper {
         let nw = wd.walls.len().max(1);
         let circles = self.circles;
         let linear = &self.linear_cache[..];
+        let disks = self.disks && !linear.is_empty();
         let chunks = slots
             .par_chunks_mut(SLOT_CHUNK)
             .zip(data.par_chunks_mut(SLOT_CHUNK))
@@ -515,6 +521,16 @@ impl Stepper {
             // the long per-slot pass each waited for its own; 10⁴ disks: 8 % faster). The same
             // kernels on the same inputs: the same bits. Without circles no pair is lean.
             // (Filled in place: returned from a closure, the 28 KB array was copied.)
+            if disks {
+                for k in 0..slots.len() {
+                    if let Some(ahead) = slots.get(k + PREFETCH_AHEAD) {
+                        prefetch_partner(cx.bodies, ahead);
+                    }
+                    update_disk_slot(&mut slots[k], &mut data[k], &cx, &mut p, loads, linear);
+                }
+                *part = p;
+                return;
+            }
             let mut lean = [None; SLOT_CHUNK];
             if circles {
                 for (k, (l, slot)) in lean.iter_mut().zip(slots.iter()).enumerate() {
@@ -534,7 +550,11 @@ impl Stepper {
                     Some(l) => update_lean_slot(slot, data, r, &cx, &mut p, loads, l),
                     None => {
                         let w = cache.as_deref_mut().map(|c| &mut c[k]);
-                        update_slot(slot, data, None, w, r, &cx, &mut p, loads, None);
+                        if linear.is_empty() {
+                            update_slot(slot, data, None, w, r, &cx, &mut p, loads, None);
+                        } else {
+                            update_slot_linear(slot, data, w, &cx, &mut p, loads, linear);
+                        }
                     }
                 }
             }
@@ -954,6 +974,7 @@ fn clump_keys(b: &Bodies, i: u32, j: u32, skin: f64, keys: &mut Vec<(u32, u32, u
 /// phase's lean path ([`lean_of`], computed by the caller; for a clump pair's slot always
 /// `Some`: its member pair's contact, [`lean_of_members`]).
 #[allow(clippy::too_many_arguments)]
+#[inline(never)]
 fn update_slot(
     slot: &mut Slot,
     data: &mut ContactData,
@@ -964,6 +985,63 @@ fn update_slot(
     p: &mut SlotPartial,
     loads: &mut [WallLoad],
     lean: Option<Option<LeanContact>>,
+) {
+    update_slot_with(
+        slot,
+        data,
+        extra,
+        cache,
+        rolling_spring,
+        cx,
+        p,
+        loads,
+        lean,
+        None,
+    );
+}
+
+/// [`update_slot`] when the step's laws are all of the kind [`LinearDashpots`] holds: the
+/// same, compiled with the law's kinds known (as [`update_linear_slot`]).
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn update_slot_linear(
+    slot: &mut Slot,
+    data: &mut ContactData,
+    cache: Option<&mut PairCache>,
+    cx: &SlotContext,
+    p: &mut SlotPartial,
+    loads: &mut [WallLoad],
+    laws: &[LinearDashpots],
+) {
+    update_slot_with(
+        slot,
+        data,
+        None,
+        cache,
+        None,
+        cx,
+        p,
+        loads,
+        None,
+        Some(laws),
+    );
+}
+
+/// [`update_slot`]'s body, with the laws' numbers when they are all linear with constant
+/// dashpots (see [`apply_found`]).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn update_slot_with(
+    slot: &mut Slot,
+    data: &mut ContactData,
+    extra: Option<&mut ContactExtra>,
+    cache: Option<&mut PairCache>,
+    rolling_spring: Option<&mut f64>,
+    cx: &SlotContext,
+    p: &mut SlotPartial,
+    loads: &mut [WallLoad],
+    lean: Option<Option<LeanContact>>,
+    linear: Option<&[LinearDashpots]>,
 ) {
     let SlotContext {
         bodies: b,
@@ -1024,7 +1102,17 @@ fn update_slot(
             }
         }
     };
-    apply_found(slot, data, extra, rolling_spring, cx, p, loads, found, None);
+    apply_found(
+        slot,
+        data,
+        extra,
+        rolling_spring,
+        cx,
+        p,
+        loads,
+        found,
+        linear,
+    );
 }
 
 /// [`update_slot`] for a pair through the narrow phase's lean path (two circles, a circle and a
@@ -1059,6 +1147,33 @@ fn update_linear_slot(
     laws: &[LinearDashpots],
 ) {
     let found = lean.map(|c| (c.state, c.point, c.normal, c.depth, Spring::Depth));
+    apply_found(slot, data, None, None, cx, p, loads, found, Some(laws));
+}
+
+/// [`update_linear_slot`] for a scene of circles alone (and walls): the geometry straight from
+/// the circle kernels ([`overlap_circle_circle`], [`overlap_wall_circle`]; the wall is the
+/// giver, i, as [`sides_of`] has it), with each body's radius its bounding radius, rather than
+/// through the dispatcher's sides and a separate pass: the same kernels on the same numbers,
+/// the same bits.
+#[inline(never)]
+fn update_disk_slot(
+    slot: &mut Slot,
+    data: &mut ContactData,
+    cx: &SlotContext,
+    p: &mut SlotPartial,
+    loads: &mut [WallLoad],
+    laws: &[LinearDashpots],
+) {
+    let b = cx.bodies;
+    let sides = Sides::of_slot(slot.i, slot.j);
+    let recv = sides.receiver;
+    let (rj, pj) = (b.bound[recv], &b.state[recv].pose);
+    let found = match sides.giver {
+        Partner::Wall(w) => overlap_wall_circle(&cx.walls[w].wall, rj, pj),
+        Partner::Body(k) => overlap_circle_circle(b.bound[k], &b.state[k].pose, rj, pj),
+    };
+    let found =
+        found.map(|(state, point, normal, depth)| (state, point, normal, depth, Spring::Depth));
     apply_found(slot, data, None, None, cx, p, loads, found, Some(laws));
 }
 
