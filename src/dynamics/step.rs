@@ -517,11 +517,7 @@ impl Stepper {
                    mut rolling: Option<&mut [f64]>| {
             let mut p = SlotPartial::default();
             loads.fill(WallLoad::default());
-            // With circles in the scene, the circle pairs' geometry first, for the whole chunk:
-            // a short loop whose square roots and divisions overlap from slot to slot (inside
-            // the long per-slot pass each waited for its own; 10⁴ disks: 8 % faster). The same
-            // kernels on the same inputs: the same bits. Without circles no pair is lean.
-            // Disk scenes under linear laws need no separate pass (see [`update_disk_slot`]).
+            // Disk scenes under linear laws: one loop (see [`update_disk_slot`]).
             if disks {
                 for k in 0..slots.len() {
                     if let Some(ahead) = slots.get(k + PREFETCH_AHEAD) {
@@ -532,6 +528,10 @@ impl Stepper {
                 *part = p;
                 return;
             }
+            // With circles in the scene, the circle pairs' geometry first, for the whole chunk:
+            // a short loop whose square roots and divisions overlap from slot to slot (inside
+            // the long per-slot pass each waited for its own; 10⁴ disks: 8 % faster). The same
+            // kernels on the same inputs: the same bits. Without circles no pair is lean.
             // (Filled in place: returned from a closure, the 28 KB array was copied.)
             let mut lean = [None; SLOT_CHUNK];
             if circles {
