@@ -1085,6 +1085,7 @@ fn update_slot<const LINEAR: bool>(
         loads,
         found,
         linear,
+        false,
     );
 }
 
@@ -1118,6 +1119,7 @@ fn update_lean_slot<const LINEAR: bool>(
         loads,
         found,
         linear,
+        false,
     );
 }
 
@@ -1145,12 +1147,24 @@ fn update_disk_slot(
     };
     let found =
         found.map(|(state, point, normal, depth)| (state, point, normal, depth, Spring::Depth));
-    apply_found(slot, data, None, None, cx, p, loads, found, Some(laws));
+    apply_found(
+        slot,
+        data,
+        None,
+        None,
+        cx,
+        p,
+        loads,
+        found,
+        Some(laws),
+        true,
+    );
 }
 
 /// What a slot's contact, as the narrow phase `found` it (state, point, normal, depth and what
 /// the spring acts on; `None` or a depth ≤ 0: separated), does: the kinematics at the contact
-/// point, the law, the history and the slot's record (see [`update_slot`]).
+/// point, the law, the history and the slot's record (see [`update_slot`]). `disks`: every
+/// body is a circle.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn apply_found(
@@ -1163,6 +1177,7 @@ fn apply_found(
     loads: &mut [WallLoad],
     found: Option<(ContactState, Vec2, Vec2, f64, Spring)>,
     linear: Option<&[LinearDashpots]>,
+    disks: bool,
 ) {
     let SlotContext {
         bodies: b,
@@ -1292,9 +1307,15 @@ fn apply_found(
     p.contacts += 1;
     p.elastic += cf.elastic_energy;
     p.history_energy_change += cf.history_energy_change;
-    let scale = b.shape[recv]
-        .inscribed_radius()
-        .min(giver.map_or(f64::INFINITY, |k| b.shape[k].inscribed_radius()));
+    // (A circle's inscribed radius is its radius, which the disk path has at hand.)
+    let inscribed = |k: usize| {
+        if disks {
+            b.bound[k]
+        } else {
+            b.shape[k].inscribed_radius()
+        }
+    };
+    let scale = inscribed(recv).min(giver.map_or(f64::INFINITY, inscribed));
     if depth > p.max_depth_ratio * scale {
         p.max_depth_ratio = depth / scale; // divide only when the maximum grows
     }
