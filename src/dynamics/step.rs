@@ -1123,11 +1123,11 @@ fn update_lean_slot<const LINEAR: bool>(
     );
 }
 
-/// [`update_lean_slot`] under linear laws for a scene of circles alone (and walls): the geometry straight from
-/// the circle kernels ([`overlap_circle_circle`], [`overlap_wall_circle`]; the wall is the
-/// giver, i, as [`sides_of`] has it), with each body's radius its bounding radius, rather than
-/// through the dispatcher's sides and a separate pass: the same kernels on the same numbers,
-/// the same bits.
+/// [`update_lean_slot`] under linear laws for a scene of circles alone (and walls): the
+/// geometry straight from the circle kernels ([`overlap_circle_circle`],
+/// [`overlap_wall_circle`]; the wall is the giver, i, as [`sides_of`] has it), with each body's
+/// radius its bounding radius, rather than through the dispatcher's sides and a separate pass:
+/// the same kernels on the same numbers, the same bits.
 #[inline(never)]
 fn update_disk_slot(
     slot: &mut Slot,
