@@ -354,7 +354,8 @@ impl Law {
 /// spring with its slider, no rolling part — held as its numbers alone. [`LinearDashpots::law`]
 /// rebuilds the [`Law`] with its kinds written out, so that where it is inlined the compiler
 /// knows every part and [`Law::force`] compiles to that law's arithmetic alone: the same code
-/// and the same bits as the general law, without its dispatch (the step's path for disk scenes).
+/// and the same bits as the general law, without its dispatch (the step compiles its slot
+/// updates for such laws: every slot of a scene whose laws are all of this kind).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LinearDashpots {
     pub kn: f64,
