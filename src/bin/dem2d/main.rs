@@ -23,8 +23,39 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The system allocator, counting the bytes currently allocated (for `dem2d bench`'s bytes per
-/// body: the world's real heap footprint, not an estimate).
+/// body: the world's real heap footprint, not an estimate), and asking Linux for transparent
+/// huge pages on large blocks ([`advise_huge_pages`]).
 struct CountingAllocator;
+
+/// Blocks at least this large (a million-body world's arrays: bodies, slots, contact data) are
+/// advised to live on transparent huge pages.
+const HUGE_PAGE_MIN_BLOCK: usize = 4 << 20;
+
+/// Asks the kernel to back the 2 MiB-aligned interior of a freshly allocated block with
+/// transparent huge pages (`madvise(MADV_HUGEPAGE)`). A step of a 10⁶-body world streams some
+/// 700 MB through a dozen arrays; on 4 KiB pages each array crosses a page every few hundred
+/// bodies and the processor walks the page tables (its TLB covers ~12 MB), which made the step
+/// ~10 % slower there (README, "Many bodies"). Debian's default THP mode is `madvise`: only
+/// advised memory gets huge pages. Advice only — where THP is off or the call fails, nothing
+/// changes — and never affects a result.
+#[inline]
+fn advise_huge_pages(ptr: *mut u8, size: usize) {
+    #[cfg(target_os = "linux")]
+    if size >= HUGE_PAGE_MIN_BLOCK && !ptr.is_null() {
+        const HUGE: usize = 2 << 20;
+        let start = (ptr as usize).next_multiple_of(HUGE);
+        let end = (ptr as usize + size) & !(HUGE - 1);
+        if end > start {
+            // SAFETY: advice on whole pages inside the block just handed out; it changes no
+            // contents and its failure is harmless.
+            unsafe {
+                libc::madvise(start as *mut libc::c_void, end - start, libc::MADV_HUGEPAGE);
+            }
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = (ptr, size);
+}
 
 static ALLOCATED: AtomicUsize = AtomicUsize::new(0);
 /// Number of allocations (and reallocations) so far: `dem2d bench` checks the step allocates
@@ -38,7 +69,18 @@ unsafe impl std::alloc::GlobalAlloc for CountingAllocator {
         ALLOCATED.fetch_add(layout.size(), Ordering::Relaxed);
         ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
         // SAFETY: same contract as the caller's.
-        unsafe { std::alloc::System.alloc(layout) }
+        let ptr = unsafe { std::alloc::System.alloc(layout) };
+        advise_huge_pages(ptr, layout.size());
+        ptr
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: std::alloc::Layout) -> *mut u8 {
+        ALLOCATED.fetch_add(layout.size(), Ordering::Relaxed);
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: same contract as the caller's.
+        let ptr = unsafe { std::alloc::System.alloc_zeroed(layout) };
+        advise_huge_pages(ptr, layout.size());
+        ptr
     }
 
     unsafe fn dealloc(&self, ptr: *mut u8, layout: std::alloc::Layout) {
@@ -52,7 +94,9 @@ unsafe impl std::alloc::GlobalAlloc for CountingAllocator {
         ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
         ALLOCATED.fetch_sub(layout.size(), Ordering::Relaxed);
         // SAFETY: same contract as the caller's.
-        unsafe { std::alloc::System.realloc(ptr, layout, new_size) }
+        let ptr = unsafe { std::alloc::System.realloc(ptr, layout, new_size) };
+        advise_huge_pages(ptr, new_size);
+        ptr
     }
 }
 
