@@ -303,7 +303,8 @@ enum Command {
         /// Thread counts (default: 1 and all cores).
         #[arg(long, value_delimiter = ',')]
         threads: Vec<usize>,
-        /// Normal-force laws to time each settled pile under.
+        /// Normal-force laws to time each settled pile under (with --peers: to run the ellipse
+        /// pile under, a row each).
         #[arg(long, value_enum, value_delimiter = ',', default_value = "area")]
         normal_force: Vec<NormalForceArg>,
         /// Cache of settled piles.
@@ -317,10 +318,11 @@ enum Command {
         /// `<!-- figures:peers -->` section).
         #[arg(long)]
         readme: Option<PathBuf>,
-        /// Instead: `dem2d run` (one thread) on the settled 10⁴-disk and 10⁴-ellipse piles
-        /// against LIGGGHTS (`liggghts`) and LAMMPS (`lmp`) on the disk pile, when installed
-        /// (decks in benches/peers/), interleaved; particle-steps per CPU-second and per
-        /// wall-second of the time loop, medians, and the ratios to LIGGGHTS.
+        /// Instead: `dem2d run` (one thread) on the settled 10⁴-disk and 10⁴-ellipse piles (the
+        /// ellipses under each --normal-force law) against LIGGGHTS (`liggghts`) and LAMMPS
+        /// (`lmp`) on the disk pile, when installed (decks in benches/peers/), interleaved;
+        /// particle-steps per CPU-second and per wall-second of the time loop, medians, and the
+        /// ratios to LIGGGHTS.
         #[arg(long)]
         peers: bool,
     },
@@ -965,6 +967,7 @@ fn publish_table(
 /// `dem2d bench --peers`: see [`peers`].
 fn bench_peers(
     shapes: &[PileShapeArg],
+    laws: &[NormalForceArg],
     sizes: &[usize],
     steps: u64,
     reps: usize,
@@ -994,6 +997,7 @@ fn bench_peers(
                 PileShapeArg::Ellipses => PileShape::Ellipses,
             })
             .collect(),
+        laws: laws.iter().map(|&l| l.into()).collect(),
         n,
         steps,
         reps,
@@ -1145,13 +1149,14 @@ fn main() -> ExitCode {
             steps,
             reps,
             threads: _,
-            normal_force: _,
+            normal_force,
             cache,
             out,
             readme,
             peers: true,
         } => bench_peers(
             shapes,
+            normal_force,
             sizes,
             steps.unwrap_or(10_000),
             *reps,

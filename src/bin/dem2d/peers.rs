@@ -4,7 +4,10 @@
 //! # What is compared
 //! - `dem2d run` (this executable, as a child process, `--threads 1`) on the settled 10⁴-disk
 //!   pile and on the settled 10⁴-ellipse pile of `dem2d bench` (the same cache of settled
-//!   piles), the quiescence stop taken out so that every run does all its steps;
+//!   piles), the quiescence stop taken out so that every run does all its steps; the ellipse
+//!   pile once under each normal-force law asked for (`--normal-force`: the area law, dem2d's
+//!   default, and P's spring on the depth — the linear law the disks' engines apply), the disk
+//!   pile once (a disk's area potential is the spring on its depth: the same run);
 //! - LIGGGHTS (`liggghts`) and LAMMPS (`lmp`), when installed, on the disk pile: the decks of
 //!   `benches/peers/` (compiled into this executable), the pile written as a LAMMPS data file
 //!   into a temporary directory. The decks state the equivalence: 2D, the same particles
@@ -22,6 +25,7 @@
 //! `summary.json`, which is what `dem2d run` prints).
 
 use crate::bench::{BenchError, settled_pile_text};
+use dem2d::contact_law::NormalForce;
 use dem2d::scene::Case;
 use dem2d::scene::generate::{DENSITY, G, KN_OVER_RHO_G, PileShape, PileSpec};
 use std::fmt::Write as _;
@@ -38,6 +42,8 @@ pub const LIGGGHTS_DECK: &str = include_str!("../../../benches/peers/liggghts.in
 pub struct PeerOptions {
     /// The dem2d piles to run (the peers run the disk pile).
     pub shapes: Vec<PileShape>,
+    /// The normal-force laws the ellipse pile is run under (one row each).
+    pub laws: Vec<NormalForce>,
     /// Bodies per pile.
     pub n: usize,
     /// Steps per run.
@@ -52,7 +58,8 @@ pub struct PeerOptions {
 /// A program of the comparison.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Program {
-    Dem2d(PileShape),
+    /// `dem2d run` on a pile under a normal-force law.
+    Dem2d(PileShape, NormalForce),
     Liggghts(PathBuf),
     Lammps(PathBuf),
 }
@@ -60,7 +67,7 @@ pub enum Program {
 impl Program {
     pub fn name(&self) -> &'static str {
         match self {
-            Program::Dem2d(_) => "dem2d run",
+            Program::Dem2d(..) => "dem2d run",
             Program::Liggghts(_) => "LIGGGHTS",
             Program::Lammps(_) => "LAMMPS",
         }
@@ -68,7 +75,8 @@ impl Program {
 
     pub fn pile(&self) -> &'static str {
         match self {
-            Program::Dem2d(PileShape::Ellipses) => "ellipses",
+            Program::Dem2d(PileShape::Ellipses, NormalForce::Area) => "ellipses, area law",
+            Program::Dem2d(PileShape::Ellipses, NormalForce::Depth) => "ellipses, depth law",
             _ => "disks",
         }
     }
@@ -154,11 +162,14 @@ fn children_cpu_seconds() -> f64 {
 
 /// A settled pile's case text, for `dem2d run`: the quiescence stop taken out (the bench runs
 /// every step), a duration that holds the steps (`--max-steps` stops the run).
-fn run_case_text(text: &str, steps: u64) -> Result<String, BenchError> {
+fn run_case_text(text: &str, steps: u64, law: NormalForce) -> Result<String, BenchError> {
     let mut v: serde_json::Value = serde_json::from_str(text).map_err(err)?;
     let o = v
         .as_object_mut()
         .ok_or_else(|| BenchError("settled pile: not an object".into()))?;
+    if let Some(c) = o.get_mut("contact").and_then(|c| c.as_object_mut()) {
+        c.insert("normal_force".into(), law.as_str().into());
+    }
     o.remove("quiescence");
     o.remove("quiescence_window");
     let dt = o.get("dt").and_then(|d| d.as_f64()).unwrap_or(1e-5);
@@ -263,9 +274,10 @@ fn run_once(
     let cpu0 = children_cpu_seconds();
     let start = Instant::now();
     let (status, log_or_summary) = match program {
-        Program::Dem2d(shape) => {
-            let case = dir.join(format!("{}.json", shape_name(*shape)));
-            let out = dir.join(format!("run_{}", shape_name(*shape)));
+        Program::Dem2d(shape, law) => {
+            let name = format!("{}_{}", shape_name(*shape), law.as_str());
+            let case = dir.join(format!("{name}.json"));
+            let out = dir.join(format!("run_{name}"));
             let exe = std::env::current_exe().map_err(err)?;
             let status = Command::new(exe)
                 .arg("run")
@@ -305,7 +317,7 @@ fn run_once(
     let text = std::fs::read_to_string(&log_or_summary)
         .map_err(|e| BenchError(format!("{}: {e}", log_or_summary.display())))?;
     let (loop_wall, contacts_per_body) = match program {
-        Program::Dem2d(_) => {
+        Program::Dem2d(..) => {
             if !status.success() {
                 return Err(BenchError(format!(
                     "dem2d run failed ({status}); see {}",
@@ -386,16 +398,19 @@ fn run_in(opts: &PeerOptions, dir: &Path) -> Result<PeerReport, BenchError> {
         .fold(0.0f64, f64::max);
     let skin = dem2d::dynamics::step::SKIN_FRACTION * max_r;
     for &shape in &opts.shapes {
-        let text = match shape {
-            PileShape::Disks => disk_text.clone(),
-            PileShape::Ellipses => {
-                settled_pile_text(shape, opts.n, opts.cache.as_deref(), opts.progress)?
-            }
+        let (text, laws) = match shape {
+            PileShape::Disks => (disk_text.clone(), vec![NormalForce::Area]),
+            PileShape::Ellipses => (
+                settled_pile_text(shape, opts.n, opts.cache.as_deref(), opts.progress)?,
+                opts.laws.clone(),
+            ),
         };
-        let path = dir.join(format!("{}.json", shape_name(shape)));
-        std::fs::write(&path, run_case_text(&text, opts.steps)?)
-            .map_err(|e| BenchError(format!("{}: {e}", path.display())))?;
-        programs.push(Program::Dem2d(shape));
+        for law in laws {
+            let path = dir.join(format!("{}_{}.json", shape_name(shape), law.as_str()));
+            std::fs::write(&path, run_case_text(&text, opts.steps, law)?)
+                .map_err(|e| BenchError(format!("{}: {e}", path.display())))?;
+            programs.push(Program::Dem2d(shape, law));
+        }
     }
     match find_executable(&["liggghts", "lmp_liggghts"]) {
         Some(p) => programs.push(Program::Liggghts(p)),
@@ -525,12 +540,14 @@ mod tests {
     #[test]
     fn the_run_case_has_no_quiescence_and_room_for_the_steps() {
         let t = run_case_text(
-            r#"{"version": 1, "dt": 1e-5, "duration": 4.0, "quiescence": 1e-7, "quiescence_window": 1000}"#,
+            r#"{"version": 1, "dt": 1e-5, "duration": 4.0, "quiescence": 1e-7, "quiescence_window": 1000, "contact": {"model": "linear", "normal_force": "area"}}"#,
             1000,
+            NormalForce::Depth,
         )
         .unwrap();
         let v: serde_json::Value = serde_json::from_str(&t).unwrap();
         assert!(v.get("quiescence").is_none() && v.get("quiescence_window").is_none());
         assert!(v["duration"].as_f64().unwrap() >= 1000.0 * 1e-5);
+        assert_eq!(v["contact"]["normal_force"], "depth");
     }
 }
