@@ -965,6 +965,7 @@ fn publish_table(
 }
 
 /// `dem2d bench --peers`: see [`peers`].
+#[allow(clippy::too_many_arguments)] // one argument per command-line option
 fn bench_peers(
     shapes: &[PileShapeArg],
     laws: &[NormalForceArg],
