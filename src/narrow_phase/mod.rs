@@ -784,7 +784,7 @@ impl LocalFrame {
 
     /// An [`OverlapArea`] from local quantities (lengths in units of `scale`): `grad` is
     /// `∂A/∂x_j`, the others as in [`LocalOverlap`].
-    #[inline]
+    #[inline(always)]
     pub fn overlap(&self, o: &LocalOverlap) -> OverlapArea {
         let s2 = self.scale * self.scale;
         let (length, normal) = match o.chord {
