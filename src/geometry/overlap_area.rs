@@ -303,7 +303,7 @@ impl DiskLens {
     /// exact inverse to 1e-14 at δ = 0.01 r₁, 1e-9 at 0.05 r₁, 3e-8 at 0.1 r₁, 1e-6 at 0.2 r₁
     /// and 1e-4 at 0.5 r₁ (for a disk on a wall, the least accurate pair). No overlap
     /// (`A ≤ 0`): `(0, 0)` — no spring and no dashpot.
-    #[inline]
+    #[inline(always)]
     pub fn equivalent_depth(&self, area: f64) -> (f64, f64) {
         if area.is_nan() || area <= 0.0 {
             return (0.0, 0.0);
