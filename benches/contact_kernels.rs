@@ -453,10 +453,10 @@ fn print_table(since: std::time::SystemTime) {
     let missing = std::cell::Cell::new(0usize);
     let median = |group: &str, id: &str| -> Option<f64> {
         let p = dir.join(group).join(id).join("new/estimates.json");
-        let fresh = std::fs::metadata(&p)
-            .and_then(|m| m.modified())
-            .is_ok_and(|t| t >= since);
-        let v = fresh
+        // No estimates at all: a cell no benchmark fills (a "–" of the table). Estimates older
+        // than this run: a benchmark this run skipped (filtered), which must not be mixed in.
+        let modified = std::fs::metadata(&p).and_then(|m| m.modified()).ok()?;
+        let v = (modified >= since)
             .then(|| std::fs::read_to_string(&p).ok())
             .flatten()
             .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
