@@ -9,10 +9,10 @@
 //! the cell's row-major index in their bounding box, so that neighbouring cells are neighbouring
 //! buckets and a body's 3×3 scan reads three short runs of memory rather than nine random
 //! places (at 10⁶ bodies the grid's arrays are far larger than the cache); otherwise (a body
-//! flung far away) a mixing hash, which no layout of the cells can make collide in bulk. Cost is linear in the
-//! number of bodies (a counting sort into buckets and a 3×3 cell scan per body). A size spread
-//! makes the cells as large as the largest body: small bodies then share cells, which costs
-//! time in proportion to the spread but misses nothing.
+//! flung far away) a mixing hash, which no layout of the cells can make collide in bulk. Cost
+//! is linear in the number of bodies (a counting sort into buckets and a 3×3 cell scan per
+//! body). A size spread makes the cells as large as the largest body: small bodies then share
+//! cells, which costs time in proportion to the spread but misses nothing.
 
 use super::body::Bodies;
 
