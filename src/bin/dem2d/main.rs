@@ -36,9 +36,8 @@ const HUGE_PAGE_MIN_BLOCK: usize = 4 << 20;
 /// 700 MB through a dozen arrays; on 4 KiB pages each array crosses a page every few hundred
 /// bodies and the processor walks the page tables (its TLB covers ~12 MB): advised, 10⁶ disks
 /// step ~3 % faster (README, "This pass" under "Many bodies"). Debian's default THP mode is
-/// `madvise`: only
-/// advised memory gets huge pages. Advice only — where THP is off or the call fails, nothing
-/// changes — and never affects a result.
+/// `madvise`: only advised memory gets huge pages. Advice only — where THP is off or the call
+/// fails, nothing changes — and never affects a result.
 #[inline]
 fn advise_huge_pages(ptr: *mut u8, size: usize) {
     #[cfg(target_os = "linux")]
@@ -63,25 +62,30 @@ static ALLOCATED: AtomicUsize = AtomicUsize::new(0);
 /// nothing.
 static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
 
+/// A block of `size` bytes just handed out at `ptr` by `alloc` or `alloc_zeroed`: counted, and
+/// advised onto huge pages when large.
+#[inline]
+fn new_block(ptr: *mut u8, size: usize) -> *mut u8 {
+    ALLOCATED.fetch_add(size, Ordering::Relaxed);
+    ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+    advise_huge_pages(ptr, size);
+    ptr
+}
+
 // SAFETY: every call is forwarded unchanged to the system allocator; the counter is only
 // bookkeeping.
 unsafe impl std::alloc::GlobalAlloc for CountingAllocator {
     unsafe fn alloc(&self, layout: std::alloc::Layout) -> *mut u8 {
-        ALLOCATED.fetch_add(layout.size(), Ordering::Relaxed);
-        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
         // SAFETY: same contract as the caller's.
-        let ptr = unsafe { std::alloc::System.alloc(layout) };
-        advise_huge_pages(ptr, layout.size());
-        ptr
+        new_block(unsafe { std::alloc::System.alloc(layout) }, layout.size())
     }
 
     unsafe fn alloc_zeroed(&self, layout: std::alloc::Layout) -> *mut u8 {
-        ALLOCATED.fetch_add(layout.size(), Ordering::Relaxed);
-        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
         // SAFETY: same contract as the caller's.
-        let ptr = unsafe { std::alloc::System.alloc_zeroed(layout) };
-        advise_huge_pages(ptr, layout.size());
-        ptr
+        new_block(
+            unsafe { std::alloc::System.alloc_zeroed(layout) },
+            layout.size(),
+        )
     }
 
     unsafe fn dealloc(&self, ptr: *mut u8, layout: std::alloc::Layout) {

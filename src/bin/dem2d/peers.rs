@@ -167,9 +167,12 @@ fn run_case_text(text: &str, steps: u64, law: NormalForce) -> Result<String, Ben
     let o = v
         .as_object_mut()
         .ok_or_else(|| BenchError("settled pile: not an object".into()))?;
-    if let Some(c) = o.get_mut("contact").and_then(|c| c.as_object_mut()) {
-        c.insert("normal_force".into(), law.as_str().into());
-    }
+    // The row is labelled with this law: a pile without its contact object is not run under
+    // a law it does not name.
+    o.get_mut("contact")
+        .and_then(|c| c.as_object_mut())
+        .ok_or_else(|| BenchError("settled pile: no `contact` object".into()))?
+        .insert("normal_force".into(), law.as_str().into());
     o.remove("quiescence");
     o.remove("quiescence_window");
     let dt = o.get("dt").and_then(|d| d.as_f64()).unwrap_or(1e-5);
