@@ -7,7 +7,8 @@
 //! step (0.4 × the a-priori critical step, at most 5 × the case's) until its mean speed falls
 //! below [`SETTLED_SPEED`] or [`SETTLE_TIME_MAX`] has passed; bigger piles are that many settled
 //! 10⁴ piles side by side in one wide box. Settled piles are cached as case files (they are
-//! ordinary cases: `dem2d run` runs them). The timed steps then run at the case's Δt = 1e-5 s.
+//! ordinary cases: `dem2d run` runs them). The timed steps then run at the case's Δt = 1e-5 s,
+//! every size, thread count and law of a shape interleaved block by block (see [`run`]).
 
 use dem2d::contact_law::NormalForce;
 use dem2d::dynamics::timestep::estimate_critical_dt;
@@ -255,96 +256,119 @@ fn state_hash(w: &World) -> u64 {
 
 /// Runs the benchmark; `heap` reports the bytes currently allocated (the binary's counting
 /// allocator), so that the world's own footprint can be measured.
+///
+/// Every timed block of a shape — each size, thread count and law, each with its own world —
+/// runs once per repetition, in turn (interleaved), so that a change of the machine's load hits
+/// them alike: the ratios the table is read for (two threads over one, 10⁶ bodies against 10⁴,
+/// one law against another) come from blocks timed side by side, not minutes apart.
 pub fn run(
     opts: &BenchOptions,
     heap: &(dyn Fn() -> usize + Sync),
     allocations: &(dyn Fn() -> usize + Sync),
 ) -> Result<Vec<BenchRow>, BenchError> {
+    let pools = opts
+        .threads
+        .iter()
+        .map(|&threads| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .map_err(|e| BenchError(format!("thread pool of {threads}: {e}")))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let reps = opts.reps.max(1);
     let mut rows = Vec::new();
     for &shape in &opts.shapes {
+        let mut runs = Vec::new();
         for &n in &opts.sizes {
             let settled = settled_pile(shape, n, opts.cache.as_deref(), opts.progress)?;
-            // Several laws are timed interleaved — one block of steps of each in turn, every
-            // repetition — so that a change of the machine's load hits them alike and their
-            // ratio is what the table can be trusted for.
-            let mut reference_hash: Vec<Option<u64>> = vec![None; opts.normal_forces.len()];
-            for &threads in &opts.threads {
-                let pool = rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads)
-                    .build()
-                    .map_err(|e| BenchError(format!("thread pool of {threads}: {e}")))?;
-                let timed = pool.install(|| -> Result<Vec<BenchRow>, BenchError> {
-                    let reps = opts.reps.max(1);
-                    let mut runs = Vec::with_capacity(opts.normal_forces.len());
-                    for &normal_force in &opts.normal_forces {
-                        let case = settled.clone().with_normal_force(normal_force);
-                        let before = heap();
-                        let mut w = world_of(&case, case.dt);
-                        // Warm-up: contact histories, buffers at their working sizes.
+            for (&threads, pool) in opts.threads.iter().zip(&pools) {
+                for &normal_force in &opts.normal_forces {
+                    let case = settled.clone().with_normal_force(normal_force);
+                    let before = heap();
+                    let mut w = world_of(&case, case.dt);
+                    // Warm-up: contact histories, buffers at their working sizes.
+                    pool.install(|| -> Result<(), BenchError> {
                         for _ in 0..opts.steps.min(200) {
                             w.step().map_err(|b| BenchError(b.to_string()))?;
                         }
-                        let bytes = heap().saturating_sub(before);
-                        let builds = w.contacts.builds;
-                        runs.push(LawRun {
-                            normal_force,
-                            w,
-                            bytes,
-                            builds,
-                            walls: Vec::with_capacity(reps),
-                            cpus: Vec::with_capacity(reps),
-                            contacts: 0,
-                            allocations: 0,
-                        });
-                    }
-                    for _ in 0..reps {
-                        for run in &mut runs {
-                            let allocs = allocations();
-                            let (start, cpu) = (Instant::now(), process_cpu_seconds());
-                            for _ in 0..opts.steps {
-                                let r = run.w.step().map_err(|b| BenchError(b.to_string()))?;
-                                run.contacts += r.contacts as u64;
-                            }
-                            run.walls.push(start.elapsed().as_secs_f64());
-                            run.cpus.push(process_cpu_seconds() - cpu);
-                            run.allocations += allocations() - allocs;
-                        }
-                    }
-                    Ok(runs
-                        .into_iter()
-                        .zip(reference_hash.iter_mut())
-                        .map(|(run, reference)| run.row(shape, n, threads, opts.steps, reference))
-                        .collect())
-                })?;
-                for row in timed {
-                    if opts.progress {
-                        let parts: Vec<String> = row
-                            .breakdown
-                            .iter()
-                            .map(|(p, b)| format!("{p} {b:.0}"))
-                            .collect();
-                        eprintln!(
-                            "{:?} n = {n}, {} law, {threads} thread(s): {:.2} M particle-steps/s ({:.2} M per CPU-second, {:.0} ns per contact); heap {:.0} B/body ({})",
-                            shape,
-                            row.normal_force.as_str(),
-                            row.particle_steps_per_second / 1e6,
-                            row.particle_steps_per_cpu_second / 1e6,
-                            row.ns_per_contact,
-                            row.bytes_per_body,
-                            parts.join(", ")
-                        );
-                    }
-                    rows.push(row);
+                        Ok(())
+                    })?;
+                    let bytes = heap().saturating_sub(before);
+                    let builds = w.contacts.builds;
+                    runs.push(LawRun {
+                        n,
+                        threads,
+                        normal_force,
+                        w,
+                        bytes,
+                        builds,
+                        walls: Vec::with_capacity(reps),
+                        cpus: Vec::with_capacity(reps),
+                        contacts: 0,
+                        allocations: 0,
+                    });
                 }
             }
+        }
+        for _ in 0..reps {
+            for run in &mut runs {
+                let pool = &pools[opts
+                    .threads
+                    .iter()
+                    .position(|&t| t == run.threads)
+                    .unwrap_or(0)];
+                pool.install(|| -> Result<(), BenchError> {
+                    let allocs = allocations();
+                    let (start, cpu) = (Instant::now(), process_cpu_seconds());
+                    for _ in 0..opts.steps {
+                        let r = run.w.step().map_err(|b| BenchError(b.to_string()))?;
+                        run.contacts += r.contacts as u64;
+                    }
+                    run.walls.push(start.elapsed().as_secs_f64());
+                    run.cpus.push(process_cpu_seconds() - cpu);
+                    run.allocations += allocations() - allocs;
+                    Ok(())
+                })?;
+            }
+        }
+        // The identical-trajectory reference of each size and law: its first thread count's
+        // final state (every world of one size and law has run the same steps).
+        let mut reference: Vec<((usize, NormalForce), u64)> = Vec::new();
+        for run in runs {
+            let key = (run.n, run.normal_force);
+            let row = run.row(shape, opts.steps, &mut reference, key);
+            if opts.progress {
+                let parts: Vec<String> = row
+                    .breakdown
+                    .iter()
+                    .map(|(p, b)| format!("{p} {b:.0}"))
+                    .collect();
+                eprintln!(
+                    "{:?} n = {}, {} law, {} thread(s): {:.2} M particle-steps/s ({:.2} M per CPU-second, {:.0} ns per contact); heap {:.0} B/body ({})",
+                    shape,
+                    row.n,
+                    row.normal_force.as_str(),
+                    row.threads,
+                    row.particle_steps_per_second / 1e6,
+                    row.particle_steps_per_cpu_second / 1e6,
+                    row.ns_per_contact,
+                    row.bytes_per_body,
+                    parts.join(", ")
+                );
+            }
+            rows.push(row);
         }
     }
     rows.sort_by_key(|r| (r.shape as u8, r.n, r.normal_force as u8, r.threads));
     Ok(rows)
 }
 
-/// One law's world during an interleaved timing, and what its blocks measured.
+/// One world (size, thread count, law) during an interleaved timing, and what its blocks
+/// measured.
 struct LawRun {
+    n: usize,
+    threads: usize,
     normal_force: NormalForce,
     w: World,
     bytes: usize,
@@ -356,16 +380,16 @@ struct LawRun {
 }
 
 impl LawRun {
-    /// The table row: medians of the blocks; `reference` is the hash of the final state's bits
-    /// (positions, velocities, forces) at the first thread count, set by the first row.
+    /// The table row: medians of the blocks; `references` holds, for each `key` (size, law),
+    /// the hash of the final state's bits at the first thread count timed (set by its row).
     fn row(
         mut self,
         shape: PileShape,
-        n: usize,
-        threads: usize,
         steps: u64,
-        reference: &mut Option<u64>,
+        references: &mut Vec<((usize, NormalForce), u64)>,
+        key: (usize, NormalForce),
     ) -> BenchRow {
+        let (n, threads) = (self.n, self.threads);
         self.walls.sort_by(f64::total_cmp);
         self.cpus.sort_by(f64::total_cmp);
         let (wall, cpu) = (
@@ -399,7 +423,13 @@ impl LawRun {
                 .collect(),
             identical: {
                 let hash = state_hash(w);
-                *reference.get_or_insert(hash) == hash
+                match references.iter().find(|(k, _)| *k == key) {
+                    Some(&(_, h)) => h == hash,
+                    None => {
+                        references.push((key, hash));
+                        true
+                    }
+                }
             },
         }
     }

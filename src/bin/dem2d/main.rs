@@ -302,7 +302,8 @@ enum Command {
         /// Timed steps per repetition (default 500; with --peers, 10 000).
         #[arg(long)]
         steps: Option<u64>,
-        /// Repetitions (the median is reported).
+        /// Repetitions (the median is reported); each times every size, thread count and law
+        /// of a shape once, in turn.
         #[arg(long, default_value_t = 3)]
         reps: usize,
         /// Thread counts (default: 1 and all cores).
