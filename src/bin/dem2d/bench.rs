@@ -282,7 +282,7 @@ pub fn run(
         let mut runs = Vec::new();
         for &n in &opts.sizes {
             let settled = settled_pile(shape, n, opts.cache.as_deref(), opts.progress)?;
-            for (&threads, pool) in opts.threads.iter().zip(&pools) {
+            for (p, (&threads, pool)) in opts.threads.iter().zip(&pools).enumerate() {
                 for &normal_force in &opts.normal_forces {
                     let case = settled.clone().with_normal_force(normal_force);
                     let before = heap();
@@ -299,6 +299,7 @@ pub fn run(
                     runs.push(LawRun {
                         n,
                         threads,
+                        pool: p,
                         normal_force,
                         w,
                         bytes,
@@ -313,12 +314,7 @@ pub fn run(
         }
         for _ in 0..reps {
             for run in &mut runs {
-                let pool = &pools[opts
-                    .threads
-                    .iter()
-                    .position(|&t| t == run.threads)
-                    .unwrap_or(0)];
-                pool.install(|| -> Result<(), BenchError> {
+                pools[run.pool].install(|| -> Result<(), BenchError> {
                     let allocs = allocations();
                     let (start, cpu) = (Instant::now(), process_cpu_seconds());
                     for _ in 0..opts.steps {
@@ -369,6 +365,8 @@ pub fn run(
 struct LawRun {
     n: usize,
     threads: usize,
+    /// Its thread pool (an index into the run's pools).
+    pool: usize,
     normal_force: NormalForce,
     w: World,
     bytes: usize,
