@@ -44,7 +44,9 @@ use super::body::Bodies;
 use super::boundary::WallSpec;
 use super::boundary::{Motion, WallLoad, servo_velocity};
 use super::broad_phase::Grid;
-use super::contacts::{ContactData, ContactExtra, ContactList, Slot, reserve_for};
+use super::contacts::{
+    Adjacent, ContactData, ContactExtra, ContactList, Slot, WALL_BASE, reserve_for,
+};
 use super::kinematics;
 use super::partner::{Partner, Sides};
 use super::restart::{Kept, RestartState};
@@ -519,11 +521,16 @@ impl Stepper {
             loads.fill(WallLoad::default());
             // Disk scenes under linear laws: one loop (see [`update_disk_slot`]).
             if disks {
+                let pair_law = linear[0].law();
                 for k in 0..slots.len() {
                     if let Some(ahead) = slots.get(k + PREFETCH_AHEAD) {
                         prefetch_partner(cx.bodies, ahead);
                     }
-                    update_disk_slot(&mut slots[k], &mut data[k], &cx, &mut p, loads, linear);
+                    if slots[k].j < WALL_BASE {
+                        update_disk_pair(&mut slots[k], &mut data[k], &cx, &mut p, &pair_law);
+                    } else {
+                        update_disk_slot(&mut slots[k], &mut data[k], &cx, &mut p, loads, linear);
+                    }
                 }
                 *part = p;
                 return;
@@ -717,6 +724,9 @@ impl Stepper {
     /// the sums of the body pass (net force and moment, energies, first non-finite body).
     fn gather_forces(&mut self, wd: &mut Parts, kick: Option<f64>) -> BodyPartial {
         let gravity = wd.gravity;
+        // Disks under linear laws have no contact couples (no rolling part; a disk's area
+        // potential is its depth spring).
+        let couples = !(self.disks && !self.linear_cache.is_empty());
         let list = &*wd.contacts;
         let (data, start, adjacency) = (
             &list.data[..],
@@ -746,22 +756,13 @@ impl Stepper {
                     let g = base + k;
                     let s = &mut state[k];
                     let x = s.pose.position;
-                    let mut f = gravity * mass[g]; // T(3): body force
-                    let mut m = 0.0;
-                    let (mut f_ne, mut m_ne) = (Vec2::zeros(), 0.0);
-                    // An inactive slot's data hold zero forces: no test needed.
-                    for a in &adjacency[start[g] as usize..start[g + 1] as usize] {
-                        let d = &data[a.slot()];
-                        let (sign, r) = (a.sign(), d.point - x);
-                        let fs = d.force * sign;
-                        f += fs; // T(4)
-                        // T(22): r from the centroid to the contact point; plus the contact's
-                        // couple (on j; its opposite on i).
-                        m += cross(r, fs) + d.couple * sign;
-                        let fe = d.force_non_elastic * sign;
-                        f_ne += fe;
-                        m_ne += cross(r, fe) + d.couple_non_elastic * sign;
-                    }
+                    let adj = &adjacency[start[g] as usize..start[g + 1] as usize];
+                    let f0 = gravity * mass[g]; // T(3): body force
+                    let (f, m, f_ne, m_ne) = if couples {
+                        sum_contacts::<true>(adj, data, x, f0)
+                    } else {
+                        sum_contacts::<false>(adj, data, x, f0)
+                    };
                     force[k] = f;
                     torque[k] = m;
                     if let Some(h) = kick {
@@ -789,6 +790,41 @@ impl Stepper {
         }
         sum
     }
+}
+
+/// One body's contact sums from its adjacency `adj` (its slots, in key order, with the sign of
+/// each slot's force on it), its centroid `x` and its body force `f0`: the force `f0 + Σ F`
+/// (T4), the moment `Σ r × F` (T22, `r` from the centroid to the contact point) plus the
+/// contacts' couples, and the same two sums of the forces' non-elastic parts. `COUPLES`
+/// false leaves the couples out (a scene whose contacts have none): adding their ±0 would
+/// change no bit, since a sum that starts at +0 is never −0.
+#[inline(always)]
+fn sum_contacts<const COUPLES: bool>(
+    adj: &[Adjacent],
+    data: &[ContactData],
+    x: Vec2,
+    f0: Vec2,
+) -> (Vec2, f64, Vec2, f64) {
+    let (mut f, mut m) = (f0, 0.0);
+    let (mut f_ne, mut m_ne) = (Vec2::zeros(), 0.0);
+    // An inactive slot's data hold zero forces: no test needed.
+    for a in adj {
+        let d = &data[a.slot()];
+        let (sign, r) = (a.sign(), d.point - x);
+        let fs = d.force * sign;
+        f += fs; // T(4)
+        let fe = d.force_non_elastic * sign;
+        f_ne += fe;
+        if COUPLES {
+            // The contact's couple is on j; its opposite on i.
+            m += cross(r, fs) + d.couple * sign; // T(22)
+            m_ne += cross(r, fe) + d.couple_non_elastic * sign;
+        } else {
+            m += cross(r, fs); // T(22)
+            m_ne += cross(r, fe);
+        }
+    }
+    (f, m, f_ne, m_ne)
 }
 
 /// What a scene keeps beside its slots: pair caches where some pair keeps something in them
@@ -1159,6 +1195,96 @@ fn update_disk_slot(
         Some(laws),
         true,
     );
+}
+
+/// A slot of two disks under the body pairs' linear law `law` (a disk scene's commonest slot):
+/// [`update_disk_slot`] and [`apply_found`] written out for that case alone — no wall, no
+/// sides to decode, no law to look up — with the same operations in the same order, so the
+/// same bits (the golden trajectories and the thread-count tests hold it to that).
+#[inline(always)]
+fn update_disk_pair(
+    slot: &mut Slot,
+    data: &mut ContactData,
+    cx: &SlotContext,
+    p: &mut SlotPartial,
+    law: &Law,
+) {
+    let b = cx.bodies;
+    // The slot's j receives +F, its i gives (see `partner`).
+    let (i, j) = (slot.i as usize, slot.j as usize);
+    let (si, sj) = (&b.state[i], &b.state[j]);
+    let (ri, rj) = (b.bound[i], b.bound[j]);
+    let (state, point, n_, depth) = match overlap_circle_circle(ri, &si.pose, rj, &sj.pose) {
+        Some(l) if l.3 > 0.0 => l,
+        // Separated, or touching without overlap: no force, no history.
+        _ => {
+            if slot.active {
+                p.lost_history += slot.history_energy;
+            }
+            *slot = Slot::with_sub(slot.i, slot.j, slot.sub);
+            *data = ContactData::default(); // zero forces: the gather adds them unconditionally
+            return;
+        }
+    };
+    if state == ContactState::Contained {
+        p.contained += 1;
+    }
+    let t_ = Vec2::new(-n_.y, n_.x);
+    // `kinematics::relative` for a body pair.
+    let velocity = b.point_velocity(j, point - sj.pose.position)
+        - b.point_velocity(i, point - si.pose.position);
+    let inv_mass = b.inv_mass[j] + b.inv_mass[i];
+    let vn = velocity.dot(&n_);
+    let kin = Kinematics {
+        depth,
+        energy_depth: depth,
+        vn,
+        vt: velocity.dot(&t_),
+        m_eff: 1.0 / inv_mass, // T(13)
+        r_eff: f64::NAN,
+        dt: cx.dt,
+        area: None,
+        spin: sj.omega - si.omega,
+        rolling: RollingKinematics {
+            radius: f64::NAN,
+            inertia: f64::NAN,
+            spin_inertia: f64::NAN,
+        },
+    };
+    let mut history = if slot.active {
+        History {
+            shear: slot.shear,
+            rolling: 0.0,
+        }
+    } else {
+        History::default()
+    };
+    let cf = law.force(&kin, &mut history);
+    let f = n_ * cf.normal + t_ * cf.tangential; // T(5): on j
+    let f_ne = n_ * cf.normal_non_elastic + t_ * cf.tangential;
+    p.contacts += 1;
+    p.elastic += cf.elastic_energy;
+    p.history_energy_change += cf.history_energy_change;
+    let scale = rj.min(ri);
+    if depth > p.max_depth_ratio * scale {
+        p.max_depth_ratio = depth / scale; // divide only when the maximum grows
+    }
+    *slot = Slot {
+        i: slot.i,
+        j: slot.j,
+        sub: slot.sub,
+        active: true,
+        state,
+        shear: history.shear,
+        history_energy: cf.history_energy,
+    };
+    *data = ContactData {
+        point,
+        force: f,
+        force_non_elastic: f_ne,
+        couple: cf.couple,
+        couple_non_elastic: cf.couple_non_elastic,
+    };
 }
 
 /// What a slot's contact, as the narrow phase `found` it (state, point, normal, depth and what
