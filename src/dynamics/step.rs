@@ -726,7 +726,7 @@ impl Stepper {
         let gravity = wd.gravity;
         // Disks under linear laws have no contact couples (no rolling part; a disk's area
         // potential is its depth spring).
-        let couples = !(self.disks && !self.linear_cache.is_empty());
+        let couples = !self.disks || self.linear_cache.is_empty();
         let list = &*wd.contacts;
         let (data, start, adjacency) = (
             &list.data[..],
