@@ -524,7 +524,7 @@ impl Stepper {
                 let pair_law = linear[0].law();
                 for k in 0..slots.len() {
                     if let Some(ahead) = slots.get(k + PREFETCH_AHEAD) {
-                        prefetch_partner(cx.bodies, ahead);
+                        prefetch_disk(cx.bodies, ahead);
                     }
                     if slots[k].j < WALL_BASE {
                         update_disk_pair(&mut slots[k], &mut data[k], &cx, &mut p, &pair_law);
@@ -882,6 +882,17 @@ fn prefetch_partner(b: &Bodies, s: &Slot) {
     if let (Some(state), Some(shape)) = (b.state.get(j), b.shape.get(j)) {
         prefetch(state);
         prefetch(shape);
+    }
+}
+
+/// [`prefetch_partner`] for a disk scene, whose pairs read the partner's state and radius
+/// (not its shape).
+#[inline(always)]
+fn prefetch_disk(b: &Bodies, s: &Slot) {
+    let j = s.j as usize;
+    if let (Some(state), Some(radius)) = (b.state.get(j), b.bound.get(j)) {
+        prefetch(state);
+        prefetch(radius);
     }
 }
 
