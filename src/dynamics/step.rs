@@ -521,15 +521,16 @@ impl Stepper {
             loads.fill(WallLoad::default());
             // Disk scenes under linear laws: one loop (see [`update_disk_slot`]).
             if disks {
-                let pair_law = linear[0].law();
                 for k in 0..slots.len() {
                     if let Some(ahead) = slots.get(k + PREFETCH_AHEAD) {
                         prefetch_disk(cx.bodies, ahead);
                     }
-                    if slots[k].j < WALL_BASE {
-                        update_disk_pair(&mut slots[k], &mut data[k], &cx, &mut p, &pair_law);
+                    let (slot, data) = (&mut slots[k], &mut data[k]);
+                    // Body pairs in a copy compiled for them (no wall branch left).
+                    if slot.j < WALL_BASE {
+                        update_disk_slot::<true>(slot, data, &cx, &mut p, loads, linear);
                     } else {
-                        update_disk_slot(&mut slots[k], &mut data[k], &cx, &mut p, loads, linear);
+                        update_disk_wall_slot(slot, data, &cx, &mut p, loads, linear);
                     }
                 }
                 *part = p;
@@ -560,7 +561,7 @@ impl Stepper {
                     None => {
                         let w = cache.as_deref_mut().map(|c| &mut c[k]);
                         if linear.is_empty() {
-                            update_slot::<false>(
+                            update_slot::<false, false>(
                                 slot,
                                 data,
                                 None,
@@ -573,10 +574,17 @@ impl Stepper {
                                 &[],
                             );
                         } else {
-                            // A linear law has no rolling spring.
-                            update_slot::<true>(
-                                slot, data, None, w, None, &cx, &mut p, loads, None, linear,
-                            );
+                            // A linear law has no rolling spring; body pairs in a copy
+                            // compiled for them (no wall branch left).
+                            if slot.j < WALL_BASE {
+                                update_slot::<true, true>(
+                                    slot, data, None, w, None, &cx, &mut p, loads, None, linear,
+                                );
+                            } else {
+                                update_slot::<true, false>(
+                                    slot, data, None, w, None, &cx, &mut p, loads, None, linear,
+                                );
+                            }
                         }
                     }
                 }
@@ -671,7 +679,7 @@ impl Stepper {
                     let mut cache_copy = cache.get(c * SLOT_CHUNK + k).copied();
                     let mut rolling_copy = rolling.get(c * SLOT_CHUNK + k).copied();
                     if slot.active {
-                        update_slot::<false>(
+                        update_slot::<false, false>(
                             &mut copy.0,
                             &mut copy.1,
                             Some(extra),
@@ -1043,7 +1051,7 @@ fn clump_keys(b: &Bodies, i: u32, j: u32, skin: f64, keys: &mut Vec<(u32, u32, u
 /// [`apply_found`]).
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
-fn update_slot<const LINEAR: bool>(
+fn update_slot<const LINEAR: bool, const PAIR: bool>(
     slot: &mut Slot,
     data: &mut ContactData,
     extra: Option<&mut ContactExtra>,
@@ -1069,7 +1077,7 @@ fn update_slot<const LINEAR: bool>(
         spec,
         ..
     } = *cx;
-    let sides = Sides::of_slot(slot.i, slot.j);
+    let sides = sides_of_slot::<PAIR>(slot);
     let governing = match sides.wall() {
         Some(w) => &walls[w].spec,
         None => spec,
@@ -1122,7 +1130,7 @@ fn update_slot<const LINEAR: bool>(
             }
         }
     };
-    apply_found(
+    apply_found::<PAIR>(
         slot,
         data,
         extra,
@@ -1156,7 +1164,7 @@ fn update_lean_slot<const LINEAR: bool>(
 ) {
     let found = lean.map(|c| (c.state, c.point, c.normal, c.depth, Spring::Depth));
     let linear = LINEAR.then_some(laws);
-    apply_found(
+    apply_found::<false>(
         slot,
         data,
         None,
@@ -1170,13 +1178,26 @@ fn update_lean_slot<const LINEAR: bool>(
     );
 }
 
+/// [`update_disk_slot`] for a disk and a wall, out of line (few slots: the pair loop stays short).
+#[inline(never)]
+fn update_disk_wall_slot(
+    slot: &mut Slot,
+    data: &mut ContactData,
+    cx: &SlotContext,
+    p: &mut SlotPartial,
+    loads: &mut [WallLoad],
+    laws: &[LinearDashpots],
+) {
+    update_disk_slot::<false>(slot, data, cx, p, loads, laws);
+}
+
 /// [`update_lean_slot`] under linear laws for a scene of circles alone (and walls): the
 /// geometry straight from the circle kernels ([`overlap_circle_circle`],
 /// [`overlap_wall_circle`]; the wall is the giver, i, as [`sides_of`] has it), with each body's
 /// radius its bounding radius, rather than through the dispatcher's sides and a separate pass:
 /// the same kernels on the same numbers, the same bits.
-#[inline(never)]
-fn update_disk_slot(
+#[inline(always)]
+fn update_disk_slot<const PAIR: bool>(
     slot: &mut Slot,
     data: &mut ContactData,
     cx: &SlotContext,
@@ -1185,7 +1206,7 @@ fn update_disk_slot(
     laws: &[LinearDashpots],
 ) {
     let b = cx.bodies;
-    let sides = Sides::of_slot(slot.i, slot.j);
+    let sides = sides_of_slot::<PAIR>(slot);
     let recv = sides.receiver;
     let (rj, pj) = (b.bound[recv], &b.state[recv].pose);
     let found = match sides.giver {
@@ -1194,7 +1215,7 @@ fn update_disk_slot(
     };
     let found =
         found.map(|(state, point, normal, depth)| (state, point, normal, depth, Spring::Depth));
-    apply_found(
+    apply_found::<PAIR>(
         slot,
         data,
         None,
@@ -1208,94 +1229,22 @@ fn update_disk_slot(
     );
 }
 
-/// A slot of two disks under the body pairs' linear law `law` (a disk scene's commonest slot):
-/// [`update_disk_slot`] and [`apply_found`] written out for that case alone — no wall, no
-/// sides to decode, no law to look up — with the same operations in the same order, so the
-/// same bits (the golden trajectories and the thread-count tests hold it to that).
+/// The sides of `slot` ([`Sides::of_slot`]); `PAIR`: the caller knows the slot pairs two
+/// bodies (not a wall), so that the copy compiled for body pairs has no wall branch left.
 #[inline(always)]
-fn update_disk_pair(
-    slot: &mut Slot,
-    data: &mut ContactData,
-    cx: &SlotContext,
-    p: &mut SlotPartial,
-    law: &Law,
-) {
-    let b = cx.bodies;
-    // The slot's j receives +F, its i gives (see `partner`).
-    let (i, j) = (slot.i as usize, slot.j as usize);
-    let (si, sj) = (&b.state[i], &b.state[j]);
-    let (ri, rj) = (b.bound[i], b.bound[j]);
-    let (state, point, n_, depth) = match overlap_circle_circle(ri, &si.pose, rj, &sj.pose) {
-        Some(l) if l.3 > 0.0 => l,
-        // Separated, or touching without overlap: no force, no history.
-        _ => {
-            if slot.active {
-                p.lost_history += slot.history_energy;
-            }
-            *slot = Slot::with_sub(slot.i, slot.j, slot.sub);
-            *data = ContactData::default(); // zero forces: the gather adds them unconditionally
-            return;
-        }
-    };
-    if state == ContactState::Contained {
-        p.contained += 1;
-    }
-    let t_ = Vec2::new(-n_.y, n_.x);
-    // `kinematics::relative` for a body pair.
-    let velocity = b.point_velocity(j, point - sj.pose.position)
-        - b.point_velocity(i, point - si.pose.position);
-    let inv_mass = b.inv_mass[j] + b.inv_mass[i];
-    let vn = velocity.dot(&n_);
-    let kin = Kinematics {
-        depth,
-        energy_depth: depth,
-        vn,
-        vt: velocity.dot(&t_),
-        m_eff: 1.0 / inv_mass, // T(13)
-        r_eff: f64::NAN,
-        dt: cx.dt,
-        area: None,
-        spin: sj.omega - si.omega,
-        rolling: RollingKinematics {
-            radius: f64::NAN,
-            inertia: f64::NAN,
-            spin_inertia: f64::NAN,
-        },
-    };
-    let mut history = if slot.active {
-        History {
-            shear: slot.shear,
-            rolling: 0.0,
+fn sides_of_slot<const PAIR: bool>(slot: &Slot) -> Sides {
+    debug_assert!(
+        !PAIR || slot.j < WALL_BASE,
+        "a wall slot taken for a body pair"
+    );
+    if PAIR {
+        Sides {
+            receiver: slot.j as usize,
+            giver: Partner::Body(slot.i as usize),
         }
     } else {
-        History::default()
-    };
-    let cf = law.force(&kin, &mut history);
-    let f = n_ * cf.normal + t_ * cf.tangential; // T(5): on j
-    let f_ne = n_ * cf.normal_non_elastic + t_ * cf.tangential;
-    p.contacts += 1;
-    p.elastic += cf.elastic_energy;
-    p.history_energy_change += cf.history_energy_change;
-    let scale = rj.min(ri);
-    if depth > p.max_depth_ratio * scale {
-        p.max_depth_ratio = depth / scale; // divide only when the maximum grows
+        Sides::of_slot(slot.i, slot.j)
     }
-    *slot = Slot {
-        i: slot.i,
-        j: slot.j,
-        sub: slot.sub,
-        active: true,
-        state,
-        shear: history.shear,
-        history_energy: cf.history_energy,
-    };
-    *data = ContactData {
-        point,
-        force: f,
-        force_non_elastic: f_ne,
-        couple: cf.couple,
-        couple_non_elastic: cf.couple_non_elastic,
-    };
 }
 
 /// What a slot's contact, as the narrow phase `found` it (state, point, normal, depth and what
@@ -1304,7 +1253,7 @@ fn update_disk_pair(
 /// body is a circle.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn apply_found(
+fn apply_found<const PAIR: bool>(
     slot: &mut Slot,
     data: &mut ContactData,
     extra: Option<&mut ContactExtra>,
@@ -1325,7 +1274,7 @@ fn apply_found(
         dt,
         ..
     } = *cx;
-    let sides = Sides::of_slot(slot.i, slot.j);
+    let sides = sides_of_slot::<PAIR>(slot);
     let recv = sides.receiver;
     let (wall, giver) = (sides.wall(), sides.giving_body());
     let governing = match wall {
