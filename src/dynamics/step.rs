@@ -521,6 +521,9 @@ impl Stepper {
             loads.fill(WallLoad::default());
             // Disk scenes under linear laws: one loop (see [`update_disk_slot`]).
             if disks {
+                // The body pairs' law (the first) held here, where it stays in registers,
+                // rather than read from the scene's list at every slot.
+                let pair_law = [linear[0]];
                 for k in 0..slots.len() {
                     if let Some(ahead) = slots.get(k + PREFETCH_AHEAD) {
                         prefetch_disk(cx.bodies, ahead);
@@ -528,7 +531,7 @@ impl Stepper {
                     let (slot, data) = (&mut slots[k], &mut data[k]);
                     // Body pairs in a copy compiled for them (no wall branch left).
                     if slot.j < WALL_BASE {
-                        update_disk_slot::<true>(slot, data, &cx, &mut p, loads, linear);
+                        update_disk_slot::<true>(slot, data, &cx, &mut p, loads, &pair_law);
                     } else {
                         update_disk_wall_slot(slot, data, &cx, &mut p, loads, linear);
                     }
