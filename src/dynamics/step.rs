@@ -236,11 +236,19 @@ impl Stepper {
                 .enumerate()
                 .for_each(|(c, (state, part))| {
                     let base = c * BODY_CHUNK;
+                    // The chunk's rows of the other arrays, cut to its length: indexed by `k`
+                    // below with no bounds check left.
+                    let rows = base..base + state.len();
+                    let (force, torque) = (&force[rows.clone()], &torque[rows.clone()]);
+                    let (inv_mass, inv_inertia) =
+                        (&inv_mass[rows.clone()], &inv_inertia[rows.clone()]);
+                    let is_circle = &is_circle[rows.clone()];
+                    let built_at = if fresh { &built_at[rows] } else { &[][..] };
                     let mut p = BodyPartial::default();
                     for (k, s) in state.iter_mut().enumerate() {
                         let g = base + k;
-                        s.vel += force[g] * (h * inv_mass[g]);
-                        s.omega += torque[g] * h * inv_inertia[g];
+                        s.vel += force[k] * (h * inv_mass[k]);
+                        s.omega += torque[k] * h * inv_inertia[k];
                         let d = s.vel * dt;
                         let dth = s.omega * dt;
                         let pos = s.pose.position + d;
@@ -249,7 +257,7 @@ impl Stepper {
                             p.bad.get_or_insert(g);
                             continue;
                         }
-                        s.pose = if is_circle[g] {
+                        s.pose = if is_circle[k] {
                             // A circle's orientation enters no contact: skip its sine and cosine.
                             s.pose.moved(pos, angle)
                         } else {
@@ -261,7 +269,7 @@ impl Stepper {
                         if fresh {
                             // Squared: the same two largest, one square root per chunk
                             // instead of one per body (taken when the chunk is summed).
-                            top_two(&mut p.disp, (pos - built_at[g]).norm_squared());
+                            top_two(&mut p.disp, (pos - built_at[k]).norm_squared());
                         }
                     }
                     *part = p;
@@ -762,13 +770,20 @@ impl Stepper {
             .enumerate()
             .for_each(|(c, (((force, torque), state), part))| {
                 let base = c * BODY_CHUNK;
+                // The chunk's rows of the other arrays, cut to its length (and its slot ranges'
+                // bounds, one more): indexed by `k` below with no bounds check left.
+                let n = state.len();
+                let rows = base..base + n;
+                let (force, torque) = (&mut force[..n], &mut torque[..n]);
+                let (mass, inertia) = (&mass[rows.clone()], &inertia[rows.clone()]);
+                let (inv_mass, inv_inertia) = (&inv_mass[rows.clone()], &inv_inertia[rows]);
+                let start = &start[base..base + n + 1];
                 let mut p = BodyPartial::default();
-                for k in 0..force.len() {
+                for (k, s) in state.iter_mut().enumerate() {
                     let g = base + k;
-                    let s = &mut state[k];
                     let x = s.pose.position;
-                    let adj = &adjacency[start[g] as usize..start[g + 1] as usize];
-                    let f0 = gravity * mass[g]; // T(3): body force
+                    let adj = &adjacency[start[k] as usize..start[k + 1] as usize];
+                    let f0 = gravity * mass[k]; // T(3): body force
                     let (f, m, f_ne, m_ne) = if couples {
                         sum_contacts::<true>(adj, data, x, f0)
                     } else {
@@ -777,15 +792,15 @@ impl Stepper {
                     force[k] = f;
                     torque[k] = m;
                     if let Some(h) = kick {
-                        s.vel += f * (h * inv_mass[g]);
-                        s.omega += m * h * inv_inertia[g];
+                        s.vel += f * (h * inv_mass[k]);
+                        s.omega += m * h * inv_inertia[k];
                         if !(s.vel.x.is_finite() && s.vel.y.is_finite() && s.omega.is_finite()) {
                             p.bad.get_or_insert(g);
                         }
                         p.non_elastic_power += f_ne.dot(&s.vel) + m_ne * s.omega;
-                        p.kinetic += 0.5 * mass[g] * s.vel.norm_squared()
-                            + 0.5 * inertia[g] * s.omega * s.omega;
-                        p.potential -= mass[g] * gravity.dot(&x);
+                        p.kinetic += 0.5 * mass[k] * s.vel.norm_squared()
+                            + 0.5 * inertia[k] * s.omega * s.omega;
+                        p.potential -= mass[k] * gravity.dot(&x);
                     }
                 }
                 *part = p;
