@@ -532,6 +532,7 @@ impl Stepper {
                 // The body pairs' law (the first) held here, where it stays in registers,
                 // rather than read from the scene's list at every slot.
                 let pair_law = [linear[0]];
+                let data = &mut data[..slots.len()]; // (no bounds check on `data[k]`)
                 for k in 0..slots.len() {
                     if let Some(ahead) = slots.get(k + PREFETCH_AHEAD) {
                         prefetch_disk(cx.bodies, ahead);
