@@ -135,7 +135,8 @@ pub struct Kinematics {
     pub vn: f64,
     /// Tangential relative velocity `(v_j − v_i)·t` at the contact point.
     pub vt: f64,
-    /// Effective mass `m* = (1/m_i + 1/m_j)⁻¹` (T13; a wall has infinite mass).
+    /// Effective mass `m* = (1/m_i + 1/m_j)⁻¹` (T13; a wall has infinite mass). Read only by a
+    /// Hertz dashpot and a rolling part (the step leaves it NaN for a law with neither).
     pub m_eff: f64,
     /// Effective radius of curvature `R* = (1/R_i + 1/R_j)⁻¹` (T11; a wall has R = ∞).
     pub r_eff: f64,

@@ -45,15 +45,13 @@ use crate::contact_law::RollingKinematics;
 use crate::contact_law::params::pair_density;
 use crate::geometry::Vec2;
 
-/// The relative motion at a contact point and the pair's mass.
+/// The relative motion at a contact point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Relative {
     /// Velocity of the receiver's material point minus the giver's (a wall's: its velocity).
     pub velocity: Vec2,
     /// Relative spin `ω_receiver − ω_giver` (a wall does not turn).
     pub spin: f64,
-    /// `1/m* = Σ 1/m` (T13; a wall adds nothing).
-    pub inv_mass: f64,
 }
 
 /// The relative motion of the two sides at `point`.
@@ -61,21 +59,25 @@ pub struct Relative {
 pub fn relative(b: &Bodies, walls: &[WallSpec], sides: Sides, point: Vec2) -> Relative {
     let recv = sides.receiver;
     let mut velocity = b.point_velocity(recv, point - b.state[recv].pose.position);
-    let mut inv_mass = b.inv_mass[recv];
     let mut spin = b.state[recv].omega;
     match sides.giver {
         Partner::Body(k) => {
             velocity -= b.point_velocity(k, point - b.state[k].pose.position);
-            inv_mass += b.inv_mass[k];
             spin -= b.state[k].omega;
         }
         Partner::Wall(w) => velocity -= walls[w].velocity,
     }
-    Relative {
-        velocity,
-        spin,
-        inv_mass,
+    Relative { velocity, spin }
+}
+
+/// The pair's `1/m* = Σ 1/m` (T13; a wall adds nothing).
+#[inline(always)]
+pub fn inv_mass(b: &Bodies, sides: Sides) -> f64 {
+    let mut inv_mass = b.inv_mass[sides.receiver];
+    if let Some(k) = sides.giving_body() {
+        inv_mass += b.inv_mass[k];
     }
+    inv_mass
 }
 
 /// The density the pair's per-ρg parameters are scaled by ([`pair_density`]).

@@ -1334,7 +1334,13 @@ fn apply_found<const PAIR: bool>(
     let t_ = Vec2::new(-n_.y, n_.x);
     let rel = kinematics::relative(b, walls, sides, point);
     let vn = rel.velocity.dot(&n_);
-    let m_eff = 1.0 / rel.inv_mass; // T(13)
+    // m* only matters to a Hertz dashpot, a rolling part and a law resolved here (T12–T14):
+    // a law with constant dashpots and no rolling part (`linear`) never reads it.
+    let m_eff = if linear.is_some() {
+        f64::NAN
+    } else {
+        1.0 / kinematics::inv_mass(b, sides) // T(13)
+    };
     let resolved;
     let law = match (linear, laws) {
         (Some(l), _) => {
