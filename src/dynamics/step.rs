@@ -535,7 +535,7 @@ impl Stepper {
                 let data = &mut data[..slots.len()]; // (no bounds check on `data[k]`)
                 for k in 0..slots.len() {
                     if let Some(ahead) = slots.get(k + PREFETCH_AHEAD) {
-                        prefetch_disk(cx.bodies, ahead);
+                        prefetch_partner(cx.bodies, ahead, &cx.bodies.bound);
                     }
                     let (slot, data) = (&mut slots[k], &mut data[k]);
                     // Body pairs in a copy compiled for them (no wall branch left).
@@ -557,7 +557,7 @@ impl Stepper {
             if circles {
                 for (k, (l, slot)) in lean.iter_mut().zip(slots.iter()).enumerate() {
                     if let Some(ahead) = slots.get(k + PREFETCH_AHEAD) {
-                        prefetch_partner(cx.bodies, ahead);
+                        prefetch_partner(cx.bodies, ahead, &cx.bodies.shape);
                     }
                     *l = lean_of(slot, &cx);
                 }
@@ -900,26 +900,16 @@ fn sides_of<'a>(b: &'a Bodies, walls: &'a [WallSpec], sides: Sides) -> (Side<'a>
 /// How many slots ahead the lean pass asks for its second body's data.
 const PREFETCH_AHEAD: usize = 8;
 
-/// Asks the processor to fetch the state and shape of slot `s`'s second body (`j`, not a
-/// wall) into the cache: the first body's follow the slots' order, which the hardware
-/// prefetcher tracks, but `j` jumps between neighbours in the row and rows above.
+/// Asks the processor to fetch the state of slot `s`'s second body (`j`, not a wall) and its
+/// entry of `other` (the shapes; a disk scene: the radii, all its pairs read) into the cache:
+/// the first body's follow the slots' order, which the hardware prefetcher tracks, but `j`
+/// jumps between neighbours in the row and rows above.
 #[inline(always)]
-fn prefetch_partner(b: &Bodies, s: &Slot) {
+fn prefetch_partner<T>(b: &Bodies, s: &Slot, other: &[T]) {
     let j = s.j as usize;
-    if let (Some(state), Some(shape)) = (b.state.get(j), b.shape.get(j)) {
+    if let (Some(state), Some(o)) = (b.state.get(j), other.get(j)) {
         prefetch(state);
-        prefetch(shape);
-    }
-}
-
-/// [`prefetch_partner`] for a disk scene, whose pairs read the partner's state and radius
-/// (not its shape).
-#[inline(always)]
-fn prefetch_disk(b: &Bodies, s: &Slot) {
-    let j = s.j as usize;
-    if let (Some(state), Some(radius)) = (b.state.get(j), b.bound.get(j)) {
-        prefetch(state);
-        prefetch(radius);
+        prefetch(o);
     }
 }
 
