@@ -1057,7 +1057,7 @@ fn clump_keys(b: &Bodies, i: u32, j: u32, skin: f64, keys: &mut Vec<(u32, u32, u
 ///
 /// `LINEAR`: the step's laws are all of the kind [`LinearDashpots`] holds, their numbers in
 /// `laws` (ignored otherwise): this copy is compiled with the law's kinds known (see
-/// [`apply_found`]).
+/// [`apply_found`]). `PAIR`: the slot pairs two bodies ([`sides_of_slot`]).
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn update_slot<const LINEAR: bool, const PAIR: bool>(
@@ -1259,7 +1259,8 @@ fn sides_of_slot<const PAIR: bool>(slot: &Slot) -> Sides {
 /// What a slot's contact, as the narrow phase `found` it (state, point, normal, depth and what
 /// the spring acts on; `None` or a depth ≤ 0: separated), does: the kinematics at the contact
 /// point, the law, the history and the slot's record (see [`update_slot`]). `disks`: every
-/// body is a circle.
+/// body is a circle. `PAIR`: the slot pairs two bodies, so this copy has no wall branch (10⁴
+/// disks: 1005 → 826 instructions per body-step, the sides no longer decoded at every use).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn apply_found<const PAIR: bool>(
