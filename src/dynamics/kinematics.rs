@@ -44,6 +44,7 @@ use super::partner::{Partner, Sides};
 use crate::contact_law::RollingKinematics;
 use crate::contact_law::params::pair_density;
 use crate::geometry::Vec2;
+use crate::geometry::overlap_area::DiskLens;
 
 /// The relative motion at a contact point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -98,6 +99,16 @@ pub fn effective_radius(b: &Bodies, sides: Sides, n: Vec2) -> f64 {
         inv_r += 1.0 / b.curvature_radius(k, n);
     }
     1.0 / inv_r // T(11)
+}
+
+/// R* as the law takes it: the area potential's lens (the equal-area disks', so that its
+/// potential depends on A alone) when the spring acts on one, else [`effective_radius`].
+#[inline]
+pub fn effective_radius_for(b: &Bodies, sides: Sides, n: Vec2, lens: Option<DiskLens>) -> f64 {
+    match lens {
+        Some(lens) => lens.effective_radius(),
+        None => effective_radius(b, sides, n),
+    }
 }
 
 /// The rolling radius and inertias of a contact at `point` with normal `n` (from the giver to
