@@ -24,7 +24,7 @@
 //! scene allows (10⁴ disks: ~40 % fewer per slot than the general copy).
 
 use super::body::Bodies;
-use super::boundary::{WallLoad, WallSpec};
+use super::boundary::{Boundary, BoundaryKind, WallLoad};
 use super::contacts::{ContactData, ContactExtra, ContactList, Slot};
 use super::kinematics;
 use super::members;
@@ -125,7 +125,7 @@ pub(crate) struct ContactPass {
 /// neighbour list's per-body slot ranges (a body's number of slots: the CDT limiter's share).
 pub(crate) struct PassInput<'a> {
     pub bodies: &'a Bodies,
-    pub walls: &'a mut [WallSpec],
+    pub walls: &'a mut [Boundary],
     pub spec: &'a ContactSpec,
     pub g: f64,
     pub dt: f64,
@@ -160,7 +160,7 @@ impl ContactPass {
     /// When every pair of a kind has the same law — one density for all bodies, and no law that
     /// depends on the pair's mass (restitution-tuned dashpots) — resolves the body–body law and
     /// each wall's once instead of at every contact.
-    fn resolve(&mut self, spec: &ContactSpec, walls: &[WallSpec], facts: &SceneFacts, g: f64) {
+    fn resolve(&mut self, spec: &ContactSpec, walls: &[Boundary], facts: &SceneFacts, g: f64) {
         self.laws.clear();
         self.linear.clear();
         let Some(rho) = facts.uniform_density else {
@@ -344,7 +344,7 @@ impl ContactPass {
 #[derive(Clone, Copy)]
 pub(crate) struct PassContext<'a> {
     pub bodies: &'a Bodies,
-    pub walls: &'a [WallSpec],
+    pub walls: &'a [Boundary],
     pub spec: &'a ContactSpec,
     pub g: f64,
     pub dt: f64,
@@ -358,7 +358,7 @@ impl PassContext<'_> {
     fn sides(&self, sides: Sides) -> (Side<'_>, Side<'_>) {
         let b = self.bodies;
         let i = match sides.giver {
-            Partner::Wall(w) => Side::Wall(&self.walls[w].wall),
+            Partner::Wall(w) => self.walls[w].side(),
             Partner::Body(k) => Side::Body(&b.shape[k], &b.state[k].pose),
         };
         let recv = sides.receiver;
@@ -548,7 +548,9 @@ impl Geometry for Disks {
         let recv = sides.receiver;
         let (rj, pj) = (b.bound[recv], &b.state[recv].pose);
         let found = match sides.giver {
-            Partner::Wall(w) => overlap_wall_circle(&cx.walls[w].wall, rj, pj),
+            Partner::Wall(w) => match &cx.walls[w].kind {
+                BoundaryKind::Wall(wall) => overlap_wall_circle(wall, rj, pj),
+            },
             Partner::Body(k) => overlap_circle_circle(b.bound[k], &b.state[k].pose, rj, pj),
         };
         found.map(|(state, point, normal, depth)| (state, point, normal, depth, SpringOn::Depth))
@@ -715,6 +717,7 @@ fn sides_of_slot<const PAIR: bool>(slot: &Slot) -> Sides {
         Sides {
             receiver: slot.j as usize,
             giver: Partner::Body(slot.i as usize),
+            image: None,
         }
     } else {
         slot.sides()

@@ -39,7 +39,7 @@
 //! for a disk on a wall `1.5 m r²` (LIGGGHTS' 2D value).
 
 use super::body::Bodies;
-use super::boundary::WallSpec;
+use super::boundary::Boundary;
 use super::partner::{Partner, Sides};
 use crate::contact_law::RollingKinematics;
 use crate::contact_law::params::pair_density;
@@ -57,7 +57,7 @@ pub struct Relative {
 
 /// The relative motion of the two sides at `point`.
 #[inline(always)]
-pub fn relative(b: &Bodies, walls: &[WallSpec], sides: Sides, point: Vec2) -> Relative {
+pub fn relative(b: &Bodies, walls: &[Boundary], sides: Sides, point: Vec2) -> Relative {
     let recv = sides.receiver;
     let mut velocity = b.point_velocity(recv, point - b.state[recv].pose.position);
     let mut spin = b.state[recv].omega;
@@ -67,6 +67,10 @@ pub fn relative(b: &Bodies, walls: &[WallSpec], sides: Sides, point: Vec2) -> Re
             spin -= b.state[k].omega;
         }
         Partner::Wall(w) => velocity -= walls[w].velocity,
+    }
+    if let Some(image) = sides.image {
+        // The giver's periodic image moves with the cell's shear as well as with the giver.
+        velocity -= image.velocity;
     }
     Relative { velocity, spin }
 }

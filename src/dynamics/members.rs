@@ -4,7 +4,7 @@
 //! the neighbour list decides which member pairs get a slot.
 
 use super::body::Bodies;
-use super::boundary::WallSpec;
+use super::boundary::Boundary;
 use super::contacts::Slot;
 use super::partner::Partner;
 use crate::geometry::{Clump, Pose, Shape};
@@ -19,7 +19,7 @@ use crate::narrow_phase::{LeanContact, Request, Side, clump, overlap_lean};
 /// documented limitation).
 #[cold]
 #[inline(never)]
-pub(crate) fn lean_contact(b: &Bodies, walls: &[WallSpec], slot: &Slot) -> Option<LeanContact> {
+pub(crate) fn lean_contact(b: &Bodies, walls: &[Boundary], slot: &Slot) -> Option<LeanContact> {
     let store = placed(b, slot);
     let (i, j) = sides(b, walls, slot, &store);
     if let Some(lean) = overlap_lean(i, j) {
@@ -64,7 +64,7 @@ fn placed(b: &Bodies, slot: &Slot) -> Placed {
 /// clump replaced by the slot's member from `store` ([`placed`]): a circle at its world centre.
 fn sides<'a>(
     b: &'a Bodies,
-    walls: &'a [WallSpec],
+    walls: &'a [Boundary],
     slot: &Slot,
     store: &'a Placed,
 ) -> (Side<'a>, Side<'a>) {
@@ -77,7 +77,7 @@ fn sides<'a>(
         }
     };
     let i = match sides.giver {
-        Partner::Wall(w) => Side::Wall(&walls[w].wall),
+        Partner::Wall(w) => walls[w].side(),
         Partner::Body(k) => side(k, &store[0]),
     };
     (i, side(sides.receiver, &store[1]))

@@ -21,7 +21,7 @@ pub mod watch;
 pub mod world;
 
 pub use body::{Bodies, BodyInit, BodyState};
-pub use boundary::{Motion, Servo, Span, WallSpec};
+pub use boundary::{Boundary, Motion, Servo, Span};
 pub use partner::{Partner, Sides};
 pub use quiescence::Quiescence;
 pub use restart::{RestartError, RestartState, RunProgress};

@@ -3,10 +3,11 @@
 //! from a restart, and what a scene keeps beside its slots.
 
 use super::body::Bodies;
-use super::boundary::WallSpec;
+use super::boundary::Boundary;
 use super::broad_phase::Grid;
-use super::contacts::{ContactList, WALL_BASE, reserve_for};
+use super::contacts::{ContactList, reserve_for};
 use super::members;
+use super::partner::Partner;
 use super::restart::{Kept, RestartState};
 use crate::contact_law::{ContactSpec, RollingModel};
 use crate::narrow_phase::PairCache;
@@ -36,7 +37,7 @@ impl Builder {
     pub fn rebuild(
         &mut self,
         bodies: &Bodies,
-        walls: &[WallSpec],
+        walls: &[Boundary],
         spec: &ContactSpec,
         clumps: bool,
         list: &mut ContactList,
@@ -60,8 +61,8 @@ impl Builder {
             }
             let (x, r) = (bodies.state[i].pose.position, bodies.bound[i]);
             for (w, ws) in walls.iter().enumerate() {
-                let wj = WALL_BASE + w as u32;
-                let d = ws.wall.signed_distance(x);
+                let wj = Partner::Wall(w).key();
+                let d = ws.signed_distance(x);
                 if d <= r + skin {
                     match bodies.shape[i].clump() {
                         None => list.keys.push((i as u32, wj, 0)),
@@ -80,7 +81,7 @@ impl Builder {
             .extend(bodies.state.iter().map(|s| s.pose.position));
         list.wall_built_at.clear();
         list.wall_built_at
-            .extend(walls.iter().map(|w| w.wall.point));
+            .extend(walls.iter().map(|w| w.line().point));
         lost
     }
 }
@@ -96,7 +97,7 @@ fn skin(bodies: &Bodies) -> f64 {
 /// [`RestartState::check`]).
 pub(crate) fn restore(
     bodies: &Bodies,
-    walls: &[WallSpec],
+    walls: &[Boundary],
     spec: &ContactSpec,
     saved: &RestartState,
     list: &mut ContactList,
@@ -127,7 +128,7 @@ pub(crate) fn restore(
 pub(crate) fn kept(
     shapes: &[crate::geometry::Shape],
     spec: &ContactSpec,
-    walls: &[WallSpec],
+    walls: &[Boundary],
 ) -> Kept {
     let epsd = |spec: &ContactSpec| {
         spec.rolling()

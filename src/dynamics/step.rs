@@ -36,7 +36,7 @@
 
 use super::account::{Diagnostics, Energies};
 use super::body::Bodies;
-use super::boundary::{Motion, WallSpec, servo_velocity};
+use super::boundary::{Boundary, Motion, servo_velocity};
 use super::contact_pass::{ContactPass, PassInput, SceneFacts, SlotPartial};
 use super::contacts::{Adjacent, ContactData, ContactList};
 use super::neighbour_list::{self, Builder};
@@ -101,7 +101,7 @@ struct BodyPartial {
 /// never names the world, which owns it (no import cycle between the two).
 pub(crate) struct Parts<'a> {
     pub bodies: &'a mut Bodies,
-    pub walls: &'a mut [WallSpec],
+    pub walls: &'a mut [Boundary],
     pub contacts: &'a mut ContactList,
     pub energies: &'a mut Energies,
     pub diagnostics: &'a mut Diagnostics,
@@ -244,7 +244,7 @@ impl Stepper {
             if ws.moves() {
                 ws.drift(next_time, dt);
                 if let Some(at) = wd.contacts.wall_built_at.get(k) {
-                    wall_disp = wall_disp.max((ws.wall.point - at).dot(&ws.wall.normal).abs());
+                    wall_disp = wall_disp.max((ws.line().point - at).dot(&ws.line().normal).abs());
                 }
             }
         }
@@ -265,7 +265,7 @@ impl Stepper {
         // (after the second kick): the non-elastic forces' power, summed body by body
         // (Σ_c f·v_rel = Σ_k F_k·v_k + M_k ω_k − Σ_walls F_w·v_w), less the change of the
         // history springs' energy. A moving wall does the work F_w·v_w (see `boundary`).
-        if wd.walls.iter().any(WallSpec::moves) {
+        if wd.walls.iter().any(Boundary::moves) {
             let (mut power, mut power_ne) = (0.0, 0.0);
             for ws in wd.walls.iter() {
                 power += ws.load.force.dot(&ws.velocity);

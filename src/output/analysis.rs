@@ -143,7 +143,7 @@ impl AnalysisOutput {
                 ))?;
             }
             for (k, wall) in world.walls.iter().enumerate() {
-                let (p, n) = (wall.wall.point, wall.wall.normal);
+                let (p, n) = (wall.line().point, wall.line().normal);
                 w.line(format_args!(
                     "{step},{t},{k},{},{},{},{}",
                     p.x, p.y, n.x, n.y

@@ -358,7 +358,7 @@ fn scene_bounds(panels: &[Vec<(Drawn, ColorBy)>]) -> (f64, f64, f64, f64) {
     let (w, h) = (x1 - x0, y1 - y0);
     for (d, _) in panels.iter().flatten() {
         for wall in &d.run.case.walls {
-            let (pt, n) = (wall.wall.point, wall.wall.normal);
+            let (pt, n) = (wall.line().point, wall.line().normal);
             if n.x.abs() < 1e-12 && (pt.y - y0).abs() < 0.5 * h.max(w) {
                 y0 = y0.min(pt.y);
                 y1 = y1.max(pt.y);
@@ -713,8 +713,11 @@ where
     // Walls: a thick line with hatching on the solid side.
     if let Some((d, _)) = runs.first() {
         for w in &d.run.case.walls {
-            let (n, t) = (w.wall.normal, Vec2::new(-w.wall.normal.y, w.wall.normal.x));
-            if let Some((a, b)) = clip_line(w.wall.point, t, bounds) {
+            let (n, t) = (
+                w.line().normal,
+                Vec2::new(-w.line().normal.y, w.line().normal.x),
+            );
+            if let Some((a, b)) = clip_line(w.line().point, t, bounds) {
                 chart
                     .draw_series(std::iter::once(PathElement::new(
                         vec![(a.x, a.y), (b.x, b.y)],
