@@ -140,7 +140,7 @@ fn bad_input_is_refused_with_the_field_named() {
         ),
         (
             format!(r#"[{{"i": {body}, "j": {{"wall": {{"point": [0, 0], "normal": [0, 0]}}}}}}]"#),
-            "pairs[0].j.line().normal",
+            "pairs[0].j.wall.normal",
         ),
         (
             format!(
@@ -177,7 +177,7 @@ fn bad_input_is_refused_with_the_field_named() {
         ),
         (
             r#"[{"i": {"wall": {"point": [1e308, 0], "normal": [-1, 0]}}, "j": {"shape": {"type": "circle", "r": 1}, "position": [-1e308, 0]}}]"#.to_string(),
-            "pairs[0].i.line().point[0]`: 1e308 is outside the accepted range",
+            "pairs[0].i.wall.point[0]`: 1e308 is outside the accepted range",
         ),
         (
             format!(
