@@ -45,7 +45,8 @@ pub fn analysis_row(t: &str, m: &Measures) -> String {
         num(sxy),
         num(p),
         num(q),
-        num(q / p),
+        // q/p is undefined without a mean stress (an empty field, not `inf`).
+        num(if p != 0.0 { q / p } else { f64::NAN }),
         num(m.boundary_stress[0]),
         num(m.boundary_stress[1]),
         num(m.boundary_stress[2]),
