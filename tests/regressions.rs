@@ -839,3 +839,97 @@ mod bug_messages_did_not_say_what_was_meant {
         );
     }
 }
+
+/// Issue 29, item 8. `contacts.csv` left out the couple of a four-crossing contact (the area
+/// law's force acts at the crossings' mean together with a couple): torques rebuilt from the
+/// file were off by 15 × max|F|·lever, and `analyze` (stress) missed the couple. Now the file
+/// has a `couple` column, and the stress takes such a force at its line of action.
+mod bug_contacts_csv_left_out_the_couple_of_deep_contacts {
+    use super::*;
+
+    #[test]
+    fn each_bodys_torque_is_rebuilt_from_contacts_csv() {
+        // A thin ellipse poking through another (their outlines cross four times), no
+        // gravity: the area law acts with a couple. The torque the integrator used is in
+        // state.json; rebuilt from the file's rows it is Σ (p − x) × F + couple, F and the
+        // couple on j, their opposites on i.
+        let dir = scratch("couple");
+        let c = serde_json::json!({
+            "version": 1, "name": "cross", "gravity": [0, 0], "dt": 1e-6, "duration": 1e-5,
+            "output_every": 1,
+            "contact": {"model": "linear", "kn": 1e6, "eta_n": 0, "friction": 0,
+                        "normal_force": "area"},
+            "bodies": [
+                {"shape": {"type": "ellipse", "a": 2, "b": 0.3}, "position": [0, 0], "angle": 0},
+                {"shape": {"type": "ellipse", "a": 2, "b": 0.5}, "position": [1.45, 0.1],
+                 "angle": 1.5}]
+        });
+        let file = write(&dir, "cross.json", &c);
+        let out = dir.join("run");
+        let (code, _, err) = dem2d(&[
+            "run",
+            &file,
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--contacts",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let text = std::fs::read_to_string(out.join("contacts.csv")).unwrap();
+        assert!(text.starts_with("step,t,i,j,px,py,nx,ny,fn,ft,couple,depth,state\n"));
+        let rows: Vec<Vec<&str>> = text
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').collect())
+            .filter(|f: &Vec<&str>| f[0] == "10")
+            .collect();
+        assert_eq!(rows.len(), 1, "{text}");
+        let f: Vec<f64> = rows[0][4..11].iter().map(|v| v.parse().unwrap()).collect();
+        let (px, py, nx, ny, fn_, ft, couple) = (f[0], f[1], f[2], f[3], f[4], f[5], f[6]);
+        assert_eq!(rows[0][12], "deep");
+        let (fx, fy) = (fn_ * nx - ft * ny, fn_ * ny + ft * nx);
+        let state: Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("state.json")).unwrap())
+                .unwrap();
+        let lever = 2.0 * fx.hypot(fy);
+        for (k, sign) in [(0usize, -1.0), (1, 1.0)] {
+            let x = state["bodies"][k]["position"][0].as_f64().unwrap();
+            let y = state["bodies"][k]["position"][1].as_f64().unwrap();
+            let torque = state["state"]["bodies"][k]["torque"].as_f64().unwrap();
+            let rebuilt = sign * ((px - x) * fy - (py - y) * fx + couple);
+            assert!(
+                (rebuilt - torque).abs() < 1e-9 * lever,
+                "body {k}: rebuilt {rebuilt}, the step's {torque}"
+            );
+        }
+        // The couple is no rounding: without it the rebuilt torque is wrong by a thousandth
+        // of |F|·2a and more (a million times the tolerance).
+        assert!(
+            couple.abs() > 1e-3 * lever,
+            "couple {couple}, |F|·2a {lever}"
+        );
+    }
+
+    #[test]
+    fn the_stress_takes_a_deep_contacts_force_at_its_line_of_action() {
+        use dem2d::analysis::FrameContact;
+        use dem2d::dynamics::Partner;
+        use dem2d::geometry::Vec2;
+        // A force F = (0, 1) at the origin with a couple M = 2 is the force alone at (2, 0):
+        // its moment there about the origin is x F_y = 2.
+        let c = FrameContact {
+            i: Partner::Wall(0),
+            j: 0,
+            point: Vec2::zeros(),
+            normal: Vec2::new(0.0, 1.0),
+            force: Vec2::new(0.0, 1.0),
+            couple: 2.0,
+            depth: 0.1,
+            state: "deep".into(),
+        };
+        let p = c.action_point();
+        assert!((p - Vec2::new(2.0, 0.0)).norm() < 1e-15, "{p}");
+        let moment = p.x * c.force.y - p.y * c.force.x;
+        assert!((moment - 2.0).abs() < 1e-15);
+    }
+}
