@@ -396,6 +396,9 @@ fn parse_contact(
 ) -> Result<ContactSpec, FieldError> {
     let field = |k: &str| join(path, k);
     let get = |k: &str| map.get(k);
+    for k in CONTACT_KEYS {
+        super::fields::note_key(path, k);
+    }
     for k in map.keys() {
         if !CONTACT_KEYS.contains(&k.as_str()) {
             return Err(FieldError::new(field(k), "unknown field"));

@@ -25,6 +25,17 @@ pub enum Level {
     Full,
 }
 
+impl Level {
+    /// The name of this level's marked table in the user guide (`dem2d verify --docs`).
+    pub fn table_name(self) -> &'static str {
+        match self {
+            Level::Quick => "verify_quick",
+            Level::Default => "verify",
+            Level::Full => "verify_full",
+        }
+    }
+}
+
 /// One comparison.
 struct Check {
     quantity: String,
@@ -148,8 +159,11 @@ fn packing_checks(ellipses: bool) -> Vec<Check> {
     checks
 }
 
-/// Runs the checks of `level`, prints them; true when all pass.
-pub fn run(level: Level) -> bool {
+/// Runs the checks of `level` and prints them as a Markdown table (the wall time on a line of
+/// its own after it); returns whether all pass, and the table (without the wall time, which is
+/// the machine's and not the code's).
+pub fn run(level: Level) -> (bool, String) {
+    use std::fmt::Write as _;
     let start = Instant::now();
     let mut checks = relative(impacts::normal_rows());
     checks.extend(relative(impacts::oblique_rows(&[40.0, 60.0, 80.0])));
@@ -165,23 +179,23 @@ pub fn run(level: Level) -> bool {
             checks.extend(packing_checks(true));
         }
     }
-    println!("| quantity | dem2d | reference | tolerance | result |");
-    println!("|---|---:|---|---|---|");
+    let mut md = String::from(
+        "| quantity | dem2d | reference | tolerance | result |\n|---|---:|---|---|---|\n",
+    );
     for c in &checks {
-        println!(
+        writeln!(
+            md,
             "| {} | {:.6e} | {} | {} | {} |",
             c.quantity,
             c.value,
             c.reference,
             c.tolerance,
             if c.pass { "pass" } else { "FAIL" }
-        );
+        )
+        .expect("a string");
     }
     let failed = checks.iter().filter(|c| !c.pass).count();
-    println!(
-        "\n{} comparisons, {failed} failed; wall time {:.1} s",
-        checks.len(),
-        start.elapsed().as_secs_f64()
-    );
-    failed == 0
+    writeln!(md, "\n{} comparisons, {failed} failed.", checks.len()).expect("a string");
+    println!("{md}wall time {:.1} s", start.elapsed().as_secs_f64());
+    (failed == 0, md)
 }
