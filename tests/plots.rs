@@ -1,6 +1,6 @@
 //! `dem2d plot` and `dem2d figures`: every kind of plot is written as a well-formed SVG carrying
 //! its title, axis labels with units and legend; a directory that is not a run is refused with
-//! the file named; and `figures --quick` writes every figure and table the README shows.
+//! the file named; and `figures --quick` writes every figure and table the user guide shows.
 //! (Whether the pictures read well is checked by eye on PNGs: `bash .ci/figures`.)
 
 use std::path::{Path, PathBuf};

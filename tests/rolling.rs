@@ -316,7 +316,7 @@ fn rest_time(case: &dem2d::scene::Case, limit: f64) -> (World, Option<f64>) {
 }
 
 /// P Fig. 3: without rolling resistance the thrown circle rolls on and the ellipse rocks on for
-/// ever (README); with EPSD's μ_r = 0.05 both come to rest within the case's 3 s.
+/// ever (docs/src/results/paper-figures.md); with EPSD's μ_r = 0.05 both come to rest within the case's 3 s.
 #[test]
 fn the_thrown_circle_and_ellipse_of_p_fig_3_come_to_rest_with_rolling_resistance() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases");

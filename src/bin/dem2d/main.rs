@@ -35,7 +35,7 @@ const HUGE_PAGE_MIN_BLOCK: usize = 4 << 20;
 /// transparent huge pages (`madvise(MADV_HUGEPAGE)`). A step of a 10⁶-body world streams some
 /// 700 MB through a dozen arrays; on 4 KiB pages each array crosses a page every few hundred
 /// bodies and the processor walks the page tables (its TLB covers ~12 MB): advised, 10⁶ disks
-/// step ~3 % faster (README, "This pass" under "Many bodies"). Debian's default THP mode is
+/// step ~3 % faster (docs/src/lab-notebook.md, "This pass"). Debian's default THP mode is
 /// `madvise`: only advised memory gets huge pages. Advice only — where THP is off or the call
 /// fails, nothing changes — and never affects a result.
 #[inline]
@@ -121,7 +121,7 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Run one of the studies behind the README's tables (rolling-fig3, repose, biaxial) and
+    /// Run one of the studies behind the user guide's tables (rolling-fig3, repose, biaxial) and
     /// print its Markdown table; run from the repository (the studies read `cases/`).
     Study {
         /// Which study.
@@ -366,7 +366,7 @@ enum Command {
         /// Compare the guide's tables with these instead of writing them; fail if they differ.
         #[arg(long)]
         check: bool,
-        /// Fewer sweep points and repetitions (a quick look, not the README's numbers).
+        /// Fewer sweep points and repetitions (a quick look, not the guide's numbers).
         #[arg(long)]
         quick: bool,
         /// Where every SVG is also rendered as PNG (default: WORK/png).

@@ -1,4 +1,4 @@
-//! `dem2d figures`: every figure and table of the README, regenerated from the code.
+//! `dem2d figures`: every figure and table of the user guide, regenerated from the code.
 //!
 //! Runs the paper's cases (into a work directory), draws their figures, sweeps the time step for
 //! the speed-vs-error and stability reports, tabulates the contact kernel's accuracy against the
@@ -61,7 +61,7 @@ pub struct FigureOptions {
     /// Refresh (or check) the user guide's marked tables, in the repository at the current
     /// directory (None: leave the guide alone).
     pub docs: Option<dem2d::output::docs_tables::Mode>,
-    /// Fewer repetitions and sweep points (for a quick look; the README's numbers use the full set).
+    /// Fewer repetitions and sweep points (for a quick look; the guide's numbers use the full set).
     pub quick: bool,
     /// Where each SVG is also rendered as PNG (None: `WORK/png`). Not in `out`: the rendering
     /// depends on the machine's fonts, and `out` holds the same bits on every machine.

@@ -8,7 +8,7 @@
 //!   Saint-Cyr et al. 2012) — on samples of 144 grains, α = 1 and 2; and the packing fraction
 //!   of 300 frictionless bidisperse disks poured into a box against the jamming fraction of that
 //!   mixture.
-//! - `--full` (about half an hour): the biaxial trend on the README's samples (2025 grains,
+//! - `--full` (about half an hour): the biaxial trend on the user guide's samples (2025 grains,
 //!   α = 1, 1.5, 2, 2.5), each α against the next; and the poured frictionless ellipses at
 //!   α = 1.5 against the published maxima of φ_J(α) and the hypostatic plateau of Z_J.
 
@@ -114,7 +114,7 @@ fn biaxial_checks(n_side: usize, aspects: &[f64], strain: f64) -> Vec<Check> {
 }
 
 /// Poured frictionless piles against the jamming literature: disks (α = 1) always, ellipses of
-/// α = 1.5 with `ellipses`. The bands are the published values (see the README's packing
+/// α = 1.5 with `ellipses`. The bands are the published values (see the user guide's packing
 /// section); below them 1 % is allowed for the protocol (gravity deposition with finite
 /// stiffness, not isotropic compression to jamming).
 fn packing_checks(ellipses: bool) -> Vec<Check> {
