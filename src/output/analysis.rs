@@ -1,7 +1,7 @@
-//! `analysis.csv` (the measures of [`crate::analysis`] at each output frame), `contacts.csv`
-//! (every contact at each output frame) and `walls.csv` (the walls' lines at each output frame,
-//! written with the contacts so that a run can be analysed again from its files), and their
-//! readers for `dem2d analyze`.
+//! `analysis.csv` (the measures of [`crate::analysis`] at each output frame) and `contacts.csv`
+//! (every contact at each output frame, so that a run can be analysed again from its files,
+//! with the walls of `walls.csv`, [`super::walls`]), and the reader of `contacts.csv` for
+//! `dem2d analyze`.
 //!
 //! - `analysis.csv`: [`ANALYSIS_HEADER`]; stresses in dyn/cm², compression positive, angles in
 //!   degrees; empty fields are NaN (no wall box, no elongated body, no contact).
@@ -9,7 +9,6 @@
 //!   `w<k>` for wall k), j the receiving body, the point (cm), the unit normal from i to j, the
 //!   normal and tangential force on j (dyn per cm of thickness: `F·n`, `F·t` with
 //!   `t = (−n_y, n_x)`), the overlap δ (cm) and the geometry state.
-//! - `walls.csv`: `step,t,wall,x,y,nx,ny`.
 
 use super::trace::{LineFile, WriteError, time_text};
 use crate::analysis::{self, Frame, FrameContact, Measures, Window};
@@ -21,7 +20,6 @@ pub const ANALYSIS_HEADER: &str = "t,area,sxx,syy,sxy,p,q,q_over_p,boundary_sxx,
 boundary_sxy,packing_fraction,z,z_no_rattlers,rattler_fraction,a_c,theta_c,a_n,theta_n,a_t,\
 theta_t,orientation_order,bodies,contacts";
 pub const CONTACTS_HEADER: &str = "step,t,i,j,px,py,nx,ny,fn,ft,depth,state";
-pub const WALLS_HEADER: &str = "step,t,wall,x,y,nx,ny";
 
 /// A number, or nothing for NaN.
 fn num(x: f64) -> String {
@@ -71,13 +69,13 @@ pub fn analysis_row(t: &str, m: &Measures) -> String {
 /// The writers of a run's analysis outputs (each optional).
 pub struct AnalysisOutput {
     analysis: Option<LineFile>,
-    contacts: Option<(LineFile, LineFile)>,
+    contacts: Option<LineFile>,
     window: Option<Window>,
     last_step: Option<u64>,
 }
 
 impl AnalysisOutput {
-    /// Creates `analysis.csv` when `analysis`, `contacts.csv` and `walls.csv` when `contacts`, in
+    /// Creates `analysis.csv` when `analysis`, `contacts.csv` when `contacts`, in
     /// `dir`; `window` the region of the measures (default: the wall box, else the bodies' extent).
     pub fn create(
         dir: &Path,
@@ -95,9 +93,7 @@ impl AnalysisOutput {
         let c = if contacts {
             let mut c = LineFile::create(&dir.join("contacts.csv"))?;
             c.line(format_args!("{CONTACTS_HEADER}"))?;
-            let mut w = LineFile::create(&dir.join("walls.csv"))?;
-            w.line(format_args!("{WALLS_HEADER}"))?;
-            Some((c, w))
+            Some(c)
         } else {
             None
         };
@@ -123,7 +119,7 @@ impl AnalysisOutput {
             let m = analysis::measure(&frame, self.window);
             a.line(format_args!("{}", analysis_row(&t, &m)))?;
         }
-        if let Some((c, w)) = &mut self.contacts {
+        if let Some(c) = &mut self.contacts {
             for k in &frame.contacts {
                 let i = match k.i {
                     Partner::Body(b) => b.to_string(),
@@ -142,13 +138,6 @@ impl AnalysisOutput {
                     k.state
                 ))?;
             }
-            for (k, wall) in world.walls.iter().enumerate() {
-                let (p, n) = (wall.wall.point, wall.wall.normal);
-                w.line(format_args!(
-                    "{step},{t},{k},{},{},{},{}",
-                    p.x, p.y, n.x, n.y
-                ))?;
-            }
         }
         Ok(())
     }
@@ -157,25 +146,21 @@ impl AnalysisOutput {
         if let Some(a) = &mut self.analysis {
             a.flush()?;
         }
-        if let Some((c, w)) = &mut self.contacts {
+        if let Some(c) = &mut self.contacts {
             c.flush()?;
-            w.flush()?;
         }
         Ok(())
     }
 }
 
-/// Contacts and walls of each output step, read back from `contacts.csv` and `walls.csv`.
+/// Contacts of each output step, read back from `contacts.csv`.
 #[derive(Clone, Debug, Default)]
 pub struct ContactFrames {
     /// `(step, contacts)` in file order.
     pub contacts: Vec<(u64, Vec<FrameContact>)>,
-    /// `(step, [(point, normal)])`.
-    pub walls: Vec<(u64, Vec<(Vec2, Vec2)>)>,
 }
 
-/// Reads `contacts.csv` and (if present) `walls.csv` of a run directory. Errors name the file
-/// and the line.
+/// Reads `contacts.csv` of a run directory. Errors name the file and the line.
 pub fn read_contact_frames(dir: &Path) -> Result<ContactFrames, String> {
     let file = dir.join("contacts.csv");
     let text = std::fs::read_to_string(&file).map_err(|e| {
@@ -186,7 +171,9 @@ pub fn read_contact_frames(dir: &Path) -> Result<ContactFrames, String> {
         )
     })?;
     let mut out = ContactFrames::default();
-    let mut lines = text.lines();
+    // A last line cut short (a run stopped while writing) is left out; so is its frame's
+    // trajectory row, which `RunData` leaves out.
+    let mut lines = super::run_data::whole_lines(&text).0.lines();
     let bad = |n: usize, m: &str| format!("{}: line {n}: {m}", file.display());
     if lines.next() != Some(CONTACTS_HEADER) {
         return Err(bad(1, &format!("expected the header `{CONTACTS_HEADER}`")));
@@ -223,30 +210,6 @@ pub fn read_contact_frames(dir: &Path) -> Result<ContactFrames, String> {
             out.contacts.push((step, Vec::new()));
         }
         out.contacts.last_mut().expect("pushed").1.push(c);
-    }
-    let wfile = dir.join("walls.csv");
-    if let Ok(text) = std::fs::read_to_string(&wfile) {
-        let bad = |n: usize, m: &str| format!("{}: line {n}: {m}", wfile.display());
-        let mut lines = text.lines();
-        if lines.next() != Some(WALLS_HEADER) {
-            return Err(bad(1, &format!("expected the header `{WALLS_HEADER}`")));
-        }
-        for (k, line) in lines.enumerate() {
-            let f: Result<Vec<f64>, _> = line.split(',').map(str::parse::<f64>).collect();
-            let f = f.map_err(|e| bad(k + 2, &format!("not a number: {e}")))?;
-            if f.len() != 7 {
-                return Err(bad(k + 2, &format!("{} fields, expected 7", f.len())));
-            }
-            let step = f[0] as u64;
-            if out.walls.last().is_none_or(|(s, _)| *s != step) {
-                out.walls.push((step, Vec::new()));
-            }
-            out.walls
-                .last_mut()
-                .expect("pushed")
-                .1
-                .push((Vec2::new(f[3], f[4]), Vec2::new(f[5], f[6])));
-        }
     }
     Ok(out)
 }

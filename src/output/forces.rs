@@ -1,18 +1,50 @@
-//! Contact forces of a frame read back from a run, for colouring pictures: the trace holds
-//! positions, angles and velocities, from which the world is rebuilt and its contacts
-//! evaluated once.
+//! Contact forces of a frame read back from a run, for colouring pictures: the forces the run
+//! recorded (`contacts.csv`, written by `dem2d run --contacts`), or else recomputed from the
+//! trace's positions and velocities with the walls where they were at that frame.
 
-use super::run_data::Frame;
+use super::analysis::ContactFrames;
+use super::run_data::RunData;
 use crate::dynamics::{BodyInit, World};
 use crate::geometry::Vec2;
-use crate::scene::Case;
 
-/// The normal contact force on each body of `frame`, `Σ F_n` over its contacts (dyn per unit
-/// thickness), recomputed from the frame's positions and velocities with the case's law. The
+/// The normal contact force on each body at frame `k` of `run`, `Σ F_n` over its contacts (dyn
+/// per unit thickness).
+///
+/// With `recorded` (the run's `contacts.csv`) holding the frame's step: the run's own forces.
+/// Otherwise recomputed from the frame's positions and velocities with the case's law and the
+/// walls placed where they were at that frame ([`RunData::walls_at`]: a moving wall drawn at its
+/// starting point would push every grain past it with the force of an overlap of metres). The
 /// normal force (spring and dashpot) depends only on the state, so it is the run's up to the
 /// time level of the velocity (the run's dashpot sees the half-step velocity); the tangential
 /// force needs the shear history, which the trace does not hold, and is left out.
-pub fn normal_force_per_body(case: &Case, frame: &Frame) -> Vec<f64> {
+pub fn normal_force_per_body(
+    run: &RunData,
+    k: usize,
+    recorded: Option<&ContactFrames>,
+) -> Vec<f64> {
+    let frame = &run.frames[k];
+    let n = frame.bodies.len();
+    let mut sum = vec![0.0; n];
+    let at = recorded.and_then(|r| {
+        let i = r
+            .contacts
+            .binary_search_by_key(&frame.step, |(s, _)| *s)
+            .ok()?;
+        Some(&r.contacts[i].1)
+    });
+    if let Some(contacts) = at {
+        for c in contacts {
+            let fn_ = c.normal_force();
+            if let Some(s) = sum.get_mut(c.j) {
+                *s += fn_;
+            }
+            if let Some(s) = c.i.body().and_then(|i| sum.get_mut(i)) {
+                *s += fn_;
+            }
+        }
+        return sum;
+    }
+    let case = &run.case;
     let bodies: Vec<BodyInit> = case
         .bodies
         .iter()
@@ -25,15 +57,9 @@ pub fn normal_force_per_body(case: &Case, frame: &Frame) -> Vec<f64> {
             ..*init
         })
         .collect();
-    let mut world = World::new(
-        &bodies,
-        case.walls.clone(),
-        case.gravity,
-        case.contact,
-        case.dt,
-    );
+    let (walls, _) = run.walls_at(k);
+    let mut world = World::new(&bodies, walls, case.gravity, case.contact, case.dt);
     world.refresh_contact_extras();
-    let mut sum = vec![0.0; bodies.len()];
     for c in world.contacts.active() {
         let fn_ = c.data.force.dot(&c.extra.normal);
         sum[c.slot.i as usize] += fn_;

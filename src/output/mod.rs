@@ -13,3 +13,4 @@ pub mod state;
 pub mod summary;
 pub mod trace;
 pub mod vtk;
+pub mod walls;

@@ -318,10 +318,17 @@ fn select<'a>(
                     .collect()
             })
             .collect(),
-        ColorBy::Force => outlines
-            .iter()
-            .map(|&i| super::forces::normal_force_per_body(&run.case, &run.frames[i]))
-            .collect(),
+        ColorBy::Force => {
+            // The run's own forces where it recorded them (`--contacts`).
+            let recorded = match run.dir.join("contacts.csv").exists() {
+                true => Some(super::analysis::read_contact_frames(&run.dir).map_err(PlotError)?),
+                false => None,
+            };
+            outlines
+                .iter()
+                .map(|&i| super::forces::normal_force_per_body(run, i, recorded.as_ref()))
+                .collect()
+        }
         ColorBy::Auto | ColorBy::Body | ColorBy::Run => Vec::new(),
     };
     Ok(Drawn {
@@ -357,7 +364,10 @@ fn scene_bounds(panels: &[Vec<(Drawn, ColorBy)>]) -> (f64, f64, f64, f64) {
     }
     let (w, h) = (x1 - x0, y1 - y0);
     for (d, _) in panels.iter().flatten() {
-        for wall in &d.run.case.walls {
+        let Some(&last) = d.outlines.last() else {
+            continue;
+        };
+        for wall in &d.run.walls_at(last).0 {
             let (pt, n) = (wall.wall.point, wall.wall.normal);
             if n.x.abs() < 1e-12 && (pt.y - y0).abs() < 0.5 * h.max(w) {
                 y0 = y0.min(pt.y);
@@ -495,7 +505,9 @@ pub fn scene(path: &Path, panels: &[ScenePanel], opts: &SceneOptions) -> Result<
         left: 60 * S,
         bottom: 45 * S,
         margin: 12 * S,
-        bar: if scale.is_some() { 130 * S } else { 0 },
+        bar: scale
+            .as_ref()
+            .map_or(0, |s| (10 + 40 + 16) * S + s.label_area()),
     };
     let width = S * opts.width.unwrap_or_else(|| {
         // A snapshot: about 8 pixels across the smallest body.
@@ -597,6 +609,21 @@ impl ColorScale {
         }
     }
 
+    /// Width of the bar's label area: its widest tick label (13-point digits are about 8 units
+    /// wide) and the rotated title beside it, so that the two never overlap.
+    fn label_area(&self) -> u32 {
+        let span = self.hi - self.lo;
+        let widest = (0..=20)
+            .map(|k| {
+                tick_label(self.lo + span * k as f64 / 20.0, false, span)
+                    .chars()
+                    .count()
+            })
+            .max()
+            .unwrap_or(1) as u32;
+        (widest * 8 + 34) * S
+    }
+
     fn color(&self, v: f64) -> RGBColor {
         let f = ((v - self.lo) / (self.hi - self.lo)).clamp(0.0, 1.0);
         let stops: &[(f64, (u8, u8, u8))] = if self.signed {
@@ -647,7 +674,7 @@ where
         .margin_bottom((h as i32 - bottom).max(0) as u32)
         .margin_left(10 * S)
         .margin_right(16 * S)
-        .set_label_area_size(LabelAreaPosition::Right, 65 * S)
+        .set_label_area_size(LabelAreaPosition::Right, scale.label_area())
         .build_cartesian_2d(0f64..1f64, scale.lo..scale.hi)
         .map_err(err)?;
     let span = scale.hi - scale.lo;
@@ -710,9 +737,29 @@ where
         .map_err(err)?;
     let bounds = (x0, x1, y0, y1);
     let size = (x1 - x0).max(y1 - y0);
-    // Walls: a thick line with hatching on the solid side.
-    if let Some((d, _)) = runs.first() {
-        for w in &d.run.case.walls {
+    // Walls where they are at the last outline drawn: a thick line with hatching on the solid
+    // side; a moving wall also thin and faint where it was at the earlier outlines.
+    if let Some((d, _)) = runs.first()
+        && let Some(&last) = d.outlines.last()
+    {
+        let now = d.run.walls_at(last).0;
+        for &o in &d.outlines[..d.outlines.len() - 1] {
+            for (w, then) in now.iter().zip(d.run.walls_at(o).0) {
+                if then.wall.point == w.wall.point {
+                    continue;
+                }
+                let t = Vec2::new(-then.wall.normal.y, then.wall.normal.x);
+                if let Some((a, b)) = clip_line(then.wall.point, t, bounds) {
+                    chart
+                        .draw_series(std::iter::once(PathElement::new(
+                            vec![(a.x, a.y), (b.x, b.y)],
+                            BLACK.mix(0.25).stroke_width(S),
+                        )))
+                        .map_err(err)?;
+                }
+            }
+        }
+        for w in &now {
             let (n, t) = (w.wall.normal, Vec2::new(-w.wall.normal.y, w.wall.normal.x));
             if let Some((a, b)) = clip_line(w.wall.point, t, bounds) {
                 chart
@@ -953,6 +1000,20 @@ fn tick_label(v: f64, log: bool, span: f64) -> String {
     // One digit finer than a tenth of the span (plotters puts up to ~10 ticks at 1-2-5 or
     // 2.5 steps), trailing zeros dropped: `2.25`, `2.5`, `3`, never `2` twice.
     let decimals = (1.0 - (span / 10.0).log10().floor()).clamp(0.0, 12.0) as usize;
+    if span >= 1e5 {
+        // Large values in exponent form too: `4.5e5`, not `450000` (long labels run into the
+        // axis title); rounded to the ticks' step.
+        let unit = 10f64.powf((span / 10.0).log10().floor());
+        let r = (v / unit).round() * unit;
+        let digits = (r.abs().log10().floor() - unit.log10()).max(0.0) as usize;
+        let text = format!("{r:.digits$e}");
+        let (mantissa, exp) = text.split_once('e').unwrap_or((&text, "0"));
+        let mantissa = match mantissa.contains('.') {
+            true => mantissa.trim_end_matches('0').trim_end_matches('.'),
+            false => mantissa,
+        };
+        return format!("{mantissa}e{exp}");
+    }
     if decimals > 4 {
         // Small values in exponent form: `4e-6`, `1.2e-5`, not `0.000004`.
         let scale = 10f64.powi(decimals as i32);
@@ -1276,4 +1337,43 @@ where
         draw_legend(&mut chart, position.position())?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 29, item 5: the force colour bar's tick labels (`900000000`) ran into its title.
+    /// Large values are written in exponent form, and the label area is as wide as the widest
+    /// label plus the title.
+    #[test]
+    fn bug_colour_bar_tick_labels_ran_into_its_title() {
+        let span = 9e8;
+        for (v, want) in [
+            (9e8, "9e8"),
+            (4.5e8, "4.5e8"),
+            (1e8, "1e8"),
+            (5e7, "5e7"),
+            (0.0, "0"),
+        ] {
+            assert_eq!(tick_label(v, false, span), want);
+        }
+        let scale = ColorScale::new("force".into(), false, [1e3, 9e8].into_iter());
+        let widest = (0..=20)
+            .map(|k| {
+                tick_label(
+                    scale.lo + (scale.hi - scale.lo) * k as f64 / 20.0,
+                    false,
+                    9e8,
+                )
+            })
+            .map(|s| s.chars().count() as u32)
+            .max()
+            .unwrap();
+        // 13-point digits are under 8 units wide; the rotated title needs about 20 more.
+        assert!(scale.label_area() >= (widest * 8 + 20) * S);
+        // Small spans keep their plain decimals.
+        assert_eq!(tick_label(2.5, false, 10.0), "2.5");
+        assert_eq!(tick_label(45000.0, false, 5e4), "45000");
+    }
 }

@@ -1,5 +1,9 @@
 //! Reading a run directory back (`case.json`, `trajectory.csv`, `increments.csv`,
-//! `summary.json`) for plots and reports.
+//! `summary.json`, and `walls.csv` when the case has walls) for plots and reports.
+//!
+//! A run stopped while writing (killed, or a full disk) can leave a last line without its newline
+//! and a last frame without all of its bodies: those are left out — every frame read has every
+//! body — and [`RunData::incomplete`] says what was left out.
 
 use crate::scene::Case;
 use std::fmt;
@@ -45,6 +49,12 @@ pub struct RunData {
     pub frames: Vec<Frame>,
     pub increments: Vec<Increments>,
     pub summary: serde_json::Value,
+    /// The walls at the output frames (`walls.csv`; `None` for a run without one: no walls, or
+    /// written before dem2d recorded them).
+    pub walls: Option<super::walls::WallFrames>,
+    /// What was left out of files that end part-way through a line or a frame (one note per
+    /// file).
+    pub incomplete: Vec<String>,
 }
 
 /// What went wrong reading a run directory: the file and why.
@@ -69,10 +79,25 @@ fn read(file: &Path) -> Result<String, ReadError> {
     })
 }
 
-/// Parses CSV rows of numbers with the expected header.
-fn rows(file: &Path, header: &str) -> Result<Vec<Vec<f64>>, ReadError> {
+/// The text up to its last newline, and whether anything followed it (a line cut short).
+pub fn whole_lines(text: &str) -> (&str, bool) {
+    match text.rfind('\n') {
+        Some(k) => (&text[..=k], k + 1 < text.len()),
+        None => ("", !text.is_empty()),
+    }
+}
+
+/// Parses CSV rows of numbers with the expected header; a last line without its newline is
+/// left out (the second value says so).
+fn rows(file: &Path, header: &str) -> Result<(Vec<Vec<f64>>, bool), ReadError> {
     let text = read(file)?;
-    let mut lines = text.lines();
+    let (whole, partial) = whole_lines(&text);
+    // A header cut short is no table.
+    let mut lines = if whole.is_empty() {
+        text.lines()
+    } else {
+        whole.lines()
+    };
     let bad = |line: usize, m: String| ReadError {
         file: file.to_path_buf(),
         message: format!("line {line}: {m}"),
@@ -107,7 +132,7 @@ fn rows(file: &Path, header: &str) -> Result<Vec<Vec<f64>>, ReadError> {
         }
         out.push(v);
     }
-    Ok(out)
+    Ok((out, partial && !whole.is_empty()))
 }
 
 impl RunData {
@@ -118,14 +143,26 @@ impl RunData {
             file: case_file.clone(),
             message: e.to_string(),
         })?;
-        let traj = rows(
-            &dir.join("trajectory.csv"),
-            "step,t,body,x,y,angle,vx,vy,omega",
-        )?;
+        let traj_file = dir.join("trajectory.csv");
+        let (traj, traj_partial) = rows(&traj_file, "step,t,body,x,y,angle,vx,vy,omega")?;
+        let n = case.bodies.len();
+        let mut incomplete = Vec::new();
         let mut frames: Vec<Frame> = Vec::new();
-        for r in traj {
+        for (line, r) in traj.iter().enumerate() {
             let (step, t) = (r[0] as u64, r[1]);
             if frames.last().is_none_or(|f| f.step != step) {
+                if let Some(f) = frames.last()
+                    && f.bodies.len() != n
+                {
+                    return Err(ReadError {
+                        file: traj_file,
+                        message: format!(
+                            "step {}: {} bodies, but case.json has {n}",
+                            f.step,
+                            f.bodies.len()
+                        ),
+                    });
+                }
                 frames.push(Frame {
                     step,
                     t,
@@ -133,6 +170,18 @@ impl RunData {
                 });
             }
             let f = frames.last_mut().expect("pushed");
+            if r[2] != f.bodies.len() as f64 {
+                return Err(ReadError {
+                    file: traj_file,
+                    message: format!(
+                        "line {}: body {} where body {} was due (each frame lists bodies 0 to {})",
+                        line + 2,
+                        r[2],
+                        f.bodies.len(),
+                        n.saturating_sub(1)
+                    ),
+                });
+            }
             f.bodies.push(BodyState {
                 x: r[3],
                 y: r[4],
@@ -142,21 +191,46 @@ impl RunData {
                 omega: r[8],
             });
         }
-        let increments = rows(
-            &dir.join("increments.csv"),
+        if let Some(last) = frames.last()
+            && last.bodies.len() != n
+        {
+            incomplete.push(format!(
+                "{}: the last frame (step {}) has {} of the {n} bodies (the run was stopped \
+                 while writing it): drawn up to the frame before",
+                traj_file.display(),
+                last.step,
+                last.bodies.len()
+            ));
+            frames.pop();
+        } else if traj_partial {
+            incomplete.push(format!(
+                "{}: the last line is incomplete (the run was stopped while writing it): left out",
+                traj_file.display()
+            ));
+        }
+        let incs_file = dir.join("increments.csv");
+        let (incs, incs_partial) = rows(
+            &incs_file,
             "step,t,mean_dx,mean_dy,mean_dtheta,unbalanced_force_ratio,contacts",
-        )?
-        .into_iter()
-        .map(|r| Increments {
-            step: r[0] as u64,
-            t: r[1],
-            mean_dx: r[2],
-            mean_dy: r[3],
-            mean_dtheta: r[4],
-            unbalanced_force_ratio: r[5],
-            contacts: r[6] as u64,
-        })
-        .collect();
+        )?;
+        if incs_partial {
+            incomplete.push(format!(
+                "{}: the last line is incomplete (the run was stopped while writing it): left out",
+                incs_file.display()
+            ));
+        }
+        let increments = incs
+            .into_iter()
+            .map(|r| Increments {
+                step: r[0] as u64,
+                t: r[1],
+                mean_dx: r[2],
+                mean_dy: r[3],
+                mean_dtheta: r[4],
+                unbalanced_force_ratio: r[5],
+                contacts: r[6] as u64,
+            })
+            .collect();
         let summary_file = dir.join("summary.json");
         let summary = serde_json::from_str(&read(&summary_file)?).map_err(|e| ReadError {
             file: summary_file.clone(),
@@ -164,9 +238,16 @@ impl RunData {
         })?;
         if frames.is_empty() {
             return Err(ReadError {
-                file: dir.join("trajectory.csv"),
-                message: "no rows".into(),
+                file: traj_file,
+                message: "no complete frame".into(),
             });
+        }
+        let walls = match case.walls.is_empty() {
+            true => None,
+            false => super::walls::read_walls(dir, case.walls.len())?,
+        };
+        if let Some(note) = walls.as_ref().and_then(|w| w.incomplete.clone()) {
+            incomplete.push(note);
         }
         Ok(RunData {
             dir: dir.to_path_buf(),
@@ -174,6 +255,46 @@ impl RunData {
             frames,
             increments,
             summary,
+            walls,
+            incomplete,
         })
+    }
+}
+
+impl RunData {
+    /// The case's walls where they were at frame `k`: as `walls.csv` recorded them at its step,
+    /// else placed by their motion (fixed; `p₀ + t v` at a constant velocity). The second value
+    /// is false when some wall's place is not known (a servo wall in a run without `walls.csv`:
+    /// left at its starting point).
+    pub fn walls_at(&self, k: usize) -> (Vec<crate::dynamics::WallSpec>, bool) {
+        use crate::dynamics::boundary::Motion;
+        let frame = &self.frames[k];
+        let mut walls = self.case.walls.clone();
+        let recorded = self.walls.as_ref().and_then(|w| {
+            let at = w
+                .frames
+                .binary_search_by_key(&frame.step, |f| f.step)
+                .ok()?;
+            Some(&w.frames[at])
+        });
+        if let Some(r) = recorded {
+            for (w, row) in walls.iter_mut().zip(&r.walls) {
+                w.wall.point = row.point;
+                w.velocity = row.velocity;
+            }
+            return (walls, true);
+        }
+        let mut known = true;
+        for w in &mut walls {
+            match w.motion {
+                Motion::Fixed => {}
+                Motion::Velocity(v) => {
+                    w.wall.point = w.start + v * frame.t;
+                    w.velocity = v;
+                }
+                Motion::Servo(_) => known = false,
+            }
+        }
+        (walls, known)
     }
 }

@@ -59,9 +59,16 @@ pub struct EnergyReport {
     pub potential: f64,
     pub elastic: f64,
     pub dissipated: f64,
-    /// kinetic + potential + elastic + dissipated at the start and at the end.
+    /// Work done on the bodies by moving walls since the start of the run (zero when the walls
+    /// are fixed).
+    pub walls_work: f64,
+    /// kinetic + potential + elastic + dissipated at the start and at the end: the second is the
+    /// first plus the walls' work, up to the integration's error.
     pub initial_total: f64,
     pub final_total: f64,
+    /// `final_total − initial_total − walls_work`: energy the integration created (or lost),
+    /// zero in exact arithmetic.
+    pub unaccounted: f64,
 }
 
 /// Counts of contact-steps in the fallback geometries.

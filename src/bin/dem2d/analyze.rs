@@ -1,8 +1,9 @@
 //! `dem2d analyze RUN_DIR`: recomputes `analysis.csv` from a run's files — the bodies' shapes
 //! from `case.json`, their poses from `trajectory.csv`, the contacts from `contacts.csv` and the
-//! walls from `walls.csv` (both written by `dem2d run --contacts`). A run without
-//! `contacts.csv` cannot be analysed (the forces are not in its other files): the command says
-//! so and exits 1. Without `walls.csv`, the walls of `case.json` as given are used.
+//! walls from `walls.csv` (the first written by `dem2d run --contacts`, the second by every run
+//! with walls). A run without `contacts.csv` cannot be analysed (the forces are not in its other
+//! files): the command says so and exits 1. Without `walls.csv` (a run written before dem2d
+//! recorded the walls), the walls of `case.json` as given are used.
 
 use dem2d::analysis::{self, Frame, FrameBody, Window, wall_box};
 use dem2d::output::analysis::{ANALYSIS_HEADER, analysis_row, read_contact_frames};
@@ -36,8 +37,18 @@ pub fn run(dir: &Path, window: Option<&[f64]>, out: Option<&Path>) -> Result<(),
         .enumerate()
         .map(|(k, (s, _))| (*s, k))
         .collect();
-    let walls_by_step: HashMap<u64, usize> = contacts
+    let wall_frames: Vec<(u64, Vec<_>)> = data
         .walls
+        .iter()
+        .flat_map(|w| &w.frames)
+        .map(|f| {
+            (
+                f.step,
+                f.walls.iter().map(|w| (w.point, w.normal)).collect(),
+            )
+        })
+        .collect();
+    let walls_by_step: HashMap<u64, usize> = wall_frames
         .iter()
         .enumerate()
         .map(|(k, (s, _))| (*s, k))
@@ -94,7 +105,7 @@ pub fn run(dir: &Path, window: Option<&[f64]>, out: Option<&Path>) -> Result<(),
         }
         let walls = walls_by_step
             .get(&f.step)
-            .map_or(&case_walls, |&k| &contacts.walls[k].1);
+            .map_or(&case_walls, |&k| &wall_frames[k].1);
         let frame = Frame {
             time: f.t,
             bodies,

@@ -149,8 +149,9 @@ enum Command {
         /// Input file, or `-` for standard input.
         file: String,
     },
-    /// Run a case file: writes trajectory.csv, increments.csv, case.json, state.json and
-    /// summary.json. Given a state file (a run's state.json), continues that run.
+    /// Run a case file: writes trajectory.csv, increments.csv, walls.csv (a case with walls),
+    /// case.json, state.json and summary.json. Given a state file (a run's state.json),
+    /// continues that run.
     Run {
         /// The case file (JSON, "version": 1), or a run's state.json to continue from.
         case: PathBuf,
@@ -191,9 +192,9 @@ enum Command {
         /// case's "output": {"analysis": true} does the same.
         #[arg(long)]
         analysis: bool,
-        /// Also write every contact at the output frames, OUT/contacts.csv (and the walls'
-        /// lines, OUT/walls.csv), which `dem2d analyze` reads. The case's "output":
-        /// {"contacts": true} does the same.
+        /// Also write every contact at the output frames, OUT/contacts.csv, which `dem2d
+        /// analyze` reads (with OUT/walls.csv, which every run with walls writes). The case's
+        /// "output": {"contacts": true} does the same.
         #[arg(long)]
         contacts: bool,
     },
@@ -636,9 +637,10 @@ fn run(args: RunArgs) -> Result<(), Failure> {
         contacts: args.contacts || case.output.contacts,
         analysis_window: case.output.analysis_window,
         restart,
+        input: Some(args.case.to_path_buf()),
     };
     let outcome = run_case(&case, &text, &opts).map_err(|e| match e {
-        RunError::Occupied { .. } => Failure::input(e.to_string()),
+        RunError::Occupied { .. } | RunError::Locked { .. } => Failure::input(e.to_string()),
         RunError::State(_) => Failure::input(format!("{name}: {e}")),
         RunError::Io(_) => Failure::failed(e.to_string()),
     })?;
@@ -770,6 +772,16 @@ fn plot(run_dir: &std::path::Path, kind: PlotKind, args: PlotArgs) -> Result<(),
             "dem2d: warning: {}: no status (written by an older dem2d)",
             run_dir.join("summary.json").display()
         )),
+    }
+    for note in &run.incomplete {
+        say(&format!("dem2d: warning: {note}"));
+    }
+    if matches!(kind, PlotKind::Scene) && !run.walls_at(run.frames.len() - 1).1 {
+        say(&format!(
+            "dem2d: warning: {}: no walls.csv (a run by an older dem2d): its servo walls are \
+             drawn at their starting points",
+            run_dir.display()
+        ));
     }
     let name = match kind {
         PlotKind::Scene => "scene",

@@ -4,14 +4,27 @@
 //! `increments.csv`, `case.json`, `state.json` and `summary.json` into the output directory.
 //!
 //! # What a run leaves behind
+//! - One run at a time writes into a directory: the run holds a lock on `DIR/.dem2d.lock`
+//!   (`flock`, released by the kernel however the process ends) from before it touches anything
+//!   until its last file is written; a second run into the directory is refused, naming the
+//!   first (its process id and case). Two runs can otherwise interleave their files: one case's
+//!   trajectory beside another's summary and state.
 //! - A directory holding an earlier run's outputs is refused unless `overwrite` is set; then
 //!   those outputs are removed first (`summary.json` before anything else), so that nothing of
-//!   the earlier run can be mistaken for this one's.
+//!   the earlier run can be mistaken for this one's — except the file the run reads its case or
+//!   state from (`dem2d run DIR/state.json --out DIR --overwrite`): it stays until this run's own
+//!   replaces it (atomically, a temporary file renamed over it), so that a run killed on the way,
+//!   or a full disk, still leaves the state it started from. `case.json` is replaced the same way.
 //! - `summary.json` is written atomically with status `running` before the first step, and at
 //!   the end with one of `completed`, `at_rest`, `max_steps`, `blowup`, `interrupted`,
 //!   `io_error` (see [`Status`]). A summary that still says `running` belongs to a run that was
 //!   killed.
 //! - The CSV files always end with a whole line; after a blow-up they hold everything up to it.
+//!   `walls.csv` ([`dem2d::output::walls`]: each wall's position, velocity, load and stress) is
+//!   written at the trajectory's frames by every run whose case has walls.
+//! - The summary's energies include the work the moving walls did on the bodies (`walls_work`):
+//!   `final_total − initial_total − walls_work` is the energy the integration created
+//!   (`unaccounted`, zero in exact arithmetic).
 //! - `state.json` (atomically, before the final summary) holds the state the run ended in, from
 //!   which `dem2d run OUT/state.json` continues exactly (see [`dem2d::output::state`]). It is
 //!   written whatever the status, but for `blowup` (a non-finite or unphysical state is nothing
@@ -30,6 +43,7 @@ use dem2d::output::progress::{self, Progress};
 use dem2d::output::summary::{DeepCounts, EnergyReport, FinalBody, Status, Summary, write_summary};
 use dem2d::output::trace::{IncrementsWriter, TrajectoryWriter, WriteError, time_value};
 use dem2d::output::vtk::VtkWriter;
+use dem2d::output::walls::WallsWriter;
 use dem2d::scene::Case;
 use std::fmt;
 use std::io;
@@ -62,14 +76,18 @@ pub struct RunOptions {
     pub analysis_window: Option<[f64; 4]>,
     /// Continue from this state (a state file's), instead of starting at t = 0.
     pub restart: Option<RestartState>,
+    /// The file the case (or the state) was read from: never removed from the output directory
+    /// before this run's own file replaces it.
+    pub input: Option<PathBuf>,
 }
 
 /// The files a run writes (and `dem2d plot`'s default outputs, drawn from them): what is
 /// removed from a directory before a run replaces an earlier one. The summary comes first.
-pub const OUTPUT_FILES: [&str; 13] = [
+pub const OUTPUT_FILES: [&str; 14] = [
     "summary.json",
     "summary.json.tmp",
     "case.json",
+    "case.json.tmp",
     "state.json",
     "state.json.tmp",
     "trajectory.csv",
@@ -122,6 +140,8 @@ pub struct RunOutcome {
 pub enum RunError {
     /// The directory holds these outputs of an earlier run, and overwriting was not asked for.
     Occupied { dir: PathBuf, files: Vec<String> },
+    /// Another run is writing into the directory (what its lock file says of it).
+    Locked { dir: PathBuf, holder: String },
     /// The directory, `case.json` or the first `summary.json` could not be written.
     Io(WriteError),
     /// The state to continue from does not fit the case.
@@ -137,6 +157,12 @@ impl fmt::Display for RunError {
                  or choose another --out",
                 dir.display(),
                 files.join(", ")
+            ),
+            RunError::Locked { dir, holder } => write!(
+                f,
+                "{}: another dem2d run is writing into this directory ({holder}); wait for it to \
+                 end, or choose another --out",
+                dir.display()
             ),
             RunError::Io(e) => e.fmt(f),
             RunError::State(e) => write!(f, "{e}"),
@@ -182,9 +208,130 @@ pub fn default_out_dir(case: &Case) -> PathBuf {
     Path::new("runs").join(file_name_component(&case.name))
 }
 
+/// The lock a run holds on its output directory (see the module documentation): an open
+/// `DIR/.dem2d.lock` with an exclusive `flock`. Dropping it removes the file and releases the
+/// lock (and so does the end of the process, however it ends: a lock file left by a killed run
+/// locks nothing).
+pub struct DirLock {
+    file: std::fs::File,
+    path: PathBuf,
+}
+
+/// The lock file's name in an output directory.
+pub const LOCK_FILE: &str = ".dem2d.lock";
+
+impl DirLock {
+    /// Takes the lock of `dir` (which exists), or says who holds it.
+    pub fn acquire(dir: &Path, case_name: &str) -> Result<DirLock, RunError> {
+        use std::io::{Read, Seek, Write};
+        use std::os::unix::fs::MetadataExt;
+        use std::os::unix::io::AsRawFd;
+        let path = dir.join(LOCK_FILE);
+        loop {
+            let mut file = std::fs::OpenOptions::new()
+                .read(true)
+                .write(true)
+                .create(true)
+                .truncate(false)
+                .open(&path)
+                .map_err(io_at(&path))?;
+            // SAFETY: flock on a descriptor this function owns; no memory is involved.
+            let locked = unsafe { libc::flock(file.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) };
+            if locked != 0 {
+                let mut holder = String::new();
+                let _ = file.read_to_string(&mut holder);
+                let holder = holder.trim();
+                return Err(RunError::Locked {
+                    dir: dir.to_path_buf(),
+                    holder: if holder.is_empty() {
+                        "a run that has not yet said who it is".into()
+                    } else {
+                        holder.to_string()
+                    },
+                });
+            }
+            // The holder before us may have removed the file between our open and our lock: a
+            // lock on a file no longer at `path` locks nothing: try again.
+            let same = match (file.metadata(), path.metadata()) {
+                (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+                _ => false,
+            };
+            if !same {
+                continue;
+            }
+            let me = format!(
+                "process {}, case `{case_name}`, started {}",
+                std::process::id(),
+                utc_now()
+            );
+            file.set_len(0)
+                .and_then(|()| file.rewind())
+                .and_then(|()| file.write_all(me.as_bytes()))
+                .map_err(io_at(&path))?;
+            return Ok(DirLock { file, path });
+        }
+    }
+}
+
+impl Drop for DirLock {
+    fn drop(&mut self) {
+        // Removed while still held: a run waiting on this file then finds it gone and retries.
+        let _ = std::fs::remove_file(&self.path);
+        let _ = &self.file;
+    }
+}
+
+/// The time now as `YYYY-MM-DD hh:mm:ss UTC` (the civil date of the days since the Unix epoch:
+/// Hinnant's `civil_from_days`).
+fn utc_now() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs()) as i64;
+    let (days, rest) = (secs.div_euclid(86_400), secs.rem_euclid(86_400));
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!(
+        "{y:04}-{m:02}-{d:02} {:02}:{:02}:{:02} UTC",
+        rest / 3600,
+        rest % 3600 / 60,
+        rest % 60
+    )
+}
+
+/// True when `a` and `b` are the same file (both exist).
+fn same_file(a: &Path, b: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    match (a.metadata(), b.metadata()) {
+        (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+        _ => false,
+    }
+}
+
+/// Writes `text` to `dir/name` atomically: into `name.tmp`, synced, renamed over it.
+fn write_atomically(dir: &Path, name: &str, text: &str) -> io::Result<()> {
+    use std::io::Write;
+    let tmp = dir.join(format!("{name}.tmp"));
+    let result = std::fs::File::create(&tmp).and_then(|mut f| {
+        f.write_all(text.as_bytes())?;
+        f.sync_all()
+    });
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(e);
+    }
+    std::fs::rename(&tmp, dir.join(name))
+}
+
 /// Refuses a directory holding an earlier run's outputs, or (with `overwrite`) removes them,
-/// the summary first.
-fn prepare_dir(dir: &Path, overwrite: bool) -> Result<(), RunError> {
+/// the summary first — all but `input`, the file this run reads, which its own output replaces.
+fn prepare_dir(dir: &Path, overwrite: bool, input: Option<&Path>) -> Result<(), RunError> {
     let mut present: Vec<PathBuf> = OUTPUT_FILES
         .into_iter()
         .map(|f| dir.join(f))
@@ -214,6 +361,9 @@ fn prepare_dir(dir: &Path, overwrite: bool) -> Result<(), RunError> {
         });
     }
     for path in present {
+        if input.is_some_and(|i| same_file(i, &path)) {
+            continue;
+        }
         std::fs::remove_file(&path).map_err(io_at(&path))?;
     }
     Ok(())
@@ -268,10 +418,12 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
         .map_err(|e| RunError::State(format!("field `state.{}`: {}", e.path, e.message)))?,
     };
     let progress = opts.restart.as_ref().and_then(|s| s.run.clone());
-    prepare_dir(dir, opts.overwrite)?;
     std::fs::create_dir_all(dir).map_err(io_at(dir))?;
+    // Held until the function returns, after the last file.
+    let _lock = DirLock::acquire(dir, &case.name)?;
+    prepare_dir(dir, opts.overwrite, opts.input.as_deref())?;
     let case_file = dir.join("case.json");
-    std::fs::write(&case_file, case_text).map_err(io_at(&case_file))?;
+    write_atomically(dir, "case.json", case_text).map_err(io_at(&case_file))?;
     let dt_critical = estimate_critical_dt(
         &world.bodies,
         &world.spec,
@@ -328,6 +480,13 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
     let result = match TrajectoryWriter::create(&traj_file)
         .and_then(|t| Ok((t, IncrementsWriter::create(&incs_file)?)))
         .and_then(|(t, i)| {
+            let walls = match world.walls.is_empty() {
+                true => None,
+                false => Some(WallsWriter::create(dir)?),
+            };
+            Ok((t, i, walls))
+        })
+        .and_then(|(t, i, walls)| {
             let vtk = match opts.vtk_every {
                 Some(_) => Some(VtkWriter::create(dir, &world)?),
                 None => None,
@@ -342,15 +501,21 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
                 )?),
                 false => None,
             };
-            Ok((t, i, vtk, analysis))
+            Ok((t, i, walls, vtk, analysis))
         }) {
         Err(e) => Err(e),
-        Ok((mut traj, mut incs, mut vtk, mut analysis)) => {
+        Ok((mut traj, mut incs, mut walls, mut vtk, mut analysis)) => {
             let stopped = step_loop(
                 case,
                 opts,
                 &mut world,
-                (&mut traj, &mut incs, vtk.as_mut(), analysis.as_mut()),
+                Writers {
+                    traj: &mut traj,
+                    incs: &mut incs,
+                    walls: walls.as_mut(),
+                    vtk: vtk.as_mut(),
+                    analysis: analysis.as_mut(),
+                },
                 &mut counters,
                 &mut last_label,
             );
@@ -361,6 +526,10 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
                 .write_labelled(&world, label)
                 .and_then(|()| traj.flush());
             let incs_done = incs.flush();
+            let walls_done = match &mut walls {
+                Some(w) => w.write(&world, label).and_then(|()| w.flush()),
+                None => Ok(()),
+            };
             let analysis_done = match &mut analysis {
                 Some(a) if last_label.is_none() => {
                     a.write(&mut world, label).and_then(|()| a.flush())
@@ -377,6 +546,7 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
             stopped.and_then(|stop| {
                 traj_done
                     .and(incs_done)
+                    .and(walls_done)
                     .and(vtk_done)
                     .and(analysis_done)
                     .map(|()| stop)
@@ -505,18 +675,28 @@ pub fn signal_name(sig: i32) -> String {
     }
 }
 
+/// The files the step loop writes into.
+struct Writers<'a> {
+    traj: &'a mut TrajectoryWriter,
+    incs: &'a mut IncrementsWriter,
+    walls: Option<&'a mut WallsWriter>,
+    vtk: Option<&'a mut VtkWriter>,
+    analysis: Option<&'a mut AnalysisOutput>,
+}
+
 /// The steps; returns how they ended. `last_label` is set when the world's state belongs to a
 /// step that failed part-way (a non-finite state found inside the step).
 fn step_loop(
     case: &Case,
     opts: &RunOptions,
     world: &mut World,
-    (traj, incs, mut vtk, mut analysis): (
-        &mut TrajectoryWriter,
-        &mut IncrementsWriter,
-        Option<&mut VtkWriter>,
-        Option<&mut AnalysisOutput>,
-    ),
+    Writers {
+        traj,
+        incs,
+        mut walls,
+        mut vtk,
+        mut analysis,
+    }: Writers,
     counters: &mut Counters,
     last_label: &mut Option<u64>,
 ) -> Result<Stop, WriteError> {
@@ -530,7 +710,11 @@ fn step_loop(
         .map_or(case_steps, |m| first.saturating_add(m).min(case_steps));
     let thin = steps.div_ceil(MAX_INCREMENT_ROWS).max(1);
     let vtk_every = opts.vtk_every.unwrap_or(u64::MAX).max(1);
-    traj.write(world)?;
+    // The first frame on disk at once: a run killed at any later moment leaves one whole frame.
+    traj.write(world).and_then(|()| traj.flush())?;
+    if let Some(w) = walls.as_deref_mut() {
+        w.write(world, world.step).and_then(|()| w.flush())?;
+    }
     if let Some(v) = vtk.as_deref_mut() {
         v.write(world)?;
     }
@@ -572,6 +756,9 @@ fn step_loop(
         }
         if s % case.output_every == 0 {
             traj.write(world)?;
+            if let Some(w) = walls.as_deref_mut() {
+                w.write(world, world.step)?;
+            }
             world.network_critical_dt();
             if let Some(a) = analysis.as_deref_mut() {
                 a.write(world, world.step)?;
@@ -766,8 +953,10 @@ fn summarize(
             potential: e.potential,
             elastic: e.elastic,
             dissipated: e.dissipated,
+            walls_work: e.boundary_work,
             initial_total,
             final_total: e.total(),
+            unaccounted: e.total() - initial_total - e.boundary_work,
         },
         unbalanced_force_ratio: unbalanced.0,
         unbalanced_moment_ratio: unbalanced.1,
