@@ -15,7 +15,7 @@
 use dem2d::contact_law::{
     ContactSpec, LinearDamping, NormalForce, RollingModel, RollingPart, Scaled,
 };
-use dem2d::dynamics::{BodyInit, WallSpec, World};
+use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::{Shape, Vec2, Wall};
 use std::f64::consts::PI;
 
@@ -55,7 +55,7 @@ fn disk_on_floor(r: f64, v: f64, gravity: Vec2, spec: ContactSpec, dt: f64) -> W
         omega: -v / (r - delta),
         density: 1.0,
     };
-    let floor = WallSpec::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), spec);
+    let floor = Boundary::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), spec);
     World::new(&[body], vec![floor], gravity, spec, dt)
 }
 

@@ -42,11 +42,12 @@
 //! for a disk on a wall `1.5 m r²` (LIGGGHTS' 2D value).
 
 use super::body::Bodies;
-use super::boundary::WallSpec;
+use super::boundary::Boundary;
 use super::partner::{Partner, Sides};
 use crate::contact_law::RollingKinematics;
 use crate::contact_law::params::pair_density;
 use crate::geometry::Vec2;
+use crate::geometry::overlap_area::DiskLens;
 
 /// The relative motion at a contact point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -59,7 +60,7 @@ pub struct Relative {
 
 /// The relative motion of the two sides at `point`.
 #[inline(always)]
-pub fn relative(b: &Bodies, walls: &[WallSpec], sides: Sides, point: Vec2) -> Relative {
+pub fn relative(b: &Bodies, walls: &[Boundary], sides: Sides, point: Vec2) -> Relative {
     let recv = sides.receiver;
     let mut velocity = b.point_velocity(recv, point - b.state[recv].pose.position);
     let mut spin = b.state[recv].omega;
@@ -69,6 +70,10 @@ pub fn relative(b: &Bodies, walls: &[WallSpec], sides: Sides, point: Vec2) -> Re
             spin -= b.state[k].omega;
         }
         Partner::Wall(w) => velocity -= walls[w].velocity,
+    }
+    if let Some(image) = sides.image {
+        // The giver's periodic image moves with the cell's shear as well as with the giver.
+        velocity -= image.velocity;
     }
     Relative { velocity, spin }
 }
@@ -101,6 +106,16 @@ pub fn effective_radius(b: &Bodies, sides: Sides, n: Vec2) -> f64 {
         inv_r += 1.0 / b.curvature_radius(k, n);
     }
     1.0 / inv_r // T(11)
+}
+
+/// R* as the law takes it: the area potential's lens (the equal-area disks', so that its
+/// potential depends on A alone) when the spring acts on one, else [`effective_radius`].
+#[inline]
+pub fn effective_radius_for(b: &Bodies, sides: Sides, n: Vec2, lens: Option<DiskLens>) -> f64 {
+    match lens {
+        Some(lens) => lens.effective_radius(),
+        None => effective_radius(b, sides, n),
+    }
 }
 
 /// The rolling radius and inertias of a contact at `point` with normal `n` (from the giver to

@@ -24,7 +24,7 @@ use super::ranges::{Placed, SpecContext, check_extent, check_spec, check_steps};
 use crate::contact_law::{
     ContactSpec, LinearDamping, NormalForce, RollingModel, RollingPart, Scaled,
 };
-use crate::dynamics::{BodyInit, Motion, Servo, Span, WallSpec};
+use crate::dynamics::{BodyInit, Boundary, Motion, Servo, Span};
 use crate::geometry::Vec2;
 use serde_json::{Map, Value};
 
@@ -50,7 +50,7 @@ pub struct Case {
     /// "contacts": true, "analysis_window": [x0, x1, y0, y1]}`).
     pub output: OutputSpec,
     pub contact: ContactSpec,
-    pub walls: Vec<WallSpec>,
+    pub walls: Vec<Boundary>,
     pub bodies: Vec<BodyInit>,
 }
 
@@ -176,7 +176,7 @@ impl Case {
                 if let Motion::Servo(s) = motion {
                     spans.push((k, s.span));
                 }
-                walls.push(WallSpec::moving(wall, spec.unwrap_or(contact), motion));
+                walls.push(Boundary::moving(wall, spec.unwrap_or(contact), motion));
             }
             for (k, span) in spans {
                 check_span(&walls, k, &span)?;
@@ -224,7 +224,7 @@ impl Case {
             .collect();
         placed.extend(walls.iter().enumerate().map(|(w, ws)| Placed::Wall {
             path: index("walls", w),
-            point: ws.wall.point,
+            point: ws.line().point,
         }));
         check_extent(&placed)?;
         check_contact_ranges(&contact, &walls, &bodies, gravity)?;
@@ -292,7 +292,7 @@ impl Case {
 /// walls that do not override it) and each wall's own, for every density of the scene.
 fn check_contact_ranges(
     contact: &ContactSpec,
-    walls: &[WallSpec],
+    walls: &[Boundary],
     bodies: &[BodyInit],
     gravity: Vec2,
 ) -> Result<(), FieldError> {
@@ -682,12 +682,12 @@ fn wall_motion(w: &mut Obj) -> Result<Motion, FieldError> {
 }
 
 /// A servo span between two walls must name two other walls that cross the servo wall's line.
-fn check_span(walls: &[WallSpec], k: usize, span: &Span) -> Result<(), FieldError> {
+fn check_span(walls: &[Boundary], k: usize, span: &Span) -> Result<(), FieldError> {
     let Span::Between(a, b) = *span else {
         return Ok(());
     };
     let at = format!("{}.servo.span", index("walls", k));
-    let me = &walls[k].wall;
+    let me = walls[k].line();
     let t = Vec2::new(-me.normal.y, me.normal.x);
     if a == b {
         return Err(FieldError::new(at, "must name two different walls"));
@@ -708,7 +708,7 @@ fn check_span(walls: &[WallSpec], k: usize, span: &Span) -> Result<(), FieldErro
                 "must name two other walls, not this one",
             ));
         }
-        if walls[w].wall.normal.dot(&t).abs() < 1e-6 {
+        if walls[w].line().normal.dot(&t).abs() < 1e-6 {
             return Err(FieldError::new(
                 at,
                 format!("wall {w} is parallel to this wall: their lines do not cross"),

@@ -13,7 +13,8 @@ use super::fields::{FieldError, Obj, index, join, parse_json, type_of};
 use crate::dynamics::World;
 use crate::dynamics::account::{Diagnostics, Energies};
 use crate::dynamics::boundary::WallLoad;
-use crate::dynamics::contacts::{ContactData, Slot, WALL_BASE};
+use crate::dynamics::contacts::{ContactData, Slot};
+use crate::dynamics::partner::{MAX_INDEX, Partner};
 use crate::dynamics::restart::{
     BodyRestart, RestartState, RunProgress, SlotRestart, WallRestart, state_from_name,
 };
@@ -332,13 +333,13 @@ fn parse_contact(v: &Value, path: &str) -> Result<SlotRestart, FieldError> {
     let index_of = |v: &Value, p: &str| {
         u32::try_from(whole(v, p)?)
             .ok()
-            .filter(|&x| x < WALL_BASE)
+            .filter(|&x| x < MAX_INDEX)
             .ok_or_else(|| FieldError::new(p, "is beyond the largest index"))
     };
     let i = c.req_with("i", index_of)?;
     let j = match (c.has("j"), c.has("wall")) {
         (true, false) => c.req_with("j", index_of)?,
-        (false, true) => WALL_BASE + c.req_with("wall", index_of)?,
+        (false, true) => Partner::Wall(c.req_with("wall", index_of)? as usize).key(),
         _ => {
             return Err(FieldError::new(
                 path,

@@ -152,10 +152,10 @@ pub fn run(write: bool) -> String {
         .collect();
     let (_, _, width0, height0) = stresses(&w);
     let box_ = [
-        w.walls[2].wall.point.x,
-        w.walls[3].wall.point.x,
-        w.walls[0].wall.point.y,
-        w.walls[1].wall.point.y,
+        w.walls[2].line().point.x,
+        w.walls[3].line().point.x,
+        w.walls[0].line().point.y,
+        w.walls[1].line().point.y,
     ];
     let v = round6(0.5 * STRAIN_RATE * height0);
     let shear = case_json(
