@@ -432,7 +432,7 @@ fn an_ellipse_rests_on_slopes_up_to_mu_r_plus_its_shapes_own_limit() {
             omega: 0.0,
             density: 1.0,
         };
-        let floor = WallSpec::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), law);
+        let floor = Boundary::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), law);
         let gravity = Vec2::new(G * beta.sin(), -G * beta.cos());
         let mut w = World::new(&[body], vec![floor], gravity, law, 1e-5);
         for _ in 0..50_000 {
