@@ -16,7 +16,7 @@
 //! their own double-double reference are in `tests/polygons.rs`.
 
 use dem2d::contact_law::{ContactSpec, EquivalentOverlap, LinearDamping, NormalForce, Scaled};
-use dem2d::dynamics::{BodyInit, WallSpec, World};
+use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::overlap_area::DiskLens;
 use dem2d::geometry::{Polygon, Pose, Shape, Vec2, Wall};
 use dem2d::narrow_phase::{ContactState, Object, contact};
@@ -100,7 +100,7 @@ fn force_on_j(i: &Side, j: &Side, nf: NormalForce) -> (Vec2, f64) {
     };
     let (bodies, walls, k) = match *i {
         Side::Body(si, xi, ti) => (vec![init(si, xi, ti), init(sj, xj, tj)], vec![], 1),
-        Side::Wall(w) => (vec![init(sj, xj, tj)], vec![WallSpec::new(w, spec(nf))], 0),
+        Side::Wall(w) => (vec![init(sj, xj, tj)], vec![Boundary::new(w, spec(nf))], 0),
     };
     let w = World::new(&bodies, walls, Vec2::zeros(), spec(nf), 1e-6);
     (w.bodies.force[k], w.bodies.torque[k])
@@ -693,7 +693,7 @@ fn energy_drift(mut w: World, steps: usize) -> f64 {
 /// `phase` (0…1) shifts the release height so that impacts fall elsewhere within a step.
 fn ellipse_bouncing(nf: NormalForce, dt: f64, phase: f64) -> World {
     let spec = energy_spec(nf, None);
-    let floor = WallSpec::new(Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(), spec);
+    let floor = Boundary::new(Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(), spec);
     let mut body = init(
         Shape::Ellipse { a: 1.5, b: 1.0 },
         Vec2::new(0.0, 2.2 + 0.013 * phase),
@@ -782,7 +782,7 @@ fn obtained_restitution(shape: Shape, angle: f64, nf: NormalForce, e: f64, hertz
     } else {
         energy_spec(nf, Some(e))
     };
-    let floor = WallSpec::new(Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(), spec);
+    let floor = Boundary::new(Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(), spec);
     let h = support(&shape, angle, Vec2::new(0.0, -1.0));
     let mut body = init(shape, Vec2::new(0.0, h + 0.05), angle);
     let v0 = 50.0;

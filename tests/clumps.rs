@@ -13,7 +13,7 @@
 //! - the **equal-area ellipse fit** has the ellipse's area.
 
 use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
-use dem2d::dynamics::{BodyInit, WallSpec, World};
+use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::{Clump, Shape, Vec2, Wall};
 use std::f64::consts::PI;
 
@@ -46,8 +46,8 @@ fn linear(kn: f64, eta: f64, friction: f64) -> ContactSpec {
     }
 }
 
-fn floor(spec: ContactSpec) -> WallSpec {
-    WallSpec::new(Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(), spec)
+fn floor(spec: ContactSpec) -> Boundary {
+    Boundary::new(Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(), spec)
 }
 
 /// Area, centroid and polar moment about the centroid over area (`I/m`) of a union of disks by

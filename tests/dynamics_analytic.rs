@@ -3,7 +3,7 @@
 
 use approx::assert_relative_eq;
 use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
-use dem2d::dynamics::{BodyInit, WallSpec, World};
+use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::{Shape, Vec2, Wall};
 
 fn body(shape: Shape, x: f64, y: f64, angle: f64, v: Vec2, omega: f64) -> BodyInit {
@@ -31,8 +31,8 @@ fn linear(kn: f64, ks: f64, eta: f64, friction: f64) -> ContactSpec {
     }
 }
 
-fn floor(spec: ContactSpec) -> WallSpec {
-    WallSpec::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), spec)
+fn floor(spec: ContactSpec) -> Boundary {
+    Boundary::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), spec)
 }
 
 /// One body at (0, y), angle 0, with velocity `v` and no spin, above the floor `y = 0`.
@@ -362,7 +362,7 @@ fn free_collision_conserves_momentum_to_round_off() {
         l0
     );
     // (Energy is not a conserved quantity of this model for ellipses: a spring on the depth
-    // acting at the chord midpoint is the gradient of ½k_nδ² only to O(δ/a) — see the README.)
+    // acting at the chord midpoint is the gradient of ½k_nδ² only to O(δ/a) — see docs/src/physics/normal-force.md.)
     assert!(w.energies.dissipated > 0.0 && w.energies.total() < e0);
 }
 
@@ -386,7 +386,7 @@ fn rotating_the_whole_scene_rotates_the_trajectory() {
                 omega: 3.0,
                 density: 1.0,
             }],
-            vec![WallSpec::new(wall, spec)],
+            vec![Boundary::new(wall, spec)],
             r(Vec2::new(0.0, -980.0)),
             spec,
             1e-5,
@@ -500,8 +500,8 @@ fn network_critical_step_matches_the_modes_of_closed_form_systems() {
     // springs, eigenvalues (k/m)(2 ∓ 1): the stiffest ω² = 3k/m. Undamped: Δt = 2/ω.
     let spec = linear(k, k, 0.0, 0.0);
     let walls = vec![
-        WallSpec::new(Wall::new(Vec2::new(0.0, 0.0), Vec2::x()).unwrap(), spec),
-        WallSpec::new(Wall::new(Vec2::new(3.97, 0.0), -Vec2::x()).unwrap(), spec),
+        Boundary::new(Wall::new(Vec2::new(0.0, 0.0), Vec2::x()).unwrap(), spec),
+        Boundary::new(Wall::new(Vec2::new(3.97, 0.0), -Vec2::x()).unwrap(), spec),
     ];
     let disks = [
         body(Shape::Circle { r: 1.0 }, 0.99, 0.0, 0.0, Vec2::zeros(), 0.0),

@@ -4,8 +4,8 @@
 //! description says, and the 10 000-body case files are exactly the generator's output.
 
 use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
-use dem2d::dynamics::contacts::WALL_BASE;
-use dem2d::dynamics::{BodyInit, WallSpec, World};
+use dem2d::dynamics::Partner;
+use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::{Shape, Vec2, Wall};
 use dem2d::narrow_phase::{Object, contact};
 use dem2d::scene::Case;
@@ -80,8 +80,8 @@ fn random_scene(seed: u64, n: usize, escapees: usize) -> World {
         });
     }
     let walls = vec![
-        WallSpec::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), law(0.5)),
-        WallSpec::new(Wall::new(Vec2::zeros(), Vec2::x()).unwrap(), law(0.5)),
+        Boundary::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), law(0.5)),
+        Boundary::new(Wall::new(Vec2::zeros(), Vec2::x()).unwrap(), law(0.5)),
     ];
     World::new(&bodies, walls, Vec2::new(0.0, -980.0), law(0.3), 2e-5)
 }
@@ -102,9 +102,9 @@ fn all_pairs(w: &World) -> BTreeSet<(u32, u32)> {
             }
         }
         for (k, ws) in w.walls.iter().enumerate() {
-            let c = contact(&Object::Wall(ws.wall), &body(i)).unwrap();
+            let c = contact(&Object::Wall(*ws.line()), &body(i)).unwrap();
             if c.geometry.is_some_and(|g| g.depth > 0.0) {
-                out.insert((i as u32, WALL_BASE + k as u32));
+                out.insert((i as u32, Partner::Wall(k).key()));
             }
         }
     }
@@ -327,7 +327,7 @@ fn the_disk_path_gives_the_general_paths_bits() {
     );
 }
 
-/// `dem2d bench` (what the README's throughput table comes from) times one world per size,
+/// `dem2d bench` (what the user guide's throughput table comes from) times one world per size,
 /// thread count and law, interleaved block by block: every row is there, each thread count's
 /// final state is bit-identical to one thread's (the table's last column, computed from the
 /// state's bits), and the two-thread row carries its speed-up.

@@ -14,7 +14,7 @@
 //! - The servo: a wall on a settled pile holds its target stress.
 
 use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
-use dem2d::dynamics::{BodyInit, Motion, Servo, Span, WallSpec, World};
+use dem2d::dynamics::{BodyInit, Boundary, Motion, Servo, Span, World};
 use dem2d::geometry::{Shape, Vec2, Wall};
 use dem2d::scene::Case;
 use dem2d::scene::generate::{PileShape, PileSpec};
@@ -64,7 +64,7 @@ fn collide(
     };
     let mut w = World::new(
         &[body(shape, 0.0, 0.0, Vec2::new(body_v, 0.0))],
-        vec![WallSpec::moving(wall, s, motion)],
+        vec![Boundary::moving(wall, s, motion)],
         Vec2::zeros(),
         s,
         dt,
@@ -161,7 +161,7 @@ fn a_disk_set_down_on_a_moving_belt_ends_rolling_at_a_third_of_its_speed() {
     let belt = Wall::new(Vec2::zeros(), Vec2::y()).unwrap();
     let mut w = World::new(
         &[body(Shape::Circle { r }, 0.0, r - delta, Vec2::zeros())],
-        vec![WallSpec::moving(
+        vec![Boundary::moving(
             belt,
             s,
             Motion::Velocity(Vec2::new(speed, 0.0)),
@@ -216,7 +216,7 @@ fn servo_on_pile(n: usize, sigma: f64) -> (World, Vec<f64>, f64) {
     };
     let wall = Wall::new(Vec2::new(0.0, top + 0.2), Vec2::new(0.0, -1.0)).unwrap();
     let mut walls = w.walls.clone();
-    walls.push(WallSpec::moving(wall, case.contact, Motion::Servo(servo)));
+    walls.push(Boundary::moving(wall, case.contact, Motion::Servo(servo)));
     let bodies: Vec<BodyInit> = (0..w.bodies.len())
         .map(|k| BodyInit {
             shape: w.bodies.shape[k],
@@ -238,7 +238,7 @@ fn servo_on_pile(n: usize, sigma: f64) -> (World, Vec<f64>, f64) {
             eprintln!(
                 "t {:.4} σ {s:.1} y {:.5} v {:.4e} contacts {} K {:.3e}",
                 w.time,
-                w.walls[3].wall.point.y,
+                w.walls[3].line().point.y,
                 w.walls[3].velocity.y,
                 w.walls[3].load.contacts,
                 w.energies.kinetic
@@ -265,7 +265,7 @@ fn a_servo_wall_on_a_settled_pile_holds_its_target_stress_within_one_percent() {
          wall at y = {:.4}; its work W = {:.4e} erg, dissipated {:.4e} erg, account \
          K + P + E + D − E₀ − W = {account:.2e} erg",
         mean / sigma - 1.0,
-        w.walls[3].wall.point.y,
+        w.walls[3].line().point.y,
         e.boundary_work,
         e.dissipated,
     );
@@ -294,7 +294,7 @@ fn the_blow_up_watch_counts_the_work_of_moving_walls() {
         let wall = Wall::new(Vec2::new(-1.5, 0.0), Vec2::x()).unwrap();
         let mut w = World::new(
             &[body(Shape::Circle { r: 1.0 }, 0.0, 0.0, Vec2::zeros())],
-            vec![WallSpec::moving(
+            vec![Boundary::moving(
                 wall,
                 s,
                 Motion::Velocity(Vec2::new(100.0, 0.0)),

@@ -15,7 +15,7 @@
 //! `tests/swap_symmetry.rs` and `tests/area_law.rs`.
 
 use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
-use dem2d::dynamics::{BodyInit, WallSpec, World};
+use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::{Polygon, Pose, Shape, Vec2, Wall};
 use dem2d::narrow_phase::{Contact, ContactState, Object, contact};
 use dem2d::validation::dd::DD;
@@ -358,7 +358,7 @@ fn depth_and_force(
             let c = contact(&Object::Wall(floor), &j).unwrap();
             let w = World::new(
                 &[init(shape, x, angle)],
-                vec![WallSpec::new(floor, area_spec())],
+                vec![Boundary::new(floor, area_spec())],
                 Vec2::zeros(),
                 area_spec(),
                 1e-6,
@@ -510,7 +510,7 @@ fn force_on(i: &Object, j: &Object) -> (Vec2, f64) {
         ),
         Object::Wall(wall) => World::new(
             &[ij],
-            vec![WallSpec::new(wall, area_spec())],
+            vec![Boundary::new(wall, area_spec())],
             Vec2::zeros(),
             area_spec(),
             1e-6,
@@ -683,7 +683,7 @@ fn undamped_frictionless_polygons_conserve_energy_to_second_order() {
     let p16 = Shape::Polygon(Polygon::equal_area_ellipse(16, 1.5, 1.0, 0.0).unwrap());
     let hex = Shape::Polygon(Polygon::regular(6, 1.2, 0.0).unwrap());
     let dropped = |dt: f64, phase: f64| {
-        let floor = WallSpec::new(Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(), spec);
+        let floor = Boundary::new(Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(), spec);
         let mut b = init(p16, Vec2::new(0.0, 2.2 + 0.013 * phase), 0.5);
         b.omega = 3.0;
         World::new(&[b], vec![floor], Vec2::new(0.0, -980.0), spec, dt)

@@ -324,7 +324,7 @@ mod bug_plot_drew_moving_walls_at_their_start_and_coloured_forces_against_them {
         let (walls, known) = run.walls_at(last);
         assert!(known);
         // At t = 0.1 s the wall is 10 cm further (a closed form of its motion).
-        assert!((walls[2].wall.point.x - 22.0).abs() < 1e-9, "{walls:?}");
+        assert!((walls[2].line().point.x - 22.0).abs() < 1e-9, "{walls:?}");
         let x5 = run.frames[last].bodies[5].x;
         assert!(x5 > 13.0, "body 5 at x = {x5}, not past the wall's start");
         let weight = std::f64::consts::PI * 980.0;

@@ -157,7 +157,7 @@ impl Frame {
         let walls: Vec<(Vec2, Vec2)> = world
             .walls
             .iter()
-            .map(|w| (w.wall.point, w.wall.normal))
+            .map(|w| (w.line().point, w.line().normal))
             .collect();
         Frame {
             time: world.time,

@@ -46,12 +46,14 @@
 
 pub mod damping;
 pub mod normal;
+pub mod overlap;
 pub mod params;
 pub mod rolling;
 pub mod tangential;
 
 pub use damping::{DampingPart, damping_factor_hertz, damping_ratio_linear};
 pub use normal::{NormalPart, NormalSpring};
+pub use overlap::{PairFacts, SpringOn};
 pub use params::{ContactSpec, LinearDamping, Scaled};
 pub use rolling::{RollingKinematics, RollingModel, RollingPart};
 pub use tangential::{ShearStiffness, TangentialPart};
@@ -279,7 +281,29 @@ pub struct Modes {
     pub rolling: (f64, f64),
 }
 
+/// What a law reads of a contact besides its overlap, velocities and step: the contact pass
+/// computes these only for a law that asks ([`Law::needs`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Needs {
+    /// The effective mass m* (T13): a Hertz dashpot (T14), a rolling part (its damping ratio).
+    pub m_eff: bool,
+    /// The effective radius R* (T11): the Hertz spring (and Mindlin's shear spring with it).
+    pub r_eff: bool,
+    /// The rolling radius and inertias ([`RollingKinematics`]): a rolling part.
+    pub rolling: bool,
+}
+
 impl Law {
+    /// What the law reads of a contact (see [`Needs`]).
+    #[inline(always)]
+    pub fn needs(&self) -> Needs {
+        Needs {
+            m_eff: matches!(self.damping, DampingPart::Hertz { .. }) || self.rolling.is_some(),
+            r_eff: matches!(self.normal, NormalPart::Hertz { .. }),
+            rolling: self.rolling.is_some(),
+        }
+    }
+
     /// The force for these kinematics, updating the history. The parts in order:
     /// the normal spring on its overlap ([`Kinematics::spring_overlap`]: the depth, or the
     /// area law's δ_eq with `F_n = ρ F_s(δ_eq) + η δ̇_eq`), `F_n = max(0, ρ F_s + η_n δ̇)` (T6,

@@ -45,6 +45,7 @@
 
 use crate::contact_law::ContactSpec;
 use crate::geometry::{Vec2, Wall};
+use crate::narrow_phase::Side;
 
 /// The servo's relaxation factor α: the fraction of the stress error corrected per step against
 /// the stiffness of the wall's own contacts.
@@ -106,26 +107,34 @@ impl WallLoad {
     }
 }
 
-/// A wall, the contact parameters of contacts with it (the scene's, or its own overrides), how
-/// it moves, and its current velocity and load.
+/// What a boundary is, geometrically. Every use matches it exhaustively: a new kind (a segment,
+/// a periodic cell's seam) is added here and wherever the compiler then asks.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct WallSpec {
-    /// The wall's line now.
-    pub wall: Wall,
-    /// Its point at `start_time` (the anchor of a constant velocity's motion).
+pub enum BoundaryKind {
+    /// A half-plane: its line, and the normal pointing into the free side.
+    Wall(Wall),
+}
+
+/// A boundary: its kind and pose, the contact parameters of contacts with it (the scene's, or
+/// its own overrides), how it moves, and its current velocity and load.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Boundary {
+    /// The boundary where it is now.
+    pub kind: BoundaryKind,
+    /// Its reference point at `start_time` (the anchor of a constant velocity's motion).
     pub start: Vec2,
     /// When it was at `start`: 0, or the time of a state file from which a wall given a new
     /// velocity continues from where it is (see `scene::state`).
     pub start_time: f64,
     pub spec: ContactSpec,
     pub motion: Motion,
-    /// Velocity of the current step's drift (zero for a fixed wall).
+    /// Velocity of the current step's drift (zero for a fixed boundary).
     pub velocity: Vec2,
     /// Its contacts in the last force evaluation.
     pub load: WallLoad,
 }
 
-impl WallSpec {
+impl Boundary {
     /// A fixed wall.
     pub fn new(wall: Wall, spec: ContactSpec) -> Self {
         Self::moving(wall, spec, Motion::Fixed)
@@ -138,8 +147,8 @@ impl WallSpec {
             Motion::Velocity(v) => v,
             Motion::Fixed | Motion::Servo(_) => Vec2::zeros(),
         };
-        WallSpec {
-            wall,
+        Boundary {
+            kind: BoundaryKind::Wall(wall),
             start: wall.point,
             start_time: 0.0,
             spec,
@@ -149,57 +158,98 @@ impl WallSpec {
         }
     }
 
-    /// Moves the wall over the drift that ends at `time` (a step of `dt`).
+    /// The boundary's line: a wall's own (its point moves with the boundary, its normal points
+    /// into the free side). Servo spans, loads along the normal and drawings read it.
+    #[inline]
+    pub fn line(&self) -> &Wall {
+        match &self.kind {
+            BoundaryKind::Wall(w) => w,
+        }
+    }
+
+    /// The boundary's reference point now.
+    #[inline]
+    pub fn point(&self) -> Vec2 {
+        self.line().point
+    }
+
+    /// The boundary as one side of a narrow-phase pair.
+    #[inline(always)]
+    pub fn side(&self) -> Side<'_> {
+        match &self.kind {
+            BoundaryKind::Wall(w) => Side::Wall(w),
+        }
+    }
+
+    /// The signed distance of the point `x` from the boundary, positive on its free side: a
+    /// body whose bounding circle of radius r about x has `signed_distance(x) > r` cannot touch
+    /// it.
+    #[inline]
+    pub fn signed_distance(&self, x: Vec2) -> f64 {
+        match &self.kind {
+            BoundaryKind::Wall(w) => w.signed_distance(x),
+        }
+    }
+
+    /// Moves the boundary so that its reference point is `p`.
+    #[inline]
+    pub fn move_to(&mut self, p: Vec2) {
+        match &mut self.kind {
+            BoundaryKind::Wall(w) => w.point = p,
+        }
+    }
+
+    /// Moves the boundary over the drift that ends at `time` (a step of `dt`).
     #[inline]
     pub fn drift(&mut self, time: f64, dt: f64) {
         match self.motion {
             Motion::Fixed => {}
             // (t − 0 is t: the uninterrupted run's bits.)
-            Motion::Velocity(v) => self.wall.point = self.start + v * (time - self.start_time),
-            Motion::Servo(_) => self.wall.point += self.velocity * dt,
+            Motion::Velocity(v) => self.move_to(self.start + v * (time - self.start_time)),
+            Motion::Servo(_) => self.move_to(self.point() + self.velocity * dt),
         }
     }
 
-    /// True unless the wall is fixed.
+    /// True unless the boundary is fixed.
     #[inline]
     pub fn moves(&self) -> bool {
         !matches!(self.motion, Motion::Fixed)
     }
 
     /// The normal stress its contacts carry over its loaded span (servo walls), with the
-    /// span; `walls` the scene's walls (for a span between two of them).
-    pub fn measured_stress(&self, walls: &[WallSpec]) -> Option<(f64, f64)> {
+    /// span; `walls` the scene's boundaries (for a span between two of them).
+    pub fn measured_stress(&self, walls: &[Boundary]) -> Option<(f64, f64)> {
         let Motion::Servo(s) = self.motion else {
             return None;
         };
-        let span = span_length(&self.wall, &s.span, walls);
-        Some((self.load.force.dot(&self.wall.normal) / span, span))
+        let span = span_length(self.line(), &s.span, walls);
+        Some((self.load.force.dot(&self.line().normal) / span, span))
     }
 }
 
 /// The loaded span of a wall (see the module documentation).
-pub fn span_length(wall: &Wall, span: &Span, walls: &[WallSpec]) -> f64 {
+pub fn span_length(wall: &Wall, span: &Span, walls: &[Boundary]) -> f64 {
     match *span {
         Span::Length(l) => l,
         Span::Between(a, b) => {
             let t = Vec2::new(-wall.normal.y, wall.normal.x);
             let along = |o: &Wall| o.normal.dot(&(o.point - wall.point)) / o.normal.dot(&t);
-            (along(&walls[a].wall) - along(&walls[b].wall)).abs()
+            (along(walls[a].line()) - along(walls[b].line())).abs()
         }
     }
 }
 
 /// The servo's velocity for the next step, from the load of the last force evaluation
 /// (see the module documentation); `dt` the step.
-pub fn servo_velocity(wall: &WallSpec, servo: &Servo, walls: &[WallSpec], dt: f64) -> Vec2 {
-    let span = span_length(&wall.wall, &servo.span, walls);
+pub fn servo_velocity(wall: &Boundary, servo: &Servo, walls: &[Boundary], dt: f64) -> Vec2 {
+    let span = span_length(wall.line(), &servo.span, walls);
     let load = &wall.load;
-    let elastic = (load.force - load.force_non_elastic).dot(&wall.wall.normal) / span;
+    let elastic = (load.force - load.force_non_elastic).dot(&wall.line().normal) / span;
     let error = servo.stress - elastic;
     let speed = match servo.gain {
         Some(g) => g * error,
         None if load.stiffness > 0.0 => SERVO_RELAXATION * span / (load.stiffness * dt) * error,
         None => servo.max_speed.copysign(error),
     };
-    wall.wall.normal * speed.clamp(-servo.max_speed, servo.max_speed)
+    wall.line().normal * speed.clamp(-servo.max_speed, servo.max_speed)
 }

@@ -9,8 +9,8 @@
 //! displacements since the last build add up to more than the skin), so no contact is ever
 //! missed; between rebuilds nothing is allocated.
 //!
-//! A pair is keyed by `(i, j)`: two body indices `i < j`, or a body `i` and wall `w` as
-//! `j = WALL_BASE + w`. Slots are sorted by key, which fixes the order of every sum over
+//! A pair is keyed by `(i, j)`: two body indices `i < j`, or a body `i` and a wall `w` packed
+//! into `j` ([`Partner::key`]), after every body. Slots are sorted by key, which fixes the order of every sum over
 //! contacts: results do not depend on the number of threads. For each body the list also keeps
 //! its slots in key order (`adjacency`), so that forces are gathered per body, in parallel,
 //! without two threads writing to the same body.
@@ -29,7 +29,7 @@
 //! a wall when the wall is within `|c_a| + r_a + skin` of the centroid — every member pair that
 //! can touch before the next build, however the bodies turn.
 
-use super::partner::Sides;
+use super::partner::{Partner, Sides};
 use crate::geometry::Vec2;
 use crate::narrow_phase::{ContactState, PairCache};
 
@@ -50,15 +50,12 @@ fn shift_up<T: Copy>(v: &mut Vec<T>, lead: usize, total: usize, filler: T) {
     v.copy_within(0..len, lead);
 }
 
-/// Wall `w` is keyed as `WALL_BASE + w`.
-pub const WALL_BASE: u32 = u32::MAX / 2;
-
 /// One slot of the neighbour list: a candidate pair and what is carried from step to step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Slot {
     /// First body.
     pub i: u32,
-    /// Second body, or `WALL_BASE + w` for wall `w`.
+    /// Second body, or a wall ([`Partner::key`]; read it with [`Slot::partner`]).
     pub j: u32,
     /// The member pair of a clump pair ([`Slot::sub_of`]); 0 when neither body is a clump.
     pub sub: u32,
@@ -96,7 +93,13 @@ impl Slot {
     /// True for a body–wall pair.
     #[inline]
     pub fn is_wall(&self) -> bool {
-        self.j >= WALL_BASE
+        matches!(self.partner(), Partner::Wall(_))
+    }
+
+    /// The partner of body `i`: body `j`, or a wall.
+    #[inline]
+    pub fn partner(&self) -> Partner {
+        Partner::from_key(self.j)
     }
 
     /// Which side receives `+F` ([`Sides`]).

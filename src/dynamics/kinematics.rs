@@ -10,10 +10,13 @@
 //! centroid to the tangent line at the contact, the lever arm of the tangential force — and
 //! combines them like R*: `1/R_r = 1/ℓ_i + 1/ℓ_j` (a wall: `ℓ = ∞`, so `R_r = ℓ` of the body).
 //! - For disks `ℓ = r` exactly, so `R_r` is R* (LIGGGHTS, PFC).
-//! - For any shape on a slope β, the friction force `m g sin β` has the moment
-//!   `m g sin β · ℓ` about the centroid, which a rolling couple of at most `μ_r ℓ m g cos β`
-//!   holds iff `tan β ≤ μ_r`: μ_r keeps Ai et al.'s meaning — the tangent of the steepest slope
-//!   a body can rest on without rolling — whatever the shape and where it touches.
+//! - On a slope β the friction force `m g sin β` has the moment `m g sin β · ℓ` about the
+//!   centroid and the rolling couple's cap is `μ_r ℓ m g cos β`, whatever the shape and where it
+//!   touches. A disk (its contact straight below its centre) therefore rests iff
+//!   `tan β ≤ μ_r`, Ai et al.'s meaning of μ_r; a non-circular body's normal force has a moment
+//!   of its own, and it rests iff `tan β ≤ μ_r + k`, k the largest ratio of its contact point's
+//!   downhill offset to its centroid's height (ellipse: `(a² − b²)/(2ab)`; `tests/rolling.rs`,
+//!   `an_ellipse_rests_on_slopes_up_to_mu_r_plus_its_shapes_own_limit`).
 //! - It is defined for every contact, bounded by the inscribed and circumscribed radii
 //!   (ellipse: b on its flat side, a on its tip; rectangle: half a side on a face, up to half
 //!   the diagonal on a corner).
@@ -39,11 +42,12 @@
 //! for a disk on a wall `1.5 m r²` (LIGGGHTS' 2D value).
 
 use super::body::Bodies;
-use super::boundary::WallSpec;
+use super::boundary::Boundary;
 use super::partner::{Partner, Sides};
 use crate::contact_law::RollingKinematics;
 use crate::contact_law::params::pair_density;
 use crate::geometry::Vec2;
+use crate::geometry::overlap_area::DiskLens;
 
 /// The relative motion at a contact point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -56,7 +60,7 @@ pub struct Relative {
 
 /// The relative motion of the two sides at `point`.
 #[inline(always)]
-pub fn relative(b: &Bodies, walls: &[WallSpec], sides: Sides, point: Vec2) -> Relative {
+pub fn relative(b: &Bodies, walls: &[Boundary], sides: Sides, point: Vec2) -> Relative {
     let recv = sides.receiver;
     let mut velocity = b.point_velocity(recv, point - b.state[recv].pose.position);
     let mut spin = b.state[recv].omega;
@@ -66,6 +70,10 @@ pub fn relative(b: &Bodies, walls: &[WallSpec], sides: Sides, point: Vec2) -> Re
             spin -= b.state[k].omega;
         }
         Partner::Wall(w) => velocity -= walls[w].velocity,
+    }
+    if let Some(image) = sides.image {
+        // The giver's periodic image moves with the cell's shear as well as with the giver.
+        velocity -= image.velocity;
     }
     Relative { velocity, spin }
 }
@@ -98,6 +106,16 @@ pub fn effective_radius(b: &Bodies, sides: Sides, n: Vec2) -> f64 {
         inv_r += 1.0 / b.curvature_radius(k, n);
     }
     1.0 / inv_r // T(11)
+}
+
+/// R* as the law takes it: the area potential's lens (the equal-area disks', so that its
+/// potential depends on A alone) when the spring acts on one, else [`effective_radius`].
+#[inline]
+pub fn effective_radius_for(b: &Bodies, sides: Sides, n: Vec2, lens: Option<DiskLens>) -> f64 {
+    match lens {
+        Some(lens) => lens.effective_radius(),
+        None => effective_radius(b, sides, n),
+    }
 }
 
 /// The rolling radius and inertias of a contact at `point` with normal `n` (from the giver to

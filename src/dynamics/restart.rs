@@ -25,8 +25,9 @@
 
 use super::account::{Diagnostics, Energies};
 use super::body::BodyInit;
-use super::boundary::{WallLoad, WallSpec};
-use super::contacts::{ContactData, Slot, WALL_BASE};
+use super::boundary::{Boundary, WallLoad};
+use super::contacts::{ContactData, Slot};
+use super::partner::Partner;
 use super::watch::BlowupWatch;
 use crate::geometry::Vec2;
 use crate::narrow_phase::{ContactState, PairCache};
@@ -142,7 +143,7 @@ impl RestartState {
     pub(crate) fn check(
         &self,
         bodies: &[BodyInit],
-        walls: &[WallSpec],
+        walls: &[Boundary],
         dt: f64,
         kept: Kept,
     ) -> Result<(), RestartError> {
@@ -187,21 +188,21 @@ impl RestartState {
                     format!("body {i} does not exist (the case has {n} bodies)"),
                 ));
             }
-            if j >= WALL_BASE {
-                if (j - WALL_BASE) as usize >= nw {
+            let partner = s.slot.partner();
+            match partner {
+                Partner::Wall(w) if w >= nw => {
                     return Err(RestartError::new(
                         at("wall"),
-                        format!(
-                            "wall {} does not exist (the case has {nw} walls)",
-                            j - WALL_BASE
-                        ),
+                        format!("wall {w} does not exist (the case has {nw} walls)"),
                     ));
                 }
-            } else if j as usize >= n || j <= i {
-                return Err(RestartError::new(
-                    at("j"),
-                    format!("must be a body after i = {i} and below {n}, got {j}"),
-                ));
+                Partner::Body(j) if j >= n || j <= i as usize => {
+                    return Err(RestartError::new(
+                        at("j"),
+                        format!("must be a body after i = {i} and below {n}, got {j}"),
+                    ));
+                }
+                Partner::Wall(_) | Partner::Body(_) => {}
             }
             if last.is_some_and(|l| l >= (i, j, sub)) {
                 return Err(RestartError::new(
@@ -213,7 +214,9 @@ impl RestartState {
             last = Some((i, j, sub));
             let member_count = |k: usize| bodies[k].shape.clump().map_or(1, |c| c.len());
             let clump_pair = bodies[i as usize].shape.clump().is_some()
-                || (j < WALL_BASE && bodies[j as usize].shape.clump().is_some());
+                || partner
+                    .body()
+                    .is_some_and(|j| bodies[j].shape.clump().is_some());
             if clump_pair != (sub != 0) {
                 return Err(RestartError::new(
                     at("members"),
@@ -225,11 +228,7 @@ impl RestartState {
                 ));
             }
             let (a, b) = s.slot.members();
-            let b_max = if j >= WALL_BASE {
-                1
-            } else {
-                member_count(j as usize)
-            };
+            let b_max = partner.body().map_or(1, member_count);
             if a >= member_count(i as usize) || b >= b_max {
                 return Err(RestartError::new(
                     at("sub"),

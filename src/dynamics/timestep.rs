@@ -11,7 +11,7 @@
 
 use super::body::Bodies;
 use super::contacts::Contact;
-use super::world::{WallSpec, World};
+use super::world::{Boundary, World};
 use crate::contact_law::params::pair_density;
 use crate::contact_law::{ContactSpec, NormalForce, RollingKinematics};
 use crate::geometry::Shape;
@@ -114,7 +114,7 @@ pub fn stiffness_factor(bodies: &Bodies, normal_force: NormalForce, wall: bool) 
 pub fn estimate_critical_dt(
     bodies: &Bodies,
     spec: &ContactSpec,
-    walls: &[WallSpec],
+    walls: &[Boundary],
     g: f64,
 ) -> f64 {
     let n = bodies.len();

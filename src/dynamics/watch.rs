@@ -25,7 +25,7 @@
 //! let a body pass into another. The limit is raised to the deepest overlap of the initial
 //! state, which the run reports as a warning and then pushes apart.
 
-use super::contacts::WALL_BASE;
+use super::partner::Partner;
 use super::world::World;
 
 /// How many times the energy that could be in motion may be created before the run counts as
@@ -173,11 +173,9 @@ pub fn overlaps(world: &World) -> Vec<Overlap> {
         .filter(|c| c.extra.depth > 0.0)
         .map(|c| {
             let i = c.slot.i as usize;
-            let wall = c.is_wall();
-            let j = if wall {
-                (c.slot.j - WALL_BASE) as usize
-            } else {
-                c.slot.j as usize
+            let (wall, j) = match c.slot.partner() {
+                Partner::Wall(w) => (true, w),
+                Partner::Body(j) => (false, j),
             };
             let mut scale = shapes[i].inscribed_radius();
             if !wall {

@@ -2,10 +2,11 @@
 
 pub use super::account::{Diagnostics, Energies};
 use super::body::{Bodies, BodyInit};
-pub use super::boundary::WallSpec;
+pub use super::boundary::Boundary;
 use super::contacts::ContactList;
+use super::neighbour_list::kept;
 use super::restart::{BodyRestart, RestartError, RestartState, SlotRestart, WallRestart};
-use super::step::{Blowup, Parts, StepReport, Stepper, kept};
+use super::step::{Blowup, Parts, StepReport, Stepper};
 use crate::contact_law::ContactSpec;
 use crate::geometry::{Pose, Vec2};
 use crate::narrow_phase::PairCache;
@@ -14,7 +15,7 @@ use crate::narrow_phase::PairCache;
 #[derive(Clone, Debug)]
 pub struct World {
     pub bodies: Bodies,
-    pub walls: Vec<WallSpec>,
+    pub walls: Vec<Boundary>,
     pub gravity: Vec2,
     /// The contact law between bodies (and with walls that do not override it).
     pub spec: ContactSpec,
@@ -35,7 +36,7 @@ impl World {
     /// half-kick needs them).
     pub fn new(
         bodies: &[BodyInit],
-        walls: Vec<WallSpec>,
+        walls: Vec<Boundary>,
         gravity: Vec2,
         spec: ContactSpec,
         dt: f64,
@@ -70,7 +71,7 @@ impl World {
     /// ([`World::restart_state`]). Refused when the restart does not fit the scene.
     pub fn resume(
         bodies: &[BodyInit],
-        walls: Vec<WallSpec>,
+        walls: Vec<Boundary>,
         gravity: Vec2,
         spec: ContactSpec,
         dt: f64,
@@ -101,7 +102,7 @@ impl World {
             b.torque[k] = r.torque;
         }
         for (ws, r) in w.walls.iter_mut().zip(&saved.walls) {
-            ws.wall.point = r.point;
+            ws.move_to(r.point);
             ws.velocity = r.velocity;
             ws.load = r.load;
         }
@@ -136,7 +137,7 @@ impl World {
                 .walls
                 .iter()
                 .map(|ws| WallRestart {
-                    point: ws.wall.point,
+                    point: ws.line().point,
                     velocity: ws.velocity,
                     load: ws.load,
                 })

@@ -368,7 +368,7 @@ fn scene_bounds(panels: &[Vec<(Drawn, ColorBy)>]) -> (f64, f64, f64, f64) {
             continue;
         };
         for wall in &d.run.walls_at(last).0 {
-            let (pt, n) = (wall.wall.point, wall.wall.normal);
+            let (pt, n) = (wall.line().point, wall.line().normal);
             if n.x.abs() < 1e-12 && (pt.y - y0).abs() < 0.5 * h.max(w) {
                 y0 = y0.min(pt.y);
                 y1 = y1.max(pt.y);
@@ -745,11 +745,11 @@ where
         let now = d.run.walls_at(last).0;
         for &o in &d.outlines[..d.outlines.len() - 1] {
             for (w, then) in now.iter().zip(d.run.walls_at(o).0) {
-                if then.wall.point == w.wall.point {
+                if then.line().point == w.line().point {
                     continue;
                 }
-                let t = Vec2::new(-then.wall.normal.y, then.wall.normal.x);
-                if let Some((a, b)) = clip_line(then.wall.point, t, bounds) {
+                let t = Vec2::new(-then.line().normal.y, then.line().normal.x);
+                if let Some((a, b)) = clip_line(then.line().point, t, bounds) {
                     chart
                         .draw_series(std::iter::once(PathElement::new(
                             vec![(a.x, a.y), (b.x, b.y)],
@@ -760,8 +760,11 @@ where
             }
         }
         for w in &now {
-            let (n, t) = (w.wall.normal, Vec2::new(-w.wall.normal.y, w.wall.normal.x));
-            if let Some((a, b)) = clip_line(w.wall.point, t, bounds) {
+            let (n, t) = (
+                w.line().normal,
+                Vec2::new(-w.line().normal.y, w.line().normal.x),
+            );
+            if let Some((a, b)) = clip_line(w.line().point, t, bounds) {
                 chart
                     .draw_series(std::iter::once(PathElement::new(
                         vec![(a.x, a.y), (b.x, b.y)],

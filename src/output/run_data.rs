@@ -266,7 +266,7 @@ impl RunData {
     /// else placed by their motion (fixed; `p₀ + t v` at a constant velocity). The second value
     /// is false when some wall's place is not known (a servo wall in a run without `walls.csv`:
     /// left at its starting point).
-    pub fn walls_at(&self, k: usize) -> (Vec<crate::dynamics::WallSpec>, bool) {
+    pub fn walls_at(&self, k: usize) -> (Vec<crate::dynamics::Boundary>, bool) {
         use crate::dynamics::boundary::Motion;
         let frame = &self.frames[k];
         let mut walls = self.case.walls.clone();
@@ -279,7 +279,7 @@ impl RunData {
         });
         if let Some(r) = recorded {
             for (w, row) in walls.iter_mut().zip(&r.walls) {
-                w.wall.point = row.point;
+                w.move_to(row.point);
                 w.velocity = row.velocity;
             }
             return (walls, true);
@@ -289,7 +289,7 @@ impl RunData {
             match w.motion {
                 Motion::Fixed => {}
                 Motion::Velocity(v) => {
-                    w.wall.point = w.start + v * frame.t;
+                    w.move_to(w.start + v * frame.t);
                     w.velocity = v;
                 }
                 Motion::Servo(_) => known = false,

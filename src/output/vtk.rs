@@ -36,7 +36,7 @@
 
 use super::plot::clip_line;
 use super::trace::{WriteError, time_text, time_value};
-use crate::dynamics::World;
+use crate::dynamics::{Partner, World};
 use crate::geometry::{Shape, Vec2};
 use std::fmt::Write as _;
 use std::io;
@@ -165,7 +165,7 @@ impl VtkWriter {
         let b = &world.bodies;
         let points = (0..b.len())
             .map(|k| (b.state[k].pose.position, b.bound[k]))
-            .chain(world.walls.iter().map(|w| (w.wall.point, 0.0)));
+            .chain(world.walls.iter().map(|w| (w.line().point, 0.0)));
         for (p, r) in points {
             x0 = x0.min(p.x - r);
             x1 = x1.max(p.x + r);
@@ -248,13 +248,16 @@ impl VtkWriter {
         // Contacts.
         for (ordinal, c) in contacts.iter().enumerate() {
             let i = c.slot.i as i64;
-            let (from, to, j) = if c.is_wall() {
-                let w = (c.slot.j - crate::dynamics::contacts::WALL_BASE) as i64;
-                let p = c.data.point;
-                (centroid0 + i, push_point(&mut points, (p.x, p.y)), -1 - w)
-            } else {
-                let j = c.slot.j as i64;
-                (centroid0 + i, centroid0 + j, j)
+            let (from, to, j) = match c.slot.partner() {
+                Partner::Wall(w) => {
+                    let p = c.data.point;
+                    (
+                        centroid0 + i,
+                        push_point(&mut points, (p.x, p.y)),
+                        -1 - w as i64,
+                    )
+                }
+                Partner::Body(j) => (centroid0 + i, centroid0 + j as i64, j as i64),
             };
             connectivity.extend([from, to]);
             offsets.push(connectivity.len() as i64);
@@ -278,7 +281,7 @@ impl VtkWriter {
             let pad = 0.05 * (x1 - x0).max(y1 - y0);
             let bx = (x0 - pad, x1 + pad, y0 - pad, y1 + pad);
             for (w, ws) in world.walls.iter().enumerate() {
-                let (p, nrm) = (ws.wall.point, ws.wall.normal);
+                let (p, nrm) = (ws.line().point, ws.line().normal);
                 if let Some((a, e)) = clip_line(p, Vec2::new(-nrm.y, nrm.x), bx) {
                     let ia = push_point(&mut points, (a.x, a.y));
                     let ie = push_point(&mut points, (e.x, e.y));

@@ -20,7 +20,7 @@
 use super::run_data::ReadError;
 use super::trace::{LineFile, WriteError, time_text};
 use crate::dynamics::World;
-use crate::dynamics::boundary::{Motion, WallSpec, span_length};
+use crate::dynamics::boundary::{Boundary, Motion, span_length};
 use crate::geometry::Vec2;
 use std::path::Path;
 
@@ -30,14 +30,14 @@ pub const WALLS_HEADER_LINES_ONLY: &str = "step,t,wall,x,y,nx,ny";
 
 /// The length of wall `k`'s line over which its load is spread (see the module documentation);
 /// `None` when no other wall bounds it.
-pub fn loaded_span(k: usize, walls: &[WallSpec]) -> Option<f64> {
+pub fn loaded_span(k: usize, walls: &[Boundary]) -> Option<f64> {
     let me = &walls[k];
     if let Motion::Servo(s) = me.motion {
-        return Some(span_length(&me.wall, &s.span, walls));
+        return Some(span_length(me.line(), &s.span, walls));
     }
     let (p, t) = (
-        me.wall.point,
-        Vec2::new(-me.wall.normal.y, me.wall.normal.x),
+        me.line().point,
+        Vec2::new(-me.line().normal.y, me.line().normal.x),
     );
     // The line p + s t on the free side of wall j: s (n_j·t) ≥ n_j·(p_j − p).
     let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
@@ -46,8 +46,8 @@ pub fn loaded_span(k: usize, walls: &[WallSpec]) -> Option<f64> {
             continue;
         }
         let (nt, gap) = (
-            o.wall.normal.dot(&t),
-            o.wall.normal.dot(&(o.wall.point - p)),
+            o.line().normal.dot(&t),
+            o.line().normal.dot(&(o.line().point - p)),
         );
         if nt.abs() < 1e-12 {
             // Parallel: the whole line is free of it, or solid (then nothing is loaded).
@@ -98,7 +98,7 @@ impl WallsWriter {
         self.last_step = Some(step);
         let t = time_text(step, world.dt);
         for (k, w) in world.walls.iter().enumerate() {
-            let (p, n, v) = (w.wall.point, w.wall.normal, w.velocity);
+            let (p, n, v) = (w.line().point, w.line().normal, w.velocity);
             let f = w.load.force;
             let (fn_, ft) = (f.dot(&n), f.x * -n.y + f.y * n.x);
             let span = loaded_span(k, &world.walls).unwrap_or(f64::NAN);

@@ -25,7 +25,7 @@ use super::ranges::{Placed, SpecContext, check_extent, check_spec, check_steps};
 use crate::contact_law::{
     ContactSpec, LinearDamping, NormalForce, RollingModel, RollingPart, Scaled,
 };
-use crate::dynamics::{BodyInit, Motion, Servo, Span, WallSpec};
+use crate::dynamics::{BodyInit, Boundary, Motion, Servo, Span};
 use crate::geometry::Vec2;
 use serde_json::{Map, Value};
 
@@ -51,7 +51,7 @@ pub struct Case {
     /// "contacts": true, "analysis_window": [x0, x1, y0, y1]}`).
     pub output: OutputSpec,
     pub contact: ContactSpec,
-    pub walls: Vec<WallSpec>,
+    pub walls: Vec<Boundary>,
     pub bodies: Vec<BodyInit>,
 }
 
@@ -189,7 +189,7 @@ impl Case {
                 if let Motion::Servo(s) = motion {
                     spans.push((k, s.span));
                 }
-                walls.push(WallSpec::moving(wall, spec.unwrap_or(contact), motion));
+                walls.push(Boundary::moving(wall, spec.unwrap_or(contact), motion));
             }
             for (k, span) in spans {
                 check_span(&walls, k, &span)?;
@@ -237,7 +237,7 @@ impl Case {
             .collect();
         placed.extend(walls.iter().enumerate().map(|(w, ws)| Placed::Wall {
             path: index("walls", w),
-            point: ws.wall.point,
+            point: ws.line().point,
         }));
         check_extent(&placed)?;
         check_walls(&walls, &bodies)?;
@@ -312,16 +312,16 @@ impl Case {
 ///   (`n·(x − p) < 0` for the centroid x): its normal, which points into the free side, is
 ///   most likely reversed (`[0, -1]` for a floor: a run then "completes" with the bodies falling
 ///   forever).
-fn check_walls(walls: &[WallSpec], bodies: &[BodyInit]) -> Result<(), FieldError> {
+fn check_walls(walls: &[Boundary], bodies: &[BodyInit]) -> Result<(), FieldError> {
     let smallest = bodies
         .iter()
         .map(|b| b.shape.inscribed_radius())
         .fold(f64::INFINITY, f64::min);
     for (j, b) in walls.iter().enumerate() {
         for (i, a) in walls[..j].iter().enumerate() {
-            let (na, nb) = (a.wall.normal, b.wall.normal);
+            let (na, nb) = (a.line().normal, b.line().normal);
             let parallel = na.dot(&nb) > 0.0 && (na.x * nb.y - na.y * nb.x).abs() < 1e-6;
-            let gap = na.dot(&(b.wall.point - a.wall.point)).abs();
+            let gap = na.dot(&(b.point() - a.point())).abs();
             if parallel && gap < smallest {
                 return Err(FieldError::new(
                     index("walls", j),
@@ -338,10 +338,10 @@ fn check_walls(walls: &[WallSpec], bodies: &[BodyInit]) -> Result<(), FieldError
     for (k, w) in walls.iter().enumerate() {
         let solid = bodies
             .iter()
-            .filter(|b| w.wall.normal.dot(&(b.position - w.wall.point)) < 0.0)
+            .filter(|b| w.line().normal.dot(&(b.position - w.point())) < 0.0)
             .count();
         if 2 * solid > bodies.len() {
-            let n = w.wall.normal;
+            let n = w.line().normal;
             return Err(FieldError::new(
                 format!("{}.normal", index("walls", k)),
                 format!(
@@ -365,7 +365,7 @@ fn check_walls(walls: &[WallSpec], bodies: &[BodyInit]) -> Result<(), FieldError
 /// walls that do not override it) and each wall's own, for every density of the scene.
 fn check_contact_ranges(
     contact: &ContactSpec,
-    walls: &[WallSpec],
+    walls: &[Boundary],
     bodies: &[BodyInit],
     gravity: Vec2,
 ) -> Result<(), FieldError> {
@@ -469,6 +469,9 @@ fn parse_contact(
 ) -> Result<ContactSpec, FieldError> {
     let field = |k: &str| join(path, k);
     let get = |k: &str| map.get(k);
+    for k in CONTACT_KEYS {
+        super::fields::note_key(path, k);
+    }
     for k in map.keys() {
         if !CONTACT_KEYS.contains(&k.as_str()) {
             return Err(FieldError::new(field(k), unknown_field(k, &CONTACT_KEYS)));
@@ -752,12 +755,12 @@ fn wall_motion(w: &mut Obj) -> Result<Motion, FieldError> {
 }
 
 /// A servo span between two walls must name two other walls that cross the servo wall's line.
-fn check_span(walls: &[WallSpec], k: usize, span: &Span) -> Result<(), FieldError> {
+fn check_span(walls: &[Boundary], k: usize, span: &Span) -> Result<(), FieldError> {
     let Span::Between(a, b) = *span else {
         return Ok(());
     };
     let at = format!("{}.servo.span", index("walls", k));
-    let me = &walls[k].wall;
+    let me = walls[k].line();
     let t = Vec2::new(-me.normal.y, me.normal.x);
     if a == b {
         return Err(FieldError::new(at, "must name two different walls"));
@@ -778,7 +781,7 @@ fn check_span(walls: &[WallSpec], k: usize, span: &Span) -> Result<(), FieldErro
                 "must name two other walls, not this one",
             ));
         }
-        if walls[w].wall.normal.dot(&t).abs() < 1e-6 {
+        if walls[w].line().normal.dot(&t).abs() < 1e-6 {
             return Err(FieldError::new(
                 at,
                 format!("wall {w} is parallel to this wall: their lines do not cross"),

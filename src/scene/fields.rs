@@ -4,6 +4,7 @@
 use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde_json::{Map, Value};
 use std::cell::RefCell;
+use std::collections::BTreeSet;
 use std::fmt;
 
 use super::ranges::{MAX_MAGNITUDE, MIN_SCALE};
@@ -413,6 +414,46 @@ pub fn unknown_field(given: &str, valid: &[&str]) -> String {
     }
 }
 
+thread_local! {
+    /// The keys asked for while [`keys_asked_during`] runs (None otherwise: nothing recorded).
+    static ASKED: RefCell<Option<BTreeSet<String>>> = const { RefCell::new(None) };
+}
+
+/// Runs `f` and returns, beside its result, every key a reader asked for while it ran (present
+/// or not), as schema paths with the array indices left out (`bodies[].shape.r`,
+/// `walls[].servo.gain`). The readers' own requests are thus the list of the keys they accept:
+/// `tests/docs.rs` holds the case-file reference to it, both ways.
+pub fn keys_asked_during<T>(f: impl FnOnce() -> T) -> (T, BTreeSet<String>) {
+    let outer = ASKED.with(|a| a.replace(Some(BTreeSet::new())));
+    let result = f();
+    let asked = ASKED.with(|a| a.replace(outer)).unwrap_or_default();
+    (result, asked)
+}
+
+/// Records that the reader at `parent` asked for `key` (see [`keys_asked_during`]).
+pub(crate) fn note_key(parent: &str, key: &str) {
+    ASKED.with(|a| {
+        if let Some(set) = a.borrow_mut().as_mut() {
+            set.insert(schema_path(&join(parent, key)));
+        }
+    });
+}
+
+/// `bodies[3].shape.disks[0].r` → `bodies[].shape.disks[].r`.
+fn schema_path(path: &str) -> String {
+    let mut out = String::with_capacity(path.len());
+    let mut chars = path.chars().peekable();
+    while let Some(c) = chars.next() {
+        out.push(c);
+        if c == '[' {
+            while chars.peek().is_some_and(char::is_ascii_digit) {
+                chars.next();
+            }
+        }
+    }
+    out
+}
+
 /// An object being read: fields are taken one by one, and [`Obj::finish`] rejects the rest.
 pub struct Obj<'a> {
     map: &'a Map<String, Value>,
@@ -451,11 +492,13 @@ impl<'a> Obj<'a> {
 
     /// True if the field is present.
     pub fn has(&self, key: &str) -> bool {
+        note_key(&self.path, key);
         self.map.contains_key(key)
     }
 
     /// An optional field (marked as read).
     pub fn get(&mut self, key: &str) -> Option<&'a Value> {
+        note_key(&self.path, key);
         if !self.asked.iter().any(|a| a == key) {
             self.asked.push(key.to_string());
         }

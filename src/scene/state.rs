@@ -13,7 +13,8 @@ use super::fields::{FieldError, Obj, index, join, parse_json, type_of};
 use crate::dynamics::World;
 use crate::dynamics::account::{Diagnostics, Energies};
 use crate::dynamics::boundary::WallLoad;
-use crate::dynamics::contacts::{ContactData, Slot, WALL_BASE};
+use crate::dynamics::contacts::{ContactData, Slot};
+use crate::dynamics::partner::{MAX_INDEX, Partner};
 use crate::dynamics::restart::{
     BodyRestart, RestartState, RunProgress, SlotRestart, WallRestart, state_from_name,
 };
@@ -183,7 +184,7 @@ fn check_contact_list(
         .collect();
     let mut walls = case.walls.clone();
     for (w, r) in walls.iter_mut().zip(&state.walls) {
-        w.wall.point = r.point;
+        w.move_to(r.point);
     }
     let mut fresh = World::new(&bodies, walls, case.gravity, case.contact, case.dt);
     fresh.refresh_contact_extras();
@@ -193,12 +194,9 @@ fn check_contact_list(
             .iter()
             .filter(move |s| (s.slot.i, s.slot.j) == (i, j))
     };
-    let name = |i: u32, j: u32| {
-        if j >= WALL_BASE {
-            format!("body {i} and wall {}", j - WALL_BASE)
-        } else {
-            format!("bodies {i} and {j}")
-        }
+    let name = |i: u32, j: u32| match Partner::from_key(j) {
+        Partner::Wall(w) => format!("body {i} and wall {w}"),
+        Partner::Body(j) => format!("bodies {i} and {j}"),
     };
     let mut new_overlaps = Vec::new();
     for c in fresh.contacts.active().filter(|c| c.extra.depth > 0.0) {
@@ -522,13 +520,13 @@ fn parse_contact(v: &Value, path: &str) -> Result<SlotRestart, FieldError> {
     let index_of = |v: &Value, p: &str| {
         u32::try_from(whole(v, p)?)
             .ok()
-            .filter(|&x| x < WALL_BASE)
+            .filter(|&x| x < MAX_INDEX)
             .ok_or_else(|| FieldError::new(p, "is beyond the largest index"))
     };
     let i = c.req_with("i", index_of)?;
     let j = match (c.has("j"), c.has("wall")) {
         (true, false) => c.req_with("j", index_of)?,
-        (false, true) => WALL_BASE + c.req_with("wall", index_of)?,
+        (false, true) => Partner::Wall(c.req_with("wall", index_of)? as usize).key(),
         _ => {
             return Err(FieldError::new(
                 path,

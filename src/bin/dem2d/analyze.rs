@@ -57,7 +57,7 @@ pub fn run(dir: &Path, window: Option<&[f64]>, out: Option<&Path>) -> Result<(),
         .case
         .walls
         .iter()
-        .map(|w| (w.wall.point, w.wall.normal))
+        .map(|w| (w.line().point, w.line().normal))
         .collect();
     let n = data.case.bodies.len();
     let mut text = format!("{ANALYSIS_HEADER}\n");

@@ -2,7 +2,7 @@
 //! depth, the restitution it gives, and the energy it conserves.
 
 use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
-use dem2d::dynamics::{BodyInit, WallSpec, World};
+use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::support::support_local;
 use dem2d::geometry::{Shape, Vec2, Wall};
 use std::f64::consts::FRAC_PI_2;
@@ -37,8 +37,8 @@ fn body(shape: Shape, x: Vec2, angle: f64, v: Vec2, omega: f64) -> BodyInit {
     }
 }
 
-fn floor(spec: ContactSpec) -> WallSpec {
-    WallSpec::new(
+fn floor(spec: ContactSpec) -> Boundary {
+    Boundary::new(
         Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).expect("unit normal"),
         spec,
     )

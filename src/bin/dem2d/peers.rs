@@ -399,7 +399,7 @@ fn run_in(opts: &PeerOptions, dir: &Path) -> Result<PeerReport, BenchError> {
         .iter()
         .map(|b| b.shape.bounding_radius())
         .fold(0.0f64, f64::max);
-    let skin = dem2d::dynamics::step::SKIN_FRACTION * max_r;
+    let skin = dem2d::dynamics::neighbour_list::SKIN_FRACTION * max_r;
     for &shape in &opts.shapes {
         let (text, laws) = match shape {
             PileShape::Disks => (disk_text.clone(), vec![NormalForce::Area]),

@@ -41,12 +41,12 @@ pub const STRAIN_RATE: f64 = 0.08;
 /// mean of the side walls' loads over the height) of a servo box (walls: bottom, top, left,
 /// right).
 pub fn wall_state(w: &World) -> (f64, f64, f64, f64) {
-    let width = span_length(&w.walls[1].wall, &Span::Between(2, 3), &w.walls);
-    let height = span_length(&w.walls[2].wall, &Span::Between(0, 1), &w.walls);
-    let axial = w.walls[1].load.force.dot(&w.walls[1].wall.normal) / width;
+    let width = span_length(w.walls[1].line(), &Span::Between(2, 3), &w.walls);
+    let height = span_length(w.walls[2].line(), &Span::Between(0, 1), &w.walls);
+    let axial = w.walls[1].load.force.dot(&w.walls[1].line().normal) / width;
     let lateral = 0.5
-        * (w.walls[2].load.force.dot(&w.walls[2].wall.normal)
-            + w.walls[3].load.force.dot(&w.walls[3].wall.normal))
+        * (w.walls[2].load.force.dot(&w.walls[2].line().normal)
+            + w.walls[3].load.force.dot(&w.walls[3].line().normal))
         / height;
     (width, height, axial, lateral)
 }
@@ -128,10 +128,10 @@ pub fn run_one(n_side: usize, aspect: f64, strain: f64, verbose: bool) -> Outcom
         .collect();
     let (_, height0, _, _) = wall_state(&w);
     let box_ = [
-        w.walls[2].wall.point.x,
-        w.walls[3].wall.point.x,
-        w.walls[0].wall.point.y,
-        w.walls[1].wall.point.y,
+        w.walls[2].line().point.x,
+        w.walls[3].line().point.x,
+        w.walls[0].line().point.y,
+        w.walls[1].line().point.y,
     ];
     let v = 0.5 * STRAIN_RATE * height0;
     let shear = ServoBox {
@@ -324,7 +324,7 @@ fn force_chains(results: &[&Outcome]) -> String {
 
 /// Runs the study with samples of about `grains` grains (the nearest square number); `write`
 /// also writes each α's shear stage to `cases/biaxial_shape/shear_a{α}.json`.
-pub fn run(grains: usize, write: bool) {
+pub fn run(grains: usize, write: bool) -> String {
     let aspects = [1.0, 1.5, 2.0, 2.5];
     let n_side = ((grains as f64).sqrt().round() as usize).max(2);
     let results: Vec<Outcome> = aspects
@@ -332,11 +332,9 @@ pub fn run(grains: usize, write: bool) {
         .map(|&a| run_one(n_side, a, 0.1, true))
         .collect();
     if write {
-        std::fs::create_dir_all("cases/biaxial_shape").expect("cases/biaxial_shape");
         for r in &results {
             let path = format!("cases/biaxial_shape/shear_a{}.json", r.aspect);
-            std::fs::write(&path, &r.shear_case).unwrap_or_else(|e| panic!("{path}: {e}"));
-            eprintln!("wrote {path}");
+            super::put_case(std::path::Path::new(&path), &r.shear_case);
         }
     }
     let mut md = String::from(
@@ -434,4 +432,5 @@ pub fn run(grains: usize, write: bool) {
     let png = plot::png_of_svg(&chains, 1.0).expect("force chains PNG");
     std::fs::write("target/figure-png/force_chains.png", png).expect("force_chains.png");
     print!("{md}");
+    md
 }

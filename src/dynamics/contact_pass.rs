@@ -1,0 +1,939 @@
+//! The contact pass: every slot's contact for the current positions and velocities, in
+//! parallel, by one per-slot function ([`contact_slot`]).
+//!
+//! # One slot
+//! 1. **Geometry**: where the contact is, along which normal and how deep, and what the normal
+//!    spring acts on ([`SpringOn`], chosen in `contact_law`): from the narrow phase's dispatcher,
+//!    the giver as i and the receiver as j ([`Sides`]: the normal points from the giver to the
+//!    receiver, which gets +F).
+//! 2. **Kinematics** at the contact point ([`super::kinematics`]): the relative velocity and
+//!    spin, and what the law asks for ([`Law::needs`]): m*, R*, the rolling radius and inertias.
+//! 3. **The law** ([`Law::force`]) with the slot's history.
+//! 4. **The record**: the slot's history, its [`ContactData`] (read by the force gather), the
+//!    wall's load, the pass's sums (contacts, elastic energy, the history springs' energy, the
+//!    fallback geometries, the deepest overlap).
+//!
+//! # Compiled for what a scene needs
+//! [`contact_slot`] is generic over where its geometry comes from ([`Geometry`]: the circle
+//! kernels on the bodies' radii in a scene of disks, a circle pair's lean contact computed ahead
+//! for the chunk, or the dispatcher with the slot's pair cache), over its laws ([`LawSource`]:
+//! all linear with constant dashpots — the law's kinds then known, so that m*, R* and the
+//! rolling kinematics are never computed — or resolved), and over whether the slot pairs two
+//! bodies (`PAIR`: no wall branch left). Each combination the pass takes is a copy of the same
+//! source compiled for it: the same arithmetic, the same bits, in as few instructions as that
+//! scene allows (10⁴ disks: ~40 % fewer per slot than the general copy).
+
+use super::body::Bodies;
+use super::boundary::{Boundary, BoundaryKind, WallLoad};
+use super::contacts::{ContactData, ContactExtra, ContactList, Slot};
+use super::kinematics;
+use super::members;
+use super::partner::{Partner, Sides};
+use crate::contact_law::{ContactSpec, History, Kinematics, Law, LinearDashpots, NormalForce};
+use crate::contact_law::{PairFacts, RollingKinematics, RollingModel, SpringOn};
+use crate::geometry::Vec2;
+use crate::geometry::overlap_area::DiskLens;
+use crate::narrow_phase::circle_circle::overlap_circle_circle;
+use crate::narrow_phase::circle_wall::overlap_wall_circle;
+use crate::narrow_phase::{
+    ContactState, LeanContact, PairCache, Request, Side, conic_lean, contact_sides, overlap_lean,
+};
+use rayon::prelude::*;
+
+/// Neighbour-list slots per parallel chunk. A fixed size: every sum is formed chunk by chunk
+/// and then over the chunks in order, so that results are the same bit for bit whatever the
+/// number of threads.
+pub(crate) const SLOT_CHUNK: usize = 512;
+
+/// How many slots ahead a loop asks for its second body's data.
+const PREFETCH_AHEAD: usize = 8;
+
+/// Per-chunk results of the pass.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct SlotPartial {
+    pub contacts: usize,
+    pub elastic: f64,
+    /// History springs' energy of contacts that opened this step.
+    pub lost_history: f64,
+    pub deep: u64,
+    pub contained: u64,
+    pub max_depth_ratio: f64,
+    /// Σ of the change of the history springs' energy (shear and rolling).
+    pub history_energy_change: f64,
+}
+
+impl SlotPartial {
+    /// Adds another chunk's sums.
+    fn add(&mut self, p: &SlotPartial) {
+        self.contacts += p.contacts;
+        self.elastic += p.elastic;
+        self.lost_history += p.lost_history;
+        self.deep += p.deep;
+        self.contained += p.contained;
+        self.max_depth_ratio = self.max_depth_ratio.max(p.max_depth_ratio);
+        self.history_energy_change += p.history_energy_change;
+    }
+}
+
+/// The facts of a scene that decide which copy of the pass it takes, noted whenever the
+/// neighbour list is made (built or restored from a restart: which pairs take the lean path
+/// decides the last bits, so a restored list must note it too).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct SceneFacts {
+    /// The density of every body when they all have the same.
+    pub uniform_density: Option<f64>,
+    /// Some body is a circle or a clump (whose contacts are its member disks'): some pair may
+    /// take the narrow phase's lean path.
+    pub circles: bool,
+    /// Some body is a clump: the list holds member-pair slots.
+    pub clumps: bool,
+    /// Every body is a circle.
+    pub disks: bool,
+}
+
+impl SceneFacts {
+    /// The facts of `bodies`.
+    pub fn of(bodies: &Bodies) -> Self {
+        let d0 = bodies.density.first().copied();
+        let clumps = bodies.shape.iter().any(|s| s.clump().is_some());
+        SceneFacts {
+            uniform_density: d0.filter(|&d| bodies.density.iter().all(|&x| x == d)),
+            circles: bodies.is_circle.iter().any(|&c| c) || clumps,
+            clumps,
+            disks: bodies.is_circle.iter().all(|&c| c),
+        }
+    }
+}
+
+/// The pass's scratch, reused from step to step: per-chunk sums, per chunk and wall the walls'
+/// loads, and the laws resolved once per step.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ContactPass {
+    partials: Vec<SlotPartial>,
+    /// Per chunk of slots, per wall: the wall's contacts' sums.
+    wall_partials: Vec<WallLoad>,
+    /// Laws resolved once per step when every pair of a kind has the same (`[0]` body pairs,
+    /// `[1 + w]` wall w).
+    laws: Vec<Law>,
+    /// The same laws' numbers when every one is linear with constant dashpots and no rolling
+    /// part ([`LinearDashpots`]; empty otherwise): the slots then take the copies compiled for
+    /// such laws.
+    linear: Vec<LinearDashpots>,
+}
+
+/// What a step's pass reads: the bodies, the walls, the scene's law, |g|, the step Δt, and the
+/// neighbour list's per-body slot ranges (a body's number of slots: the CDT limiter's share).
+pub(crate) struct PassInput<'a> {
+    pub bodies: &'a Bodies,
+    pub walls: &'a mut [Boundary],
+    pub spec: &'a ContactSpec,
+    pub g: f64,
+    pub dt: f64,
+    pub facts: SceneFacts,
+}
+
+impl ContactPass {
+    /// Heap bytes of the pass's scratch.
+    pub fn heap_bytes(&self) -> usize {
+        self.wall_partials.capacity() * std::mem::size_of::<WallLoad>()
+    }
+
+    /// One partial sum per chunk of `slots` slots (and per wall for each chunk: at least one,
+    /// so that every chunk has its slice).
+    pub fn size(&mut self, slots: usize, walls: usize) {
+        let ns = slots.div_ceil(SLOT_CHUNK);
+        if self.partials.len() != ns {
+            self.partials.resize(ns, SlotPartial::default());
+        }
+        let nw = ns * walls.max(1);
+        if self.wall_partials.len() != nw {
+            self.wall_partials.resize(nw, WallLoad::default());
+        }
+    }
+
+    /// Whether this step's laws are all linear with constant dashpots (after
+    /// [`ContactPass::resolve`]): a disk scene's contacts then have no couples.
+    pub fn linear(&self) -> bool {
+        !self.linear.is_empty()
+    }
+
+    /// When every pair of a kind has the same law — one density for all bodies, and no law that
+    /// depends on the pair's mass (restitution-tuned dashpots) — resolves the body–body law and
+    /// each wall's once instead of at every contact.
+    fn resolve(&mut self, spec: &ContactSpec, walls: &[Boundary], facts: &SceneFacts, g: f64) {
+        self.laws.clear();
+        self.linear.clear();
+        let Some(rho) = facts.uniform_density else {
+            return;
+        };
+        if spec.depends_on_mass() || walls.iter().any(|w| w.spec.depends_on_mass()) {
+            return;
+        }
+        self.laws.push(spec.resolve(spec, rho, g, f64::NAN));
+        for w in walls {
+            self.laws.push(w.spec.resolve(spec, rho, g, f64::NAN));
+        }
+        for law in &self.laws {
+            match LinearDashpots::of(law) {
+                Some(l) => self.linear.push(l),
+                None => {
+                    self.linear.clear();
+                    break;
+                }
+            }
+        }
+    }
+
+    /// Every slot's contact, in parallel; `input.dt` is the step just drifted over (0 at the
+    /// start), over which the shear displacement is integrated (T16). Sets each wall's load and
+    /// returns the sums.
+    pub fn run(&mut self, input: PassInput, list: &mut ContactList) -> SlotPartial {
+        let PassInput {
+            bodies,
+            walls,
+            spec,
+            g,
+            dt,
+            facts,
+        } = input;
+        self.resolve(spec, walls, &facts, g);
+        self.size(list.slots.len(), walls.len());
+        let ContactList {
+            slots,
+            data,
+            cache,
+            rolling,
+            adjacency_start,
+            ..
+        } = list;
+        let cx = PassContext {
+            bodies,
+            walls,
+            spec,
+            g,
+            dt,
+            adjacency_start,
+        };
+        let nw = walls.len().max(1);
+        let (linear, laws) = (&self.linear[..], &self.laws[..]);
+        let chunk = Chunk {
+            cx: &cx,
+            linear: Linear(linear),
+            resolved: Resolved((!laws.is_empty()).then_some(laws)),
+            circles: facts.circles,
+            disks: facts.disks && !linear.is_empty(),
+        };
+        let chunks = slots
+            .par_chunks_mut(SLOT_CHUNK)
+            .zip(data.par_chunks_mut(SLOT_CHUNK))
+            .zip(self.partials.par_iter_mut())
+            .zip(self.wall_partials.par_chunks_mut(nw));
+        match (cache.is_empty(), rolling.is_empty()) {
+            (true, true) => chunks.for_each(|(((slots, data), part), loads)| {
+                *part = chunk.run(slots, data, loads, None, None)
+            }),
+            (false, true) => chunks.zip(cache.par_chunks_mut(SLOT_CHUNK)).for_each(
+                |((((slots, data), part), loads), cache)| {
+                    *part = chunk.run(slots, data, loads, Some(cache), None)
+                },
+            ),
+            (true, false) => chunks.zip(rolling.par_chunks_mut(SLOT_CHUNK)).for_each(
+                |((((slots, data), part), loads), rolling)| {
+                    *part = chunk.run(slots, data, loads, None, Some(rolling))
+                },
+            ),
+            (false, false) => chunks
+                .zip(cache.par_chunks_mut(SLOT_CHUNK))
+                .zip(rolling.par_chunks_mut(SLOT_CHUNK))
+                .for_each(|(((((slots, data), part), loads), cache), rolling)| {
+                    *part = chunk.run(slots, data, loads, Some(cache), Some(rolling))
+                }),
+        }
+        let mut sum = SlotPartial::default();
+        for p in &self.partials {
+            sum.add(p);
+        }
+        // Each wall's load: its contacts' sums, chunk by chunk in order.
+        for (w, ws) in walls.iter_mut().enumerate() {
+            let mut load = WallLoad::default();
+            for c in self.wall_partials.chunks(nw) {
+                load.add(&c[w]);
+            }
+            ws.load = load;
+        }
+        sum
+    }
+
+    /// Fills each active slot's [`ContactExtra`] (depth, stiffness, damping) for the current
+    /// state: every slot evaluated again on a copy — its history untouched, no time elapsing
+    /// (Δt = 0) — keeping only the extras.
+    pub fn refresh_extras(&mut self, input: PassInput, list: &mut ContactList) {
+        let PassInput {
+            bodies,
+            walls,
+            spec,
+            g,
+            facts,
+            ..
+        } = input;
+        self.resolve(spec, walls, &facts, g);
+        let ContactList {
+            slots,
+            extra,
+            cache,
+            rolling,
+            adjacency_start,
+            ..
+        } = list;
+        let cx = PassContext {
+            bodies,
+            walls,
+            spec,
+            g,
+            dt: 0.0,
+            adjacency_start,
+        };
+        let laws = Resolved((!self.laws.is_empty()).then_some(&self.laws[..]));
+        let (cache, rolling) = (&cache[..], &rolling[..]);
+        slots
+            .par_chunks(SLOT_CHUNK)
+            .zip(extra.par_chunks_mut(SLOT_CHUNK))
+            .enumerate()
+            .for_each(|(c, (slots, extra))| {
+                let mut p = SlotPartial::default();
+                for (k, (slot, extra)) in slots.iter().zip(extra).enumerate() {
+                    if !slot.active {
+                        *extra = ContactExtra::default();
+                        continue;
+                    }
+                    let (mut slot, mut data) = (*slot, ContactData::default());
+                    let mut cache = cache.get(c * SLOT_CHUNK + k).copied();
+                    let mut rolling = rolling.get(c * SLOT_CHUNK + k).copied();
+                    let to = SlotOut {
+                        data: &mut data,
+                        extra: Some(extra),
+                        rolling: rolling.as_mut(),
+                    };
+                    match lean_of(&slot, &cx) {
+                        Some(l) => contact_slot::<_, _, false>(
+                            &mut slot,
+                            to,
+                            Lean(l),
+                            laws,
+                            &cx,
+                            &mut p,
+                            &mut [],
+                        ),
+                        None => contact_slot::<_, _, false>(
+                            &mut slot,
+                            to,
+                            Dispatch(cache.as_mut()),
+                            laws,
+                            &cx,
+                            &mut p,
+                            &mut [],
+                        ),
+                    }
+                }
+            });
+    }
+}
+
+/// What every slot's contact is computed from: the bodies, the walls, the scene's law, |g|, the
+/// step Δt and the neighbour list's per-body slot ranges.
+#[derive(Clone, Copy)]
+pub(crate) struct PassContext<'a> {
+    pub bodies: &'a Bodies,
+    pub walls: &'a [Boundary],
+    pub spec: &'a ContactSpec,
+    pub g: f64,
+    pub dt: f64,
+    pub adjacency_start: &'a [u32],
+}
+
+impl PassContext<'_> {
+    /// The sides of a slot's pair as the narrow phase takes them: the giver as i, the receiver
+    /// as j.
+    #[inline(always)]
+    fn sides(&self, sides: Sides) -> (Side<'_>, Side<'_>) {
+        let b = self.bodies;
+        let i = match sides.giver {
+            Partner::Wall(w) => self.walls[w].side(),
+            Partner::Body(k) => Side::Body(&b.shape[k], &b.state[k].pose),
+        };
+        let recv = sides.receiver;
+        (i, Side::Body(&b.shape[recv], &b.state[recv].pose))
+    }
+
+    /// The contact parameters that govern a pair: a wall's own, or the scene's.
+    #[inline(always)]
+    fn governing(&self, sides: Sides) -> &ContactSpec {
+        match sides.wall() {
+            Some(w) => &self.walls[w].spec,
+            None => self.spec,
+        }
+    }
+}
+
+/// One chunk's pass: the copy of [`contact_slot`] each slot takes.
+#[derive(Clone, Copy)]
+struct Chunk<'a> {
+    cx: &'a PassContext<'a>,
+    linear: Linear<'a>,
+    resolved: Resolved<'a>,
+    /// Some pair may take the lean path.
+    circles: bool,
+    /// Every body is a circle and every law linear: [`Disks`].
+    disks: bool,
+}
+
+impl Chunk<'_> {
+    /// The chunk's slots (with their pair caches and rolling springs when the scene keeps them);
+    /// returns its sums.
+    fn run(
+        &self,
+        slots: &mut [Slot],
+        data: &mut [ContactData],
+        loads: &mut [WallLoad],
+        mut cache: Option<&mut [PairCache]>,
+        mut rolling: Option<&mut [f64]>,
+    ) -> SlotPartial {
+        let cx = self.cx;
+        let mut p = SlotPartial::default();
+        loads.fill(WallLoad::default());
+        let linear = self.linear;
+        let is_linear = !linear.0.is_empty();
+        if self.disks {
+            // The body pairs' law (the first) held here, where it stays in registers, rather
+            // than read from the scene's list at every slot.
+            let pair_law = [linear.0[0]];
+            let data = &mut data[..slots.len()]; // (no bounds check on `data[k]`)
+            for k in 0..slots.len() {
+                if let Some(ahead) = slots.get(k + PREFETCH_AHEAD) {
+                    prefetch_partner(cx.bodies, ahead, &cx.bodies.bound);
+                }
+                let (slot, to) = (&mut slots[k], SlotOut::data(&mut data[k]));
+                // Body pairs in a copy compiled for them; wall slots (few) out of line, so that
+                // the pair loop stays short.
+                if !slot.is_wall() {
+                    contact_slot::<_, _, true>(
+                        slot,
+                        to,
+                        Disks,
+                        Linear(&pair_law),
+                        cx,
+                        &mut p,
+                        loads,
+                    );
+                } else {
+                    contact_slot_apart::<_, _, false>(slot, to, Disks, linear, cx, &mut p, loads);
+                }
+            }
+            return p;
+        }
+        // With circles in the scene, the circle pairs' geometry first, for the whole chunk: a
+        // short loop whose square roots and divisions overlap from slot to slot (inside the
+        // long per-slot pass each waited for its own; 10⁴ disks: 8 % faster). The same kernels
+        // on the same inputs: the same bits. (Filled in place: returned from a closure, the
+        // 28 KB array was copied.)
+        let mut lean = [None; SLOT_CHUNK];
+        if self.circles {
+            for (k, (l, slot)) in lean.iter_mut().zip(slots.iter()).enumerate() {
+                if let Some(ahead) = slots.get(k + PREFETCH_AHEAD) {
+                    prefetch_partner(cx.bodies, ahead, &cx.bodies.shape);
+                }
+                *l = lean_of(slot, cx);
+            }
+        }
+        for (k, (slot, data)) in slots.iter_mut().zip(data).enumerate() {
+            // A linear law keeps no rolling spring.
+            let r = rolling.as_deref_mut().map(|r| &mut r[k]);
+            let cache = cache.as_deref_mut().map(|c| &mut c[k]);
+            let (resolved, to) = (self.resolved, SlotOut::data(data));
+            match lean[k] {
+                Some(l) if is_linear => {
+                    contact_slot_apart::<_, _, false>(slot, to, Lean(l), linear, cx, &mut p, loads)
+                }
+                Some(l) => contact_slot_apart::<_, _, false>(
+                    slot,
+                    to.with_rolling(r),
+                    Lean(l),
+                    resolved,
+                    cx,
+                    &mut p,
+                    loads,
+                ),
+                None if !is_linear => contact_slot_apart::<_, _, false>(
+                    slot,
+                    to.with_rolling(r),
+                    Dispatch(cache),
+                    resolved,
+                    cx,
+                    &mut p,
+                    loads,
+                ),
+                // Body pairs in a copy compiled for them (no wall branch left).
+                None if !slot.is_wall() => contact_slot_apart::<_, _, true>(
+                    slot,
+                    to,
+                    Dispatch(cache),
+                    linear,
+                    cx,
+                    &mut p,
+                    loads,
+                ),
+                None => contact_slot_apart::<_, _, false>(
+                    slot,
+                    to,
+                    Dispatch(cache),
+                    linear,
+                    cx,
+                    &mut p,
+                    loads,
+                ),
+            }
+        }
+        p
+    }
+}
+
+/// Where a slot's contact goes: its data, its extras when asked (reports, the critical step),
+/// and its rolling spring when the scene keeps them.
+pub(crate) struct SlotOut<'a> {
+    data: &'a mut ContactData,
+    extra: Option<&'a mut ContactExtra>,
+    rolling: Option<&'a mut f64>,
+}
+
+impl<'a> SlotOut<'a> {
+    #[inline(always)]
+    fn data(data: &'a mut ContactData) -> Self {
+        SlotOut {
+            data,
+            extra: None,
+            rolling: None,
+        }
+    }
+
+    #[inline(always)]
+    fn with_rolling(self, rolling: Option<&'a mut f64>) -> Self {
+        SlotOut { rolling, ..self }
+    }
+}
+
+/// A slot's contact as the geometry found it: state, point, normal, depth and what the spring
+/// acts on.
+type Found = (ContactState, Vec2, Vec2, f64, SpringOn);
+
+/// Where a slot's geometry comes from (see the module documentation).
+pub(crate) trait Geometry {
+    /// Every body is a circle: a body's inscribed radius is its bounding radius.
+    const DISKS: bool;
+    /// The slot's contact (`None`, or a depth ≤ 0: apart).
+    fn find<const PAIR: bool>(self, slot: &Slot, cx: &PassContext) -> Option<Found>;
+}
+
+/// A scene of disks: the circle kernels on the bodies' bounding radii, without the
+/// dispatcher's sides (the wall is the giver, i, as [`PassContext::sides`] has it): the same
+/// kernels on the same numbers as the dispatcher's lean path, the same bits.
+#[derive(Clone, Copy)]
+struct Disks;
+
+impl Geometry for Disks {
+    const DISKS: bool = true;
+    #[inline(always)]
+    fn find<const PAIR: bool>(self, slot: &Slot, cx: &PassContext) -> Option<Found> {
+        let b = cx.bodies;
+        let sides = sides_of_slot::<PAIR>(slot);
+        let recv = sides.receiver;
+        let (rj, pj) = (b.bound[recv], &b.state[recv].pose);
+        let found = match sides.giver {
+            Partner::Wall(w) => match &cx.walls[w].kind {
+                BoundaryKind::Wall(wall) => overlap_wall_circle(wall, rj, pj),
+            },
+            Partner::Body(k) => overlap_circle_circle(b.bound[k], &b.state[k].pose, rj, pj),
+        };
+        found.map(|(state, point, normal, depth)| (state, point, normal, depth, SpringOn::Depth))
+    }
+}
+
+/// A pair through the narrow phase's lean path, computed ahead for the chunk ([`lean_of`]): two
+/// circles, a circle and a wall, a clump's member pair. The spring on the depth (a disk's area
+/// potential is that spring).
+#[derive(Clone, Copy)]
+struct Lean(Option<LeanContact>);
+
+impl Geometry for Lean {
+    const DISKS: bool = false;
+    #[inline(always)]
+    fn find<const PAIR: bool>(self, _: &Slot, _: &PassContext) -> Option<Found> {
+        self.0
+            .map(|c| (c.state, c.point, c.normal, c.depth, SpringOn::Depth))
+    }
+}
+
+/// The narrow phase's dispatcher with the slot's pair cache (conic pairs start from the last
+/// step's crossings if the contact lasts, or a separating axis, and leave the next step's
+/// there; `None`: a scene no pair of which keeps anything).
+struct Dispatch<'a>(Option<&'a mut PairCache>);
+
+impl Geometry for Dispatch<'_> {
+    const DISKS: bool = false;
+    #[inline(always)]
+    fn find<const PAIR: bool>(self, slot: &Slot, cx: &PassContext) -> Option<Found> {
+        let sides = sides_of_slot::<PAIR>(slot);
+        let area_law = cx.governing(sides).normal_force() == NormalForce::Area;
+        let facts = Facts {
+            bodies: cx.bodies,
+            sides,
+        };
+        let mut scratch = PairCache::EMPTY;
+        let cache = match self.0 {
+            Some(c) => c,
+            None => &mut scratch,
+        };
+        let (i, j) = cx.sides(sides);
+        // The conic pairs through the dispatcher's lean record ([`conic_lean`]: the same kernel
+        // without the chord's world coordinates and the full record, whose copies cost the
+        // 10⁴-ellipse pile ~5 % of its step); the other kinds through the full dispatcher.
+        match conic_lean(i, j, cache, area_law) {
+            Some(c) => c.map(|c| {
+                let spring = SpringOn::of_conics(c.area, area_law, &facts);
+                (c.state, c.point, c.normal, c.depth, spring)
+            }),
+            None => {
+                let request = Request {
+                    area: area_law,
+                    chord: false,
+                    trace: None,
+                };
+                let c = contact_sides(i, j, cache, request)
+                    .expect("a slot pairs a body with a body or a wall");
+                c.geometry.map(|geo| {
+                    let spring = SpringOn::of(c.state, &geo, area_law, &facts);
+                    (c.state, geo.point, geo.normal, geo.depth, spring)
+                })
+            }
+        }
+    }
+}
+
+/// The numbers about a slot's pair that decide what its spring acts on.
+struct Facts<'a> {
+    bodies: &'a Bodies,
+    sides: Sides,
+}
+
+impl PairFacts for Facts<'_> {
+    #[inline(always)]
+    fn against_wall(&self) -> bool {
+        self.sides.wall().is_some()
+    }
+
+    #[inline(always)]
+    fn flat_pair(&self) -> bool {
+        let b = self.bodies;
+        self.sides.giving_body().is_some_and(|k| {
+            b.shape[k].is_flat_sided() && b.shape[self.sides.receiver].is_flat_sided()
+        })
+    }
+
+    #[inline(always)]
+    fn face_length(&self) -> f64 {
+        let (b, recv) = (self.bodies, self.sides.receiver);
+        match self.sides.giving_body() {
+            Some(k) => 0.5 * (b.shape[recv].face_length() + b.shape[k].face_length()),
+            None => b.shape[recv].face_length(),
+        }
+    }
+
+    #[inline(always)]
+    fn lens(&self) -> DiskLens {
+        let (b, recv) = (self.bodies, self.sides.receiver);
+        let (far, inv_far) = self.sides.giving_body().map_or((f64::INFINITY, 0.0), |k| {
+            (b.area_radius[k], b.inv_area_radius[k])
+        });
+        DiskLens::with_inverses(b.area_radius[recv], b.inv_area_radius[recv], far, inv_far)
+    }
+}
+
+/// The laws a slot's contact takes.
+pub(crate) trait LawSource: Copy {
+    /// Every law of the step is linear with constant dashpots and no rolling part
+    /// ([`LinearDashpots`]): the copy is compiled with the law's kinds known, reads no m*, R* or
+    /// rolling kinematics, keeps no rolling spring and fills no extras.
+    const LINEAR: bool;
+    /// The law of the pair `sides` (`wall`: its wall) and the pair's m* where the law reads it
+    /// (NaN otherwise).
+    fn law(self, sides: Sides, cx: &PassContext) -> (Law, f64);
+}
+
+/// Laws all of [`LinearDashpots`]'s kind (`[0]` body pairs, `[1 + w]` wall w).
+#[derive(Clone, Copy)]
+struct Linear<'a>(&'a [LinearDashpots]);
+
+impl LawSource for Linear<'_> {
+    const LINEAR: bool = true;
+    #[inline(always)]
+    fn law(self, sides: Sides, _: &PassContext) -> (Law, f64) {
+        (self.0[sides.wall().map_or(0, |w| 1 + w)].law(), f64::NAN)
+    }
+}
+
+/// Laws resolved once for the step (`Some`, indexed as [`Linear`]) or at every contact (`None`:
+/// several densities, or a law that depends on the pair's mass).
+#[derive(Clone, Copy)]
+struct Resolved<'a>(Option<&'a [Law]>);
+
+impl LawSource for Resolved<'_> {
+    const LINEAR: bool = false;
+    #[inline(always)]
+    fn law(self, sides: Sides, cx: &PassContext) -> (Law, f64) {
+        let m_eff = || 1.0 / kinematics::inv_mass(cx.bodies, sides); // T(13)
+        match self.0 {
+            Some(laws) => {
+                let law = laws[sides.wall().map_or(0, |w| 1 + w)];
+                let m = if law.needs().m_eff { m_eff() } else { f64::NAN };
+                (law, m)
+            }
+            None => {
+                let m = m_eff();
+                let rho = kinematics::density(cx.bodies, sides);
+                (cx.governing(sides).resolve(cx.spec, rho, cx.g, m), m)
+            }
+        }
+    }
+}
+
+/// The sides of `slot` ([`Sides::of_slot`]); `PAIR`: the caller knows the slot pairs two
+/// bodies (not a wall), so that the copy compiled for body pairs has no wall branch left.
+#[inline(always)]
+fn sides_of_slot<const PAIR: bool>(slot: &Slot) -> Sides {
+    debug_assert!(
+        !PAIR || !slot.is_wall(),
+        "a wall slot taken for a body pair"
+    );
+    if PAIR {
+        Sides {
+            receiver: slot.j as usize,
+            giver: Partner::Body(slot.i as usize),
+            image: None,
+        }
+    } else {
+        slot.sides()
+    }
+}
+
+/// [`contact_slot`] out of line (its own copy for each geometry, law source and `PAIR`).
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn contact_slot_apart<G: Geometry, L: LawSource, const PAIR: bool>(
+    slot: &mut Slot,
+    to: SlotOut,
+    geometry: G,
+    laws: L,
+    cx: &PassContext,
+    p: &mut SlotPartial,
+    loads: &mut [WallLoad],
+) {
+    contact_slot::<G, L, PAIR>(slot, to, geometry, laws, cx, p, loads);
+}
+
+/// One slot's contact (see the module documentation): geometry, kinematics at the contact
+/// point, the law and the history; an inactive slot drops its history (the shear spring, and
+/// the rolling spring when the scene keeps them). `loads` (one per wall, or empty) receives the
+/// sums of each wall's contacts.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool>(
+    slot: &mut Slot,
+    to: SlotOut,
+    geometry: G,
+    laws: L,
+    cx: &PassContext,
+    p: &mut SlotPartial,
+    loads: &mut [WallLoad],
+) {
+    // A linear law has no rolling spring and fills no extras: constants in its copies.
+    let SlotOut {
+        data,
+        extra,
+        rolling: rolling_spring,
+    } = if L::LINEAR {
+        SlotOut {
+            rolling: None,
+            extra: None,
+            ..to
+        }
+    } else {
+        to
+    };
+    let b = cx.bodies;
+    let sides = sides_of_slot::<PAIR>(slot);
+    let recv = sides.receiver;
+    let (wall, giver) = (sides.wall(), sides.giving_body());
+    let (state, geo_point, geo_normal, depth, spring) = match geometry.find::<PAIR>(slot, cx) {
+        Some(l) if l.3 > 0.0 => l,
+        // Separated, or touching without overlap: no force, no history.
+        _ => {
+            if slot.active {
+                p.lost_history += slot.history_energy;
+            }
+            *slot = Slot::with_sub(slot.i, slot.j, slot.sub);
+            if let Some(r) = rolling_spring {
+                *r = 0.0;
+            }
+            *data = ContactData::default(); // zero forces: the gather adds them unconditionally
+            if let Some(e) = extra {
+                *e = ContactExtra::default();
+            }
+            return;
+        }
+    };
+    match state {
+        ContactState::Deep => p.deep += 1,
+        ContactState::Contained => p.contained += 1,
+        ContactState::Separated | ContactState::Touching | ContactState::Overlap => {}
+    }
+    let (point, n_) = spring.point_normal(geo_point, geo_normal);
+    let t_ = Vec2::new(-n_.y, n_.x);
+    let rel = kinematics::relative(b, cx.walls, sides, point);
+    let vn = rel.velocity.dot(&n_);
+    let (law, m_eff) = laws.law(sides, cx);
+    let needs = law.needs();
+    let r_eff = if !L::LINEAR && needs.r_eff {
+        kinematics::effective_radius_for(b, sides, n_, spring.lens())
+    } else {
+        f64::NAN
+    };
+    let (spring_depth, energy_depth) = spring.depths(depth);
+    let kin = Kinematics {
+        depth: spring_depth,
+        energy_depth,
+        vn,
+        vt: rel.velocity.dot(&t_),
+        m_eff,
+        r_eff,
+        dt: cx.dt,
+        area: spring.area_kinematics(vn, rel.spin),
+        spin: rel.spin,
+        rolling: if !L::LINEAR && needs.rolling {
+            kinematics::rolling(b, sides, point, n_, |k| {
+                cx.adjacency_start[k + 1] - cx.adjacency_start[k]
+            })
+        } else {
+            RollingKinematics {
+                radius: f64::NAN,
+                inertia: f64::NAN,
+                spin_inertia: f64::NAN,
+            }
+        },
+    };
+    let mut history = if slot.active {
+        History {
+            shear: slot.shear,
+            rolling: rolling_spring.as_deref().copied().unwrap_or(0.0),
+        }
+    } else {
+        History::default()
+    };
+    debug_assert!(
+        rolling_spring.is_some() || law.rolling.is_none_or(|r| r.model == RollingModel::Cdt),
+        "an EPSD contact without a rolling spring slot"
+    );
+    let cf = law.force(&kin, &mut history);
+    let f = n_ * cf.normal + t_ * cf.tangential; // T(5): on the receiving body
+    let f_ne = n_ * cf.normal_non_elastic + t_ * cf.tangential;
+    p.contacts += 1;
+    p.elastic += cf.elastic_energy;
+    p.history_energy_change += cf.history_energy_change;
+    // (A circle's inscribed radius is its radius, which a disk scene has at hand.)
+    let inscribed = |k: usize| {
+        if G::DISKS {
+            b.bound[k]
+        } else {
+            b.shape[k].inscribed_radius()
+        }
+    };
+    let scale = inscribed(recv).min(giver.map_or(f64::INFINITY, inscribed));
+    if depth > p.max_depth_ratio * scale {
+        p.max_depth_ratio = depth / scale; // divide only when the maximum grows
+    }
+    if let Some(load) = wall.and_then(|w| loads.get_mut(w)) {
+        load.force += f;
+        load.force_non_elastic += f_ne;
+        load.stiffness += cf.kn;
+        load.contacts += 1;
+    }
+    *slot = Slot {
+        i: slot.i,
+        j: slot.j,
+        sub: slot.sub,
+        active: true,
+        state,
+        shear: history.shear,
+        history_energy: cf.history_energy,
+    };
+    if let Some(r) = rolling_spring {
+        *r = history.rolling;
+    }
+    *data = ContactData {
+        point,
+        force: f,
+        force_non_elastic: f_ne,
+        couple: cf.couple,
+        couple_non_elastic: cf.couple_non_elastic,
+    };
+    if let Some(e) = extra {
+        *e = ContactExtra {
+            normal: n_,
+            depth,
+            kn: cf.kn as f32,
+            eta_n: cf.eta_n as f32,
+            kt: cf.kt as f32,
+            eta_t: cf.eta_t as f32,
+            kr: cf.kr as f32,
+            cr: cf.cr as f32,
+        };
+    }
+}
+
+/// A slot's pair through the narrow phase's lean path ([`overlap_lean`]): `Some` for two
+/// circles, a circle and a wall, or a clump's member pair ([`members::lean_contact`]); `None`
+/// for the other pair kinds.
+#[inline(always)]
+fn lean_of(slot: &Slot, cx: &PassContext) -> Option<Option<LeanContact>> {
+    if slot.sub != 0 {
+        return Some(members::lean_contact(cx.bodies, cx.walls, slot));
+    }
+    let (i, j) = cx.sides(slot.sides());
+    overlap_lean(i, j)
+}
+
+/// Asks the processor to fetch the state of slot `s`'s second body (`j`, not a wall) and its
+/// entry of `other` (the shapes; a disk scene: the radii, all its pairs read) into the cache:
+/// the first body's follow the slots' order, which the hardware prefetcher tracks, but `j`
+/// jumps between neighbours in the row and rows above.
+#[inline(always)]
+fn prefetch_partner<T>(b: &Bodies, s: &Slot, other: &[T]) {
+    let j = s.j as usize;
+    if let (Some(state), Some(o)) = (b.state.get(j), other.get(j)) {
+        prefetch(state);
+        prefetch(o);
+    }
+}
+
+/// A hint to load the cache line holding `r` (nothing on other targets than x86-64).
+#[inline(always)]
+fn prefetch<T>(r: &T) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: a prefetch reads nothing into the program and cannot fault, whatever the address;
+    // `r` is a valid reference anyway. (Only `unsafe` because of its `target_feature`, SSE,
+    // which every x86-64 has.)
+    unsafe {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        _mm_prefetch::<_MM_HINT_T0>((r as *const T).cast());
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = r;
+}

@@ -1,0 +1,141 @@
+//! Upkeep of the neighbour list ([`super::contacts::ContactList`]): built from the broad
+//! phase's grid when bodies have moved far enough that a pair outside it could touch, restored
+//! from a restart, and what a scene keeps beside its slots.
+
+use super::body::Bodies;
+use super::boundary::Boundary;
+use super::broad_phase::Grid;
+use super::contacts::{ContactList, reserve_for};
+use super::members;
+use super::partner::Partner;
+use super::restart::{Kept, RestartState};
+use crate::contact_law::{ContactSpec, RollingModel};
+use crate::narrow_phase::PairCache;
+
+/// The skin of the neighbour list as a fraction of the largest bounding radius: larger means
+/// fewer rebuilds and more candidate pairs to test each step.
+pub const SKIN_FRACTION: f64 = 0.1;
+
+/// The builder's scratch: the broad phase's grid and its pair list.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Builder {
+    grid: Grid,
+    /// The grid's body pairs.
+    pairs: Vec<(u32, u32)>,
+}
+
+impl Builder {
+    /// Heap bytes of the grid, and of the build's scratch.
+    pub fn heap_bytes(&self) -> (usize, usize) {
+        (self.grid.heap_bytes(), self.pairs.capacity() * 8)
+    }
+
+    /// Rebuilds `list` from the current positions (body pairs from the grid, then each body's
+    /// walls after its body partners: key order), carrying histories over; `clumps`: some body
+    /// is a clump (its pairs get a slot per member pair). Returns the history springs' energy of
+    /// the contacts that dropped out of the list.
+    pub fn rebuild(
+        &mut self,
+        bodies: &Bodies,
+        walls: &[Boundary],
+        spec: &ContactSpec,
+        clumps: bool,
+        list: &mut ContactList,
+    ) -> f64 {
+        let n = bodies.len();
+        let skin = skin(bodies);
+        list.skin = skin;
+        self.grid.pairs(bodies, skin, &mut self.pairs);
+        list.keys.clear();
+        reserve_for(&mut list.keys, self.pairs.len() + n);
+        let mut next = 0;
+        for i in 0..n {
+            while next < self.pairs.len() && self.pairs[next].0 as usize == i {
+                let (a, b) = self.pairs[next];
+                if clumps {
+                    members::pair_keys(bodies, a, b, skin, &mut list.keys);
+                } else {
+                    list.keys.push((a, b, 0));
+                }
+                next += 1;
+            }
+            let (x, r) = (bodies.state[i].pose.position, bodies.bound[i]);
+            for (w, ws) in walls.iter().enumerate() {
+                let wj = Partner::Wall(w).key();
+                let d = ws.signed_distance(x);
+                if d <= r + skin {
+                    match bodies.shape[i].clump() {
+                        None => list.keys.push((i as u32, wj, 0)),
+                        Some(c) => {
+                            members::boundary_keys(&c, i as u32, wj, d, skin, &mut list.keys)
+                        }
+                    }
+                }
+            }
+        }
+        let Kept { cached, rolling } = kept(&bodies.shape, spec, walls);
+        let lost = list.rebuild_from_keys(n, cached, rolling);
+        list.built_at.clear();
+        reserve_for(&mut list.built_at, n);
+        list.built_at
+            .extend(bodies.state.iter().map(|s| s.pose.position));
+        list.wall_built_at.clear();
+        list.wall_built_at
+            .extend(walls.iter().map(|w| w.line().point));
+        lost
+    }
+}
+
+/// The skin for these bodies ([`SKIN_FRACTION`] of the largest bounding radius).
+fn skin(bodies: &Bodies) -> f64 {
+    let max_bound = bodies.bound.iter().copied().fold(0.0f64, f64::max);
+    SKIN_FRACTION * max_bound
+}
+
+/// Restores the neighbour list of a restart: its slots with their histories, pair caches and
+/// contacts, what it was built from and its number of builds (the state checked by
+/// [`RestartState::check`]).
+pub(crate) fn restore(
+    bodies: &Bodies,
+    walls: &[Boundary],
+    spec: &ContactSpec,
+    saved: &RestartState,
+    list: &mut ContactList,
+) {
+    let n = bodies.len();
+    let Kept { cached, rolling } = kept(&bodies.shape, spec, walls);
+    *list = ContactList::default();
+    list.skin = skin(bodies);
+    list.keys.extend(saved.slots.iter().map(|s| s.slot.key()));
+    list.rebuild_from_keys(n, cached, rolling);
+    for (k, s) in saved.slots.iter().enumerate() {
+        list.slots[k] = s.slot;
+        list.data[k] = s.data;
+        if cached {
+            list.cache[k] = s.cache;
+        }
+        if rolling {
+            list.rolling[k] = s.rolling;
+        }
+    }
+    list.built_at.extend_from_slice(&saved.built_at);
+    list.wall_built_at.extend_from_slice(&saved.wall_built_at);
+    list.builds = saved.builds;
+}
+
+/// What a scene keeps beside its slots: pair caches where some pair keeps something in them
+/// (conic pairs: warm starts), rolling springs where a contact law has one (EPSD).
+pub(crate) fn kept(
+    shapes: &[crate::geometry::Shape],
+    spec: &ContactSpec,
+    walls: &[Boundary],
+) -> Kept {
+    let epsd = |spec: &ContactSpec| {
+        spec.rolling()
+            .is_some_and(|r| r.model == RollingModel::Epsd)
+    };
+    Kept {
+        cached: shapes.iter().any(PairCache::kept_with),
+        rolling: epsd(spec) || walls.iter().any(|w| epsd(&w.spec)),
+    }
+}
