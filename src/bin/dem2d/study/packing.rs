@@ -152,9 +152,7 @@ pub fn pour_shaped(
     );
     if write {
         let path = format!("cases/packing/packing_a{aspect}_mu{friction}.json");
-        std::fs::create_dir_all("cases/packing").expect("cases/packing");
-        std::fs::write(&path, &text).unwrap_or_else(|e| panic!("{path}: {e}"));
-        eprintln!("wrote {path}");
+        super::put_case(std::path::Path::new(&path), &text);
     }
     let case = Case::from_json(&text).expect("valid case");
     let mut w = case.build_world();
@@ -212,7 +210,7 @@ pub fn pour_shaped(
 }
 
 /// Runs the study with piles of `n` grains; `write` also writes their case files.
-pub fn run(n: usize, write: bool) {
+pub fn run(n: usize, write: bool) -> String {
     let aspects = [1.0, 1.2, 1.5, 2.0, 3.0];
     let width = width_for(n);
     let mut piles = Vec::new();
@@ -310,4 +308,5 @@ pub fn run(n: usize, write: bool) {
     }
     std::fs::write("figures/packing.md", &md).expect("figures/packing.md");
     print!("{md}");
+    md
 }

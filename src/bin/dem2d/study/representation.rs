@@ -293,7 +293,7 @@ fn e(v: f64) -> String {
 }
 
 /// Runs the study; the pile has `grains` grains.
-pub fn run(grains: usize) {
+pub fn run(grains: usize) -> String {
     let reps: Vec<Rep> = std::iter::once(Rep::Ellipse)
         .chain(NS.iter().map(|&n| Rep::Polygon(n)))
         .chain(KS.iter().map(|&k| Rep::Clump(k)))
@@ -689,4 +689,5 @@ pub fn run(grains: usize) {
     }
     std::fs::write("figures/representation.md", &md).expect("figures/representation.md");
     print!("{md}");
+    md
 }

@@ -19,10 +19,12 @@ fn rest_time(case: &Case, limit: f64) -> Option<(f64, f64)> {
     None
 }
 
-pub fn run() {
+pub fn run() -> String {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases");
-    println!("| shape | normal force | rolling model | μ_r | at rest at t (s) | x at rest (cm) |");
-    println!("|---|---|---|---:|---:|---:|");
+    let mut md = super::Table::new(
+        "| shape | normal force | rolling model | μ_r | at rest at t (s) | x at rest (cm) |\n\
+         |---|---|---|---:|---:|---:|",
+    );
     for name in ["throw_circle", "throw_ellipse"] {
         let text = std::fs::read_to_string(root.join(format!("{name}.json"))).unwrap();
         let base = Case::from_json(&text).unwrap();
@@ -40,14 +42,15 @@ pub fn run() {
                         Some((t, x)) => format!("{t:.3} | {x:.2}"),
                         None => "not in 20 s | —".into(),
                     };
-                    println!(
+                    md.row(format!(
                         "| {} | {} | {} | {mu_r} | {cell} |",
                         name.trim_start_matches("throw_"),
                         nf.as_str(),
                         model.as_str()
-                    );
+                    ));
                 }
             }
         }
     }
+    md.text()
 }
