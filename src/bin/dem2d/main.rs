@@ -424,7 +424,7 @@ fn run(args: RunArgs) -> Result<(), Failure> {
     let text = read_input(&name)?;
     let file = dem2d::scene::CaseFile::from_json(&text)
         .map_err(|e| Failure::input(format!("{name}: {e}")))?;
-    let (mut case, restart) = (file.case, file.restart);
+    let (mut case, restart, read_warnings) = (file.case, file.restart, file.warnings);
     if let Some(d) = args.duration {
         if !(d.is_finite() && d > 0.0) {
             return Err(Failure::input(format!(
@@ -479,6 +479,7 @@ fn run(args: RunArgs) -> Result<(), Failure> {
         analysis_window: case.output.analysis_window,
         restart,
         input: Some(args.case.to_path_buf()),
+        warnings: read_warnings,
     };
     let outcome = run_case(&case, &text, &opts).map_err(|e| match e {
         RunError::Occupied { .. } | RunError::Locked { .. } => Failure::input(e.to_string()),
