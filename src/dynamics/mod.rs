@@ -7,6 +7,7 @@ pub mod analysis;
 pub mod body;
 pub mod boundary;
 pub mod broad_phase;
+pub mod cell;
 pub mod contact_pass;
 pub mod contacts;
 pub mod kinematics;

@@ -151,6 +151,17 @@ fn write_state_block(out: &mut String, s: &RestartState, bodies: &[BodyInit], st
     if let Some(run) = &s.run {
         write_run(out, run);
     }
+    if let Some(c) = &s.cell {
+        let _ = writeln!(
+            out,
+            "    \"cell\": {{\"size\": {}, \"offset\": {}, \"shift\": {}, \"stress\": [{}], \"stiffness_yy\": {}}},",
+            vec2(c.size),
+            num(c.offset),
+            num(c.shift),
+            c.stress.map(num).join(", "),
+            num(c.stiffness_yy)
+        );
+    }
     out.push_str("    \"walls\": [");
     for (k, w) in s.walls.iter().enumerate() {
         let l = &w.load;
@@ -182,6 +193,9 @@ fn write_state_block(out: &mut String, s: &RestartState, bodies: &[BodyInit], st
         );
         if bodies.get(k).is_some_and(|i| i.shape.is_circle()) {
             let _ = write!(out, ", \"frame\": [{}, {}]", num(b.frame.0), num(b.frame.1));
+        }
+        if s.cell.is_some() {
+            let _ = write!(out, ", \"image\": [{}, {}]", b.image[0], b.image[1]);
         }
         out.push('}');
     }

@@ -39,6 +39,7 @@ use dem2d::dynamics::timestep::estimate_critical_dt;
 use dem2d::dynamics::watch::{self, BlowupWatch, Trigger};
 use dem2d::dynamics::{Blowup, RestartState, RunProgress, World};
 use dem2d::output::analysis::AnalysisOutput;
+use dem2d::output::cell::CellWriter;
 use dem2d::output::progress::{self, Progress};
 use dem2d::output::summary::{DeepCounts, EnergyReport, FinalBody, Status, Summary, write_summary};
 use dem2d::output::trace::{IncrementsWriter, TrajectoryWriter, WriteError, time_value};
@@ -85,7 +86,7 @@ pub struct RunOptions {
 
 /// The files a run writes (and `dem2d plot`'s default outputs, drawn from them): what is
 /// removed from a directory before a run replaces an earlier one. The summary comes first.
-pub const OUTPUT_FILES: [&str; 14] = [
+pub const OUTPUT_FILES: [&str; 15] = [
     "summary.json",
     "summary.json.tmp",
     "case.json",
@@ -100,6 +101,7 @@ pub const OUTPUT_FILES: [&str; 14] = [
     "analysis.csv",
     "contacts.csv",
     "walls.csv",
+    "cell.csv",
 ];
 
 /// A blow-up: where it was found and why.
@@ -402,13 +404,7 @@ struct Counters {
 pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOutcome, RunError> {
     let dir = &opts.out_dir;
     let mut world = match &opts.restart {
-        None => World::new(
-            &case.bodies,
-            case.walls.clone(),
-            case.gravity,
-            case.contact,
-            case.dt,
-        ),
+        None => case.build_world(),
         Some(state) => World::resume(
             &case.bodies,
             case.walls.clone(),
@@ -433,6 +429,13 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
         case.gravity.norm(),
     );
     let mut warnings = opts.warnings.clone();
+    let outside = case.bodies_outside_cell();
+    if outside > 0 && opts.restart.is_none() {
+        warnings.push(format!(
+            "{outside} bodies start outside the periodic cell: each is brought into it through \
+             the seams (its image counts start from the crossings)"
+        ));
+    }
     if case.dt > dt_critical {
         warnings.push(format!(
             "dt = {:e} exceeds the critical time step estimated from the stiffest possible contact, {:.3e} \
@@ -479,14 +482,18 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
     let mut last_label = None;
     let traj_file = dir.join("trajectory.csv");
     let incs_file = dir.join("increments.csv");
-    let result = match TrajectoryWriter::create(&traj_file)
+    let result = match TrajectoryWriter::create(&traj_file, world.cell.is_some())
         .and_then(|t| Ok((t, IncrementsWriter::create(&incs_file)?)))
         .and_then(|(t, i)| {
             let walls = match world.walls.is_empty() {
                 true => None,
                 false => Some(WallsWriter::create(dir)?),
             };
-            Ok((t, i, walls))
+            let cell = match world.cell {
+                None => None,
+                Some(_) => Some(CellWriter::create(dir)?),
+            };
+            Ok((t, i, (walls, cell)))
         })
         .and_then(|(t, i, walls)| {
             let vtk = match opts.vtk_every {
@@ -500,13 +507,14 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
                     opts.contacts,
                     opts.analysis_window
                         .map(|[x0, x1, y0, y1]| dem2d::analysis::Window { x0, x1, y0, y1 }),
+                    world.cell.is_some(),
                 )?),
                 false => None,
             };
             Ok((t, i, walls, vtk, analysis))
         }) {
         Err(e) => Err(e),
-        Ok((mut traj, mut incs, mut walls, mut vtk, mut analysis)) => {
+        Ok((mut traj, mut incs, (mut walls, mut cell), mut vtk, mut analysis)) => {
             let stopped = step_loop(
                 case,
                 opts,
@@ -515,6 +523,7 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
                     traj: &mut traj,
                     incs: &mut incs,
                     walls: walls.as_mut(),
+                    cell: cell.as_mut(),
                     vtk: vtk.as_mut(),
                     analysis: analysis.as_mut(),
                 },
@@ -531,7 +540,11 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
             let walls_done = match &mut walls {
                 Some(w) => w.write(&world, label).and_then(|()| w.flush()),
                 None => Ok(()),
-            };
+            }
+            .and(match &mut cell {
+                Some(c) => c.write(&world, label).and_then(|()| c.flush()),
+                None => Ok(()),
+            });
             let analysis_done = match &mut analysis {
                 Some(a) if last_label.is_none() => {
                     a.write(&mut world, label).and_then(|()| a.flush())
@@ -682,6 +695,7 @@ struct Writers<'a> {
     traj: &'a mut TrajectoryWriter,
     incs: &'a mut IncrementsWriter,
     walls: Option<&'a mut WallsWriter>,
+    cell: Option<&'a mut CellWriter>,
     vtk: Option<&'a mut VtkWriter>,
     analysis: Option<&'a mut AnalysisOutput>,
 }
@@ -696,6 +710,7 @@ fn step_loop(
         traj,
         incs,
         mut walls,
+        mut cell,
         mut vtk,
         mut analysis,
     }: Writers,
@@ -716,6 +731,9 @@ fn step_loop(
     traj.write(world).and_then(|()| traj.flush())?;
     if let Some(w) = walls.as_deref_mut() {
         w.write(world, world.step).and_then(|()| w.flush())?;
+    }
+    if let Some(c) = cell.as_deref_mut() {
+        c.write(world, world.step).and_then(|()| c.flush())?;
     }
     if let Some(v) = vtk.as_deref_mut() {
         v.write(world)?;
@@ -760,6 +778,9 @@ fn step_loop(
             traj.write(world)?;
             if let Some(w) = walls.as_deref_mut() {
                 w.write(world, world.step)?;
+            }
+            if let Some(c) = cell.as_deref_mut() {
+                c.write(world, world.step)?;
             }
             world.network_critical_dt();
             if let Some(a) = analysis.as_deref_mut() {
