@@ -109,6 +109,58 @@ pub fn line(f: &Fields) -> String {
     )
 }
 
+/// The progress of a loop that steps a world outside `dem2d run` — a study, `dem2d verify`'s
+/// runs, `dem2d bench`'s settling — as `run` shows it ([`line`]): nothing for the first two
+/// seconds, then one line per second on a terminal, one per 30 s in a log. One clock read per
+/// [`WorldProgress::tick`]; the unbalanced ratio (a pass over the contacts) only when a line is
+/// due.
+pub struct WorldProgress {
+    progress: Progress,
+    name: String,
+    /// The step the loop started from and the most it will run to.
+    first: u64,
+    steps: u64,
+    start: Instant,
+}
+
+impl WorldProgress {
+    /// For a loop named `name` (the study and its sample) from `world`'s step, of at most `steps`
+    /// steps.
+    pub fn new(name: impl Into<String>, world: &crate::dynamics::World, steps: u64) -> Self {
+        WorldProgress {
+            progress: Progress::new(true, Duration::from_secs(2)),
+            name: name.into(),
+            first: world.step,
+            steps: world.step + steps,
+            start: Instant::now(),
+        }
+    }
+
+    /// After a step: shows the line when one is due (`contacts`: the step's count).
+    #[inline]
+    pub fn tick(&mut self, world: &crate::dynamics::World, contacts: usize) {
+        if self.progress.due() {
+            let elapsed = self.start.elapsed().as_secs_f64();
+            self.progress.show(&line(&Fields {
+                name: &self.name,
+                step: world.step - self.first,
+                steps: self.steps - self.first,
+                time: world.time,
+                elapsed,
+                contacts,
+                unbalanced: world.unbalanced_ratios().0,
+            }));
+        }
+    }
+}
+
+impl Drop for WorldProgress {
+    /// Ends the in-place line on a terminal.
+    fn drop(&mut self) {
+        self.progress.finish();
+    }
+}
+
 /// A wall-clock duration as `m:ss` or `h:mm:ss` (rounded to the second).
 pub fn duration(seconds: f64) -> String {
     let s = if seconds.is_finite() {

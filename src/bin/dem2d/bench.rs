@@ -13,12 +13,12 @@
 use dem2d::contact_law::NormalForce;
 use dem2d::dynamics::timestep::estimate_critical_dt;
 use dem2d::dynamics::{BodyInit, World};
-use dem2d::output::progress::Progress;
+use dem2d::output::progress::WorldProgress;
 use dem2d::scene::Case;
 use dem2d::scene::generate::{PileShape, PileSpec, WIDTH_10K};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 /// Mean speed (cm/s) below which a pile counts as settled for the benchmark.
 pub const SETTLED_SPEED: f64 = 0.5;
@@ -134,26 +134,29 @@ fn settle(spec: &PileSpec, progress: bool) -> Result<String, BenchError> {
     let start = Instant::now();
     let check = ((0.01 / dt).round() as u64).max(1);
     let mut speed = mean_speed(&w);
-    let mut shown = Progress::new(progress, Duration::ZERO);
+    // The line `dem2d run` shows (the step's contacts, not the neighbour list's pairs).
+    let mut shown = progress.then(|| {
+        WorldProgress::new(
+            format!("settling {}", spec.name()),
+            &w,
+            (SETTLE_TIME_MAX / dt).ceil() as u64,
+        )
+    });
     while w.time < SETTLE_TIME_MAX {
-        w.step()
+        let report = w
+            .step()
             .map_err(|b| BenchError(format!("settling {}: {b}", spec.name())))?;
+        if let Some(p) = &mut shown {
+            p.tick(&w, report.contacts);
+        }
         if w.step.is_multiple_of(check) {
             speed = mean_speed(&w);
-            if shown.due() {
-                shown.show(&format!(
-                    "settling {}: t = {:.2} s, mean speed {speed:.3} cm/s, {} contacts",
-                    spec.name(),
-                    w.time,
-                    w.contacts.len()
-                ));
-            }
             if w.time > 0.2 && speed < SETTLED_SPEED {
                 break;
             }
         }
     }
-    shown.finish();
+    drop(shown);
     let description = format!(
         "{} settled at Δt = {dt:.3e} s for {:.2} s (mean speed {speed:.3} cm/s; {:.0} s of wall time) by `dem2d bench`, from: {}",
         spec.name(),

@@ -17,6 +17,7 @@
 
 use dem2d::dynamics::{BodyInit, World};
 use dem2d::geometry::{Shape, Vec2};
+use dem2d::output::progress::WorldProgress;
 use dem2d::scene::Case;
 use dem2d::scene::generate::case_text_from;
 use serde_json::{Value, json};
@@ -129,9 +130,11 @@ pub fn run(write: bool) -> String {
     let case = Case::from_json(&compaction).unwrap();
     let mut w = case.build_world();
     let mut last = f64::INFINITY;
+    let mut progress = WorldProgress::new(&case.name, &w, case.steps());
     loop {
         for _ in 0..5000 {
-            w.step().unwrap();
+            let r = w.step().unwrap();
+            progress.tick(&w, r.contacts);
         }
         let (ax, lat, width, height) = stresses(&w);
         eprintln!(
@@ -183,8 +186,10 @@ pub fn run(write: bool) -> String {
     );
     let steps_per_percent = (0.01 / STRAIN_RATE / case.dt).round() as u64;
     let (mut sum, mut count) = ([0.0; 2], 0.0);
+    let mut progress = WorldProgress::new(&case.name, &w, case.steps());
     for step in 1..=case.steps() {
-        w.step().unwrap();
+        let r = w.step().unwrap();
+        progress.tick(&w, r.contacts);
         let (ax, lat, width, height) = stresses(&w);
         sum[0] += ax;
         sum[1] += lat;

@@ -25,6 +25,7 @@ use dem2d::dynamics::World;
 use dem2d::dynamics::boundary::span_length;
 use dem2d::dynamics::{BodyInit, Span};
 use dem2d::output::plot::{self, LinePanel, Series};
+use dem2d::output::progress::WorldProgress;
 use dem2d::scene::Case;
 use dem2d::scene::servo_box::ServoBox;
 use serde_json::json;
@@ -56,9 +57,15 @@ pub fn wall_state(w: &World) -> (f64, f64, f64, f64) {
 pub fn compact(w: &mut World, max_time: f64) -> u64 {
     let mut steps = 0;
     let mut last = f64::INFINITY;
+    let mut progress = WorldProgress::new(
+        format!("compaction of {} grains", w.bodies.len()),
+        w,
+        ((max_time - w.time) / w.dt).round().max(0.0) as u64,
+    );
     while w.time < max_time {
         for _ in 0..2000 {
-            w.step().expect("finite");
+            let r = w.step().expect("finite");
+            progress.tick(w, r.contacts);
         }
         steps += 2000;
         let (width, height, _, _) = wall_state(w);
@@ -169,8 +176,10 @@ pub fn run_one(n_side: usize, aspect: f64, strain: f64, verbose: bool) -> Outcom
     };
     let (mut sum, mut count) = ([0.0; 2], 0.0);
     let mut frames = Vec::new();
+    let mut progress = WorldProgress::new(&case.name, &w, case.steps());
     for step in 1..=case.steps() {
-        w.step().expect("finite");
+        let r = w.step().expect("finite");
+        progress.tick(&w, r.contacts);
         let (_, _, ax, lat) = wall_state(&w);
         sum[0] += ax;
         sum[1] += lat;

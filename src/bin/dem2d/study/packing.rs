@@ -21,6 +21,7 @@ use dem2d::contact_law::NormalForce;
 use dem2d::dynamics::BodyInit;
 use dem2d::geometry::{Shape, Vec2};
 use dem2d::output::plot::{self, LinePanel, Series};
+use dem2d::output::progress::WorldProgress;
 use dem2d::scene::Case;
 use dem2d::scene::generate::{DENSITY, PileShape, PileSizes, PileSpec, R_SMALL};
 use std::fmt::Write as _;
@@ -160,8 +161,10 @@ pub fn pour_shaped(
     let mut streak = 0;
     let mut at_rest = false;
     let mut contacts = 0usize;
+    let mut progress = WorldProgress::new(&case.name, &w, case.steps());
     for _ in 0..case.steps() {
         let r = w.step().expect("finite");
+        progress.tick(&w, r.contacts);
         contacts += r.contacts;
         if r.increments.iter().all(|&d| d <= q) {
             streak += 1;

@@ -19,6 +19,7 @@
 use dem2d::contact_law::{RollingModel, RollingPart};
 use dem2d::dynamics::BodyInit;
 use dem2d::dynamics::analysis::heap_surface;
+use dem2d::output::progress::WorldProgress;
 use dem2d::scene::Case;
 use dem2d::scene::generate::ColumnSpec;
 
@@ -29,8 +30,10 @@ const GATE_SPEED: f64 = 100.0;
 fn run_to_rest(case: &Case) -> (dem2d::dynamics::World, Option<f64>) {
     let mut w = case.build_world();
     let mut q = case.quiescence_criterion().expect("quiescence");
+    let mut progress = WorldProgress::new(&case.name, &w, case.steps());
     for _ in 0..case.steps() {
         let r = w.step().expect("step");
+        progress.tick(&w, r.contacts);
         if let Some(s) = q.observe(w.step, &r.increments) {
             return (w, Some(s as f64 * case.dt));
         }
@@ -49,7 +52,10 @@ pub fn run(write: bool) -> String {
     let lattice = column.lattice_bodies();
     let settle = Case::from_json(&column.case_json("column", &lattice, 0.0, None)).unwrap();
     let (w, rest) = run_to_rest(&settle);
-    eprintln!("column settled at t = {rest:?}");
+    match rest {
+        Some(t) => eprintln!("column settled at t = {t} s"),
+        None => eprintln!("column not at rest within its duration: continuing from where it is"),
+    }
     let settled: Vec<BodyInit> = (0..w.bodies.len())
         .map(|k| BodyInit {
             position: w.bodies.state[k]

@@ -5,13 +5,16 @@
 //! criterion (the case's threshold, held for the case's window) first holds, in a run of up to
 //! 20 s.
 use dem2d::contact_law::{NormalForce, RollingModel, RollingPart};
+use dem2d::output::progress::WorldProgress;
 use dem2d::scene::Case;
 
 fn rest_time(case: &Case, limit: f64) -> Option<(f64, f64)> {
     let mut w = case.build_world();
     let mut q = case.quiescence_criterion().expect("quiescence");
+    let mut progress = WorldProgress::new(&case.name, &w, (limit / w.dt).round() as u64);
     while w.time < limit {
         let r = w.step().expect("step");
+        progress.tick(&w, r.contacts);
         if let Some(s) = q.observe(w.step, &r.increments) {
             return Some((s as f64 * w.dt, w.bodies.state[0].pose.position.x));
         }
