@@ -34,14 +34,13 @@ pub type Row = (String, f64, String, String, bool);
 const G: f64 = 980.0;
 
 fn spec(kn: f64, damping: LinearDamping, friction: f64, nf: NormalForce) -> ContactSpec {
-    ContactSpec::Linear {
-        kn: Scaled::Absolute(kn),
-        ks: Scaled::Absolute(kn),
+    ContactSpec::linear(
+        Scaled::Absolute(kn),
+        Scaled::Absolute(kn),
         damping,
         friction,
-        normal_force: nf,
-        rolling: None,
-    }
+    )
+    .with_normal_force(nf)
 }
 
 fn undamped() -> LinearDamping {
