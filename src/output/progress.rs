@@ -110,46 +110,80 @@ pub fn line(f: &Fields) -> String {
 }
 
 /// The progress of a loop that steps a world outside `dem2d run` — a study, `dem2d verify`'s
-/// runs, `dem2d bench`'s settling — as `run` shows it ([`line`]): nothing for the first two
-/// seconds, then one line per second on a terminal, one per 30 s in a log. One clock read per
-/// [`WorldProgress::tick`]; the unbalanced ratio (a pass over the contacts) only when a line is
-/// due.
+/// runs, `dem2d bench`'s settling — as `run` shows it ([`line`]). The pace is the process's, not
+/// the loop's (a study of many short runs is one long command): nothing for its first two
+/// seconds, then one line per second on a terminal, one per 30 s in a log, whichever loop is
+/// running. One clock read per [`WorldProgress::tick`]; the unbalanced ratio (a pass over the
+/// contacts) only when a line is due.
 pub struct WorldProgress {
-    progress: Progress,
     name: String,
     /// The step the loop started from and the most it will run to.
     first: u64,
     steps: u64,
     start: Instant,
+    tty: bool,
+    /// Whether this loop showed a line (a terminal's in-place line then needs its newline).
+    shown: bool,
 }
+
+/// When the process's first [`WorldProgress`] was made, and its last line (nanoseconds after
+/// that; `u64::MAX`: none yet).
+static PROCESS_START: std::sync::OnceLock<Instant> = std::sync::OnceLock::new();
+static LAST_LINE: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(u64::MAX);
 
 impl WorldProgress {
     /// For a loop named `name` (the study and its sample) from `world`'s step, of at most `steps`
     /// steps.
     pub fn new(name: impl Into<String>, world: &crate::dynamics::World, steps: u64) -> Self {
+        PROCESS_START.get_or_init(Instant::now);
         WorldProgress {
-            progress: Progress::new(true, Duration::from_secs(2)),
             name: name.into(),
             first: world.step,
             steps: world.step + steps,
             start: Instant::now(),
+            tty: std::io::stderr().is_terminal(),
+            shown: false,
         }
+    }
+
+    /// Whether a line is due now (and, if so, it is counted as shown).
+    fn due(&self) -> bool {
+        use std::sync::atomic::Ordering;
+        let origin = *PROCESS_START.get_or_init(Instant::now);
+        let now = Instant::now().duration_since(origin).as_nanos() as u64;
+        let every = if self.tty {
+            1_000_000_000
+        } else {
+            30_000_000_000
+        };
+        let last = LAST_LINE.load(Ordering::Relaxed);
+        let due = now >= 2_000_000_000 && (last == u64::MAX || now >= last.saturating_add(every));
+        due && LAST_LINE
+            .compare_exchange(last, now, Ordering::Relaxed, Ordering::Relaxed)
+            .is_ok()
     }
 
     /// After a step: shows the line when one is due (`contacts`: the step's count).
     #[inline]
     pub fn tick(&mut self, world: &crate::dynamics::World, contacts: usize) {
-        if self.progress.due() {
-            let elapsed = self.start.elapsed().as_secs_f64();
-            self.progress.show(&line(&Fields {
+        if self.due() {
+            let text = line(&Fields {
                 name: &self.name,
                 step: world.step - self.first,
                 steps: self.steps - self.first,
                 time: world.time,
-                elapsed,
+                elapsed: self.start.elapsed().as_secs_f64(),
                 contacts,
                 unbalanced: world.unbalanced_ratios().0,
-            }));
+            });
+            self.shown = true;
+            // A courtesy: a closed or full stderr must not stop the work.
+            let mut err = std::io::stderr().lock();
+            let _ = if self.tty {
+                write!(err, "\r{text}   ")
+            } else {
+                writeln!(err, "{text}")
+            };
         }
     }
 }
@@ -157,7 +191,9 @@ impl WorldProgress {
 impl Drop for WorldProgress {
     /// Ends the in-place line on a terminal.
     fn drop(&mut self) {
-        self.progress.finish();
+        if self.shown && self.tty {
+            let _ = writeln!(std::io::stderr());
+        }
     }
 }
 
