@@ -22,5 +22,6 @@ pub mod dynamics;
 pub mod geometry;
 pub mod narrow_phase;
 pub mod output;
+pub mod run;
 pub mod scene;
 pub mod validation;

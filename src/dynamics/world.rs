@@ -112,7 +112,7 @@ impl World {
     }
 
     /// The world's full state, from which [`World::resume`] continues exactly (see
-    /// [`super::restart`]); without the run's progress.
+    /// [`super::restart`]).
     pub fn restart_state(&self) -> RestartState {
         let b = &self.bodies;
         let c = &self.contacts;
@@ -156,7 +156,6 @@ impl World {
             energies: self.energies,
             diagnostics: self.diagnostics,
             last_increments: self.last_increments,
-            run: None,
         }
     }
 

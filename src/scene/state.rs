@@ -16,19 +16,22 @@ use crate::dynamics::boundary::WallLoad;
 use crate::dynamics::contacts::{ContactData, Slot};
 use crate::dynamics::partner::{MAX_INDEX, Partner};
 use crate::dynamics::restart::{
-    BodyRestart, RestartState, RunProgress, SlotRestart, WallRestart, state_from_name,
+    BodyRestart, RestartState, SlotRestart, WallRestart, state_from_name,
 };
-use crate::dynamics::watch::BlowupWatch;
 use crate::geometry::Vec2;
 use crate::narrow_phase::PairCache;
+use crate::run::{BlowupWatch, RunProgress};
 use serde_json::Value;
 
 /// A case file, and the state it continues from when it is a state file.
 #[derive(Clone, Debug)]
 pub struct CaseFile {
     pub case: Case,
-    /// The state block (`None` for a case that starts at t = 0).
+    /// The state block's world state (`None` for a case that starts at t = 0).
     pub restart: Option<RestartState>,
+    /// The state block's run progress (`"run"`: the run that wrote the state), saved beside
+    /// the world's state.
+    pub run: Option<RunProgress>,
     /// The file as parsed (a state file written at the end of the run repeats its fields).
     pub value: Value,
 }
@@ -38,26 +41,20 @@ impl CaseFile {
     pub fn from_json(text: &str) -> Result<CaseFile, FieldError> {
         let value = parse_json(text, "")?;
         let case = Case::from_value(&value)?;
-        let restart = match value.get("state") {
-            None => None,
+        let (restart, run) = match value.get("state") {
+            None => (None, None),
             Some(s) => {
-                let state = parse_state(s, &case)?;
+                let (state, run) = parse_state(s, &case)?;
                 // The same check as the world's when it resumes, named in the file's terms.
-                World::resume(
-                    &case.bodies,
-                    case.walls.clone(),
-                    case.gravity,
-                    case.contact,
-                    case.dt,
-                    &state,
-                )
-                .map_err(|e| FieldError::new(join("state", &e.path), e.message))?;
-                Some(state)
+                case.resume_world(&state)
+                    .map_err(|e| FieldError::new(join("state", &e.path), e.message))?;
+                (Some(state), run)
             }
         };
         Ok(CaseFile {
             case,
             restart,
+            run,
             value,
         })
     }
@@ -66,15 +63,7 @@ impl CaseFile {
     pub fn build_world(&self) -> World {
         match &self.restart {
             None => self.case.build_world(),
-            Some(state) => World::resume(
-                &self.case.bodies,
-                self.case.walls.clone(),
-                self.case.gravity,
-                self.case.contact,
-                self.case.dt,
-                state,
-            )
-            .expect("checked when read"),
+            Some(state) => self.case.resume_world(state).expect("checked when read"),
         }
     }
 }
@@ -181,8 +170,12 @@ fn warm(v: &Value, path: &str) -> Result<PairCache, FieldError> {
     Ok(PairCache::from_saved(w))
 }
 
-/// Reads the state block of a state file whose case part is `case`.
-pub fn parse_state(v: &Value, case: &Case) -> Result<RestartState, FieldError> {
+/// Reads the state block of a state file whose case part is `case`: the world's state, and the
+/// run's progress when the block has it.
+pub fn parse_state(
+    v: &Value,
+    case: &Case,
+) -> Result<(RestartState, Option<RunProgress>), FieldError> {
     let mut o = Obj::new(v, "state")?;
     o.opt_with("status", |v, p| {
         v.as_str()
@@ -312,7 +305,7 @@ pub fn parse_state(v: &Value, case: &Case) -> Result<RestartState, FieldError> {
         Ok((builds, wall_built_at, built_at))
     })?;
     o.finish()?;
-    Ok(RestartState {
+    let state = RestartState {
         step,
         time,
         bodies,
@@ -324,8 +317,8 @@ pub fn parse_state(v: &Value, case: &Case) -> Result<RestartState, FieldError> {
         energies,
         diagnostics,
         last_increments,
-        run,
-    })
+    };
+    Ok((state, run))
 }
 
 fn parse_contact(v: &Value, path: &str) -> Result<SlotRestart, FieldError> {

@@ -23,12 +23,14 @@
 //!   `r ω' = −v_t'`. A code with a tangential spring departs from this limit (the spring's
 //!   elastic recoil), which is what the test shows; it is exact only in the sliding regime.
 //!
-//! The simulations run a single disk with the library's stepper (no gravity) and measure the
+//! The simulations run a single disk through the run driver (no gravity) and measure the
 //! contact from the exact disk–wall overlap `δ = r − y`: start and end of contact by linear
 //! interpolation of δ between steps, the peak as the largest δ sampled (its error is of order
 //! `(ω Δt)²`). The lever arm of the friction force is the distance from the centre to the
 //! chord midpoint, `r − δ`, not r: the spin differs from the rigid theory by at most δ_max/r.
 
+use crate::dynamics::World;
+use crate::run::{RunError, Simulation};
 use crate::scene::Case;
 
 /// What one impact gave.
@@ -55,7 +57,12 @@ pub fn mass() -> f64 {
 
 /// Runs a disk hitting the floor y = 0 at normal speed `vn` (> 0, downwards) and tangential speed
 /// `vt` under the contact law `contact` (a case's `"contact"` object), with step `dt`.
-pub fn disk_on_floor(contact: &serde_json::Value, vn: f64, vt: f64, dt: f64) -> Impact {
+pub fn disk_on_floor(
+    contact: &serde_json::Value,
+    vn: f64,
+    vt: f64,
+    dt: f64,
+) -> Result<Impact, RunError> {
     let text = serde_json::json!({
         "version": 1, "name": "impact", "gravity": [0.0, 0.0], "dt": dt, "duration": 1.0,
         "contact": contact,
@@ -66,37 +73,37 @@ pub fn disk_on_floor(contact: &serde_json::Value, vn: f64, vt: f64, dt: f64) -> 
     .to_string();
     let case = Case::from_json(&text).expect("the benchmark's case is valid");
     let mut w = case.build_world();
-    let depth = |w: &crate::dynamics::World| RADIUS - w.bodies.state[0].pose.position.y;
+    let depth = |w: &World| RADIUS - w.bodies.state[0].pose.position.y;
     let (mut t0, mut t1, mut peak) = (None, None, 0.0f64);
     let mut last = depth(&w);
     let mut steps = 0;
-    while t1.is_none() && steps < 10_000_000 {
-        w.step().expect("finite");
-        steps += 1;
-        let d = depth(&w);
-        let t = w.time;
-        if t0.is_none() && last <= 0.0 && d > 0.0 {
-            t0 = Some(t - dt * d / (d - last));
-        }
-        if t0.is_some() && last > 0.0 && d <= 0.0 {
-            t1 = Some(t - dt * d / (d - last));
-        }
-        peak = peak.max(d);
-        last = d;
-    }
+    Simulation::new(&mut w)
+        .for_steps(10_000_000)
+        .run_until(|w, _| {
+            steps += 1;
+            let d = depth(w);
+            let t = w.time;
+            if t0.is_none() && last <= 0.0 && d > 0.0 {
+                t0 = Some(t - dt * d / (d - last));
+            }
+            if t0.is_some() && last > 0.0 && d <= 0.0 {
+                t1 = Some(t - dt * d / (d - last));
+            }
+            peak = peak.max(d);
+            last = d;
+            t1.is_some()
+        })?;
     // Run on a little so that the contact has surely opened.
-    for _ in 0..10 {
-        w.step().expect("finite");
-    }
+    Simulation::new(&mut w).for_steps(10).run()?;
     let s = &w.bodies.state[0];
-    Impact {
+    Ok(Impact {
         contact_time: t1.unwrap_or(f64::NAN) - t0.unwrap_or(f64::NAN),
         peak_overlap: peak,
         vn: s.vel.y,
         vt: s.vel.x,
         omega: s.omega,
         steps,
-    }
+    })
 }
 
 /// The linear law of the normal benchmark: `k_n` (dyn/cm per cm), no damping, no friction.

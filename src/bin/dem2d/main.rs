@@ -566,7 +566,7 @@ fn run(args: RunArgs) -> Result<(), Failure> {
     let text = read_input(&name)?;
     let file = dem2d::scene::CaseFile::from_json(&text)
         .map_err(|e| Failure::input(format!("{name}: {e}")))?;
-    let (mut case, restart) = (file.case, file.restart);
+    let (mut case, restart, run) = (file.case, file.restart, file.run);
     if let Some(d) = args.duration {
         if !(d.is_finite() && d > 0.0) {
             return Err(Failure::input(format!(
@@ -584,7 +584,7 @@ fn run(args: RunArgs) -> Result<(), Failure> {
             "{name}: the state is at step {} (t = {} s), already at the end of the case's \
              duration ({} s, {} steps): give --duration to run further",
             state.step,
-            dem2d::output::trace::time_text(state.step, case.dt),
+            dem2d::run::time::time_text(state.step, case.dt),
             case.duration,
             case.steps()
         )));
@@ -620,6 +620,7 @@ fn run(args: RunArgs) -> Result<(), Failure> {
         contacts: args.contacts || case.output.contacts,
         analysis_window: case.output.analysis_window,
         restart,
+        run,
         input: Some(args.case.to_path_buf()),
     };
     let outcome = run_case(&case, &text, &opts).map_err(|e| match e {
@@ -1069,10 +1070,8 @@ fn main() -> ExitCode {
             name,
             write_cases,
             grains,
-        } => {
-            study::run(*name, *write_cases, *grains);
-            Ok(())
-        }
+        } => study::run(*name, *write_cases, *grains)
+            .map_err(|e| Failure::failed(format!("dem2d study: {e}"))),
         Command::Run {
             case,
             out,
@@ -1111,12 +1110,12 @@ fn main() -> ExitCode {
                 (_, true) => verify::Level::Full,
                 _ => verify::Level::Default,
             };
-            if verify::run(level) {
-                Ok(())
-            } else {
-                Err(Failure::failed(
+            match verify::run(level) {
+                Ok(true) => Ok(()),
+                Ok(false) => Err(Failure::failed(
                     "dem2d verify: some comparisons failed".into(),
-                ))
+                )),
+                Err(e) => Err(Failure::failed(format!("dem2d verify: {e}"))),
             }
         }
         Command::Plot {

@@ -2,6 +2,8 @@
 //! runs its cases through the library and prints a Markdown table (run from the repository: the
 //! studies read `cases/`).
 
+use dem2d::run::RunError;
+
 pub mod biaxial;
 pub mod biaxial_shape;
 pub mod impacts;
@@ -36,8 +38,9 @@ pub enum Study {
 }
 
 /// Runs `study`; `write_cases` also writes its case files into `cases/`; `grains` sets the
-/// sample size of the studies that take one (the others ignore it).
-pub fn run(study: Study, write_cases: bool, grains: Option<usize>) {
+/// sample size of the studies that take one (the others ignore it). A run that blows up ends
+/// the study with its report.
+pub fn run(study: Study, write_cases: bool, grains: Option<usize>) -> Result<(), RunError> {
     match study {
         Study::RollingFig3 => rolling_fig3::run(),
         Study::Repose => repose::run(write_cases),

@@ -17,8 +17,9 @@
 //! `dem2d run cases/repose/epsd_mu_r_0.1.json`.
 
 use dem2d::contact_law::{RollingModel, RollingPart};
-use dem2d::dynamics::BodyInit;
 use dem2d::dynamics::analysis::heap_surface;
+use dem2d::dynamics::{BodyInit, World};
+use dem2d::run::{RunError, Simulation, Stop};
 use dem2d::scene::Case;
 use dem2d::scene::generate::ColumnSpec;
 
@@ -26,19 +27,20 @@ const GATE_SPEED: f64 = 100.0;
 
 /// Runs a case until P's criterion holds or its duration ends; returns the world and the time
 /// at rest.
-fn run_to_rest(case: &Case) -> (dem2d::dynamics::World, Option<f64>) {
+fn run_to_rest(case: &Case) -> Result<(World, Option<f64>), RunError> {
     let mut w = case.build_world();
-    let mut q = case.quiescence_criterion().expect("quiescence");
-    for _ in 0..case.steps() {
-        let r = w.step().expect("step");
-        if let Some(s) = q.observe(w.step, &r.increments) {
-            return (w, Some(s as f64 * case.dt));
-        }
-    }
-    (w, None)
+    let stop = Simulation::new(&mut w)
+        .until_step(case.steps())
+        .quiescence(case.quiescence_criterion())
+        .run()?;
+    let rest = match stop {
+        Stop::AtRest { since } => Some(since as f64 * case.dt),
+        _ => None,
+    };
+    Ok((w, rest))
 }
 
-pub fn run(write: bool) {
+pub fn run(write: bool) -> Result<(), RunError> {
     let column = ColumnSpec {
         n: 300,
         width: 20.0,
@@ -48,7 +50,7 @@ pub fn run(write: bool) {
     // Settle the column (gate fixed), then keep the bodies' positions.
     let lattice = column.lattice_bodies();
     let settle = Case::from_json(&column.case_json("column", &lattice, 0.0, None)).unwrap();
-    let (w, rest) = run_to_rest(&settle);
+    let (w, rest) = run_to_rest(&settle)?;
     eprintln!("column settled at t = {rest:?}");
     let settled: Vec<BodyInit> = (0..w.bodies.len())
         .map(|k| BodyInit {
@@ -88,7 +90,7 @@ pub fn run(write: bool) {
             std::fs::write(dir.join(format!("{name}.json")), &text).expect("write case");
         }
         let case = Case::from_json(&text).expect("case");
-        let (w, rest) = run_to_rest(&case);
+        let (w, rest) = run_to_rest(&case)?;
         let (angle, h, toe) = heap_surface(&w, 2.0);
         println!(
             "| {} | {mu_r} | {angle:.1} | {h:.1} | {toe:.1} | {} |",
@@ -96,4 +98,5 @@ pub fn run(write: bool) {
             rest.map_or("not in 6 s".into(), |t| format!("{t:.2}"))
         );
     }
+    Ok(())
 }
