@@ -117,7 +117,10 @@ fn the_neighbour_list_finds_every_contact_the_all_pairs_check_finds() {
     for seed in 1..=3 {
         let mut w = random_scene(seed, 150, 10);
         let (mut checked, mut contacts) = (0, 0);
+        // The scene is the list's stress test, not physics: its soft law lets fast bodies pass
+        // deeper into each other than their size, which the blow-up watch would stop.
         Simulation::new(&mut w)
+            .without_watch()
             .for_steps(600)
             .run_each(|w, _| {
                 let step = w.step - 1;
@@ -157,7 +160,9 @@ fn run_on(threads: usize, steps: usize) -> (Vec<u64>, f64) {
     pool.install(|| {
         let mut w = random_scene(11, 1600, 0);
         let mut contacts = 0;
+        // The random scene's overlaps run deep (see above): no watch.
         Simulation::new(&mut w)
+            .without_watch()
             .for_steps(steps as u64)
             .run_each(|_, r| contacts += r.contacts)
             .unwrap();
