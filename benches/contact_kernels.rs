@@ -15,7 +15,7 @@
 //! Also: the robust cubic solver against bare `roots::find_roots_cubic` on the same cubics.
 //!
 //! Run: `cargo bench --bench contact_kernels` (prints a Markdown table at the end, writes it to
-//! `figures/kernel_speed.md` and into the README's `kernel_speed` section;
+//! `figures/kernel_speed.md` and into the user guide's `kernel_speed` table (docs/src/performance.md);
 //! `cargo bench --bench contact_kernels -- --quick` for a faster, noisier run).
 
 use criterion::{BenchmarkId, Criterion};
@@ -444,7 +444,7 @@ fn bench_cubic(c: &mut Criterion) {
 
 /// Reads criterion's median estimates written by this run (`since` its start), prints the ns/pair
 /// table and, when every cell was measured, writes it to `figures/kernel_speed.md` and refreshes
-/// the README's `kernel_speed` section (a filtered run prints only: it must neither blank the
+/// the user guide's `kernel_speed` table (a filtered run prints only: it must neither blank the
 /// published table nor mix in an earlier run's estimates).
 fn print_table(since: std::time::SystemTime) {
     use std::fmt::Write as _;
@@ -517,7 +517,7 @@ fn print_table(since: std::time::SystemTime) {
     println!("\n{md}");
     if missing.get() > 0 {
         eprintln!(
-            "{} entries not measured by this run (a filtered run?): figures/kernel_speed.md and the README left as they were",
+            "{} entries not measured by this run (a filtered run?): figures/kernel_speed.md and the user guide left as they were",
             missing.get()
         );
         return;
@@ -527,10 +527,9 @@ fn print_table(since: std::time::SystemTime) {
     if let Err(e) = std::fs::write(&out, &md) {
         eprintln!("{}: {e}", out.display());
     }
-    if let Err(e) =
-        dem2d::output::readme::update_readme(&root.join("README.md"), &[("kernel_speed", md)])
-    {
-        eprintln!("README.md: {e}");
+    use dem2d::output::docs_tables::{Mode, refresh};
+    if let Err(e) = refresh(root, &[("kernel_speed", md)], Mode::Write) {
+        eprintln!("the user guide's kernel_speed table: {e}");
     }
 }
 

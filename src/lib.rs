@@ -2,7 +2,7 @@
 //!
 //! Ellipses are handled as conics, following Kawasaki, Kiyama, Fujimura and Nishimura's
 //! elliptical-element DEM (P in the citations `// P(9)`); contact laws follow the DEM theory
-//! note T (`// T(14)`). Full references are in the README.
+//! note T (`// T(14)`). Full references are in the user guide (docs/src/references.md).
 //!
 //! # Pipeline
 //! `scene JSON → World → broad phase → narrow phase (ContactGeometry) → contact law → forces and

@@ -393,7 +393,7 @@ fn check(i: &Spec, j: &Spec, along: [f64; 2], k: f64) -> Result<ContactState, St
             // Two rectangles corner on corner: their chord joins two intersections of edge lines
             // whose positions carry the rounding of the rotated half-sizes (ε·a_max), so its
             // normal is known to ~ε·a_max/(chord · sin θ), θ the angle between the edges (the
-            // families' bar for that case; see the README's accuracy section).
+            // families' bar for that case; see docs/src/validation/geometry.md).
             let angle_bar = match (i, j) {
                 (
                     Spec::Body(Shape::Rectangle { .. }, _, ti),

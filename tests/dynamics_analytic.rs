@@ -369,7 +369,7 @@ fn free_collision_conserves_momentum_to_round_off() {
         l0
     );
     // (Energy is not a conserved quantity of this model for ellipses: a spring on the depth
-    // acting at the chord midpoint is the gradient of ½k_nδ² only to O(δ/a) — see the README.)
+    // acting at the chord midpoint is the gradient of ½k_nδ² only to O(δ/a) — see docs/src/physics/normal-force.md.)
     assert!(w.energies.dissipated > 0.0 && w.energies.total() < e0);
 }
 

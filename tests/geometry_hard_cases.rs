@@ -7,7 +7,7 @@
 //! contact point error ≤ 1e-9·a_max plus two ulps of the coordinates (far from the origin);
 //! classification right whenever the true gap or depth is at least 1e-12·a_max; the same results
 //! after a rigid motion of the pair and after swapping i and j. Corner-on-corner rectangle
-//! contacts are held to the conditioning of their chord instead (see the README).
+//! contacts are held to the conditioning of their chord instead (see docs/src/validation/geometry.md).
 
 use dem2d::validation::families::{markdown_table, run_families};
 
@@ -16,7 +16,7 @@ fn contact_geometry_matches_high_precision_reference() {
     let reports = run_families();
     let table = markdown_table(&reports, None);
     println!("{table}");
-    // The README's accuracy table is this file.
+    // The user guide's accuracy table (dem2d figures) comes from the same families.
     let out = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("kernel_accuracy.md");
     std::fs::write(&out, &table).expect("write target/tmp/kernel_accuracy.md");
     let failures: Vec<&String> = reports

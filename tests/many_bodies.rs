@@ -338,7 +338,7 @@ fn the_disk_path_gives_the_general_paths_bits() {
     );
 }
 
-/// `dem2d bench` (what the README's throughput table comes from) times one world per size,
+/// `dem2d bench` (what the user guide's throughput table comes from) times one world per size,
 /// thread count and law, interleaved block by block: every row is there, each thread count's
 /// final state is bit-identical to one thread's (the table's last column, computed from the
 /// state's bits), and the two-thread row carries its speed-up.

@@ -9,6 +9,10 @@
 //! Never a panic, never another exit code, never a hang: every run is bounded by `--max-steps`
 //! and killed after [`TIMEOUT`]. The seed and the mutation are printed with any failure, so a
 //! failure can be replayed (`MUTATION_SEED=… cargo test --release --test mutations`).
+//!
+//! The suite's run tries [`MUTATIONS`] mutated cases, run side by side on every core; the long
+//! form, `DEM2D_LONG_TESTS=1` (or `MUTATION_COUNT=N`), tries [`LONG_MUTATIONS`] — the same seed,
+//! so its first cases are the short form's.
 
 use serde_json::{Map, Value, json};
 use std::path::{Path, PathBuf};
@@ -16,7 +20,9 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 /// Mutated cases run per test (`MUTATION_COUNT` overrides it, for a longer search).
-const MUTATIONS: usize = 1000;
+const MUTATIONS: usize = 300;
+/// Mutated cases of the long form (`DEM2D_LONG_TESTS=1`).
+const LONG_MUTATIONS: usize = 1000;
 /// Longest run allowed (the runs take milliseconds; this is the hang detector).
 const TIMEOUT: Duration = Duration::from_secs(60);
 /// Steps per run.
@@ -329,18 +335,19 @@ fn mutated_cases_run_blow_up_or_are_refused_with_the_field_named() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(11);
+    let long = std::env::var_os("DEM2D_LONG_TESTS").is_some_and(|v| v != "0");
     let count: usize = std::env::var("MUTATION_COUNT")
         .ok()
         .and_then(|s| s.parse().ok())
-        .unwrap_or(MUTATIONS);
+        .unwrap_or(if long { LONG_MUTATIONS } else { MUTATIONS });
     let mut rng = Rng(seed);
     let bases = base_cases();
     let scratch = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("mutations");
     let _ = std::fs::remove_dir_all(&scratch);
     std::fs::create_dir_all(&scratch).unwrap();
-    let mut tally: Map<String, Value> = Map::new();
-    let mut failures = Vec::new();
-    let start = Instant::now();
+    // The mutated cases, drawn in order from the seed (so that a seed names the same cases
+    // however they are run), then run side by side.
+    let mut jobs = Vec::with_capacity(count);
     for k in 0..count {
         let (base, case) = rng.pick(&bases);
         let mut case = case.clone();
@@ -357,26 +364,61 @@ fn mutated_cases_run_blow_up_or_are_refused_with_the_field_named() {
         std::fs::write(&file, &text).unwrap();
         let out = scratch.join(format!("m{k}"));
         let label = format!("seed {seed}, #{k}: {base}: {}", what.join("; "));
-        let result = run_bounded(&[
-            "run",
-            file.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-            "--max-steps",
-            MAX_STEPS,
-            "--quiet",
-            "--threads",
-            "1",
-        ]);
+        jobs.push((label, file, out));
+    }
+    let start = Instant::now();
+    let workers = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let results: Vec<(usize, Result<&'static str, String>)> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..workers)
+            .map(|_| {
+                scope.spawn(|| {
+                    let mut done = Vec::new();
+                    loop {
+                        let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        let Some((label, file, out)) = jobs.get(k) else {
+                            return done;
+                        };
+                        let result = run_bounded(&[
+                            "run",
+                            file.to_str().unwrap(),
+                            "--out",
+                            out.to_str().unwrap(),
+                            "--max-steps",
+                            MAX_STEPS,
+                            "--quiet",
+                            "--threads",
+                            "1",
+                        ]);
+                        done.push((
+                            k,
+                            match result {
+                                None => Err(format!("{label}: no answer in {TIMEOUT:?} (a hang)")),
+                                Some((code, err)) => {
+                                    check(code, &err, out).map_err(|e| format!("{label}: {e}"))
+                                }
+                            },
+                        ));
+                    }
+                })
+            })
+            .collect();
+        let mut all: Vec<_> = handles
+            .into_iter()
+            .flat_map(|h| h.join().unwrap())
+            .collect();
+        all.sort_by_key(|(k, _)| *k);
+        all
+    });
+    let mut tally: Map<String, Value> = Map::new();
+    let mut failures = Vec::new();
+    for (_, result) in results {
         match result {
-            None => failures.push(format!("{label}: no answer in {TIMEOUT:?} (a hang)")),
-            Some((code, err)) => match check(code, &err, &out) {
-                Ok(kind) => {
-                    let c = tally.entry(kind).or_insert(json!(0));
-                    *c = json!(c.as_u64().unwrap() + 1);
-                }
-                Err(e) => failures.push(format!("{label}: {e}")),
-            },
+            Ok(kind) => {
+                let c = tally.entry(kind).or_insert(json!(0));
+                *c = json!(c.as_u64().unwrap() + 1);
+            }
+            Err(e) => failures.push(e),
         }
     }
     eprintln!(

@@ -442,3 +442,494 @@ mod bug_walls_csv_held_no_wall_loads {
         assert_eq!(rows.len(), traj.len() / 3 * 4);
     }
 }
+
+/// Issue 29, item 1. A floor given 300 times ran to exit 0: the square left at ~200 cm/s, the
+/// dissipated energy went to −1.7e5 erg, and that negative dissipation cancelled the created
+/// energy so that the blow-up watch never fired. Now coincident walls are refused at load
+/// (naming both), and the watch counts a fall of the dissipated energy as energy created.
+mod bug_a_wall_given_300_times_ran_to_exit_0 {
+    use super::*;
+    use dem2d::dynamics::World;
+    use dem2d::dynamics::watch::{BlowupWatch, Trigger};
+    use dem2d::scene::Case;
+
+    #[test]
+    fn coincident_walls_are_refused_naming_both() {
+        let dir = scratch("duplicate_walls");
+        let mut c: Value =
+            serde_json::from_str(&std::fs::read_to_string(case("throw_square.json")).unwrap())
+                .unwrap();
+        let floor = c["walls"][0].clone();
+        c["walls"] = vec![floor; 300].into();
+        let file = write(&dir, "dup.json", &c);
+        let (code, out, err) = dem2d(&["run", &file, "--out", dir.join("run").to_str().unwrap()]);
+        assert_eq!(code, 2, "{err}");
+        assert!(out.is_empty());
+        assert!(
+            err.contains("field `walls[1]`: coincides with walls[0]"),
+            "{err}"
+        );
+        assert!(!dir.join("run").exists(), "nothing written");
+        // Nearly coincident (a hundredth of a millimetre apart) is the same mistake.
+        c["walls"] = serde_json::json!([{"point": [0, 0], "normal": [0, 1]},
+                                        {"point": [0, 1e-3], "normal": [0, 2]}]);
+        let file = write(&dir, "near.json", &c);
+        let (code, _, err) = dem2d(&["run", &file, "--out", dir.join("run").to_str().unwrap()]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("coincides with walls[0]"), "{err}");
+    }
+
+    #[test]
+    fn energy_created_as_negative_dissipation_stops_the_run() {
+        // The 300 floors built past the scene's check: the watch alone must stop it. The energy
+        // the start and gravity can supply is the initial kinetic energy and the height the
+        // square can fall; the square cannot leave faster than that allows.
+        let mut c =
+            Case::from_json(&std::fs::read_to_string(case("throw_square.json")).unwrap()).unwrap();
+        let floor = c.walls[0];
+        c.walls = vec![floor; 300];
+        let mut w = World::new(&c.bodies, c.walls.clone(), c.gravity, c.contact, c.dt);
+        let mut watch = BlowupWatch::new(&w);
+        let mut fired = None;
+        while w.time < c.duration {
+            w.step().unwrap();
+            if let Some(t) = watch.check(&w) {
+                fired = Some(t);
+                break;
+            }
+        }
+        let e = w.energies;
+        eprintln!(
+            "300 floors: stopped at t = {:.4} s ({fired:?}); K {:.3e} D {:.3e}",
+            w.time, e.kinetic, e.dissipated
+        );
+        let Some(Trigger::Energy { available, .. }) = fired else {
+            panic!("{fired:?}");
+        };
+        // What the account alone shows, E − E₀ − W: the created kinetic energy cancelled by the
+        // negative dissipation, far below the threshold (the watch that read only this never
+        // fired).
+        let account = e.total() - watch.total0 - e.boundary_work;
+        assert!(
+            account < dem2d::dynamics::watch::ENERGY_GROWTH * available,
+            "{account}"
+        );
+        assert!(e.dissipated < 0.0);
+    }
+}
+
+/// Issue 29, item 9. A floor given the normal `[0, -1]` only warned of overlaps and the run
+/// "completed" with the bodies at y = −1398 cm. Now a wall with most bodies starting on its
+/// solid side is refused, saying the normal may be flipped.
+mod bug_a_flipped_wall_normal_ran_with_the_bodies_falling_forever {
+    use super::*;
+
+    #[test]
+    fn a_wall_with_most_bodies_on_its_solid_side_is_refused() {
+        let dir = scratch("flipped");
+        let mut c = settle3();
+        c["walls"][0]["normal"] = serde_json::json!([0, -1]);
+        let file = write(&dir, "flipped.json", &c);
+        let out = dir.join("run");
+        let (code, _, err) = dem2d(&["run", &file, "--out", out.to_str().unwrap()]);
+        assert_eq!(code, 2, "{err}");
+        assert!(
+            err.contains(
+                "field `walls[0].normal`: 3 of the 3 bodies start on the wall's solid side"
+            ) && err.contains("may be flipped")
+                && err.contains("[0, 1] rather than [0, -1]"),
+            "{err}"
+        );
+        assert!(!out.exists());
+        // One body of three below a floor is a placement mistake the overlap warning reports,
+        // not a flipped wall.
+        let mut c = settle3();
+        c["bodies"][2]["position"] = serde_json::json!([3.2, -5.0]);
+        let file = write(&dir, "one_below.json", &c);
+        let (code, _, err) = dem2d(&[
+            "run",
+            &file,
+            "--out",
+            out.to_str().unwrap(),
+            "--max-steps",
+            "1",
+        ]);
+        assert_eq!(code, 0, "{err}");
+    }
+}
+
+/// Issue 29, item 6. Values nobody could mean passed silently: `analysis.csv` wrote `inf` for
+/// q/p at p = 0; a state file with `dissipated: -1e300` ran to exit 0; a state whose contact
+/// list was emptied was accepted and blew up 1019 steps later; an edited state that created an
+/// overlap was not warned of; a polygon of 100 000 vertices was accepted (200 steps took
+/// 1.5 s). Now: an empty field; refused, naming `state.energies.dissipated`; refused, naming
+/// the overlapping pair at `state.contacts`; a warning naming the pair; refused above 1000
+/// vertices.
+mod bug_impossible_values_passed_silently {
+    use super::*;
+
+    #[test]
+    fn q_over_p_without_a_mean_stress_is_an_empty_field() {
+        use dem2d::analysis::Measures;
+        use dem2d::output::analysis::analysis_row;
+        // Pure shear: σ₁ = −σ₃, so p = 0 and q = 1: q/p has no value.
+        let m = Measures {
+            stress: [1.0, -1.0, 0.0],
+            ..Default::default()
+        };
+        let row = analysis_row("0", &m);
+        assert!(!row.contains("inf") && !row.contains("NaN"), "{row}");
+        let fields: Vec<&str> = row.split(',').collect();
+        assert_eq!((fields[5], fields[6], fields[7]), ("0", "1", ""), "{row}");
+    }
+
+    /// A state written by a run of `settle3` (3 ellipses in a box) after 2000 steps.
+    fn state(dir: &Path) -> Value {
+        let (code, _, err) = dem2d(&[
+            "run",
+            &case("settle3_dt1e-5.json"),
+            "--out",
+            dir.join("first").to_str().unwrap(),
+            "--quiet",
+            "--max-steps",
+            "2000",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        serde_json::from_str(&std::fs::read_to_string(dir.join("first/state.json")).unwrap())
+            .unwrap()
+    }
+
+    #[test]
+    fn an_impossible_energy_account_and_an_emptied_contact_list_are_refused() {
+        let dir = scratch("bad_states");
+        let s = state(&dir);
+        let out = dir.join("out");
+        let run = |name: &str, v: &Value| {
+            let file = write(&dir, name, v);
+            dem2d(&["run", &file, "--out", out.to_str().unwrap(), "--quiet"])
+        };
+        for (field, value, want) in [
+            (
+                "dissipated",
+                -1e300,
+                "field `state.energies.dissipated`: -1e300 is below zero",
+            ),
+            (
+                "dissipated",
+                1e300,
+                "field `state.energies`: the account is that of a blow-up",
+            ),
+            (
+                "kinetic",
+                -1.0,
+                "field `state.energies.kinetic`: must be zero or positive",
+            ),
+        ] {
+            let mut bad = s.clone();
+            bad["state"]["energies"][field] = value.into();
+            let (code, _, err) = run("bad.json", &bad);
+            assert_eq!(code, 2, "{field} = {value}: {err}");
+            assert!(err.contains(want), "{err}");
+            assert!(!out.exists());
+        }
+        let mut bad = s.clone();
+        bad["state"]["contacts"] = serde_json::json!([]);
+        let (code, _, err) = run("emptied.json", &bad);
+        assert_eq!(code, 2, "{err}");
+        assert!(
+            err.contains("field `state.contacts`: bodies 0 and 1 overlap")
+                && err.contains("does not hold their pair"),
+            "{err}"
+        );
+        // The state as written continues.
+        let (code, _, err) = dem2d(&[
+            "run",
+            dir.join("first/state.json").to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--max-steps",
+            "10",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        assert!(!err.contains("warning"), "{err}");
+    }
+
+    #[test]
+    fn an_edited_state_that_creates_an_overlap_is_warned_of() {
+        let dir = scratch("edited_state");
+        let mut s = state(&dir);
+        // Body 2 (resting on 0 and 1) pushed down into body 0: their pair is in the list, but
+        // was not in contact.
+        let contacts = s["state"]["contacts"].as_array().unwrap();
+        let pair = contacts
+            .iter()
+            .find(|c| c["i"] == 0 && c["j"] == 2)
+            .expect("the pair (0, 2) is listed");
+        assert_ne!(pair["active"], true, "(0, 2) touches already: {pair}");
+        let y = s["bodies"][2]["position"][1].as_f64().unwrap();
+        s["bodies"][2]["position"][1] = (y - 0.2).into();
+        let file = write(&dir, "edited.json", &s);
+        let out = dir.join("out");
+        let (code, _, err) = dem2d(&[
+            "run",
+            &file,
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--max-steps",
+            "10",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        assert!(
+            err.contains("overlap where the state's contacts did not (an edited state?)")
+                && err.contains("bodies 0 and 2 by δ"),
+            "{err}"
+        );
+        let w = summary(&out)["warnings"].to_string();
+        assert!(w.contains("an edited state?"), "{w}");
+    }
+
+    #[test]
+    fn a_polygon_of_more_than_a_thousand_vertices_is_refused() {
+        let dir = scratch("many_vertices");
+        let mut c = settle3();
+        let n = 100_000;
+        let vertices: Vec<[f64; 2]> = (0..n)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / n as f64;
+                [a.cos(), a.sin()]
+            })
+            .collect();
+        c["bodies"][2]["shape"] = serde_json::json!({"type": "polygon", "vertices": vertices});
+        let file = write(&dir, "many.json", &c);
+        let (code, _, err) = dem2d(&["run", &file, "--out", dir.join("run").to_str().unwrap()]);
+        assert_eq!(code, 2, "{err}");
+        assert!(
+            err.contains("field `bodies[2].shape.vertices`: 100000 vertices: at most 1000"),
+            "{err}"
+        );
+    }
+}
+
+/// Issue 29, item 10. Giving a wall a velocity in a state file made it jump at the first step:
+/// its position was computed from the absolute time, `p₀ + v t`, and its velocity stayed the
+/// state's 0 (the contacts and the walls' work saw a wall at rest). Now a wall continues from
+/// where the state has it, `p = p_s + v (t − t_s)`, at the case's velocity.
+mod bug_a_wall_given_a_velocity_in_a_state_file_jumped {
+    use super::*;
+
+    #[test]
+    fn the_wall_continues_from_where_it_is() {
+        let dir = scratch("wall_continues");
+        // settle3 with its right wall moved out to x = 8 (out of reach), run 0.02 s.
+        let mut c = settle3();
+        c["walls"][2]["point"] = serde_json::json!([8, 0]);
+        let file = write(&dir, "case.json", &c);
+        let first = dir.join("first");
+        let (code, _, err) = dem2d(&[
+            "run",
+            &file,
+            "--out",
+            first.to_str().unwrap(),
+            "--quiet",
+            "--max-steps",
+            "2000",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let mut s: Value =
+            serde_json::from_str(&std::fs::read_to_string(first.join("state.json")).unwrap())
+                .unwrap();
+        // The wall withdraws at 10 cm/s from t_s = 0.02 s.
+        s["walls"][2]["velocity"] = serde_json::json!([10, 0]);
+        let file = write(&dir, "edited.json", &s);
+        let out = dir.join("out");
+        let (code, _, err) = dem2d(&[
+            "run",
+            &file,
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--max-steps",
+            "1000",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let rows: Vec<_> = csv(&out.join("walls.csv"))
+            .into_iter()
+            .filter(|r| r["wall"] == 2.0)
+            .collect();
+        assert_eq!(rows[0]["t"], 0.02);
+        assert_eq!(rows[0]["x"], 8.0, "no jump at the start");
+        for r in &rows[1..] {
+            let want = 8.0 + 10.0 * (r["t"] - 0.02);
+            assert!((r["x"] - want).abs() < 1e-12, "{r:?}: x should be {want}");
+            assert_eq!(r["vx"], 10.0);
+        }
+        assert!((rows.last().unwrap()["x"] - 8.1).abs() < 1e-12);
+    }
+}
+
+/// Issue 29, item 12. An unknown key said only "unknown field" (`frction`), and a misnamed one
+/// made its proper key "missing" (`radius` for `r`); running a `dem2d contact` file as a case
+/// said "must be an object, got an array". Now the messages say what was likely meant and list
+/// the valid keys, and the contact file is named as such.
+mod bug_messages_did_not_say_what_was_meant {
+    use super::*;
+
+    fn run_case(name: &str, v: &Value) -> String {
+        let dir = scratch(name);
+        let file = write(&dir, "case.json", v);
+        let (code, _, err) = dem2d(&["run", &file, "--out", dir.join("run").to_str().unwrap()]);
+        assert_eq!(code, 2, "{err}");
+        err
+    }
+
+    #[test]
+    fn an_unknown_key_gets_did_you_mean_and_the_valid_keys() {
+        let mut c = settle3();
+        let f = c["contact"]
+            .as_object_mut()
+            .unwrap()
+            .remove("friction")
+            .unwrap();
+        c["contact"]["frction"] = f;
+        let err = run_case("frction", &c);
+        assert!(
+            err.contains("field `contact.frction`: unknown field: did you mean `friction`?")
+                && err.contains("`kn_over_rho_g`")
+                && err.contains("`rolling_model`"),
+            "{err}"
+        );
+        let mut c = settle3();
+        c["bodies"][0]["shape"] = serde_json::json!({"type": "circle", "radius": 1.0});
+        let err = run_case("radius", &c);
+        assert!(
+            err.contains(
+                "field `bodies[0].shape.r`: is missing (`radius` is given: did you mean `r`?)"
+            ),
+            "{err}"
+        );
+        let mut c = settle3();
+        c["bodies"][1]["velocty"] = serde_json::json!([1, 0]);
+        let err = run_case("velocty", &c);
+        assert!(
+            err.contains("did you mean `velocity`?")
+                && err.contains("the valid keys here: `angle`, `density`, `omega`, `position`, `shape`, `velocity`"),
+            "{err}"
+        );
+        // Nothing like any key: the valid keys only.
+        let mut c = settle3();
+        c["walls"][0]["colour"] = "red".into();
+        let err = run_case("colour", &c);
+        assert!(
+            err.contains("field `walls[0].colour`: unknown field (the valid keys here:")
+                && err.contains("`servo`"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn a_contact_file_run_as_a_case_is_named_as_one() {
+        let c = serde_json::json!([{"i": {"shape": {"type": "circle", "r": 1}, "position": [0, 0]},
+                                    "j": {"wall": {"point": [0, -1], "normal": [0, 1]}}}]);
+        let err = run_case("contact_file", &c);
+        assert!(
+            err.contains("this is a `dem2d contact` input") && err.contains("dem2d contact FILE"),
+            "{err}"
+        );
+    }
+}
+
+/// Issue 29, item 8. `contacts.csv` left out the couple of a four-crossing contact (the area
+/// law's force acts at the crossings' mean together with a couple): torques rebuilt from the
+/// file were off by 15 × max|F|·lever, and `analyze` (stress) missed the couple. Now the file
+/// has a `couple` column, and the stress takes such a force at its line of action.
+mod bug_contacts_csv_left_out_the_couple_of_deep_contacts {
+    use super::*;
+
+    #[test]
+    fn each_bodys_torque_is_rebuilt_from_contacts_csv() {
+        // A thin ellipse poking through another (their outlines cross four times), no
+        // gravity: the area law acts with a couple. The torque the integrator used is in
+        // state.json; rebuilt from the file's rows it is Σ (p − x) × F + couple, F and the
+        // couple on j, their opposites on i.
+        let dir = scratch("couple");
+        let c = serde_json::json!({
+            "version": 1, "name": "cross", "gravity": [0, 0], "dt": 1e-6, "duration": 1e-5,
+            "output_every": 1,
+            "contact": {"model": "linear", "kn": 1e6, "eta_n": 0, "friction": 0,
+                        "normal_force": "area"},
+            "bodies": [
+                {"shape": {"type": "ellipse", "a": 2, "b": 0.3}, "position": [0, 0], "angle": 0},
+                {"shape": {"type": "ellipse", "a": 2, "b": 0.5}, "position": [1.45, 0.1],
+                 "angle": 1.5}]
+        });
+        let file = write(&dir, "cross.json", &c);
+        let out = dir.join("run");
+        let (code, _, err) = dem2d(&[
+            "run",
+            &file,
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--contacts",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let text = std::fs::read_to_string(out.join("contacts.csv")).unwrap();
+        assert!(text.starts_with("step,t,i,j,px,py,nx,ny,fn,ft,couple,depth,state\n"));
+        let rows: Vec<Vec<&str>> = text
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').collect())
+            .filter(|f: &Vec<&str>| f[0] == "10")
+            .collect();
+        assert_eq!(rows.len(), 1, "{text}");
+        let f: Vec<f64> = rows[0][4..11].iter().map(|v| v.parse().unwrap()).collect();
+        let (px, py, nx, ny, fn_, ft, couple) = (f[0], f[1], f[2], f[3], f[4], f[5], f[6]);
+        assert_eq!(rows[0][12], "deep");
+        let (fx, fy) = (fn_ * nx - ft * ny, fn_ * ny + ft * nx);
+        let state: Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("state.json")).unwrap())
+                .unwrap();
+        let lever = 2.0 * fx.hypot(fy);
+        for (k, sign) in [(0usize, -1.0), (1, 1.0)] {
+            let x = state["bodies"][k]["position"][0].as_f64().unwrap();
+            let y = state["bodies"][k]["position"][1].as_f64().unwrap();
+            let torque = state["state"]["bodies"][k]["torque"].as_f64().unwrap();
+            let rebuilt = sign * ((px - x) * fy - (py - y) * fx + couple);
+            assert!(
+                (rebuilt - torque).abs() < 1e-9 * lever,
+                "body {k}: rebuilt {rebuilt}, the step's {torque}"
+            );
+        }
+        // The couple is no rounding: without it the rebuilt torque is wrong by a thousandth
+        // of |F|·2a and more (a million times the tolerance).
+        assert!(
+            couple.abs() > 1e-3 * lever,
+            "couple {couple}, |F|·2a {lever}"
+        );
+    }
+
+    #[test]
+    fn the_stress_takes_a_deep_contacts_force_at_its_line_of_action() {
+        use dem2d::analysis::FrameContact;
+        use dem2d::dynamics::Partner;
+        use dem2d::geometry::Vec2;
+        // A force F = (0, 1) at the origin with a couple M = 2 is the force alone at (2, 0):
+        // its moment there about the origin is x F_y = 2.
+        let c = FrameContact {
+            i: Partner::Wall(0),
+            j: 0,
+            point: Vec2::zeros(),
+            normal: Vec2::new(0.0, 1.0),
+            force: Vec2::new(0.0, 1.0),
+            couple: 2.0,
+            depth: 0.1,
+            state: "deep".into(),
+        };
+        let p = c.action_point();
+        assert!((p - Vec2::new(2.0, 0.0)).norm() < 1e-15, "{p}");
+        let moment = p.x * c.force.y - p.y * c.force.x;
+        assert!((moment - 2.0).abs() < 1e-15);
+    }
+}

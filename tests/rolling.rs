@@ -322,7 +322,7 @@ fn rest_time(case: &dem2d::scene::Case, limit: f64) -> (World, Option<f64>) {
 }
 
 /// P Fig. 3: without rolling resistance the thrown circle rolls on and the ellipse rocks on for
-/// ever (README); with EPSD's μ_r = 0.05 both come to rest within the case's 3 s.
+/// ever (docs/src/results/paper-figures.md); with EPSD's μ_r = 0.05 both come to rest within the case's 3 s.
 #[test]
 fn the_thrown_circle_and_ellipse_of_p_fig_3_come_to_rest_with_rolling_resistance() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases");
@@ -369,4 +369,93 @@ fn the_angle_of_repose_of_a_heap_rises_with_rolling_friction() {
         angles[1] > angles[0] + 2.0 && angles[2] > angles[1] + 2.0,
         "{angles:?}"
     );
+}
+
+/// Issue 29, item 15 ("μ_r … whatever the shape"): the user guide said μ_r is the tangent of
+/// the steepest slope a body holds whatever its shape, but a non-circular body holds itself by
+/// its shape too. On a slope β, with ℓ the centroid's height above the slope and s how far
+/// downhill of the centroid the contact point lies, the moments about the centroid balance with
+/// a rolling couple `|m g (ℓ sin β − s cos β)| ≤ μ_r ℓ m g cos β`, i.e. `|tan β − s/ℓ| ≤ μ_r`
+/// (R_r = ℓ on a wall). A disk has s = 0: `tan β ≤ μ_r`. An ellipse turned by θ from lying flat
+/// has `s/ℓ = −(a² − b²) sin θ cos θ/(a² sin²θ + b² cos²θ)`, at most `(a² − b²)/(2ab)` (at
+/// tan θ = −b/a): so it can rest iff `tan β ≤ μ_r + (a² − b²)/(2ab)` — 36.87° for a/b = 2
+/// without rolling resistance, 43.53° with μ_r = 0.2. Each body is set down at rest in the
+/// orientation of its equilibrium (or of the shape's limit where that is past reach) and must
+/// stay there below the limit and roll away beyond it.
+#[test]
+fn an_ellipse_rests_on_slopes_up_to_mu_r_plus_its_shapes_own_limit() {
+    let (a, b) = (2.0f64, 1.0f64);
+    let ratio = |th: f64| {
+        let (s, c) = th.sin_cos();
+        -(a * a - b * b) * s * c / (a * a * s * s + b * b * c * c)
+    };
+    let th_max = -(b / a).atan();
+    assert!((ratio(th_max) - (a * a - b * b) / (2.0 * a * b)).abs() < 1e-12);
+    // The orientation whose contact point lies `target` ℓ downhill (bisection on the branch
+    // from lying flat to the shape's limit, where the ratio rises monotonically).
+    let orientation = |target: f64| {
+        let (mut lo, mut hi) = (0.0, th_max);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if ratio(mid) < target {
+                lo = mid
+            } else {
+                hi = mid
+            }
+        }
+        lo
+    };
+    let limit = |mu_r: f64| (mu_r + (a * a - b * b) / (2.0 * a * b)).atan().to_degrees();
+    assert!((limit(0.0) - 36.87).abs() < 0.01 && (limit(0.2) - 43.53).abs() < 0.01);
+    for (beta_deg, mu_r, holds) in [
+        (35.0, 0.0, true),
+        (36.5, 0.0, true),
+        (38.0, 0.0, false),
+        (42.0, 0.2, true),
+        (43.0, 0.2, true),
+        (45.0, 0.2, false),
+    ] {
+        let beta = f64::to_radians(beta_deg);
+        let th = if mu_r == 0.0 {
+            orientation(beta.tan())
+        } else {
+            th_max
+        };
+        let (s, c) = th.sin_cos();
+        let h = (a * a * s * s + b * b * c * c).sqrt();
+        let law = spec(
+            2.0,
+            (mu_r > 0.0)
+                .then(|| rolling(RollingModel::Epsd, mu_r))
+                .flatten(),
+            LinearDamping::Restitution(0.5),
+        );
+        let body = BodyInit {
+            shape: Shape::Ellipse { a, b },
+            position: Vec2::new(0.0, h),
+            angle: th,
+            velocity: Vec2::zeros(),
+            omega: 0.0,
+            density: 1.0,
+        };
+        let floor = Boundary::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), law);
+        let gravity = Vec2::new(G * beta.sin(), -G * beta.cos());
+        let mut w = World::new(&[body], vec![floor], gravity, law, 1e-5);
+        for _ in 0..50_000 {
+            w.step().unwrap();
+        }
+        let x = w.bodies.state[0].pose.position.x;
+        let turned = (w.bodies.state[0].pose.angle() - th).abs();
+        if holds {
+            assert!(
+                x.abs() < 1e-3 && turned < 1e-3,
+                "{beta_deg}°, μ_r = {mu_r}: moved {x} cm, turned {turned} rad; should rest"
+            );
+        } else {
+            assert!(
+                x > 10.0,
+                "{beta_deg}°, μ_r = {mu_r}: moved only {x} cm in 0.5 s; should roll away"
+            );
+        }
+    }
 }

@@ -6,8 +6,8 @@ the whole pile; below, a close-up of its middle at the bottom (a sixth of the wi
     xvfb-run -a pvpython figures/scripts/paraview_render.py RUN_DIR OUT.png
 
 RUN_DIR holds run.pvd (from `dem2d run CASE --vtk`). Needs ParaView (Debian: paraview; 5.11
-here) and, without a display, a virtual one (Debian: xvfb, for xvfb-run). The README's picture
-is made by the commands in its Figures section.
+here) and, without a display, a virtual one (Debian: xvfb, for xvfb-run). The user guide's picture
+(docs/src/tutorials/paraview.md) is made by the commands in that tutorial.
 """
 
 import sys

@@ -215,6 +215,7 @@ mod tests {
                 point: Vec2::zeros(),
                 normal: nrm,
                 force: nrm * fn_ + tan * ft,
+                couple: 0.0,
                 depth: 0.0,
                 state: "overlap".into(),
             });

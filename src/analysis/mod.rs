@@ -80,6 +80,9 @@ pub struct FrameContact {
     pub normal: Vec2,
     /// Force on j.
     pub force: Vec2,
+    /// A couple on j (its opposite on i): zero but for the area law's deep, four-crossing
+    /// overlaps, whose force acts at the crossings' mean together with this couple.
+    pub couple: f64,
     pub depth: f64,
     pub state: String,
 }
@@ -98,6 +101,17 @@ impl FrameContact {
     /// The giving body, if it is one.
     pub fn giver_body(&self) -> Option<usize> {
         self.i.body()
+    }
+
+    /// Where the force acts when it carries the couple itself: the point of its line of action
+    /// nearest to `point`, `point + M (F_y, −F_x)/|F|²` (the moment of `F` there about `point`
+    /// is `M`). `point` for a contact without a couple, or without a force to carry it.
+    pub fn action_point(&self) -> Vec2 {
+        let f2 = self.force.norm_squared();
+        if self.couple == 0.0 || f2 == 0.0 {
+            return self.point;
+        }
+        self.point + Vec2::new(self.force.y, -self.force.x) * (self.couple / f2)
     }
 }
 
@@ -134,6 +148,7 @@ impl Frame {
                     point: c.data.point,
                     normal: c.extra.normal,
                     force: c.data.force,
+                    couple: c.data.couple,
                     depth: c.extra.depth,
                     state: c.slot.state.as_str().to_string(),
                 }

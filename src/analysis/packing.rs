@@ -419,6 +419,7 @@ mod tests {
             point: Vec2::zeros(),
             normal: Vec2::new(1.0, 0.0),
             force: Vec2::new(1.0, 0.0),
+            couple: 0.0,
             depth: 0.0,
             state: "overlap".into(),
         };

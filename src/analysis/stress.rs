@@ -13,6 +13,14 @@
 //! at equilibrium the wall forces sum to zero and the origin drops out). For a box of four
 //! walls this is the familiar "wall force over the span": σ_xx = F_side / H. The two agree only
 //! in a quasi-static state; their difference measures how far the sample is from equilibrium.
+//!
+//! **Couples.** The area law's deep (four-crossing) overlaps act with a force at the crossings'
+//! mean and a couple M (on j, −M on i). Both sums take such a force at its line of action
+//! ([`super::FrameContact::action_point`]: the point nearest the crossings' mean where the force
+//! alone has the moment of force and couple), so that each body's terms keep its moment
+//! balance; a couple without a force enters the antisymmetric part only. Between two bodies
+//! of the region the choice cancels (both take the same point); it matters for a body's contacts
+//! with walls and with bodies outside the region.
 
 use super::{Frame, Window};
 use crate::geometry::Vec2;
@@ -32,6 +40,12 @@ impl Stress {
         self.xy += w * f.x * l.y;
         self.yx += w * f.y * l.x;
         self.yy += w * f.y * l.y;
+    }
+
+    /// A couple `m` (weighted by `w`) as its antisymmetric part: `yx − xy` grows by `w m`.
+    fn add_couple(&mut self, m: f64, w: f64) {
+        self.xy -= 0.5 * w * m;
+        self.yx += 0.5 * w * m;
     }
 
     /// `[σ_xx, σ_yy, σ_xy]` of the symmetric part.
@@ -60,13 +74,18 @@ pub fn love_weber(frame: &Frame, inside: &[bool], area: f64) -> Stress {
     let w = -1.0 / area;
     for c in &frame.contacts {
         let j = c.j;
+        let p = c.action_point();
+        // A couple no force carries: its moment in the antisymmetric part (yx − xy = M).
+        let bare = if p == c.point { c.couple } else { 0.0 };
         if inside[j] {
-            s.add_outer(c.force, c.point - frame.bodies[j].position, w);
+            s.add_outer(c.force, p - frame.bodies[j].position, w);
+            s.add_couple(bare, w);
         }
         if let Some(i) = c.giver_body()
             && inside[i]
         {
-            s.add_outer(-c.force, c.point - frame.bodies[i].position, w);
+            s.add_outer(-c.force, p - frame.bodies[i].position, w);
+            s.add_couple(-bare, w);
         }
     }
     s
@@ -78,7 +97,7 @@ pub fn boundary(frame: &Frame, bx: Window) -> Stress {
     let w = -1.0 / bx.area();
     let x0 = bx.centre();
     for c in frame.contacts.iter().filter(|c| c.giver_body().is_none()) {
-        s.add_outer(c.force, c.point - x0, w);
+        s.add_outer(c.force, c.action_point() - x0, w);
     }
     s
 }
@@ -105,6 +124,7 @@ mod tests {
             point,
             normal,
             force: normal * fn_,
+            couple: 0.0,
             depth: 0.0,
             state: "overlap".into(),
         }

@@ -4,7 +4,8 @@
 //! # Moving walls
 //! A wall's line translates with its velocity `v_w` (cm/s; it does not turn). It drifts with the
 //! bodies at the step's drift, so its position has the bodies' time level: at a constant
-//! velocity `p = p₀ + t v_w` exactly (no rounding accumulates), under a servo
+//! velocity `p = p₀ + (t − t₀) v_w` exactly (no rounding accumulates; t₀ = 0 but for a wall
+//! given a velocity in a state file, which continues from its point there), under a servo
 //! `p ← p + Δt v_w`. The
 //! contact law sees the relative velocity of the body's material point and the wall,
 //! `v_body − v_w`, so the dashpots and the shear spring act on the relative motion.
@@ -120,8 +121,11 @@ pub enum BoundaryKind {
 pub struct Boundary {
     /// The boundary where it is now.
     pub kind: BoundaryKind,
-    /// Its reference point at t = 0.
+    /// Its reference point at `start_time` (the anchor of a constant velocity's motion).
     pub start: Vec2,
+    /// When it was at `start`: 0, or the time of a state file from which a wall given a new
+    /// velocity continues from where it is (see `scene::state`).
+    pub start_time: f64,
     pub spec: ContactSpec,
     pub motion: Motion,
     /// Velocity of the current step's drift (zero for a fixed boundary).
@@ -146,6 +150,7 @@ impl Boundary {
         Boundary {
             kind: BoundaryKind::Wall(wall),
             start: wall.point,
+            start_time: 0.0,
             spec,
             motion,
             velocity,
@@ -199,7 +204,8 @@ impl Boundary {
     pub fn drift(&mut self, time: f64, dt: f64) {
         match self.motion {
             Motion::Fixed => {}
-            Motion::Velocity(v) => self.move_to(self.start + v * time),
+            // (t − 0 is t: the uninterrupted run's bits.)
+            Motion::Velocity(v) => self.move_to(self.start + v * (time - self.start_time)),
             Motion::Servo(_) => self.move_to(self.point() + self.velocity * dt),
         }
     }

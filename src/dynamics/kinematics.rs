@@ -10,10 +10,13 @@
 //! centroid to the tangent line at the contact, the lever arm of the tangential force — and
 //! combines them like R*: `1/R_r = 1/ℓ_i + 1/ℓ_j` (a wall: `ℓ = ∞`, so `R_r = ℓ` of the body).
 //! - For disks `ℓ = r` exactly, so `R_r` is R* (LIGGGHTS, PFC).
-//! - For any shape on a slope β, the friction force `m g sin β` has the moment
-//!   `m g sin β · ℓ` about the centroid, which a rolling couple of at most `μ_r ℓ m g cos β`
-//!   holds iff `tan β ≤ μ_r`: μ_r keeps Ai et al.'s meaning — the tangent of the steepest slope
-//!   a body can rest on without rolling — whatever the shape and where it touches.
+//! - On a slope β the friction force `m g sin β` has the moment `m g sin β · ℓ` about the
+//!   centroid and the rolling couple's cap is `μ_r ℓ m g cos β`, whatever the shape and where it
+//!   touches. A disk (its contact straight below its centre) therefore rests iff
+//!   `tan β ≤ μ_r`, Ai et al.'s meaning of μ_r; a non-circular body's normal force has a moment
+//!   of its own, and it rests iff `tan β ≤ μ_r + k`, k the largest ratio of its contact point's
+//!   downhill offset to its centroid's height (ellipse: `(a² − b²)/(2ab)`; `tests/rolling.rs`,
+//!   `an_ellipse_rests_on_slopes_up_to_mu_r_plus_its_shapes_own_limit`).
 //! - It is defined for every contact, bounded by the inscribed and circumscribed radii
 //!   (ellipse: b on its flat side, a on its tip; rectangle: half a side on a face, up to half
 //!   the diagonal on a corner).

@@ -170,7 +170,7 @@ impl Shape {
     /// Winkler foundation, and between two such shapes the area law's flat-equivalent potential.
     /// A polygon is *not*: it takes the laws of smooth bodies (the equal-area lens), so that a
     /// many-sided polygon's contact converges to the smooth body's it approximates (see the
-    /// README's polygon section).
+    /// user guide's polygon chapter, docs/src/physics/polygons.md).
     #[inline]
     pub fn is_flat_sided(&self) -> bool {
         match self {

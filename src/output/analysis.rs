@@ -8,7 +8,10 @@
 //! - `contacts.csv`: `step,t,i,j,px,py,nx,ny,fn,ft,depth,state` — i the giver (a body index, or
 //!   `w<k>` for wall k), j the receiving body, the point (cm), the unit normal from i to j, the
 //!   normal and tangential force on j (dyn per cm of thickness: `F·n`, `F·t` with
-//!   `t = (−n_y, n_x)`), the overlap δ (cm) and the geometry state.
+//!   `t = (−n_y, n_x)`), the couple on j (dyn·cm per cm; its opposite on i: zero but for the
+//!   area law's deep, four-crossing overlaps, whose force acts at the crossings' mean with this
+//!   couple — a body's torque is `Σ (p − x) × F + couple`), the overlap δ (cm) and the
+//!   geometry state. Runs written before the couple have no `couple` column (read as 0).
 
 use super::trace::{LineFile, WriteError};
 use crate::analysis::{self, Frame, FrameContact, Measures, Window};
@@ -21,7 +24,9 @@ use std::path::Path;
 pub const ANALYSIS_HEADER: &str = "t,area,sxx,syy,sxy,p,q,q_over_p,boundary_sxx,boundary_syy,\
 boundary_sxy,packing_fraction,z,z_no_rattlers,rattler_fraction,a_c,theta_c,a_n,theta_n,a_t,\
 theta_t,orientation_order,bodies,contacts";
-pub const CONTACTS_HEADER: &str = "step,t,i,j,px,py,nx,ny,fn,ft,depth,state";
+pub const CONTACTS_HEADER: &str = "step,t,i,j,px,py,nx,ny,fn,ft,couple,depth,state";
+/// The header of runs written before the couple was recorded.
+pub const CONTACTS_HEADER_NO_COUPLE: &str = "step,t,i,j,px,py,nx,ny,fn,ft,depth,state";
 
 /// A number, or nothing for NaN.
 fn num(x: f64) -> String {
@@ -47,7 +52,8 @@ pub fn analysis_row(t: &str, m: &Measures) -> String {
         num(sxy),
         num(p),
         num(q),
-        num(q / p),
+        // q/p is undefined without a mean stress (an empty field, not `inf`).
+        num(if p != 0.0 { q / p } else { f64::NAN }),
         num(m.boundary_stress[0]),
         num(m.boundary_stress[1]),
         num(m.boundary_stress[2]),
@@ -133,7 +139,7 @@ impl AnalysisOutput {
                     Partner::Wall(w) => format!("w{w}"),
                 };
                 c.line(format_args!(
-                    "{step},{t},{i},{},{},{},{},{},{},{},{},{}",
+                    "{step},{t},{i},{},{},{},{},{},{},{},{},{},{}",
                     k.j,
                     k.point.x,
                     k.point.y,
@@ -141,6 +147,7 @@ impl AnalysisOutput {
                     k.normal.y,
                     k.normal_force(),
                     k.tangential_force(),
+                    k.couple,
                     k.depth,
                     k.state
                 ))?;
@@ -202,14 +209,18 @@ pub fn read_contact_frames(dir: &Path) -> Result<ContactFrames, String> {
     // trajectory row, which `RunData` leaves out.
     let mut lines = super::run_data::whole_lines(&text).0.lines();
     let bad = |n: usize, m: &str| format!("{}: line {n}: {m}", file.display());
-    if lines.next() != Some(CONTACTS_HEADER) {
-        return Err(bad(1, &format!("expected the header `{CONTACTS_HEADER}`")));
-    }
+    let width = match lines.next() {
+        Some(CONTACTS_HEADER) => 13,
+        Some(CONTACTS_HEADER_NO_COUPLE) => 12,
+        _ => return Err(bad(1, &format!("expected the header `{CONTACTS_HEADER}`"))),
+    };
     for (k, line) in lines.enumerate() {
         let f: Vec<&str> = line.split(',').collect();
-        if f.len() != 12 {
-            return Err(bad(k + 2, &format!("{} fields, expected 12", f.len())));
+        if f.len() != width {
+            return Err(bad(k + 2, &format!("{} fields, expected {width}", f.len())));
         }
+        // The fields after `ft`: the couple (when written), the depth, the state.
+        let rest = width - 3;
         let x = |i: usize| {
             f[i].parse::<f64>()
                 .map_err(|e| bad(k + 2, &format!("field {}: not a number: {e}", i + 1)))
@@ -230,8 +241,9 @@ pub fn read_contact_frames(dir: &Path) -> Result<ContactFrames, String> {
             point: Vec2::new(x(4)?, x(5)?),
             normal,
             force: normal * fn_ + Vec2::new(-normal.y, normal.x) * ft,
-            depth: x(10)?,
-            state: f[11].to_string(),
+            couple: if width == 13 { x(10)? } else { 0.0 },
+            depth: x(rest + 1)?,
+            state: f[rest + 2].to_string(),
         };
         if out.contacts.last().is_none_or(|(s, _)| *s != step) {
             out.contacts.push((step, Vec::new()));

@@ -2,12 +2,12 @@
 
 pub mod analysis;
 pub mod contacts;
+pub mod docs_tables;
 pub mod forces;
 pub mod outline;
 pub mod panels;
 pub mod plot;
 pub mod progress;
-pub mod readme;
 pub mod run_data;
 pub mod state;
 pub mod summary;

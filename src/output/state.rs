@@ -273,7 +273,7 @@ fn write_run(out: &mut String, r: &RunProgress) {
     let w = &r.watch;
     let _ = writeln!(
         out,
-        "    \"run\": {{\"initial_total_energy\": {}, \"quiescence_streak\": {}, \"first_contact_step\": {}, \"contact_sum\": {}, \"watch\": {{\"kinetic0\": {}, \"elastic0\": {}, \"potential0\": {}, \"total0\": {}, \"gravity_supplied\": {}, \"boundary_supplied\": {}, \"depth_limit\": {}}}}},",
+        "    \"run\": {{\"initial_total_energy\": {}, \"quiescence_streak\": {}, \"first_contact_step\": {}, \"contact_sum\": {}, \"watch\": {{\"kinetic0\": {}, \"elastic0\": {}, \"potential0\": {}, \"total0\": {}, \"gravity_supplied\": {}, \"boundary_supplied\": {}, \"dissipated_max\": {}, \"depth_limit\": {}}}}},",
         num(r.initial_total),
         r.quiescence_streak,
         r.first_contact_step
@@ -285,6 +285,7 @@ fn write_run(out: &mut String, r: &RunProgress) {
         num(w.total0),
         num(w.gravity_supplied),
         num(w.boundary_supplied),
+        num(w.dissipated_max),
         num(w.depth_limit)
     );
 }

@@ -12,6 +12,9 @@ use crate::geometry::{Clump, ClumpError, Polygon, PolygonError, Pose, Shape, Vec
 use crate::narrow_phase::Object;
 use serde_json::Value;
 
+/// Most vertices a polygon may have.
+pub const MAX_POLYGON_VERTICES: usize = 1000;
+
 /// A shape object `{"type": …, sizes…}`.
 pub fn parse_shape(v: &Value, path: &str) -> Result<Shape, FieldError> {
     let mut o = Obj::new(v, path)?;
@@ -58,6 +61,17 @@ fn polygon(v: &Value, path: &str) -> Result<Polygon, FieldError> {
             format!("must be an array of [x, y] vertices, got {}", type_of(v)),
         ));
     };
+    if items.len() > MAX_POLYGON_VERTICES {
+        return Err(FieldError::new(
+            path,
+            format!(
+                "{} vertices: at most {MAX_POLYGON_VERTICES} are accepted (a polygon's contact \
+                 tests walk its vertices: at 100 000, 200 steps of one body took 1.5 s); \
+                 describe a smooth body as an ellipse, a circle or a clump of disks",
+                items.len()
+            ),
+        ));
+    }
     let vertices = items
         .iter()
         .enumerate()

@@ -18,7 +18,8 @@
 
 use super::body::{parse_body_with, parse_wall_with};
 use super::fields::{
-    FieldError, Obj, index, join, non_negative, number, positive, scale, type_of, vec2,
+    FieldError, Obj, index, join, non_negative, number, positive, scale, type_of, unknown_field,
+    vec2,
 };
 use super::ranges::{Placed, SpecContext, check_extent, check_spec, check_steps};
 use crate::contact_law::{
@@ -112,6 +113,18 @@ impl Case {
 
     /// Reads a case from a parsed JSON value.
     pub fn from_value(v: &Value) -> Result<Case, FieldError> {
+        if let Some(items) = v.as_array()
+            && items
+                .iter()
+                .any(|p| p.get("i").is_some() && p.get("j").is_some())
+        {
+            return Err(FieldError::new(
+                "",
+                "this is a `dem2d contact` input (an array of {\"i\": BODY, \"j\": BODY} pairs), \
+                 not a case: give it to `dem2d contact FILE`; a case is an object with \
+                 `version`, `name`, `gravity`, `dt`, `duration`, `contact` and `bodies`",
+            ));
+        }
         let mut o = Obj::new(v, "")?;
         let version = o.req_with("version", number)?;
         if version != 1.0 {
@@ -227,6 +240,7 @@ impl Case {
             point: ws.line().point,
         }));
         check_extent(&placed)?;
+        check_walls(&walls, &bodies)?;
         check_contact_ranges(&contact, &walls, &bodies, gravity)?;
         Ok(Case {
             name,
@@ -338,6 +352,65 @@ impl Case {
     }
 }
 
+/// Refuses walls that cannot be meant:
+/// - **coincident walls**: two walls with the same free side (normals within 1e-6 rad) whose
+///   lines are closer than the smallest body's inscribed radius. A body touching one touches
+///   the other (or could reach it only through the first): a wall given twice doubles the
+///   contact stiffness, and given 300 times it made the step unstable with its energy appearing
+///   as negative dissipation (issue 29);
+/// - **a flipped normal**: a wall with most bodies (more than half) starting on its solid side
+///   (`n·(x − p) < 0` for the centroid x): its normal, which points into the free side, is
+///   most likely reversed (`[0, -1]` for a floor: a run then "completes" with the bodies falling
+///   forever).
+fn check_walls(walls: &[Boundary], bodies: &[BodyInit]) -> Result<(), FieldError> {
+    let smallest = bodies
+        .iter()
+        .map(|b| b.shape.inscribed_radius())
+        .fold(f64::INFINITY, f64::min);
+    for (j, b) in walls.iter().enumerate() {
+        for (i, a) in walls[..j].iter().enumerate() {
+            let (na, nb) = (a.line().normal, b.line().normal);
+            let parallel = na.dot(&nb) > 0.0 && (na.x * nb.y - na.y * nb.x).abs() < 1e-6;
+            let gap = na.dot(&(b.point() - a.point())).abs();
+            if parallel && gap < smallest {
+                return Err(FieldError::new(
+                    index("walls", j),
+                    format!(
+                        "coincides with walls[{i}]: the same free side and lines {gap:.3e} cm \
+                         apart, less than the smallest body's inscribed radius ({smallest:.3e} \
+                         cm), so a body touching one touches both, with the stiffness doubled; \
+                         give each wall once"
+                    ),
+                ));
+            }
+        }
+    }
+    for (k, w) in walls.iter().enumerate() {
+        let solid = bodies
+            .iter()
+            .filter(|b| w.line().normal.dot(&(b.position - w.point())) < 0.0)
+            .count();
+        if 2 * solid > bodies.len() {
+            let n = w.line().normal;
+            return Err(FieldError::new(
+                format!("{}.normal", index("walls", k)),
+                format!(
+                    "{solid} of the {} bodies start on the wall's solid side: the normal may be \
+                     flipped (it points from the wall into the free side, where the bodies are: \
+                     [{}, {}] rather than [{}, {}]?)",
+                    bodies.len(),
+                    // (+ 0.0: no `-0` in the message)
+                    -n.x + 0.0,
+                    -n.y + 0.0,
+                    n.x,
+                    n.y
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Checks every contact law a pair that can meet will use: the scene's (between bodies, and with
 /// walls that do not override it) and each wall's own, for every density of the scene.
 fn check_contact_ranges(
@@ -446,9 +519,12 @@ fn parse_contact(
 ) -> Result<ContactSpec, FieldError> {
     let field = |k: &str| join(path, k);
     let get = |k: &str| map.get(k);
+    for k in CONTACT_KEYS {
+        super::fields::note_key(path, k);
+    }
     for k in map.keys() {
         if !CONTACT_KEYS.contains(&k.as_str()) {
-            return Err(FieldError::new(field(k), "unknown field"));
+            return Err(FieldError::new(field(k), unknown_field(k, &CONTACT_KEYS)));
         }
     }
     let model = match get("model") {

@@ -4,6 +4,7 @@
 use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde_json::{Map, Value};
 use std::cell::RefCell;
+use std::collections::BTreeSet;
 use std::fmt;
 
 use super::ranges::{MAX_MAGNITUDE, MIN_SCALE};
@@ -319,11 +320,147 @@ fn describe(v: &Value) -> String {
     }
 }
 
+/// Other names users give a field, and the field meant.
+const ALIASES: [(&str, &str); 16] = [
+    ("radius", "r"),
+    ("width", "w"),
+    ("height", "h"),
+    ("semi_major", "a"),
+    ("semi_minor", "b"),
+    ("mu", "friction"),
+    ("friction_coefficient", "friction"),
+    ("pos", "position"),
+    ("center", "position"),
+    ("vel", "velocity"),
+    ("v", "velocity"),
+    ("angular_velocity", "omega"),
+    ("theta", "angle"),
+    ("rho", "density"),
+    ("timestep", "dt"),
+    ("g", "gravity"),
+];
+
+/// Edit distance between `a` and `b` (insertions, deletions, substitutions and swaps of two
+/// neighbours: `frction` is 1 from `friction`, `firction` 1).
+fn edit_distance(a: &str, b: &str) -> usize {
+    let (a, b): (Vec<char>, Vec<char>) = (a.chars().collect(), b.chars().collect());
+    let mut d = vec![vec![0usize; b.len() + 1]; a.len() + 1];
+    for (i, row) in d.iter_mut().enumerate() {
+        row[0] = i;
+    }
+    for (j, x) in d[0].iter_mut().enumerate() {
+        *x = j;
+    }
+    for i in 1..=a.len() {
+        for j in 1..=b.len() {
+            let cost = usize::from(a[i - 1] != b[j - 1]);
+            let mut v = (d[i - 1][j] + 1)
+                .min(d[i][j - 1] + 1)
+                .min(d[i - 1][j - 1] + cost);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                v = v.min(d[i - 2][j - 2] + 1);
+            }
+            d[i][j] = v;
+        }
+    }
+    d[a.len()][b.len()]
+}
+
+/// The valid key a user most likely meant by `given`: a known other name of it, else the
+/// closest by spelling (within a third of its length, at least one edit), else the key it is
+/// the start or the plural of.
+pub fn did_you_mean<'k>(given: &str, valid: &[&'k str]) -> Option<&'k str> {
+    let lower = given.to_ascii_lowercase();
+    if let Some(&k) = valid.iter().find(|k| **k == lower) {
+        return Some(k);
+    }
+    if let Some((_, meant)) = ALIASES.iter().find(|(alias, _)| *alias == lower)
+        && let Some(&k) = valid.iter().find(|k| *k == meant)
+    {
+        return Some(k);
+    }
+    let (best, d) = valid
+        .iter()
+        .map(|k| (*k, edit_distance(&lower, k)))
+        .min_by_key(|&(_, d)| d)?;
+    if d <= (lower.chars().count() / 3).max(1) {
+        return Some(best);
+    }
+    valid
+        .iter()
+        .find(|k| k.len() >= 3 && (lower.starts_with(*k) || k.starts_with(lower.as_str())))
+        .copied()
+}
+
+/// The message for an unknown key: what it may have meant and the keys this object takes.
+pub fn unknown_field(given: &str, valid: &[&str]) -> String {
+    let mut valid: Vec<&str> = valid.to_vec();
+    valid.sort_unstable();
+    valid.dedup();
+    let what = if given.is_empty() {
+        "unknown field (an empty key)".to_string()
+    } else {
+        "unknown field".to_string()
+    };
+    let list = valid
+        .iter()
+        .map(|k| format!("`{k}`"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    match did_you_mean(given, &valid) {
+        Some(k) => format!("{what}: did you mean `{k}`? (the valid keys here: {list})"),
+        None if valid.is_empty() => what,
+        None => format!("{what} (the valid keys here: {list})"),
+    }
+}
+
+thread_local! {
+    /// The keys asked for while [`keys_asked_during`] runs (None otherwise: nothing recorded).
+    static ASKED: RefCell<Option<BTreeSet<String>>> = const { RefCell::new(None) };
+}
+
+/// Runs `f` and returns, beside its result, every key a reader asked for while it ran (present
+/// or not), as schema paths with the array indices left out (`bodies[].shape.r`,
+/// `walls[].servo.gain`). The readers' own requests are thus the list of the keys they accept:
+/// `tests/docs.rs` holds the case-file reference to it, both ways.
+pub fn keys_asked_during<T>(f: impl FnOnce() -> T) -> (T, BTreeSet<String>) {
+    let outer = ASKED.with(|a| a.replace(Some(BTreeSet::new())));
+    let result = f();
+    let asked = ASKED.with(|a| a.replace(outer)).unwrap_or_default();
+    (result, asked)
+}
+
+/// Records that the reader at `parent` asked for `key` (see [`keys_asked_during`]).
+pub(crate) fn note_key(parent: &str, key: &str) {
+    ASKED.with(|a| {
+        if let Some(set) = a.borrow_mut().as_mut() {
+            set.insert(schema_path(&join(parent, key)));
+        }
+    });
+}
+
+/// `bodies[3].shape.disks[0].r` → `bodies[].shape.disks[].r`.
+fn schema_path(path: &str) -> String {
+    let mut out = String::with_capacity(path.len());
+    let mut chars = path.chars().peekable();
+    while let Some(c) = chars.next() {
+        out.push(c);
+        if c == '[' {
+            while chars.peek().is_some_and(char::is_ascii_digit) {
+                chars.next();
+            }
+        }
+    }
+    out
+}
+
 /// An object being read: fields are taken one by one, and [`Obj::finish`] rejects the rest.
 pub struct Obj<'a> {
     map: &'a Map<String, Value>,
     path: String,
     taken: Vec<&'a str>,
+    /// Every key asked for, present or not: the keys this object takes.
+    asked: Vec<String>,
 }
 
 impl<'a> Obj<'a> {
@@ -334,6 +471,7 @@ impl<'a> Obj<'a> {
                 map,
                 path: path.to_string(),
                 taken: Vec::new(),
+                asked: Vec::new(),
             }),
             None => Err(FieldError::new(
                 path,
@@ -354,21 +492,39 @@ impl<'a> Obj<'a> {
 
     /// True if the field is present.
     pub fn has(&self, key: &str) -> bool {
+        note_key(&self.path, key);
         self.map.contains_key(key)
     }
 
     /// An optional field (marked as read).
     pub fn get(&mut self, key: &str) -> Option<&'a Value> {
+        note_key(&self.path, key);
+        if !self.asked.iter().any(|a| a == key) {
+            self.asked.push(key.to_string());
+        }
         let (k, v) = self.map.get_key_value(key)?;
         self.taken.push(k.as_str());
         Some(v)
     }
 
-    /// A required field.
+    /// A required field. When it is missing and a key nobody asked for looks like it
+    /// (`radius` for `r`, `frction` for `friction`), the message says so.
     pub fn req(&mut self, key: &str) -> Result<&'a Value, FieldError> {
         let path = self.field_path(key);
-        self.get(key)
-            .ok_or_else(|| FieldError::new(path, "is missing"))
+        if let Some(v) = self.get(key) {
+            return Ok(v);
+        }
+        let lookalike = self
+            .map
+            .keys()
+            .find(|k| !self.asked.iter().any(|a| a == *k) && did_you_mean(k, &[key]).is_some());
+        Err(FieldError::new(
+            path,
+            match lookalike {
+                Some(k) => format!("is missing (`{k}` is given: did you mean `{key}`?)"),
+                None => "is missing".to_string(),
+            },
+        ))
     }
 
     /// Applies `f` to a required field with its path.
@@ -399,12 +555,11 @@ impl<'a> Obj<'a> {
         keys.sort();
         for k in keys {
             if !self.taken.contains(&k.as_str()) {
-                let what = if k.is_empty() {
-                    "unknown field (an empty key)"
-                } else {
-                    "unknown field"
-                };
-                return Err(FieldError::new(join(&self.path, k), what));
+                let valid: Vec<&str> = self.asked.iter().map(String::as_str).collect();
+                return Err(FieldError::new(
+                    join(&self.path, k),
+                    unknown_field(k, &valid),
+                ));
             }
         }
         Ok(())

@@ -34,20 +34,32 @@ pub struct CaseFile {
     pub run: Option<RunProgress>,
     /// The file as parsed (a state file written at the end of the run repeats its fields).
     pub value: Value,
+    /// What the state's reader found worth telling (an edited state's new overlaps).
+    pub warnings: Vec<String>,
 }
 
 impl CaseFile {
     /// Reads a case or state file from its text.
     pub fn from_json(text: &str) -> Result<CaseFile, FieldError> {
         let value = parse_json(text, "")?;
-        let case = Case::from_value(&value)?;
+        let mut case = Case::from_value(&value)?;
+        let mut warnings = Vec::new();
         let (restart, run) = match value.get("state") {
             None => (None, None),
             Some(s) => {
-                let (state, run) = parse_state(s, &case)?;
+                let (mut state, mut run) = parse_state(s, &case)?;
+                continue_walls(&mut case, &mut state);
                 // The same check as the world's when it resumes, named in the file's terms.
-                case.resume_world(&state)
+                let world = case
+                    .resume_world(&state)
                     .map_err(|e| FieldError::new(join("state", &e.path), e.message))?;
+                check_account(&world, &state, run.as_ref())?;
+                if let Some((warning, fresh)) = check_contact_list(&case, &state)? {
+                    warnings.push(warning);
+                    if let Some(run) = &mut run {
+                        watch_from_here(run, &state.energies, &fresh);
+                    }
+                }
                 (Some(state), run)
             }
         };
@@ -56,6 +68,7 @@ impl CaseFile {
             restart,
             run,
             value,
+            warnings,
         })
     }
 
@@ -66,6 +79,184 @@ impl CaseFile {
             Some(state) => self.case.resume_world(state).expect("checked when read"),
         }
     }
+}
+
+/// A wall given a constant velocity continues from where the state has it: its motion
+/// `p = p₀ + v (t − t₀)` is anchored at the state's point and time unless the state's point is
+/// where the case's motion puts it (`p₀ + v t` from the case's point, to the bit: an unchanged
+/// continuation, which then steps exactly as the uninterrupted run); its velocity is the case's
+/// (a wall given a velocity in an edited state had 0). Without this, a wall given a velocity in
+/// a state file jumped to `p₀ + v t` at its first step (issue 29).
+fn continue_walls(case: &mut Case, state: &mut RestartState) {
+    use crate::dynamics::Motion;
+    for (w, r) in case.walls.iter_mut().zip(&mut state.walls) {
+        if let Motion::Velocity(v) = w.motion {
+            if r.point != w.start + v * state.time {
+                w.start = r.point;
+                w.start_time = state.time;
+            }
+            r.velocity = v;
+        }
+    }
+}
+
+/// Refuses a state whose energy account no run can have reached: an energy of motion or of the
+/// springs below zero, dissipation below zero (it only grows from 0), or an account the blow-up
+/// watch would stop at once (energy created far beyond what the start, gravity and the walls
+/// supply — `dissipated: 1e300`). Named at `state.energies`.
+fn check_account(
+    world: &World,
+    state: &RestartState,
+    run: Option<&RunProgress>,
+) -> Result<(), FieldError> {
+    let e = &state.energies;
+    let at = |k: &str| join("state.energies", k);
+    for (k, v) in [("kinetic", e.kinetic), ("elastic", e.elastic)] {
+        if v < 0.0 {
+            return Err(FieldError::new(
+                at(k),
+                format!("must be zero or positive, got {v} (an energy of motion or of springs)"),
+            ));
+        }
+    }
+    // Dissipation only grows from 0; a run's rounding leaves it at most this far below.
+    let scale = e.kinetic + e.potential.abs() + e.elastic + e.boundary_work.abs();
+    if e.dissipated < -1e-6 * scale {
+        return Err(FieldError::new(
+            at("dissipated"),
+            format!(
+                "{:e} is below zero: the energy the contacts took out only ever grows from 0",
+                e.dissipated
+            ),
+        ));
+    }
+    if let Some(run) = run {
+        let mut watch = run.watch.clone();
+        use crate::run::watch::{ENERGY_GROWTH, Trigger};
+        let why = match watch.check(world) {
+            None => return Ok(()),
+            Some(Trigger::Energy { created, available }) => format!(
+                "{created:.3e} erg created since the start, more than {ENERGY_GROWTH} × the \
+                 {available:.3e} erg that the start, gravity and the walls supply"
+            ),
+            Some(Trigger::Depth { ratio }) => {
+                format!("an overlap of {ratio:.3} × the smaller inscribed radius")
+            }
+            Some(Trigger::NonFinite(what)) => format!("a non-finite {what}"),
+        };
+        return Err(FieldError::new(
+            "state.energies",
+            format!(
+                "the account is that of a blow-up ({why}): no run writes such a state (was it \
+                 edited?)"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Refuses a state whose contact list lacks a pair that overlaps (the list was emptied, or a
+/// body was moved by an edit out of its neighbours' reach): the continued run would not see that
+/// contact until its list is next rebuilt, by which time the bodies have passed into each other
+/// (an emptied list blew up 1019 steps later). Warns of pairs the list holds that overlap where
+/// the state's contacts did not (an edit that created an overlap: its spring acts from the first
+/// step). Returns that warning and the energies of the state's configuration evaluated afresh.
+fn check_contact_list(
+    case: &Case,
+    state: &RestartState,
+) -> Result<Option<(String, crate::dynamics::account::Energies)>, FieldError> {
+    use crate::dynamics::BodyInit;
+    let bodies: Vec<BodyInit> = case
+        .bodies
+        .iter()
+        .zip(&state.bodies)
+        .map(|(b, r)| BodyInit {
+            position: r.position,
+            angle: r.angle,
+            velocity: r.velocity,
+            omega: r.omega,
+            ..*b
+        })
+        .collect();
+    let mut walls = case.walls.clone();
+    for (w, r) in walls.iter_mut().zip(&state.walls) {
+        w.move_to(r.point);
+    }
+    let mut fresh = Case {
+        bodies,
+        walls,
+        ..case.clone()
+    }
+    .build_world();
+    fresh.refresh_contact_extras();
+    let listed = |i: u32, j: u32| {
+        state
+            .slots
+            .iter()
+            .filter(move |s| (s.slot.i, s.slot.j) == (i, j))
+    };
+    let name = |i: u32, j: u32| match Partner::from_key(j) {
+        Partner::Wall(w) => format!("body {i} and wall {w}"),
+        Partner::Body(j) => format!("bodies {i} and {j}"),
+    };
+    let mut new_overlaps = Vec::new();
+    for c in fresh.contacts.active().filter(|c| c.extra.depth > 0.0) {
+        let (i, j) = (c.slot.i, c.slot.j);
+        if listed(i, j).next().is_none() {
+            return Err(FieldError::new(
+                "state.contacts",
+                format!(
+                    "{} overlap (by δ = {:.3e}) but the contact list does not hold their pair \
+                     (emptied, or a body moved by an edit): the continued run would miss their \
+                     contact; remove the `state` block to run these positions as a case from \
+                     t = 0",
+                    name(i, j),
+                    c.extra.depth
+                ),
+            ));
+        }
+        if !listed(i, j).any(|s| s.slot.active) {
+            new_overlaps.push((name(i, j), c.extra.depth));
+        }
+    }
+    if new_overlaps.is_empty() {
+        return Ok(None);
+    }
+    new_overlaps.sort_by(|a, b| b.1.total_cmp(&a.1));
+    let named: Vec<String> = new_overlaps
+        .iter()
+        .take(5)
+        .map(|(n, d)| format!("{n} by δ = {d:.3e}"))
+        .collect();
+    Ok(Some((
+        format!(
+            "{} pair{} overlap where the state's contacts did not (an edited state?): {}{}; their \
+         springs act from the first step, and the blow-up watch starts from this state",
+            new_overlaps.len(),
+            if new_overlaps.len() == 1 { "" } else { "s" },
+            named.join("; "),
+            match new_overlaps.len().saturating_sub(5) {
+                0 => String::new(),
+                more => format!("; and {more} more"),
+            }
+        ),
+        fresh.energies,
+    )))
+}
+
+/// The blow-up watch of an edited state starts from it: the energy its edit put into springs
+/// (or motion) is the state's own, not energy created by the step. `fresh` are the energies of
+/// the state's configuration evaluated afresh (no history springs); the dissipation and the
+/// walls' work so far are the state's.
+fn watch_from_here(run: &mut RunProgress, e: &Energies, fresh: &Energies) {
+    let w = &mut run.watch;
+    w.kinetic0 = fresh.kinetic;
+    w.elastic0 = fresh.elastic.max(e.elastic);
+    w.potential0 = fresh.potential;
+    w.total0 = fresh.kinetic + fresh.potential + w.elastic0 + e.dissipated + e.boundary_work;
+    w.gravity_supplied = 0.0;
+    w.boundary_supplied = 0.0;
+    w.dissipated_max = e.dissipated;
 }
 
 /// Any finite number (the state's numbers are what a run computed: no range applies).
@@ -208,7 +399,12 @@ pub fn parse_state(
         Ok(r)
     })?;
     let last_increments = o.req_with("last_increments", floats::<3>)?;
-    let run = o.opt_with("run", parse_run)?;
+    let mut run = o.opt_with("run", parse_run)?;
+    if let Some(r) = &mut run
+        && r.watch.dissipated_max.is_nan()
+    {
+        r.watch.dissipated_max = energies.dissipated;
+    }
     let walls = o.req_with("walls", |v, p| {
         array(v, p)?
             .iter()
@@ -423,6 +619,9 @@ fn parse_run(v: &Value, path: &str) -> Result<RunProgress, FieldError> {
             total0: w.req_with("total0", float)?,
             gravity_supplied: w.req_with("gravity_supplied", float)?,
             boundary_supplied: w.req_with("boundary_supplied", float)?,
+            // Absent from states written before it was kept: the state's own dissipation
+            // (set by the caller, which has it).
+            dissipated_max: w.opt_with("dissipated_max", float)?.unwrap_or(f64::NAN),
             depth_limit: w.req_with("depth_limit", float)?,
         };
         w.finish()?;

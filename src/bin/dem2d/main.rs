@@ -35,7 +35,7 @@ const HUGE_PAGE_MIN_BLOCK: usize = 4 << 20;
 /// transparent huge pages (`madvise(MADV_HUGEPAGE)`). A step of a 10⁶-body world streams some
 /// 700 MB through a dozen arrays; on 4 KiB pages each array crosses a page every few hundred
 /// bodies and the processor walks the page tables (its TLB covers ~12 MB): advised, 10⁶ disks
-/// step ~3 % faster (README, "This pass" under "Many bodies"). Debian's default THP mode is
+/// step ~3 % faster (docs/src/lab-notebook.md, "This pass"). Debian's default THP mode is
 /// `madvise`: only advised memory gets huge pages. Advice only — where THP is off or the call
 /// fails, nothing changes — and never affects a result.
 #[inline]
@@ -121,7 +121,7 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Run one of the studies behind the README's tables (rolling-fig3, repose, biaxial) and
+    /// Run one of the studies behind the user guide's tables (rolling-fig3, repose, biaxial) and
     /// print its Markdown table; run from the repository (the studies read `cases/`).
     Study {
         /// Which study.
@@ -134,6 +134,14 @@ enum Command {
         /// square number, default 400; packing: default 300).
         #[arg(long)]
         grains: Option<usize>,
+        /// Also put the table into its marked region of the user guide (README.md, docs/src;
+        /// run from the repository).
+        #[arg(long)]
+        docs: bool,
+        /// Compare the table (and, with --write-cases, the case files) with the user guide's
+        /// and the repository's instead of writing them; fail if they differ.
+        #[arg(long)]
+        check: bool,
     },
     /// Contact geometry of pairs of bodies: reads a JSON array of {"i": BODY, "j": BODY} from FILE
     /// (or standard input for `-`) and prints one JSON result per pair.
@@ -210,9 +218,16 @@ enum Command {
         /// Only the fastest subset (what CI runs, well under two minutes).
         #[arg(long, conflicts_with = "full")]
         quick: bool,
-        /// The sizes of the README's figures (tens of minutes).
+        /// The sizes of the user guide's figures (tens of minutes).
         #[arg(long)]
         full: bool,
+        /// Also put the table of comparisons into its marked region of the user guide
+        /// (`verify` for the default level, `verify_quick`, `verify_full`).
+        #[arg(long)]
+        docs: bool,
+        /// Compare the table with the user guide's instead; fail if they differ.
+        #[arg(long)]
+        check: bool,
     },
     /// Draw a run (a directory written by `dem2d run`) as an SVG, or a PNG for `--out x.png`.
     Plot {
@@ -317,14 +332,13 @@ enum Command {
         /// Cache of settled piles.
         #[arg(long, default_value = "target/bench-piles")]
         cache: PathBuf,
-        /// Write the Markdown table here too (and refresh the README section `bench` when
-        /// --readme is given).
+        /// Write the Markdown table here too.
         #[arg(long)]
         out: Option<PathBuf>,
-        /// README whose `<!-- figures:bench -->` section is refreshed (with --peers, the
-        /// `<!-- figures:peers -->` section).
+        /// Refresh the user guide's `<!-- figures:bench -->` table (with --peers,
+        /// `<!-- figures:peers -->`); run from the repository.
         #[arg(long)]
-        readme: Option<PathBuf>,
+        docs: bool,
         /// Instead: `dem2d run` (one thread) on the settled 10⁴-disk and 10⁴-ellipse piles (the
         /// ellipses under each --normal-force law) against LIGGGHTS (`liggghts`) and LAMMPS
         /// (`lmp`) on the disk pile, when installed (decks in benches/peers/), interleaved;
@@ -333,9 +347,9 @@ enum Command {
         #[arg(long)]
         peers: bool,
     },
-    /// Regenerate every figure and table of the README into figures/ (runs the paper's cases,
-    /// the time-step sweeps and the contact-kernel report; about 10 s). The README itself is
-    /// refreshed only with --readme.
+    /// Regenerate every figure and table of the user guide into figures/ (runs the paper's
+    /// cases, the time-step sweeps and the contact-kernel report; about 10 s). The guide itself
+    /// is refreshed only with --docs.
     Figures {
         /// Output directory for SVG, CSV and Markdown.
         #[arg(long, default_value = "figures")]
@@ -346,11 +360,14 @@ enum Command {
         /// Where the runs go.
         #[arg(long, default_value = "target/figure-runs")]
         work: PathBuf,
-        /// Refresh the marked tables of this README (without it, no README is touched). The
-        /// tables are deterministic; timings go to WORK/timings.md.
+        /// Refresh the marked tables of the user guide (README.md, docs/src; run from the
+        /// repository). The tables are deterministic; timings go to WORK/timings.md.
         #[arg(long)]
-        readme: Option<PathBuf>,
-        /// Fewer sweep points and repetitions (a quick look, not the README's numbers).
+        docs: bool,
+        /// Compare the guide's tables with these instead of writing them; fail if they differ.
+        #[arg(long)]
+        check: bool,
+        /// Fewer sweep points and repetitions (a quick look, not the guide's numbers).
         #[arg(long)]
         quick: bool,
         /// Where every SVG is also rendered as PNG (default: WORK/png).
@@ -566,7 +583,8 @@ fn run(args: RunArgs) -> Result<(), Failure> {
     let text = read_input(&name)?;
     let file = dem2d::scene::CaseFile::from_json(&text)
         .map_err(|e| Failure::input(format!("{name}: {e}")))?;
-    let (mut case, restart, run) = (file.case, file.restart, file.run);
+    let (mut case, restart, run, read_warnings) =
+        (file.case, file.restart, file.run, file.warnings);
     if let Some(d) = args.duration {
         if !(d.is_finite() && d > 0.0) {
             return Err(Failure::input(format!(
@@ -622,6 +640,7 @@ fn run(args: RunArgs) -> Result<(), Failure> {
         restart,
         run,
         input: Some(args.case.to_path_buf()),
+        warnings: read_warnings,
     };
     let outcome = run_case(&case, &text, &opts).map_err(|e| match e {
         RunError::Occupied { .. } | RunError::Locked { .. } => Failure::input(e.to_string()),
@@ -913,7 +932,7 @@ fn bench(
     normal_forces: &[NormalForceArg],
     cache: &std::path::Path,
     out: Option<&std::path::Path>,
-    readme: Option<&std::path::Path>,
+    docs: bool,
 ) -> Result<(), Failure> {
     use dem2d::scene::generate::PileShape;
     if let Some(&n) = sizes
@@ -956,16 +975,52 @@ fn bench(
         code: 1,
         message: e.to_string(),
     })?;
-    publish_table(crate::bench::markdown(&rows), "bench", out, readme)
+    publish_table(
+        crate::bench::markdown(&rows),
+        "bench",
+        out,
+        docs_mode(docs, false),
+    )
 }
 
-/// Prints a Markdown table, writes it to `out` and refreshes the README section `section`
+/// What `--docs` and `--check` ask of the user guide's tables.
+fn docs_mode(docs: bool, check: bool) -> Option<dem2d::output::docs_tables::Mode> {
+    use dem2d::output::docs_tables::Mode;
+    match (docs, check) {
+        (_, true) => Some(Mode::Check),
+        (true, false) => Some(Mode::Write),
+        (false, false) => None,
+    }
+}
+
+/// Refreshes (or checks) the user guide's marked table `section` (`<!-- figures:SECTION -->`)
+/// in the repository at the current directory; says what it did on stderr.
+fn refresh_docs(
+    section: &str,
+    md: &str,
+    mode: dem2d::output::docs_tables::Mode,
+) -> Result<(), Failure> {
+    use dem2d::output::docs_tables;
+    let stale = docs_tables::refresh(
+        std::path::Path::new("."),
+        &[(section, md.to_string())],
+        mode,
+    )
+    .map_err(Failure::failed)?;
+    say(&format!(
+        "dem2d: {}",
+        docs_tables::report(&stale, mode).map_err(Failure::failed)?
+    ));
+    Ok(())
+}
+
+/// Prints a Markdown table, writes it to `out` and refreshes the user guide's table `section`
 /// (`<!-- figures:SECTION -->`) when asked.
 fn publish_table(
     md: String,
     section: &str,
     out: Option<&std::path::Path>,
-    readme: Option<&std::path::Path>,
+    docs: Option<dem2d::output::docs_tables::Mode>,
 ) -> Result<(), Failure> {
     print_out(&md)?;
     if let Some(path) = out {
@@ -974,11 +1029,8 @@ fn publish_table(
             message: format!("{}: cannot write: {e}", path.display()),
         })?;
     }
-    if let Some(readme) = readme {
-        crate::report::update_readme(readme, &[(section, md)]).map_err(|e| Failure {
-            code: 1,
-            message: e.to_string(),
-        })?;
+    if let Some(mode) = docs {
+        refresh_docs(section, &md, mode)?;
     }
     Ok(())
 }
@@ -993,7 +1045,7 @@ fn bench_peers(
     reps: usize,
     cache: &std::path::Path,
     out: Option<&std::path::Path>,
-    readme: Option<&std::path::Path>,
+    docs: bool,
 ) -> Result<(), Failure> {
     use dem2d::scene::generate::PileShape;
     // The default sizes are the throughput table's; the peers compare the 10⁴ piles.
@@ -1033,7 +1085,7 @@ fn bench_peers(
         crate::peers::markdown(&report, load.as_deref()),
         "peers",
         out,
-        readme,
+        docs_mode(docs, false),
     )
 }
 
@@ -1041,14 +1093,14 @@ fn figures(
     out: PathBuf,
     cases: PathBuf,
     work: PathBuf,
-    readme: Option<PathBuf>,
+    docs: Option<dem2d::output::docs_tables::Mode>,
     (quick, png): (bool, Option<PathBuf>),
 ) -> Result<(), Failure> {
     let opts = crate::report::FigureOptions {
         cases,
         out,
         work,
-        readme,
+        docs,
         quick,
         png,
     };
@@ -1070,8 +1122,9 @@ fn main() -> ExitCode {
             name,
             write_cases,
             grains,
-        } => study::run(*name, *write_cases, *grains)
-            .map_err(|e| Failure::failed(format!("dem2d study: {e}"))),
+            docs,
+            check,
+        } => study::run(*name, *write_cases, *grains, docs_mode(*docs, *check)),
         Command::Run {
             case,
             out,
@@ -1104,18 +1157,32 @@ fn main() -> ExitCode {
             out,
         } => analyze::run(run_dir, window.as_deref(), out.as_deref())
             .map_err(|(code, message)| Failure { code, message }),
-        Command::Verify { quick, full } => {
+        Command::Verify {
+            quick,
+            full,
+            docs,
+            check,
+        } => {
             let level = match (quick, full) {
                 (true, _) => verify::Level::Quick,
                 (_, true) => verify::Level::Full,
                 _ => verify::Level::Default,
             };
             match verify::run(level) {
-                Ok(true) => Ok(()),
-                Ok(false) => Err(Failure::failed(
-                    "dem2d verify: some comparisons failed".into(),
-                )),
                 Err(e) => Err(Failure::failed(format!("dem2d verify: {e}"))),
+                Ok((passed, md)) => {
+                    let docs = match docs_mode(*docs, *check) {
+                        Some(mode) => refresh_docs(level.table_name(), &md, mode),
+                        None => Ok(()),
+                    };
+                    if passed {
+                        docs
+                    } else {
+                        Err(Failure::failed(
+                            "dem2d verify: some comparisons failed".into(),
+                        ))
+                    }
+                }
             }
         }
         Command::Plot {
@@ -1170,7 +1237,7 @@ fn main() -> ExitCode {
             normal_force,
             cache,
             out,
-            readme,
+            docs,
             peers: true,
         } => bench_peers(
             shapes,
@@ -1180,7 +1247,7 @@ fn main() -> ExitCode {
             *reps,
             cache,
             out.as_deref(),
-            readme.as_deref(),
+            *docs,
         ),
         Command::Bench {
             shapes,
@@ -1191,7 +1258,7 @@ fn main() -> ExitCode {
             normal_force,
             cache,
             out,
-            readme,
+            docs,
             peers: false,
         } => bench(
             shapes,
@@ -1202,20 +1269,21 @@ fn main() -> ExitCode {
             normal_force,
             cache,
             out.as_deref(),
-            readme.as_deref(),
+            *docs,
         ),
         Command::Figures {
             out,
             cases,
             work,
-            readme,
+            docs,
+            check,
             quick,
             png,
         } => figures(
             out.clone(),
             cases.clone(),
             work.clone(),
-            readme.clone(),
+            docs_mode(*docs, *check),
             (*quick, png.clone()),
         ),
     };

@@ -1,11 +1,12 @@
-//! `dem2d figures`: every figure and table of the README, regenerated from the code.
+//! `dem2d figures`: every figure and table of the user guide, regenerated from the code.
 //!
 //! Runs the paper's cases (into a work directory), draws their figures, sweeps the time step for
 //! the speed-vs-error and stability reports, tabulates the contact kernel's accuracy against the
 //! independent reference with its time per pair, and writes SVG, CSV and Markdown into the
-//! output directory. With `--readme README.md`, README sections between `<!-- figures:NAME -->`
-//! and `<!-- /figures:NAME -->` are replaced by the Markdown of the same name, so the README's
-//! tables are never edited by hand either (and without it the README is left alone).
+//! output directory. With `--docs`, the user guide's regions between `<!-- figures:NAME -->` and
+//! `<!-- /figures:NAME -->` (in `README.md` and `docs/src`) are replaced by the Markdown of the
+//! same name, so its tables are never edited by hand either; with `--docs --check` they are
+//! compared instead, and a difference is an error (CI). Without `--docs` the guide is left alone.
 //!
 //! Everything written into the output directory is a function of the code and the cases only,
 //! the same bits on every machine and every run, so that regenerating leaves a clean tree.
@@ -57,9 +58,10 @@ pub struct FigureOptions {
     pub out: PathBuf,
     /// Where the runs go (their trajectories are not figures).
     pub work: PathBuf,
-    /// The README whose marked sections are refreshed (None: leave it alone).
-    pub readme: Option<PathBuf>,
-    /// Fewer repetitions and sweep points (for a quick look; the README's numbers use the full set).
+    /// Refresh (or check) the user guide's marked tables, in the repository at the current
+    /// directory (None: leave the guide alone).
+    pub docs: Option<dem2d::output::docs_tables::Mode>,
+    /// Fewer repetitions and sweep points (for a quick look; the guide's numbers use the full set).
     pub quick: bool,
     /// Where each SVG is also rendered as PNG (None: `WORK/png`). Not in `out`: the rendering
     /// depends on the machine's fonts, and `out` holds the same bits on every machine.
@@ -227,9 +229,14 @@ pub fn figures(opts: &FigureOptions) -> Result<Vec<PathBuf>, ReportError> {
     let f = opts.work.join("timings.md");
     std::fs::write(&f, timings).map_err(e(&f.display().to_string()))?;
     written.push(f);
-    if let Some(readme) = &opts.readme {
-        update_readme(readme, &tables)?;
-    }
+    let stale = match opts.docs {
+        Some(mode) => Some((
+            mode,
+            dem2d::output::docs_tables::refresh(Path::new("."), &tables, mode)
+                .map_err(ReportError)?,
+        )),
+        None => None,
+    };
     // Every SVG also as PNG, at twice its displayed size (print resolution).
     let png_dir = opts.png.clone().unwrap_or_else(|| opts.work.join("png"));
     std::fs::create_dir_all(&png_dir).map_err(e(&png_dir.display().to_string()))?;
@@ -249,6 +256,9 @@ pub fn figures(opts: &FigureOptions) -> Result<Vec<PathBuf>, ReportError> {
         let bytes = plot::png_of_svg(&text, 2.0).map_err(e(&png.display().to_string()))?;
         std::fs::write(&png, bytes).map_err(e(&png.display().to_string()))?;
         written.push(png);
+    }
+    if let Some((mode, stale)) = stale {
+        note(&dem2d::output::docs_tables::report(&stale, mode).map_err(ReportError)?);
     }
     Ok(written)
 }
@@ -1177,9 +1187,4 @@ fn kernel_report(quick: bool) -> (String, String) {
         writeln!(times, "| {} | {t:.0} |", r.name).expect("string");
     }
     (table, times)
-}
-
-/// Replaces the README's marked sections by the tables of the same names.
-pub fn update_readme(readme: &Path, tables: &[(&str, String)]) -> Result<(), ReportError> {
-    dem2d::output::readme::update_readme(readme, tables).map_err(ReportError)
 }

@@ -82,6 +82,8 @@ pub struct RunOptions {
     /// The file the case (or the state) was read from: never removed from the output directory
     /// before this run's own file replaces it.
     pub input: Option<PathBuf>,
+    /// Warnings found in reading the input (reported with the run's own).
+    pub warnings: Vec<String>,
 }
 
 /// The files a run writes (and `dem2d plot`'s default outputs, drawn from them): what is
@@ -424,7 +426,7 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
         &world.walls,
         case.gravity.norm(),
     );
-    let mut warnings = Vec::new();
+    let mut warnings = opts.warnings.clone();
     if case.dt > dt_critical {
         warnings.push(format!(
             "dt = {:e} exceeds the critical time step estimated from the stiffest possible contact, {:.3e} \

@@ -8,7 +8,7 @@
 //!   Saint-Cyr et al. 2012) — on samples of 144 grains, α = 1 and 2; and the packing fraction
 //!   of 300 frictionless bidisperse disks poured into a box against the jamming fraction of that
 //!   mixture.
-//! - `--full` (about half an hour): the biaxial trend on the README's samples (2025 grains,
+//! - `--full` (about half an hour): the biaxial trend on the user guide's samples (2025 grains,
 //!   α = 1, 1.5, 2, 2.5), each α against the next; and the poured frictionless ellipses at
 //!   α = 1.5 against the published maxima of φ_J(α) and the hypostatic plateau of Z_J.
 
@@ -24,6 +24,17 @@ pub enum Level {
     Quick,
     Default,
     Full,
+}
+
+impl Level {
+    /// The name of this level's marked table in the user guide (`dem2d verify --docs`).
+    pub fn table_name(self) -> &'static str {
+        match self {
+            Level::Quick => "verify_quick",
+            Level::Default => "verify",
+            Level::Full => "verify_full",
+        }
+    }
 }
 
 /// One comparison.
@@ -104,7 +115,7 @@ fn biaxial_checks(n_side: usize, aspects: &[f64], strain: f64) -> Result<Vec<Che
 }
 
 /// Poured frictionless piles against the jamming literature: disks (α = 1) always, ellipses of
-/// α = 1.5 with `ellipses`. The bands are the published values (see the README's packing
+/// α = 1.5 with `ellipses`. The bands are the published values (see the user guide's packing
 /// section); below them 1 % is allowed for the protocol (gravity deposition with finite
 /// stiffness, not isotropic compression to jamming).
 fn packing_checks(ellipses: bool) -> Result<Vec<Check>, RunError> {
@@ -149,8 +160,11 @@ fn packing_checks(ellipses: bool) -> Result<Vec<Check>, RunError> {
     Ok(checks)
 }
 
-/// Runs the checks of `level`, prints them; true when all pass.
-pub fn run(level: Level) -> Result<bool, RunError> {
+/// Runs the checks of `level` and prints them as a Markdown table (the wall time on a line of
+/// its own after it); returns whether all pass, and the table (without the wall time, which is
+/// the machine's and not the code's). A run that blows up is the error.
+pub fn run(level: Level) -> Result<(bool, String), RunError> {
+    use std::fmt::Write as _;
     let start = Instant::now();
     let mut checks = relative(impacts::normal_rows()?);
     checks.extend(relative(impacts::oblique_rows(&[40.0, 60.0, 80.0])?));
@@ -166,23 +180,23 @@ pub fn run(level: Level) -> Result<bool, RunError> {
             checks.extend(packing_checks(true)?);
         }
     }
-    println!("| quantity | dem2d | reference | tolerance | result |");
-    println!("|---|---:|---|---|---|");
+    let mut md = String::from(
+        "| quantity | dem2d | reference | tolerance | result |\n|---|---:|---|---|---|\n",
+    );
     for c in &checks {
-        println!(
+        writeln!(
+            md,
             "| {} | {:.6e} | {} | {} | {} |",
             c.quantity,
             c.value,
             c.reference,
             c.tolerance,
             if c.pass { "pass" } else { "FAIL" }
-        );
+        )
+        .expect("a string");
     }
     let failed = checks.iter().filter(|c| !c.pass).count();
-    println!(
-        "\n{} comparisons, {failed} failed; wall time {:.1} s",
-        checks.len(),
-        start.elapsed().as_secs_f64()
-    );
-    Ok(failed == 0)
+    writeln!(md, "\n{} comparisons, {failed} failed.", checks.len()).expect("a string");
+    println!("{md}wall time {:.1} s", start.elapsed().as_secs_f64());
+    Ok((failed == 0, md))
 }

@@ -95,7 +95,7 @@ fn stresses(w: &World) -> (f64, f64, f64, f64) {
     (axial, lateral, width, height)
 }
 
-pub fn run(write: bool) -> Result<(), RunError> {
+pub fn run(write: bool) -> Result<String, RunError> {
     // A loose lattice, 2.6 cm apart, radii uniform in 0.8–1.2 (a fixed sequence).
     let mut seed = 7u64;
     let mut uniform = || {
@@ -173,16 +173,15 @@ pub fn run(write: bool) -> Result<(), RunError> {
     if write {
         let path =
             std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/biaxial_disks.json");
-        std::fs::write(&path, &shear).unwrap();
-        eprintln!("wrote {}", path.display());
+        super::put_case(&path, &shear);
     }
     let case = Case::from_json(&shear).unwrap();
     let mut w = case.build_world();
     let area0 = width0 * height0;
-    println!(
-        "| axial strain | σ₁ (dyn/cm²) | σ₃ (dyn/cm²) | σ₃/σ_c − 1 | (σ₁ − σ₃)/(σ₁ + σ₃) | volumetric strain |"
+    let mut md = super::Table::new(
+        "| axial strain | σ₁ (dyn/cm²) | σ₃ (dyn/cm²) | σ₃/σ_c − 1 | (σ₁ − σ₃)/(σ₁ + σ₃) | volumetric strain |\n\
+         |---:|---:|---:|---:|---:|---:|",
     );
-    println!("|---:|---:|---:|---:|---:|---:|");
     let steps_per_percent = (0.01 / STRAIN_RATE / case.dt).round() as u64;
     let (mut sum, mut count) = ([0.0; 2], 0.0);
     Simulation::new(&mut w)
@@ -195,14 +194,14 @@ pub fn run(write: bool) -> Result<(), RunError> {
             if w.step % steps_per_percent == 0 {
                 let (ax, lat) = (sum[0] / count, sum[1] / count);
                 let strain = 1.0 - height / height0;
-                println!(
+                md.row(format!(
                     "| {strain:.3} | {ax:.4e} | {lat:.4e} | {:+.2e} | {:.3} | {:.4} |",
                     lat / SIGMA_C - 1.0,
                     (ax - lat) / (ax + lat),
                     1.0 - width * height / area0
-                );
+                ));
                 (sum, count) = ([0.0; 2], 0.0);
             }
         })?;
-    Ok(())
+    Ok(md.text())
 }

@@ -331,7 +331,7 @@ fn force_chains(results: &[&Outcome]) -> String {
 
 /// Runs the study with samples of about `grains` grains (the nearest square number); `write`
 /// also writes each α's shear stage to `cases/biaxial_shape/shear_a{α}.json`.
-pub fn run(grains: usize, write: bool) -> Result<(), RunError> {
+pub fn run(grains: usize, write: bool) -> Result<String, RunError> {
     let aspects = [1.0, 1.5, 2.0, 2.5];
     let n_side = ((grains as f64).sqrt().round() as usize).max(2);
     let results: Vec<Outcome> = aspects
@@ -339,11 +339,9 @@ pub fn run(grains: usize, write: bool) -> Result<(), RunError> {
         .map(|&a| run_one(n_side, a, 0.1, true))
         .collect::<Result<_, _>>()?;
     if write {
-        std::fs::create_dir_all("cases/biaxial_shape").expect("cases/biaxial_shape");
         for r in &results {
             let path = format!("cases/biaxial_shape/shear_a{}.json", r.aspect);
-            std::fs::write(&path, &r.shear_case).unwrap_or_else(|e| panic!("{path}: {e}"));
-            eprintln!("wrote {path}");
+            super::put_case(std::path::Path::new(&path), &r.shear_case);
         }
     }
     let mut md = String::from(
@@ -441,5 +439,5 @@ pub fn run(grains: usize, write: bool) -> Result<(), RunError> {
     let png = plot::png_of_svg(&chains, 1.0).expect("force chains PNG");
     std::fs::write("target/figure-png/force_chains.png", png).expect("force_chains.png");
     print!("{md}");
-    Ok(())
+    Ok(md)
 }

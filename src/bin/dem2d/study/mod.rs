@@ -1,8 +1,6 @@
-//! `dem2d study NAME`: the studies behind the README's tables that are not a single case — each
+//! `dem2d study NAME`: the studies behind the user guide's tables that are not a single case — each
 //! runs its cases through the library and prints a Markdown table (run from the repository: the
 //! studies read `cases/`).
-
-use dem2d::run::RunError;
 
 pub mod biaxial;
 pub mod biaxial_shape;
@@ -11,6 +9,11 @@ pub mod packing;
 pub mod repose;
 pub mod representation;
 pub mod rolling_fig3;
+
+use dem2d::output::docs_tables::Mode;
+use std::path::Path;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicU8, Ordering};
 
 /// The studies `dem2d study` runs.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -37,17 +40,110 @@ pub enum Study {
     Representation,
 }
 
+impl Study {
+    /// The name of the study's marked table in the user guide (`--docs`).
+    pub fn table_name(self) -> &'static str {
+        match self {
+            Study::RollingFig3 => "rolling_fig3",
+            Study::Repose => "repose",
+            Study::Biaxial => "biaxial",
+            Study::Impacts => "impacts",
+            Study::BiaxialShape => "biaxial_shape",
+            Study::Packing => "packing",
+            Study::Representation => "representation",
+        }
+    }
+}
+
+/// A Markdown table printed row by row as a study computes it (a long study shows its progress
+/// on standard output), and kept for the user guide.
+pub struct Table(String);
+
+impl Table {
+    /// A table with its header lines.
+    pub fn new(header: &str) -> Table {
+        println!("{header}");
+        Table(format!("{header}\n"))
+    }
+
+    /// One more row.
+    pub fn row(&mut self, line: String) {
+        println!("{line}");
+        self.0.push_str(&line);
+        self.0.push('\n');
+    }
+
+    /// The whole table.
+    pub fn text(self) -> String {
+        self.0
+    }
+}
+
+/// What the studies do with the case files they can write (`--write-cases`): 0 nothing, 1 write
+/// them, 2 compare them with the files there (`--check`), recording the ones that differ.
+static CASE_FILES: AtomicU8 = AtomicU8::new(0);
+static STALE_CASES: Mutex<Vec<String>> = Mutex::new(Vec::new());
+
+/// Writes a study's case file `path`, or (checking) compares it with the file there.
+pub fn put_case(path: &Path, text: &str) {
+    match CASE_FILES.load(Ordering::Relaxed) {
+        1 => {
+            if let Some(dir) = path.parent() {
+                std::fs::create_dir_all(dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
+            }
+            std::fs::write(path, text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            eprintln!("wrote {}", path.display());
+        }
+        2 if std::fs::read_to_string(path).ok().as_deref() != Some(text) => {
+            STALE_CASES
+                .lock()
+                .expect("not poisoned")
+                .push(path.display().to_string());
+        }
+        _ => {}
+    }
+}
+
 /// Runs `study`; `write_cases` also writes its case files into `cases/`; `grains` sets the
-/// sample size of the studies that take one (the others ignore it). A run that blows up ends
-/// the study with its report.
-pub fn run(study: Study, write_cases: bool, grains: Option<usize>) -> Result<(), RunError> {
-    match study {
+/// sample size of the studies that take one (the others ignore it). With `docs`, the study's
+/// table goes into its marked region of the user guide ([`Study::table_name`]), or (checking) is
+/// compared with it, and so are the case files with `write_cases`: a difference is a failure.
+pub fn run(
+    study: Study,
+    write_cases: bool,
+    grains: Option<usize>,
+    docs: Option<Mode>,
+) -> Result<(), crate::Failure> {
+    let checking = docs == Some(Mode::Check);
+    CASE_FILES.store(
+        match (write_cases, checking) {
+            (false, _) => 0,
+            (true, false) => 1,
+            (true, true) => 2,
+        },
+        Ordering::Relaxed,
+    );
+    let write = write_cases;
+    let md = match study {
         Study::RollingFig3 => rolling_fig3::run(),
-        Study::Repose => repose::run(write_cases),
-        Study::Biaxial => biaxial::run(write_cases),
+        Study::Repose => repose::run(write),
+        Study::Biaxial => biaxial::run(write),
         Study::Impacts => impacts::run(),
-        Study::BiaxialShape => biaxial_shape::run(grains.unwrap_or(400), write_cases),
-        Study::Packing => packing::run(grains.unwrap_or(packing::N), write_cases),
+        Study::BiaxialShape => biaxial_shape::run(grains.unwrap_or(400), write),
+        Study::Packing => packing::run(grains.unwrap_or(packing::N), write),
         Study::Representation => representation::run(grains.unwrap_or(packing::N)),
     }
+    // A run that blows up ends the study with its report.
+    .map_err(|e| crate::Failure::failed(format!("dem2d study: {e}")))?;
+    if let Some(mode) = docs {
+        crate::refresh_docs(study.table_name(), &md, mode)?;
+    }
+    let stale = std::mem::take(&mut *STALE_CASES.lock().expect("not poisoned"));
+    if !stale.is_empty() {
+        return Err(crate::Failure::failed(format!(
+            "stale case files (the study writes them differently now): {}",
+            stale.join(", ")
+        )));
+    }
+    Ok(())
 }

@@ -153,9 +153,7 @@ pub fn pour_shaped(
     );
     if write {
         let path = format!("cases/packing/packing_a{aspect}_mu{friction}.json");
-        std::fs::create_dir_all("cases/packing").expect("cases/packing");
-        std::fs::write(&path, &text).unwrap_or_else(|e| panic!("{path}: {e}"));
-        eprintln!("wrote {path}");
+        super::put_case(std::path::Path::new(&path), &text);
     }
     let case = Case::from_json(&text).expect("valid case");
     let mut w = case.build_world();
@@ -202,7 +200,7 @@ pub fn pour_shaped(
 }
 
 /// Runs the study with piles of `n` grains; `write` also writes their case files.
-pub fn run(n: usize, write: bool) -> Result<(), RunError> {
+pub fn run(n: usize, write: bool) -> Result<String, RunError> {
     let aspects = [1.0, 1.2, 1.5, 2.0, 3.0];
     let width = width_for(n);
     let mut piles = Vec::new();
@@ -300,5 +298,5 @@ pub fn run(n: usize, write: bool) -> Result<(), RunError> {
     }
     std::fs::write("figures/packing.md", &md).expect("figures/packing.md");
     print!("{md}");
-    Ok(())
+    Ok(md)
 }

@@ -40,7 +40,7 @@ fn run_to_rest(case: &Case) -> Result<(World, Option<f64>), RunError> {
     Ok((w, rest))
 }
 
-pub fn run(write: bool) -> Result<(), RunError> {
+pub fn run(write: bool) -> Result<String, RunError> {
     let column = ColumnSpec {
         n: 300,
         width: 20.0,
@@ -65,10 +65,10 @@ pub fn run(write: bool) -> Result<(), RunError> {
     if write {
         std::fs::create_dir_all(&dir).expect("cases/repose");
     }
-    println!(
-        "| rolling model | μ_r | angle of repose (°) | heap height (cm) | toe (cm) | at rest at t (s) |"
+    let mut md = super::Table::new(
+        "| rolling model | μ_r | angle of repose (°) | heap height (cm) | toe (cm) | at rest at t (s) |\n\
+         |---|---:|---:|---:|---:|---:|",
     );
-    println!("|---|---:|---:|---:|---:|---:|");
     let mut runs: Vec<(Option<RollingModel>, f64)> = vec![(None, 0.0)];
     for model in [RollingModel::Epsd, RollingModel::Cdt] {
         for mu_r in [0.05, 0.1, 0.2, 0.4] {
@@ -87,16 +87,16 @@ pub fn run(write: bool) -> Result<(), RunError> {
         };
         let text = column.case_json(&format!("repose_{name}"), &settled, GATE_SPEED, rolling);
         if write {
-            std::fs::write(dir.join(format!("{name}.json")), &text).expect("write case");
+            super::put_case(&dir.join(format!("{name}.json")), &text);
         }
         let case = Case::from_json(&text).expect("case");
         let (w, rest) = run_to_rest(&case)?;
         let (angle, h, toe) = heap_surface(&w, 2.0);
-        println!(
+        md.row(format!(
             "| {} | {mu_r} | {angle:.1} | {h:.1} | {toe:.1} | {} |",
             model.map_or("none", |m| m.as_str()),
             rest.map_or("not in 6 s".into(), |t| format!("{t:.2}"))
-        );
+        ));
     }
-    Ok(())
+    Ok(md.text())
 }

@@ -297,7 +297,7 @@ fn e(v: f64) -> String {
 }
 
 /// Runs the study; the pile has `grains` grains.
-pub fn run(grains: usize) -> Result<(), RunError> {
+pub fn run(grains: usize) -> Result<String, RunError> {
     let reps: Vec<Rep> = std::iter::once(Rep::Ellipse)
         .chain(NS.iter().map(|&n| Rep::Polygon(n)))
         .chain(KS.iter().map(|&k| Rep::Clump(k)))
@@ -693,5 +693,5 @@ pub fn run(grains: usize) -> Result<(), RunError> {
     }
     std::fs::write("figures/representation.md", &md).expect("figures/representation.md");
     print!("{md}");
-    Ok(())
+    Ok(md)
 }

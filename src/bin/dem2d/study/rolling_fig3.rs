@@ -20,10 +20,12 @@ fn rest_time(case: &Case, limit: f64) -> Result<Option<(f64, f64)>, RunError> {
     })
 }
 
-pub fn run() -> Result<(), RunError> {
+pub fn run() -> Result<String, RunError> {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases");
-    println!("| shape | normal force | rolling model | μ_r | at rest at t (s) | x at rest (cm) |");
-    println!("|---|---|---|---:|---:|---:|");
+    let mut md = super::Table::new(
+        "| shape | normal force | rolling model | μ_r | at rest at t (s) | x at rest (cm) |\n\
+         |---|---|---|---:|---:|---:|",
+    );
     for name in ["throw_circle", "throw_ellipse"] {
         let text = std::fs::read_to_string(root.join(format!("{name}.json"))).unwrap();
         let base = Case::from_json(&text).unwrap();
@@ -42,15 +44,15 @@ pub fn run() -> Result<(), RunError> {
                         Some((t, x)) => format!("{t:.3} | {x:.2}"),
                         None => "not in 20 s | —".into(),
                     };
-                    println!(
+                    md.row(format!(
                         "| {} | {} | {} | {mu_r} | {cell} |",
                         name.trim_start_matches("throw_"),
                         nf.as_str(),
                         model.as_str()
-                    );
+                    ));
                 }
             }
         }
     }
-    Ok(())
+    Ok(md.text())
 }

@@ -1,0 +1,556 @@
+//! The user guide (`docs/`) and the README held to the code, so that neither can go stale
+//! unnoticed:
+//! - the case-file reference lists exactly the keys the case reader accepts — the reader's own
+//!   requests, recorded while it reads the shipped cases and the reference's examples
+//!   (`scene::fields::keys_asked_during`), not a list kept by hand — and every example in it is
+//!   a case the reader accepts;
+//! - the outputs reference lists exactly the files a run writes and, in order, the columns of
+//!   each CSV file, the keys of `summary.json` and the arrays of a VTK frame, as a run with every
+//!   output writes them;
+//! - the command-line reference names every option of every user command;
+//! - every relative link of the guide and the README resolves (the file, and the heading of an
+//!   anchor), `SUMMARY.md` lists every page, marked tables are closed and unique;
+//! - every number of the README's results table is in the page it links to.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn read(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// Every `.md` file under `docs/src`, sorted.
+fn pages() -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut dirs = vec![root().join("docs/src")];
+    while let Some(d) = dirs.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                dirs.push(p);
+            } else if p.extension().is_some_and(|x| x == "md") {
+                out.push(p);
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// The text with fenced code blocks and inline code spans blanked (links inside them are not
+/// links).
+fn prose(text: &str) -> String {
+    let mut out = String::new();
+    let mut fenced = false;
+    for line in text.lines() {
+        if line.trim_start().starts_with("```") {
+            fenced = !fenced;
+            out.push('\n');
+            continue;
+        }
+        if fenced {
+            out.push('\n');
+            continue;
+        }
+        let mut in_code = false;
+        for c in line.chars() {
+            if c == '`' {
+                in_code = !in_code;
+            }
+            out.push(if in_code || c == '`' { ' ' } else { c });
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// The targets of the Markdown links and images of `text` (`[label](target)`).
+fn links(text: &str) -> Vec<String> {
+    let text = prose(text);
+    let mut out = Vec::new();
+    let mut rest = text.as_str();
+    while let Some(i) = rest.find("](") {
+        let after = &rest[i + 2..];
+        match after.find(')') {
+            Some(j) if !after[..j].contains(char::is_whitespace) => {
+                out.push(after[..j].to_string())
+            }
+            _ => {}
+        }
+        rest = &rest[i + 2..];
+    }
+    out
+}
+
+/// A heading's anchor as mdBook and GitHub make it: lower case, letters, digits, `-` and `_`
+/// kept, spaces to `-`, everything else dropped.
+fn slug(heading: &str) -> String {
+    heading
+        .trim()
+        .to_lowercase()
+        .chars()
+        .filter_map(|c| {
+            if c.is_alphanumeric() || c == '-' || c == '_' {
+                Some(c)
+            } else if c.is_whitespace() {
+                Some('-')
+            } else {
+                None
+            }
+        })
+        .collect()
+}
+
+fn anchors(text: &str) -> BTreeSet<String> {
+    let mut fenced = false;
+    let mut out = BTreeSet::new();
+    for line in text.lines() {
+        if line.trim_start().starts_with("```") {
+            fenced = !fenced;
+        }
+        if !fenced && line.starts_with('#') {
+            out.insert(slug(line.trim_start_matches('#')));
+        }
+    }
+    out
+}
+
+#[test]
+fn every_link_of_the_guide_and_the_readme_resolves() {
+    let mut files = pages();
+    files.push(root().join("README.md"));
+    let mut broken = Vec::new();
+    for f in &files {
+        let text = read(f);
+        for target in links(&text) {
+            if target.starts_with("http://")
+                || target.starts_with("https://")
+                || target.starts_with("mailto:")
+            {
+                continue;
+            }
+            let (path, anchor) = match target.split_once('#') {
+                Some((p, a)) => (p, Some(a)),
+                None => (target.as_str(), None),
+            };
+            let file = if path.is_empty() {
+                f.clone()
+            } else {
+                f.parent().unwrap().join(path)
+            };
+            if !file.exists() {
+                broken.push(format!("{}: {target}: no such file", f.display()));
+                continue;
+            }
+            if let Some(a) = anchor
+                && file.extension().is_some_and(|x| x == "md")
+                && !anchors(&read(&file)).contains(a)
+            {
+                broken.push(format!("{}: {target}: no such heading", f.display()));
+            }
+        }
+    }
+    assert!(broken.is_empty(), "broken links:\n{}", broken.join("\n"));
+}
+
+#[test]
+fn the_summary_lists_every_page_once() {
+    let src = root().join("docs/src");
+    let summary = read(&src.join("SUMMARY.md"));
+    let listed: Vec<PathBuf> = links(&summary).iter().map(|l| src.join(l)).collect();
+    let unique: BTreeSet<&PathBuf> = listed.iter().collect();
+    assert_eq!(unique.len(), listed.len(), "a page listed twice");
+    let all: BTreeSet<PathBuf> = pages()
+        .into_iter()
+        .filter(|p| !p.ends_with("SUMMARY.md"))
+        .collect();
+    let listed: BTreeSet<PathBuf> = listed.into_iter().collect();
+    assert_eq!(
+        listed.difference(&all).collect::<Vec<_>>(),
+        Vec::<&PathBuf>::new(),
+        "listed but missing"
+    );
+    assert_eq!(
+        all.difference(&listed).collect::<Vec<_>>(),
+        Vec::<&PathBuf>::new(),
+        "pages SUMMARY.md does not list"
+    );
+    assert!(root().join("docs/book.toml").exists());
+}
+
+#[test]
+fn marked_tables_are_closed_and_each_name_is_marked_once() {
+    let mut files = pages();
+    files.push(root().join("README.md"));
+    let mut seen: BTreeMap<String, PathBuf> = BTreeMap::new();
+    for f in &files {
+        let text = prose(&read(f));
+        let mut rest = text.as_str();
+        while let Some(i) = rest.find("<!-- figures:") {
+            let after = &rest[i + "<!-- figures:".len()..];
+            let name = &after[..after.find(" -->").expect("a closed marker")];
+            let close = format!("<!-- /figures:{name} -->");
+            assert!(
+                after.contains(&close),
+                "{}: `{name}` is not closed",
+                f.display()
+            );
+            if let Some(other) = seen.insert(name.to_string(), f.clone()) {
+                panic!(
+                    "table `{name}` marked in {} and {}",
+                    other.display(),
+                    f.display()
+                );
+            }
+            rest = &after[after.find(&close).unwrap()..];
+        }
+    }
+    // The tables the generators write (dem2d figures, bench, study, verify; cargo bench).
+    for name in [
+        "paper_cases",
+        "fig3_comparison",
+        "speed_vs_error",
+        "stability",
+        "area_force",
+        "area_restitution",
+        "area_energy",
+        "kernel_report",
+        "kernel_speed",
+        "bench",
+        "peers",
+        "rolling_fig3",
+        "repose",
+        "biaxial",
+        "impacts",
+        "biaxial_shape",
+        "packing",
+        "representation",
+        "verify",
+    ] {
+        assert!(seen.contains_key(name), "no marked table `{name}`");
+    }
+}
+
+/// The first cells of the rows of the Markdown tables in `text` that are one code span
+/// (`` `key` ``), in order.
+fn keys_of_tables(text: &str) -> Vec<String> {
+    text.lines()
+        .filter(|l| l.starts_with('|'))
+        .filter_map(|l| {
+            let cell = l.trim_start_matches('|').split('|').next()?.trim();
+            let key = cell.strip_prefix('`')?.strip_suffix('`')?;
+            (!key.contains('`')).then(|| key.to_string())
+        })
+        .collect()
+}
+
+/// The JSON blocks of a page.
+fn json_blocks(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut block: Option<String> = None;
+    for line in text.lines() {
+        match (&mut block, line.trim_start()) {
+            (None, l) if l.starts_with("```json") => block = Some(String::new()),
+            (Some(b), l) if l.starts_with("```") => {
+                out.push(std::mem::take(b));
+                block = None;
+            }
+            (Some(b), _) => {
+                b.push_str(line);
+                b.push('\n');
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+fn shipped_cases() -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut dirs = vec![root().join("cases")];
+    while let Some(d) = dirs.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                if !p.ends_with("bad") {
+                    dirs.push(p);
+                }
+            } else if p.extension().is_some_and(|x| x == "json")
+                && !p.ends_with("contacts_demo.json")
+            {
+                out.push(p);
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+#[test]
+fn the_case_file_reference_lists_exactly_the_keys_the_reader_accepts() {
+    use dem2d::scene::Case;
+    use dem2d::scene::fields::keys_asked_during;
+    let page = read(&root().join("docs/src/reference/case-file.md"));
+    // Every example of the reference is a case the reader accepts.
+    let mut texts: Vec<(String, String)> = json_blocks(&page)
+        .into_iter()
+        .enumerate()
+        .map(|(k, t)| (format!("case-file.md, example {}", k + 1), t))
+        .collect();
+    assert!(texts.len() >= 4, "the reference's examples are gone");
+    for p in shipped_cases() {
+        texts.push((p.display().to_string(), read(&p)));
+    }
+    let mut accepted = BTreeSet::new();
+    for (name, text) in &texts {
+        let (case, asked) = keys_asked_during(|| Case::from_json(text));
+        if let Err(e) = case {
+            panic!("{name}: {e}");
+        }
+        accepted.extend(asked);
+    }
+    // What the reference documents: the key column of its tables; `walls[].<contact key>`
+    // stands for every key of the `contact` table on a wall.
+    let mut documented = BTreeSet::new();
+    for key in keys_of_tables(&page) {
+        documented.insert(key);
+    }
+    let contact_keys: Vec<String> = documented
+        .iter()
+        .filter_map(|k| k.strip_prefix("contact."))
+        .map(str::to_string)
+        .collect();
+    assert!(
+        documented.remove("walls[].<contact key>"),
+        "the reference should say that a wall takes every contact key"
+    );
+    for k in contact_keys {
+        documented.insert(format!("walls[].{k}"));
+    }
+    let undocumented: Vec<_> = accepted.difference(&documented).collect();
+    let unread: Vec<_> = documented.difference(&accepted).collect();
+    assert!(
+        undocumented.is_empty(),
+        "keys the case reader accepts that docs/src/reference/case-file.md does not document: \
+         {undocumented:?}"
+    );
+    assert!(
+        unread.is_empty(),
+        "keys docs/src/reference/case-file.md documents that the case reader never asked for \
+         (misspelt, removed, or not reached by any example: add one): {unread:?}"
+    );
+}
+
+/// The documented columns (keys, arrays) of each output file: the key column of the tables
+/// under the heading that names the file.
+fn documented_outputs(page: &str) -> BTreeMap<String, Vec<String>> {
+    let mut out: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    let mut current: Option<String> = None;
+    for line in page.lines() {
+        if let Some(h) = line.strip_prefix("## ") {
+            // The heading's last code span names the file (`vtk/frame_NNNNN.vtu`).
+            current = h.split('`').skip(1).step_by(2).last().map(str::to_string);
+        } else if line.starts_with('|')
+            && let Some(file) = &current
+            && let Some(key) = keys_of_tables(line).pop()
+        {
+            out.entry(file.clone()).or_default().push(key);
+        }
+    }
+    out
+}
+
+/// The keys of a JSON value as paths (`energies.kinetic`, `final[].x`), in order of appearance.
+fn json_keys(v: &serde_json::Value, prefix: &str, out: &mut Vec<String>) {
+    match v {
+        serde_json::Value::Object(m) => {
+            for (k, x) in m {
+                let path = if prefix.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{prefix}.{k}")
+                };
+                out.push(path.clone());
+                json_keys(x, &path, out);
+            }
+        }
+        serde_json::Value::Array(a) => {
+            if let Some(first) = a.iter().find(|x| x.is_object()) {
+                json_keys(first, &format!("{prefix}[]"), out);
+            }
+        }
+        _ => {}
+    }
+}
+
+#[test]
+fn the_outputs_reference_lists_every_file_and_column_a_run_writes() {
+    let page = read(&root().join("docs/src/reference/outputs.md"));
+    let documented = documented_outputs(&page);
+    // The reference's own example with every output (VTK, analysis, contacts).
+    let cases = read(&root().join("docs/src/reference/case-file.md"));
+    let case = json_blocks(&cases)
+        .into_iter()
+        .find(|t| t.contains("\"analysis\": true") && t.contains("\"vtk\": true"))
+        .expect("an example with every output");
+    let dir = std::env::temp_dir().join(format!("dem2d-docs-outputs-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("case.json"), &case).unwrap();
+    let out = dir.join("run");
+    let status = Command::new(env!("CARGO_BIN_EXE_dem2d"))
+        .args(["run", "case.json", "--out", "run", "--quiet"])
+        .current_dir(&dir)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    // Every file the run wrote is listed in the reference's first table.
+    let listed: BTreeSet<String> = page
+        .lines()
+        .take_while(|l| !l.starts_with("## "))
+        .flat_map(keys_of_tables)
+        .collect();
+    let mut written = BTreeSet::new();
+    for e in std::fs::read_dir(&out).unwrap() {
+        let p = e.unwrap().path();
+        let name = p.file_name().unwrap().to_string_lossy().to_string();
+        if p.is_dir() {
+            for f in std::fs::read_dir(&p).unwrap() {
+                let f = f.unwrap().file_name().to_string_lossy().to_string();
+                written.insert(format!(
+                    "{name}/{}",
+                    f.replace(|c: char| c.is_ascii_digit(), "N")
+                ));
+            }
+        } else {
+            written.insert(name);
+        }
+    }
+    assert_eq!(
+        written, listed,
+        "files written (left) against documented (right)"
+    );
+    // The CSV files' columns, in order.
+    for file in [
+        "trajectory.csv",
+        "increments.csv",
+        "analysis.csv",
+        "contacts.csv",
+        "walls.csv",
+    ] {
+        let text = read(&out.join(file));
+        let header: Vec<String> = text
+            .lines()
+            .next()
+            .unwrap()
+            .split(',')
+            .map(str::to_string)
+            .collect();
+        assert_eq!(
+            documented.get(file),
+            Some(&header),
+            "{file}: the columns documented (left) against written (right)"
+        );
+    }
+    // summary.json's keys.
+    let summary: serde_json::Value =
+        serde_json::from_str(&read(&out.join("summary.json"))).unwrap();
+    let mut keys = Vec::new();
+    json_keys(&summary, "", &mut keys);
+    let doc: BTreeSet<&String> = documented["summary.json"].iter().collect();
+    let got: BTreeSet<&String> = keys.iter().collect();
+    assert_eq!(
+        doc, got,
+        "summary.json: documented (left) against written (right)"
+    );
+    // A VTK frame's cell and field data arrays.
+    let frame = read(&out.join("vtk/frame_00000.vtu"));
+    let mut arrays = BTreeSet::new();
+    for section in ["CellData", "FieldData"] {
+        let start = frame
+            .find(&format!("<{section}"))
+            .unwrap_or_else(|| panic!("a frame without {section}"));
+        let body = &frame[start..];
+        let body = &body[..body.find(&format!("</{section}>")).expect("closed")];
+        for part in body.split("Name=\"").skip(1) {
+            arrays.insert(part[..part.find('"').unwrap()].to_string());
+        }
+    }
+    let doc: BTreeSet<String> = documented["vtk/frame_NNNNN.vtu"].iter().cloned().collect();
+    assert_eq!(
+        doc, arrays,
+        "VTK arrays: documented (left) against written (right)"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_command_line_reference_names_every_option() {
+    let page = read(&root().join("docs/src/reference/command-line.md"));
+    for command in [
+        "run", "plot", "analyze", "contact", "generate", "verify", "study",
+    ] {
+        let out = Command::new(env!("CARGO_BIN_EXE_dem2d"))
+            .args(["help", command])
+            .output()
+            .unwrap();
+        assert!(out.status.success());
+        let help = String::from_utf8(out.stdout).unwrap();
+        let section = page
+            .split(&format!("## dem2d {command}\n"))
+            .nth(1)
+            .unwrap_or_else(|| panic!("no section `## dem2d {command}`"));
+        let section = section.split("\n## ").next().unwrap();
+        for word in help.split_whitespace() {
+            let option = word.trim_end_matches([',', '.']);
+            if let Some(name) = option.strip_prefix("--")
+                && !name.is_empty()
+                && name.chars().all(|c| c.is_ascii_lowercase() || c == '-')
+                && name != "help"
+            {
+                assert!(
+                    section.contains(&format!("--{name}")),
+                    "dem2d {command} --{name} is not in docs/src/reference/command-line.md"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn every_number_of_the_readmes_results_is_in_the_page_it_links_to() {
+    let readme = read(&root().join("README.md"));
+    let table = readme
+        .split("<!-- headline -->")
+        .nth(1)
+        .and_then(|t| t.split("<!-- /headline -->").next())
+        .expect("the README's results table");
+    let mut rows = 0;
+    for line in table
+        .lines()
+        .filter(|l| l.starts_with("| ") && !l.contains("---"))
+    {
+        let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+        let (result, where_) = (cells[2], cells[3]);
+        let Some(target) = links(where_).pop() else {
+            continue;
+        };
+        rows += 1;
+        let page = read(&root().join(&target));
+        for word in result.split(|c: char| c.is_whitespace() || c == ',' || c == '(' || c == ')') {
+            let word = word.trim_end_matches([';', ':', '.']);
+            if word.chars().any(|c| c.is_ascii_digit()) && word.contains(['.', '×']) {
+                assert!(
+                    page.contains(word),
+                    "README result `{word}` is not in {target}"
+                );
+            }
+        }
+    }
+    assert!(rows >= 5, "the README's results table lost its rows");
+}
