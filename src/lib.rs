@@ -16,6 +16,7 @@
 //!   penetrating; the force on j is `+F` and on i `−F`.
 //! - Pair geometry is computed in a frame centred on a body, never in world coordinates.
 
+pub mod alloc;
 pub mod analysis;
 pub mod contact_law;
 pub mod dynamics;
@@ -24,4 +25,3 @@ pub mod narrow_phase;
 pub mod output;
 pub mod run;
 pub mod scene;
-pub mod validation;

@@ -3,7 +3,7 @@
 //! - **force = −∇W**: the force and moment the dynamics applies (a two-body world, forces
 //!   evaluated by the step's own path) equal a fourth-order central difference of
 //!   `W(A)`, with the overlap area `A` from the double-double reference
-//!   (`dem2d::validation::overlap_reference`, no pencil, no chord), for random overlapping pairs
+//!   (`dem2d_validation::overlap_reference`, no pencil, no chord), for random overlapping pairs
 //!   of every kind, δ/b from 1e-6 to 0.2, aspect ratios 1 to 10;
 //! - **closed loops**: the work of the force and moment around closed loops in (x, y, θ) is zero
 //!   to ≤ 1e-9 of |F| × the loop's size, for every pair kind — and the depth law's loops, the
@@ -21,9 +21,9 @@ use dem2d::geometry::overlap_area::DiskLens;
 use dem2d::geometry::{Polygon, Pose, Shape, Vec2, Wall};
 use dem2d::narrow_phase::{ContactState, Object, contact};
 use dem2d::run::Simulation;
-use dem2d::validation::overlap_reference::{OverlapState, reference_overlap};
-use dem2d::validation::reference::{RObj, RShape};
-use dem2d::validation::rng::Rng;
+use dem2d_validation::overlap_reference::{OverlapState, reference_overlap};
+use dem2d_validation::reference::{RObj, RShape};
+use dem2d_validation::rng::Rng;
 
 /// k_n of the tests' linear law (undamped, frictionless).
 const KN: f64 = 1.0;

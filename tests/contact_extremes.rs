@@ -7,7 +7,7 @@
 //! 1, 1e3 and 1e6, near the origin and as far out as the ranges allow (a wall's point as far
 //! along its line), and then scaled by an exact power of two to the smallest accepted sizes
 //! (the smaller body at ~1e-40), to sizes of one, and to the largest (the larger body at
-//! ~5e39). Each is checked against the double-double reference (`dem2d::validation::reference`)
+//! ~5e39). Each is checked against the double-double reference (`dem2d_validation::reference`)
 //! with the bars of the hard-case families: the right state whenever the true depth or gap is at
 //! least 1e-12·a_max (deep and contained always), |depth error| ≤ 1e-12·a_max, normal within
 //! 1e-8 rad, point within 1e-9·a_max plus two ulps of the coordinates; for containment the
@@ -24,10 +24,8 @@
 use dem2d::geometry::{Pose, Shape, Vec2, Wall};
 use dem2d::narrow_phase::{Contact, ContactState, Object, contact};
 use dem2d::scene::ranges::{MAX_EXTENT_RATIO, MAX_MAGNITUDE, MIN_SCALE, Placed, check_extent};
-use dem2d::validation::reference::{
-    RContact, RObj, RShape, RState, depth_along, reference_contact,
-};
-use dem2d::validation::rng::Rng;
+use dem2d_validation::reference::{RContact, RObj, RShape, RState, depth_along, reference_contact};
+use dem2d_validation::rng::Rng;
 
 const DEPTH_BAR: f64 = 1e-12;
 const ANGLE_BAR: f64 = 1e-8;

@@ -1,5 +1,5 @@
 //! The robust cubic solver (`dem2d::geometry::cubic::solve_cubic`) against roots computed in
-//! double-double by critical-point bracketing (`dem2d::validation::reference`), on the cases that
+//! double-double by critical-point bracketing (`dem2d_validation::reference`), on the cases that
 //! break a bare Cardano solver: double and near-double roots, a tiny leading coefficient,
 //! coefficients spanning sixteen decades, and the characteristic cubics of real ellipse pairs.
 //!
@@ -9,9 +9,9 @@
 //! double root; they must then be within `4√(ε κ₂)` of both.
 
 use dem2d::geometry::cubic::{one_real_root, solve_cubic};
-use dem2d::validation::dd::DD;
-use dem2d::validation::reference::cubic_real_roots;
-use dem2d::validation::rng::Rng;
+use dem2d_validation::dd::DD;
+use dem2d_validation::reference::cubic_real_roots;
+use dem2d_validation::rng::Rng;
 
 /// Relative condition number of a simple root r of t1 x³ + t2 x² + t3 x + t4.
 fn condition(t: [f64; 4], r: f64) -> f64 {

@@ -1,7 +1,7 @@
 //! Contact geometry against the independent high-precision reference
-//! (`dem2d::validation::reference`: double-double, parametric boundary ∩ implicit form solved as
+//! (`dem2d_validation::reference`: double-double, parametric boundary ∩ implicit form solved as
 //! a quartic, no pencil, no cubic), over the families of hard cases of
-//! `dem2d::validation::families`.
+//! `dem2d_validation::families`.
 //!
 //! Bars (from the kernel issue): |depth error| ≤ 1e-12·a_max; normal angle error ≤ 1e-8 rad;
 //! contact point error ≤ 1e-9·a_max plus two ulps of the coordinates (far from the origin);
@@ -9,7 +9,7 @@
 //! after a rigid motion of the pair and after swapping i and j. Corner-on-corner rectangle
 //! contacts are held to the conditioning of their chord instead (see docs/src/validation/geometry.md).
 
-use dem2d::validation::families::{markdown_table, run_families};
+use dem2d_validation::families::{markdown_table, run_families};
 
 #[test]
 fn contact_geometry_matches_high_precision_reference() {

@@ -8,10 +8,10 @@
 //!   hand-clipped polygons), an `f64` polygon clipper, and an `f64` quadrature of the
 //!   vertical extent of the intersection (a completely different method).
 
-use dem2d::validation::dd::DD;
-use dem2d::validation::overlap_reference::{OverlapState, Side, reference_overlap};
-use dem2d::validation::reference::{RObj, RShape};
-use dem2d::validation::rng::Rng;
+use dem2d_validation::dd::DD;
+use dem2d_validation::overlap_reference::{OverlapState, Side, reference_overlap};
+use dem2d_validation::reference::{RObj, RShape};
+use dem2d_validation::rng::Rng;
 
 /// `|got − want|`, as an `f64`.
 fn err(got: DD, want: DD) -> f64 {

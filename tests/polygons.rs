@@ -1,7 +1,7 @@
 //! Convex polygons as a shape (issue 16, item 1), against independent references:
 //!
 //! - **every polygon pair kind against the double-double reference**
-//!   (`dem2d::validation::polygon_reference`: DD clipping, segment intersections, disk ∩
+//!   (`dem2d_validation::polygon_reference`: DD clipping, segment intersections, disk ∩
 //!   triangle sums): the overlap area and the two boundary crossings, δ/b from 1e-9 to 0.3, at
 //!   the origin and 1e6 away;
 //! - **closed forms for disks**: a circle cut by a polygon's face (a circular segment), a circle
@@ -19,9 +19,9 @@ use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::{Polygon, Pose, Shape, Vec2, Wall};
 use dem2d::narrow_phase::{Contact, ContactState, Object, contact};
 use dem2d::run::Simulation;
-use dem2d::validation::dd::DD;
-use dem2d::validation::polygon_reference::{PObj, polygon_overlap};
-use dem2d::validation::rng::Rng;
+use dem2d_validation::dd::DD;
+use dem2d_validation::polygon_reference::{PObj, polygon_overlap};
+use dem2d_validation::rng::Rng;
 
 const EPS: f64 = f64::EPSILON;
 

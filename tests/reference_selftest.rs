@@ -1,10 +1,10 @@
 //! Self-tests of the double-double type and of the reference contact geometry
-//! (`dem2d::validation`) against closed forms. Closed forms are evaluated in DD from
+//! (`dem2d_validation`) against closed forms. Closed forms are evaluated in DD from
 //! the same exact `f64` inputs, so most comparisons are at the level of the final
 //! rounding to `f64`.
 
-use dem2d::validation::dd::DD;
-use dem2d::validation::reference::{
+use dem2d_validation::dd::DD;
+use dem2d_validation::reference::{
     RContact, RObj, RShape, RState, cubic_real_roots, depth_along, poly_real_roots,
     reference_contact,
 };

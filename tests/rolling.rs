@@ -441,9 +441,7 @@ fn an_ellipse_rests_on_slopes_up_to_mu_r_plus_its_shapes_own_limit() {
         let floor = Boundary::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), law);
         let gravity = Vec2::new(G * beta.sin(), -G * beta.cos());
         let mut w = World::new(&[body], vec![floor], gravity, law, 1e-5);
-        for _ in 0..50_000 {
-            w.step().unwrap();
-        }
+        Simulation::new(&mut w).for_steps(50_000).run().unwrap();
         let x = w.bodies.state[0].pose.position.x;
         let turned = (w.bodies.state[0].pose.angle() - th).abs();
         if holds {

@@ -23,7 +23,7 @@ use dem2d::narrow_phase::{
     Contact, ContactState, Object, PairCache, Request, Side, conic_lean, contact, contact_with,
     overlap_lean,
 };
-use dem2d::validation::rng::Rng;
+use dem2d_validation::rng::Rng;
 
 /// The kinds of object, in the order of the generator.
 const KINDS: [&str; 5] = ["circle", "ellipse", "rectangle", "polygon", "wall"];

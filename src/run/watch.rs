@@ -83,6 +83,12 @@ impl BlowupWatch {
         }
     }
 
+    /// The energy that could be in motion, as of the last check: the initial kinetic and
+    /// elastic energy, the most gravity and the walls have supplied.
+    pub fn available(&self) -> f64 {
+        self.kinetic0 + self.elastic0 + self.gravity_supplied + self.boundary_supplied
+    }
+
     /// Checks the world after a step; O(1).
     pub fn check(&mut self, world: &World) -> Option<Trigger> {
         let e = world.energies;
@@ -103,8 +109,7 @@ impl BlowupWatch {
         }
         self.boundary_supplied = self.boundary_supplied.max(e.boundary_work);
         self.gravity_supplied = self.gravity_supplied.max(self.potential0 - e.potential);
-        let available =
-            self.kinetic0 + self.elastic0 + self.gravity_supplied + self.boundary_supplied;
+        let available = self.available();
         self.dissipated_max = self.dissipated_max.max(e.dissipated);
         let created =
             e.total() - self.total0 - e.boundary_work + (self.dissipated_max - e.dissipated);

@@ -2,10 +2,7 @@
 //! (0 success, 1 failure while running, 2 bad input).
 
 mod analyze;
-mod area_law_report;
-mod bench;
-mod peers;
-mod report;
+mod impact;
 mod runner;
 mod study;
 mod verify;
@@ -20,93 +17,11 @@ use dem2d::scene::parse_pairs;
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// The system allocator, counting the bytes currently allocated (for `dem2d bench`'s bytes per
-/// body: the world's real heap footprint, not an estimate), and asking Linux for transparent
-/// huge pages on large blocks ([`advise_huge_pages`]).
-struct CountingAllocator;
-
-/// Blocks at least this large (a million-body world's arrays: bodies, slots, contact data) are
-/// advised to live on transparent huge pages.
-const HUGE_PAGE_MIN_BLOCK: usize = 4 << 20;
-
-/// Asks the kernel to back the 2 MiB-aligned interior of a freshly allocated block with
-/// transparent huge pages (`madvise(MADV_HUGEPAGE)`). A step of a 10⁶-body world streams some
-/// 700 MB through a dozen arrays; on 4 KiB pages each array crosses a page every few hundred
-/// bodies and the processor walks the page tables (its TLB covers ~12 MB): advised, 10⁶ disks
-/// step ~3 % faster (docs/src/lab-notebook.md, "This pass"). Debian's default THP mode is
-/// `madvise`: only advised memory gets huge pages. Advice only — where THP is off or the call
-/// fails, nothing changes — and never affects a result.
-#[inline]
-fn advise_huge_pages(ptr: *mut u8, size: usize) {
-    #[cfg(target_os = "linux")]
-    if size >= HUGE_PAGE_MIN_BLOCK && !ptr.is_null() {
-        const HUGE: usize = 2 << 20;
-        let start = (ptr as usize).next_multiple_of(HUGE);
-        let end = (ptr as usize + size) & !(HUGE - 1);
-        if end > start {
-            // SAFETY: advice on whole pages inside the block just handed out; it changes no
-            // contents and its failure is harmless.
-            unsafe {
-                libc::madvise(start as *mut libc::c_void, end - start, libc::MADV_HUGEPAGE);
-            }
-        }
-    }
-    #[cfg(not(target_os = "linux"))]
-    let _ = (ptr, size);
-}
-
-static ALLOCATED: AtomicUsize = AtomicUsize::new(0);
-/// Number of allocations (and reallocations) so far: `dem2d bench` checks the step allocates
-/// nothing.
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-/// A block of `size` bytes just handed out at `ptr` by `alloc` or `alloc_zeroed`: counted, and
-/// advised onto huge pages when large.
-#[inline]
-fn new_block(ptr: *mut u8, size: usize) -> *mut u8 {
-    ALLOCATED.fetch_add(size, Ordering::Relaxed);
-    ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-    advise_huge_pages(ptr, size);
-    ptr
-}
-
-// SAFETY: every call is forwarded unchanged to the system allocator; the counter is only
-// bookkeeping.
-unsafe impl std::alloc::GlobalAlloc for CountingAllocator {
-    unsafe fn alloc(&self, layout: std::alloc::Layout) -> *mut u8 {
-        // SAFETY: same contract as the caller's.
-        new_block(unsafe { std::alloc::System.alloc(layout) }, layout.size())
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: std::alloc::Layout) -> *mut u8 {
-        // SAFETY: same contract as the caller's.
-        new_block(
-            unsafe { std::alloc::System.alloc_zeroed(layout) },
-            layout.size(),
-        )
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: std::alloc::Layout) {
-        ALLOCATED.fetch_sub(layout.size(), Ordering::Relaxed);
-        // SAFETY: same contract as the caller's.
-        unsafe { std::alloc::System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: std::alloc::Layout, new_size: usize) -> *mut u8 {
-        ALLOCATED.fetch_add(new_size, Ordering::Relaxed);
-        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        ALLOCATED.fetch_sub(layout.size(), Ordering::Relaxed);
-        // SAFETY: same contract as the caller's.
-        let ptr = unsafe { std::alloc::System.realloc(ptr, layout, new_size) };
-        advise_huge_pages(ptr, new_size);
-        ptr
-    }
-}
-
+/// The system allocator with transparent huge pages for large blocks (see [`dem2d::alloc`]): a
+/// million-body step is ~3 % faster on them.
 #[global_allocator]
-static GLOBAL: CountingAllocator = CountingAllocator;
+static GLOBAL: dem2d::alloc::HugePageAllocator = dem2d::alloc::HugePageAllocator;
 
 #[derive(Parser)]
 #[command(
@@ -299,80 +214,6 @@ enum Command {
         /// Output file (default: standard output).
         #[arg(long)]
         out: Option<PathBuf>,
-    },
-    /// Throughput of settled piles of disks and ellipses: particle-steps/s, ns per contact and
-    /// heap bytes per body, at each size and thread count, and whether every thread count gives
-    /// the bit-identical trajectory. Settled piles are cached in --cache.
-    Bench {
-        /// Piles to run.
-        #[arg(
-            long,
-            value_enum,
-            value_delimiter = ',',
-            default_value = "disks,ellipses"
-        )]
-        shapes: Vec<PileShapeArg>,
-        /// Numbers of bodies (multiples of 10 000 above 10 000: tiles of the 10⁴ pile).
-        #[arg(long, value_delimiter = ',', default_value = "1000,10000,100000")]
-        sizes: Vec<usize>,
-        /// Timed steps per repetition (default 500; with --peers, 10 000).
-        #[arg(long)]
-        steps: Option<u64>,
-        /// Repetitions (the median is reported); each times every size, thread count and law
-        /// of a shape once, in turn.
-        #[arg(long, default_value_t = 3)]
-        reps: usize,
-        /// Thread counts (default: 1 and all cores).
-        #[arg(long, value_delimiter = ',')]
-        threads: Vec<usize>,
-        /// Normal-force laws to time each settled pile under (with --peers: to run the ellipse
-        /// pile under, a row each).
-        #[arg(long, value_enum, value_delimiter = ',', default_value = "area")]
-        normal_force: Vec<NormalForceArg>,
-        /// Cache of settled piles.
-        #[arg(long, default_value = "target/bench-piles")]
-        cache: PathBuf,
-        /// Write the Markdown table here too.
-        #[arg(long)]
-        out: Option<PathBuf>,
-        /// Refresh the user guide's `<!-- figures:bench -->` table (with --peers,
-        /// `<!-- figures:peers -->`); run from the repository.
-        #[arg(long)]
-        docs: bool,
-        /// Instead: `dem2d run` (one thread) on the settled 10⁴-disk and 10⁴-ellipse piles (the
-        /// ellipses under each --normal-force law) against LIGGGHTS (`liggghts`) and LAMMPS
-        /// (`lmp`) on the disk pile, when installed (decks in benches/peers/), interleaved;
-        /// particle-steps per CPU-second and per wall-second of the time loop, medians, and the
-        /// ratios to LIGGGHTS.
-        #[arg(long)]
-        peers: bool,
-    },
-    /// Regenerate every figure and table of the user guide into figures/ (runs the paper's
-    /// cases, the time-step sweeps and the contact-kernel report; about 10 s). The guide itself
-    /// is refreshed only with --docs.
-    Figures {
-        /// Output directory for SVG, CSV and Markdown.
-        #[arg(long, default_value = "figures")]
-        out: PathBuf,
-        /// Case directory.
-        #[arg(long, default_value = "cases")]
-        cases: PathBuf,
-        /// Where the runs go.
-        #[arg(long, default_value = "target/figure-runs")]
-        work: PathBuf,
-        /// Refresh the marked tables of the user guide (README.md, docs/src; run from the
-        /// repository). The tables are deterministic; timings go to WORK/timings.md.
-        #[arg(long)]
-        docs: bool,
-        /// Compare the guide's tables with these instead of writing them; fail if they differ.
-        #[arg(long)]
-        check: bool,
-        /// Fewer sweep points and repetitions (a quick look, not the guide's numbers).
-        #[arg(long)]
-        quick: bool,
-        /// Where every SVG is also rendered as PNG (default: WORK/png).
-        #[arg(long)]
-        png: Option<PathBuf>,
     },
 }
 
@@ -922,67 +763,6 @@ fn generate(
     }
 }
 
-#[allow(clippy::too_many_arguments)] // one argument per command-line option
-fn bench(
-    shapes: &[PileShapeArg],
-    sizes: &[usize],
-    steps: u64,
-    reps: usize,
-    threads: &[usize],
-    normal_forces: &[NormalForceArg],
-    cache: &std::path::Path,
-    out: Option<&std::path::Path>,
-    docs: bool,
-) -> Result<(), Failure> {
-    use dem2d::scene::generate::PileShape;
-    if let Some(&n) = sizes
-        .iter()
-        .find(|&&n| n == 0 || (n > 10_000 && n % 10_000 != 0))
-    {
-        return Err(Failure::input(format!(
-            "--sizes: {n} is not a pile size (1…10000, or a multiple of 10000)"
-        )));
-    }
-    if threads.contains(&0) {
-        return Err(Failure::input("--threads: must be at least 1".into()));
-    }
-    let all = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let threads = if threads.is_empty() {
-        if all > 1 { vec![1, all] } else { vec![1] }
-    } else {
-        threads.to_vec()
-    };
-    let opts = crate::bench::BenchOptions {
-        shapes: shapes
-            .iter()
-            .map(|s| match s {
-                PileShapeArg::Disks => PileShape::Disks,
-                PileShapeArg::Ellipses => PileShape::Ellipses,
-            })
-            .collect(),
-        sizes: sizes.to_vec(),
-        steps,
-        reps,
-        threads,
-        normal_forces: normal_forces.iter().map(|&n| n.into()).collect(),
-        cache: Some(cache.to_path_buf()),
-        progress: true,
-    };
-    let rows = crate::bench::run(&opts, &|| ALLOCATED.load(Ordering::Relaxed), &|| {
-        ALLOCATIONS.load(Ordering::Relaxed)
-    })
-    .map_err(|e| Failure {
-        code: 1,
-        message: e.to_string(),
-    })?;
-    publish_table(
-        crate::bench::markdown(&rows),
-        "bench",
-        out,
-        docs_mode(docs, false),
-    )
-}
-
 /// What `--docs` and `--check` ask of the user guide's tables.
 fn docs_mode(docs: bool, check: bool) -> Option<dem2d::output::docs_tables::Mode> {
     use dem2d::output::docs_tables::Mode;
@@ -1011,106 +791,6 @@ fn refresh_docs(
         "dem2d: {}",
         docs_tables::report(&stale, mode).map_err(Failure::failed)?
     ));
-    Ok(())
-}
-
-/// Prints a Markdown table, writes it to `out` and refreshes the user guide's table `section`
-/// (`<!-- figures:SECTION -->`) when asked.
-fn publish_table(
-    md: String,
-    section: &str,
-    out: Option<&std::path::Path>,
-    docs: Option<dem2d::output::docs_tables::Mode>,
-) -> Result<(), Failure> {
-    print_out(&md)?;
-    if let Some(path) = out {
-        std::fs::write(path, &md).map_err(|e| Failure {
-            code: 1,
-            message: format!("{}: cannot write: {e}", path.display()),
-        })?;
-    }
-    if let Some(mode) = docs {
-        refresh_docs(section, &md, mode)?;
-    }
-    Ok(())
-}
-
-/// `dem2d bench --peers`: see [`peers`].
-#[allow(clippy::too_many_arguments)] // one argument per command-line option
-fn bench_peers(
-    shapes: &[PileShapeArg],
-    laws: &[NormalForceArg],
-    sizes: &[usize],
-    steps: u64,
-    reps: usize,
-    cache: &std::path::Path,
-    out: Option<&std::path::Path>,
-    docs: bool,
-) -> Result<(), Failure> {
-    use dem2d::scene::generate::PileShape;
-    // The default sizes are the throughput table's; the peers compare the 10⁴ piles.
-    let n = match sizes {
-        [n] if *n >= 1 && *n <= 10_000 => *n,
-        _ if sizes == [1000, 10_000, 100_000] => 10_000,
-        _ => {
-            return Err(Failure::input(
-                "--sizes: --peers takes one pile size, 1…10000 (default 10000)".into(),
-            ));
-        }
-    };
-    if steps == 0 {
-        return Err(Failure::input("--steps: must be at least 1".into()));
-    }
-    let opts = crate::peers::PeerOptions {
-        shapes: shapes
-            .iter()
-            .map(|s| match s {
-                PileShapeArg::Disks => PileShape::Disks,
-                PileShapeArg::Ellipses => PileShape::Ellipses,
-            })
-            .collect(),
-        laws: laws.iter().map(|&l| l.into()).collect(),
-        n,
-        steps,
-        reps,
-        cache: Some(cache.to_path_buf()),
-        progress: true,
-    };
-    let load = crate::peers::load_average();
-    let report = crate::peers::run(&opts).map_err(|e| Failure {
-        code: 1,
-        message: e.to_string(),
-    })?;
-    publish_table(
-        crate::peers::markdown(&report, load.as_deref()),
-        "peers",
-        out,
-        docs_mode(docs, false),
-    )
-}
-
-fn figures(
-    out: PathBuf,
-    cases: PathBuf,
-    work: PathBuf,
-    docs: Option<dem2d::output::docs_tables::Mode>,
-    (quick, png): (bool, Option<PathBuf>),
-) -> Result<(), Failure> {
-    let opts = crate::report::FigureOptions {
-        cases,
-        out,
-        work,
-        docs,
-        quick,
-        png,
-    };
-    let written = crate::report::figures(&opts).map_err(|e| Failure {
-        code: 1,
-        message: e.to_string(),
-    })?;
-    for f in written {
-        print_out(&format!("{}\n", f.display()))?;
-    }
     Ok(())
 }
 
@@ -1227,64 +907,6 @@ fn main() -> ExitCode {
             (*aspect, *sizes, *friction, *normal_force),
             (*quiescence, *duration, *dt),
             out.as_deref(),
-        ),
-        Command::Bench {
-            shapes,
-            sizes,
-            steps,
-            reps,
-            threads: _,
-            normal_force,
-            cache,
-            out,
-            docs,
-            peers: true,
-        } => bench_peers(
-            shapes,
-            normal_force,
-            sizes,
-            steps.unwrap_or(10_000),
-            *reps,
-            cache,
-            out.as_deref(),
-            *docs,
-        ),
-        Command::Bench {
-            shapes,
-            sizes,
-            steps,
-            reps,
-            threads,
-            normal_force,
-            cache,
-            out,
-            docs,
-            peers: false,
-        } => bench(
-            shapes,
-            sizes,
-            steps.unwrap_or(500),
-            *reps,
-            threads,
-            normal_force,
-            cache,
-            out.as_deref(),
-            *docs,
-        ),
-        Command::Figures {
-            out,
-            cases,
-            work,
-            docs,
-            check,
-            quick,
-            png,
-        } => figures(
-            out.clone(),
-            cases.clone(),
-            work.clone(),
-            docs_mode(*docs, *check),
-            (*quick, png.clone()),
         ),
     };
     match result {

@@ -1,14 +1,14 @@
 //! Impact benchmarks (Chung & Ooi 2011, tests 1–2 and 4, adapted to a 2D disk on a wall):
 //! normal elastic impact against the closed forms of the linear and Hertz springs, oblique
 //! impact at constant speed across incidence angles against rigid-body Coulomb theory.
-//! See [`dem2d::validation::impact`] for the formulas.
+//! See [`crate::impact`] for the formulas.
 //!
 //! `dem2d study impacts` prints the tables and writes `figures/impacts.svg` (and `.png` into
 //! `target/figure-png/`), `figures/impacts.md`.
 
+use crate::impact::{self, Impact};
 use dem2d::output::plot::{self, LinePanel, Series};
 use dem2d::run::RunError;
-use dem2d::validation::impact::{self, Impact};
 use std::fmt::Write as _;
 use std::time::Instant;
 

@@ -9,7 +9,7 @@
 //!   default, and P's spring on the depth — the linear law the disks' engines apply), the disk
 //!   pile once (a disk's area potential is the spring on its depth: the same run);
 //! - LIGGGHTS (`liggghts`) and LAMMPS (`lmp`), when installed, on the disk pile: the decks of
-//!   `benches/peers/` (compiled into this executable), the pile written as a LAMMPS data file
+//!   `lab/peers/` (compiled into this executable), the pile written as a LAMMPS data file
 //!   into a temporary directory. The decks state the equivalence: 2D, the same particles
 //!   (positions, radii, velocities, spins), mass ρπr² (unit thickness), the same linear law
 //!   term by term (spring k_n δ, constant dashpot η v_n, tangential spring k_t with dashpot η
@@ -33,9 +33,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
 
-/// The decks, as checked in (`benches/peers/`).
-pub const LAMMPS_DECK: &str = include_str!("../../../benches/peers/lammps.in");
-pub const LIGGGHTS_DECK: &str = include_str!("../../../benches/peers/liggghts.in");
+/// The decks, as checked in (`lab/peers/`).
+pub const LAMMPS_DECK: &str = include_str!("../peers/lammps.in");
+pub const LIGGGHTS_DECK: &str = include_str!("../peers/liggghts.in");
 
 /// What to measure.
 #[derive(Clone, Debug)]
@@ -281,7 +281,7 @@ fn run_once(
             let name = format!("{}_{}", shape_name(*shape), law.as_str());
             let case = dir.join(format!("{name}.json"));
             let out = dir.join(format!("run_{name}"));
-            let exe = std::env::current_exe().map_err(err)?;
+            let exe = crate::dem2d_exe().map_err(err)?;
             let status = Command::new(exe)
                 .arg("run")
                 .arg(&case)

@@ -1,6 +1,8 @@
-//! Validation: an independent high-precision reference for the contact geometry and the families
-//! of hard cases it is compared on. Never used by a simulation; the tests and `dem2d figures`
-//! use it.
+//! dem2d-validation: an independent high-precision reference for the contact geometry and the
+//! families of hard cases it is compared on. Never used by a simulation, and not part of the
+//! `dem2d` library: the tests (a dev-dependency), `dem2d-lab figures` and the contact-kernel
+//! benchmark use it. Only [`families`] calls the library (the kernels it checks); the references
+//! themselves share no code with it.
 //!
 //! The reference computes in double-double arithmetic (≈ 106 bits) from the exact double inputs,
 //! by methods deliberately different from the kernel's: the boundary of one body in parametric
@@ -11,7 +13,6 @@
 
 pub mod dd;
 pub mod families;
-pub mod impact;
 pub mod overlap_reference;
 pub mod polygon_reference;
 pub mod reference;

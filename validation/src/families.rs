@@ -9,13 +9,13 @@
 //! asserts them; `dem2d figures` tabulates the worst errors with the kernel's time per pair.
 
 use super::reference::{RContact, RObj, RShape, RState, depth_along, reference_contact};
-use crate::geometry::support::support_local;
-use crate::geometry::{Pose, Shape, Vec2, Wall};
-use crate::narrow_phase::ellipse_ellipse::Warm;
-use crate::narrow_phase::{
+use crate::rng::Rng;
+use dem2d::geometry::support::support_local;
+use dem2d::geometry::{Pose, Shape, Vec2, Wall};
+use dem2d::narrow_phase::ellipse_ellipse::Warm;
+use dem2d::narrow_phase::{
     Contact, ContactState, Object, PairCache, Request, contact, contact_with,
 };
-use crate::validation::rng::Rng;
 
 const DEPTH_BAR: f64 = 1e-12;
 const ANGLE_BAR: f64 = 1e-8;

@@ -1,6 +1,6 @@
-//! `dem2d figures`: every figure and table of the user guide, regenerated from the code.
+//! `dem2d-lab figures`: every figure and table of the user guide, regenerated from the code.
 //!
-//! Runs the paper's cases (into a work directory), draws their figures, sweeps the time step for
+//! Runs the paper's cases through the `dem2d` binary (into a work directory), draws their figures, sweeps the time step for
 //! the speed-vs-error and stability reports, tabulates the contact kernel's accuracy against the
 //! independent reference with its time per pair, and writes SVG, CSV and Markdown into the
 //! output directory. With `--docs`, the user guide's regions between `<!-- figures:NAME -->` and
@@ -14,7 +14,6 @@
 //! per pair, the error against wall time) go to `timings.md` and `speed_vs_error_time.svg` in
 //! the work directory, which is not tracked.
 
-use crate::runner::{RunOptions, run_case};
 use dem2d::contact_law::NormalForce;
 use dem2d::dynamics::timestep::estimate_critical_dt;
 use dem2d::narrow_phase::contact;
@@ -23,7 +22,7 @@ use dem2d::output::plot::{self, LinePanel, SceneOptions, ScenePanel, Series};
 use dem2d::output::run_data::RunData;
 use dem2d::run::{RunError, Simulation};
 use dem2d::scene::Case;
-use dem2d::validation::families::{markdown_table, run_families};
+use dem2d_validation::families::{markdown_table, run_families};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -105,16 +104,26 @@ fn run_law(
         }
         text = serde_json::to_string_pretty(&v).map_err(e(&label))?;
     }
+    let _ = case;
     let dir = opts.work.join(&label);
-    // The work directory holds the previous figures' runs: replace them.
-    let ro = RunOptions {
-        out_dir: dir.clone(),
-        overwrite: true,
-        ..Default::default()
-    };
-    let outcome = run_case(&case, &text, &ro).map_err(e(&label))?;
-    if let Some(err) = outcome.summary.error {
-        return Err(ReportError(format!("{label}: {err}")));
+    // The case as it is run, beside its output (`dem2d run` reads a file); the work directory
+    // holds the previous figures' runs: replace them.
+    std::fs::create_dir_all(&opts.work).map_err(e(&opts.work.display().to_string()))?;
+    let file = opts.work.join(format!("{label}.json"));
+    std::fs::write(&file, &text).map_err(e(&file.display().to_string()))?;
+    let out = std::process::Command::new(crate::dem2d_exe().map_err(ReportError)?)
+        .arg("run")
+        .arg(&file)
+        .arg("--out")
+        .arg(&dir)
+        .args(["--overwrite", "--quiet"])
+        .output()
+        .map_err(e(&format!("{label}: dem2d run")))?;
+    if !out.status.success() {
+        return Err(ReportError(format!(
+            "{label}: dem2d run failed: {}",
+            String::from_utf8_lossy(&out.stderr).trim()
+        )));
     }
     RunData::load(&dir).map_err(e(&label))
 }

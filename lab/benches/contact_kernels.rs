@@ -14,9 +14,9 @@
 //! sees realistic variety) and the table reports the median time per pair.
 //! Also: the robust cubic solver against bare `roots::find_roots_cubic` on the same cubics.
 //!
-//! Run: `cargo bench --bench contact_kernels` (prints a Markdown table at the end, writes it to
+//! Run: `cargo bench -p dem2d-lab --bench contact_kernels` (prints a Markdown table at the end, writes it to
 //! `figures/kernel_speed.md` and into the user guide's `kernel_speed` table (docs/src/performance.md);
-//! `cargo bench --bench contact_kernels -- --quick` for a faster, noisier run).
+//! `cargo bench -p dem2d-lab --bench contact_kernels -- --quick` for a faster, noisier run).
 
 use criterion::{BenchmarkId, Criterion};
 use dem2d::contact_law::{
@@ -28,7 +28,7 @@ use dem2d::geometry::overlap_area::DiskLens;
 use dem2d::geometry::support::support_local;
 use dem2d::geometry::{Pose, Shape, Vec2, Wall};
 use dem2d::narrow_phase::{ContactState, Object, PairCache, Request, contact, contact_with};
-use dem2d::validation::rng::Rng;
+use dem2d_validation::rng::Rng;
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -449,7 +449,8 @@ fn bench_cubic(c: &mut Criterion) {
 fn print_table(since: std::time::SystemTime) {
     use std::fmt::Write as _;
     let mut md = String::new();
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/criterion");
+    // The workspace's target directory (this bench's package is lab/).
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/criterion");
     let missing = std::cell::Cell::new(0usize);
     let median = |group: &str, id: &str| -> Option<f64> {
         let p = dir.join(group).join(id).join("new/estimates.json");
@@ -522,7 +523,8 @@ fn print_table(since: std::time::SystemTime) {
         );
         return;
     }
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let root = root.as_path();
     let out = root.join("figures/kernel_speed.md");
     if let Err(e) = std::fs::write(&out, &md) {
         eprintln!("{}: {e}", out.display());

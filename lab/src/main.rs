@@ -1,0 +1,462 @@
+//! `dem2d-lab`: what regenerates this project's own figures, user-guide tables and benchmarks —
+//! not what a user of dem2d runs (that is the `dem2d` binary). Run from the repository's root:
+//!
+//! ```sh
+//! cargo run --release -p dem2d-lab -- figures --docs      # figures/ and the guide's tables
+//! cargo run --release -p dem2d-lab -- bench --docs        # the throughput table
+//! cargo run --release -p dem2d-lab -- bench --peers --steps 10000 --reps 3 --normal-force area,depth --docs
+//! ```
+//!
+//! `figures` and `bench --peers` run the `dem2d` binary itself (as a user would): [`dem2d_exe`]
+//! builds it first when the lab runs under `cargo run`.
+
+mod area_law_report;
+mod bench;
+mod peers;
+mod report;
+
+use clap::{Parser, Subcommand};
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// The allocator `dem2d run` has (huge pages), counting bytes for `bench`'s heap per body.
+#[global_allocator]
+static GLOBAL: dem2d::alloc::HugePageAllocator = dem2d::alloc::HugePageAllocator;
+
+#[derive(Parser)]
+#[command(
+    name = "dem2d-lab",
+    version,
+    about = "Regenerates dem2d's own figures, user-guide tables and benchmarks"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Throughput of settled piles of disks and ellipses: particle-steps/s, ns per contact and
+    /// heap bytes per body, at each size and thread count, and whether every thread count gives
+    /// the bit-identical trajectory. Settled piles are cached in --cache.
+    Bench {
+        /// Piles to run.
+        #[arg(
+            long,
+            value_enum,
+            value_delimiter = ',',
+            default_value = "disks,ellipses"
+        )]
+        shapes: Vec<PileShapeArg>,
+        /// Numbers of bodies (multiples of 10 000 above 10 000: tiles of the 10⁴ pile).
+        #[arg(long, value_delimiter = ',', default_value = "1000,10000,100000")]
+        sizes: Vec<usize>,
+        /// Timed steps per repetition (default 500; with --peers, 10 000).
+        #[arg(long)]
+        steps: Option<u64>,
+        /// Repetitions (the median is reported); each times every size, thread count and law
+        /// of a shape once, in turn.
+        #[arg(long, default_value_t = 3)]
+        reps: usize,
+        /// Thread counts (default: 1 and all cores).
+        #[arg(long, value_delimiter = ',')]
+        threads: Vec<usize>,
+        /// Normal-force laws to time each settled pile under (with --peers: to run the ellipse
+        /// pile under, a row each).
+        #[arg(long, value_enum, value_delimiter = ',', default_value = "area")]
+        normal_force: Vec<NormalForceArg>,
+        /// Cache of settled piles.
+        #[arg(long, default_value = "target/bench-piles")]
+        cache: PathBuf,
+        /// Write the Markdown table here too.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Refresh the user guide's `<!-- figures:bench -->` table (with --peers,
+        /// `<!-- figures:peers -->`); run from the repository.
+        #[arg(long)]
+        docs: bool,
+        /// Instead: `dem2d run` (one thread) on the settled 10⁴-disk and 10⁴-ellipse piles (the
+        /// ellipses under each --normal-force law) against LIGGGHTS (`liggghts`) and LAMMPS
+        /// (`lmp`) on the disk pile, when installed (decks in lab/peers/), interleaved;
+        /// particle-steps per CPU-second and per wall-second of the time loop, medians, and the
+        /// ratios to LIGGGHTS.
+        #[arg(long)]
+        peers: bool,
+    },
+    /// Regenerate every figure and table of the user guide into figures/ (runs the paper's
+    /// cases, the time-step sweeps and the contact-kernel report; about 10 s). The guide itself
+    /// is refreshed only with --docs.
+    Figures {
+        /// Output directory for SVG, CSV and Markdown.
+        #[arg(long, default_value = "figures")]
+        out: PathBuf,
+        /// Case directory.
+        #[arg(long, default_value = "cases")]
+        cases: PathBuf,
+        /// Where the runs go.
+        #[arg(long, default_value = "target/figure-runs")]
+        work: PathBuf,
+        /// Refresh the marked tables of the user guide (README.md, docs/src; run from the
+        /// repository). The tables are deterministic; timings go to WORK/timings.md.
+        #[arg(long)]
+        docs: bool,
+        /// Compare the guide's tables with these instead of writing them; fail if they differ.
+        #[arg(long)]
+        check: bool,
+        /// Fewer sweep points and repetitions (a quick look, not the guide's numbers).
+        #[arg(long)]
+        quick: bool,
+        /// Where every SVG is also rendered as PNG (default: WORK/png).
+        #[arg(long)]
+        png: Option<PathBuf>,
+    },
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum PileShapeArg {
+    Disks,
+    Ellipses,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum NormalForceArg {
+    Area,
+    Depth,
+}
+
+impl From<NormalForceArg> for dem2d::contact_law::NormalForce {
+    fn from(n: NormalForceArg) -> Self {
+        match n {
+            NormalForceArg::Area => dem2d::contact_law::NormalForce::Area,
+            NormalForceArg::Depth => dem2d::contact_law::NormalForce::Depth,
+        }
+    }
+}
+
+/// An error for the user, with its exit code.
+struct Failure {
+    code: u8,
+    message: String,
+}
+
+impl Failure {
+    fn input(message: String) -> Self {
+        Failure { code: 2, message }
+    }
+
+    fn failed(message: String) -> Self {
+        Failure { code: 1, message }
+    }
+}
+
+/// Writes `text` to standard output; a failure is an error that names it.
+fn print_out(text: &str) -> Result<(), Failure> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())
+        .and_then(|()| out.flush())
+        .map_err(|e| Failure::failed(format!("standard output: cannot write: {e}")))
+}
+
+/// A line on standard error.
+fn say(text: &str) {
+    let _ = writeln!(std::io::stderr().lock(), "{text}");
+}
+
+/// The `dem2d` binary the lab runs (`figures` runs the paper's cases through it, `bench --peers`
+/// times it): `$DEM2D_BIN` if set, else the `dem2d` beside this binary (the same target
+/// directory). Under `cargo run` (which sets `$CARGO`) it is built first with the same profile,
+/// so that it is never an older build than the code the lab's numbers are said to come from.
+pub fn dem2d_exe() -> Result<PathBuf, String> {
+    if let Some(p) = std::env::var_os("DEM2D_BIN") {
+        return Ok(PathBuf::from(p));
+    }
+    let me = std::env::current_exe().map_err(|e| format!("this program's path: {e}"))?;
+    let dir = me.parent().ok_or("this program has no directory")?;
+    if let Some(cargo) = std::env::var_os("CARGO") {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+        let mut build = std::process::Command::new(cargo);
+        build
+            .current_dir(&root)
+            .args(["build", "--quiet", "--bin", "dem2d"]);
+        if dir.ends_with("release") {
+            build.arg("--release");
+        }
+        let status = build
+            .status()
+            .map_err(|e| format!("cargo build --bin dem2d: {e}"))?;
+        if !status.success() {
+            return Err("cargo build --bin dem2d failed".into());
+        }
+    }
+    let exe = dir.join(format!("dem2d{}", std::env::consts::EXE_SUFFIX));
+    if exe.is_file() {
+        Ok(exe)
+    } else {
+        Err(format!(
+            "{}: no dem2d binary beside dem2d-lab (build it: cargo build --release; or set DEM2D_BIN)",
+            exe.display()
+        ))
+    }
+}
+
+/// What `--docs` and `--check` ask of the user guide's tables.
+fn docs_mode(docs: bool, check: bool) -> Option<dem2d::output::docs_tables::Mode> {
+    use dem2d::output::docs_tables::Mode;
+    match (docs, check) {
+        (_, true) => Some(Mode::Check),
+        (true, false) => Some(Mode::Write),
+        (false, false) => None,
+    }
+}
+
+/// Refreshes (or checks) the user guide's marked table `section` in the repository at the current
+/// directory; says what it did on stderr.
+fn refresh_docs(
+    section: &str,
+    md: &str,
+    mode: dem2d::output::docs_tables::Mode,
+) -> Result<(), Failure> {
+    use dem2d::output::docs_tables;
+    let stale = docs_tables::refresh(
+        std::path::Path::new("."),
+        &[(section, md.to_string())],
+        mode,
+    )
+    .map_err(Failure::failed)?;
+    say(&format!(
+        "dem2d-lab: {}",
+        docs_tables::report(&stale, mode).map_err(Failure::failed)?
+    ));
+    Ok(())
+}
+
+#[allow(clippy::too_many_arguments)] // one argument per command-line option
+fn bench(
+    shapes: &[PileShapeArg],
+    sizes: &[usize],
+    steps: u64,
+    reps: usize,
+    threads: &[usize],
+    normal_forces: &[NormalForceArg],
+    cache: &std::path::Path,
+    out: Option<&std::path::Path>,
+    docs: bool,
+) -> Result<(), Failure> {
+    use dem2d::scene::generate::PileShape;
+    if let Some(&n) = sizes
+        .iter()
+        .find(|&&n| n == 0 || (n > 10_000 && n % 10_000 != 0))
+    {
+        return Err(Failure::input(format!(
+            "--sizes: {n} is not a pile size (1…10000, or a multiple of 10000)"
+        )));
+    }
+    if threads.contains(&0) {
+        return Err(Failure::input("--threads: must be at least 1".into()));
+    }
+    let all = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let threads = if threads.is_empty() {
+        if all > 1 { vec![1, all] } else { vec![1] }
+    } else {
+        threads.to_vec()
+    };
+    let opts = crate::bench::BenchOptions {
+        shapes: shapes
+            .iter()
+            .map(|s| match s {
+                PileShapeArg::Disks => PileShape::Disks,
+                PileShapeArg::Ellipses => PileShape::Ellipses,
+            })
+            .collect(),
+        sizes: sizes.to_vec(),
+        steps,
+        reps,
+        threads,
+        normal_forces: normal_forces.iter().map(|&n| n.into()).collect(),
+        cache: Some(cache.to_path_buf()),
+        progress: true,
+    };
+    let rows = crate::bench::run(&opts, &dem2d::alloc::allocated, &dem2d::alloc::allocations)
+        .map_err(|e| Failure {
+            code: 1,
+            message: e.to_string(),
+        })?;
+    publish_table(
+        crate::bench::markdown(&rows),
+        "bench",
+        out,
+        docs_mode(docs, false),
+    )
+}
+
+/// Prints a Markdown table, writes it to `out` and refreshes the user guide's table `section`
+/// (`<!-- figures:SECTION -->`) when asked.
+fn publish_table(
+    md: String,
+    section: &str,
+    out: Option<&std::path::Path>,
+    docs: Option<dem2d::output::docs_tables::Mode>,
+) -> Result<(), Failure> {
+    print_out(&md)?;
+    if let Some(path) = out {
+        std::fs::write(path, &md).map_err(|e| Failure {
+            code: 1,
+            message: format!("{}: cannot write: {e}", path.display()),
+        })?;
+    }
+    if let Some(mode) = docs {
+        refresh_docs(section, &md, mode)?;
+    }
+    Ok(())
+}
+
+/// `dem2d bench --peers`: see [`peers`].
+#[allow(clippy::too_many_arguments)] // one argument per command-line option
+fn bench_peers(
+    shapes: &[PileShapeArg],
+    laws: &[NormalForceArg],
+    sizes: &[usize],
+    steps: u64,
+    reps: usize,
+    cache: &std::path::Path,
+    out: Option<&std::path::Path>,
+    docs: bool,
+) -> Result<(), Failure> {
+    use dem2d::scene::generate::PileShape;
+    // The default sizes are the throughput table's; the peers compare the 10⁴ piles.
+    let n = match sizes {
+        [n] if *n >= 1 && *n <= 10_000 => *n,
+        _ if sizes == [1000, 10_000, 100_000] => 10_000,
+        _ => {
+            return Err(Failure::input(
+                "--sizes: --peers takes one pile size, 1…10000 (default 10000)".into(),
+            ));
+        }
+    };
+    if steps == 0 {
+        return Err(Failure::input("--steps: must be at least 1".into()));
+    }
+    let opts = crate::peers::PeerOptions {
+        shapes: shapes
+            .iter()
+            .map(|s| match s {
+                PileShapeArg::Disks => PileShape::Disks,
+                PileShapeArg::Ellipses => PileShape::Ellipses,
+            })
+            .collect(),
+        laws: laws.iter().map(|&l| l.into()).collect(),
+        n,
+        steps,
+        reps,
+        cache: Some(cache.to_path_buf()),
+        progress: true,
+    };
+    let load = crate::peers::load_average();
+    let report = crate::peers::run(&opts).map_err(|e| Failure {
+        code: 1,
+        message: e.to_string(),
+    })?;
+    publish_table(
+        crate::peers::markdown(&report, load.as_deref()),
+        "peers",
+        out,
+        docs_mode(docs, false),
+    )
+}
+
+fn figures(
+    out: PathBuf,
+    cases: PathBuf,
+    work: PathBuf,
+    docs: Option<dem2d::output::docs_tables::Mode>,
+    (quick, png): (bool, Option<PathBuf>),
+) -> Result<(), Failure> {
+    let opts = crate::report::FigureOptions {
+        cases,
+        out,
+        work,
+        docs,
+        quick,
+        png,
+    };
+    let written = crate::report::figures(&opts).map_err(|e| Failure {
+        code: 1,
+        message: e.to_string(),
+    })?;
+    for f in written {
+        print_out(&format!("{}\n", f.display()))?;
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Bench {
+            shapes,
+            sizes,
+            steps,
+            reps,
+            threads: _,
+            normal_force,
+            cache,
+            out,
+            docs,
+            peers: true,
+        } => bench_peers(
+            shapes,
+            normal_force,
+            sizes,
+            steps.unwrap_or(10_000),
+            *reps,
+            cache,
+            out.as_deref(),
+            *docs,
+        ),
+        Command::Bench {
+            shapes,
+            sizes,
+            steps,
+            reps,
+            threads,
+            normal_force,
+            cache,
+            out,
+            docs,
+            peers: false,
+        } => bench(
+            shapes,
+            sizes,
+            steps.unwrap_or(500),
+            *reps,
+            threads,
+            normal_force,
+            cache,
+            out.as_deref(),
+            *docs,
+        ),
+        Command::Figures {
+            out,
+            cases,
+            work,
+            docs,
+            check,
+            quick,
+            png,
+        } => figures(
+            out.clone(),
+            cases.clone(),
+            work.clone(),
+            docs_mode(*docs, *check),
+            (*quick, png.clone()),
+        ),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(f) => {
+            say(&format!("dem2d-lab: {}", f.message));
+            ExitCode::from(f.code)
+        }
+    }
+}
