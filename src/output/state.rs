@@ -14,6 +14,7 @@
 //! and `null` for its NaN. One body, one contact or one position per line. The file is written
 //! atomically (a temporary file renamed over it), like `summary.json`.
 
+use crate::contact_law::History;
 use crate::dynamics::restart::{RestartState, RunProgress, state_name};
 use crate::dynamics::{BodyInit, World};
 use crate::geometry::Vec2;
@@ -215,10 +216,19 @@ fn write_state_block(out: &mut String, s: &RestartState, bodies: &[BodyInit], st
             let d = &c.data;
             let _ = write!(
                 out,
-                ", \"active\": true, \"state\": \"{}\", \"shear\": {}, \"rolling\": {}, \"history_energy\": {}, \"point\": {}, \"force\": {}, \"force_non_elastic\": {}, \"couple\": {}, \"couple_non_elastic\": {}",
-                state_name(slot.state),
-                num(slot.shear),
-                num(c.rolling),
+                ", \"active\": true, \"state\": \"{}\"",
+                state_name(slot.state)
+            );
+            // The history, each part's values by their names (the first is the slot's).
+            for (name, v) in History::NAMES
+                .iter()
+                .zip(std::iter::once(slot.shear).chain(c.more))
+            {
+                let _ = write!(out, ", \"{name}\": {}", num(v));
+            }
+            let _ = write!(
+                out,
+                ", \"history_energy\": {}, \"point\": {}, \"force\": {}, \"force_non_elastic\": {}, \"couple\": {}, \"couple_non_elastic\": {}",
                 num(slot.history_energy),
                 vec2(d.point),
                 vec2(d.force),
