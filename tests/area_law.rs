@@ -29,17 +29,16 @@ use dem2d_validation::rng::Rng;
 const KN: f64 = 1.0;
 
 fn spec(normal_force: NormalForce) -> ContactSpec {
-    ContactSpec::Linear {
-        kn: Scaled::Absolute(KN),
-        ks: Scaled::Absolute(KN),
-        damping: LinearDamping::Dashpots {
+    ContactSpec::linear(
+        Scaled::Absolute(KN),
+        Scaled::Absolute(KN),
+        LinearDamping::Dashpots {
             eta_n: Scaled::Absolute(0.0),
             eta_s: Scaled::Absolute(0.0),
         },
-        friction: 0.0,
-        normal_force,
-        rolling: None,
-    }
+        0.0,
+    )
+    .with_normal_force(normal_force)
 }
 
 /// One side of a pair: a body (shape, position, angle) or a wall.
@@ -663,20 +662,19 @@ fn overlap_area_matches_the_double_double_reference() {
 /// A world for the energy tests: `kn_over_rho_g` = P's 36400 cm, ρ = 1, undamped or with a
 /// restitution, frictionless.
 fn energy_spec(nf: NormalForce, restitution: Option<f64>) -> ContactSpec {
-    ContactSpec::Linear {
-        kn: Scaled::Absolute(36400.0 * 980.0),
-        ks: Scaled::Absolute(36400.0 * 980.0),
-        damping: match restitution {
+    ContactSpec::linear(
+        Scaled::Absolute(36400.0 * 980.0),
+        Scaled::Absolute(36400.0 * 980.0),
+        match restitution {
             Some(e) => LinearDamping::Restitution(e),
             None => LinearDamping::Dashpots {
                 eta_n: Scaled::Absolute(0.0),
                 eta_s: Scaled::Absolute(0.0),
             },
         },
-        friction: 0.0,
-        normal_force: nf,
-        rolling: None,
-    }
+        0.0,
+    )
+    .with_normal_force(nf)
 }
 
 /// The largest |E − E₀|/E₀ over a run (E = kinetic + potential + elastic; nothing dissipates).
@@ -772,14 +770,7 @@ fn undamped_frictionless_ellipses_conserve_energy_to_second_order() {
 /// no rotation), under the linear law with restitution `e` or Hertz–Mindlin.
 fn obtained_restitution(shape: Shape, angle: f64, nf: NormalForce, e: f64, hertz: bool) -> f64 {
     let spec = if hertz {
-        ContactSpec::HertzMindlin {
-            young: 1e8,
-            poisson: 0.3,
-            restitution: e,
-            friction: 0.0,
-            normal_force: nf,
-            rolling: None,
-        }
+        ContactSpec::hertz_mindlin(1e8, 0.3, e, 0.0).with_normal_force(nf)
     } else {
         energy_spec(nf, Some(e))
     };

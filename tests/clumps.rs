@@ -34,17 +34,16 @@ fn init(shape: Shape, x: Vec2, angle: f64) -> BodyInit {
 }
 
 fn linear(kn: f64, eta: f64, friction: f64) -> ContactSpec {
-    ContactSpec::Linear {
-        kn: Scaled::Absolute(kn),
-        ks: Scaled::Absolute(kn),
-        damping: LinearDamping::Dashpots {
+    ContactSpec::linear(
+        Scaled::Absolute(kn),
+        Scaled::Absolute(kn),
+        LinearDamping::Dashpots {
             eta_n: Scaled::Absolute(eta),
             eta_s: Scaled::Absolute(eta),
         },
         friction,
-        normal_force: NormalForce::Depth,
-        rolling: None,
-    }
+    )
+    .with_normal_force(NormalForce::Depth)
 }
 
 fn floor(spec: ContactSpec) -> Boundary {

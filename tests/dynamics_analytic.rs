@@ -19,17 +19,16 @@ fn body(shape: Shape, x: f64, y: f64, angle: f64, v: Vec2, omega: f64) -> BodyIn
 }
 
 fn linear(kn: f64, ks: f64, eta: f64, friction: f64) -> ContactSpec {
-    ContactSpec::Linear {
-        kn: Scaled::Absolute(kn),
-        ks: Scaled::Absolute(ks),
-        damping: LinearDamping::Dashpots {
+    ContactSpec::linear(
+        Scaled::Absolute(kn),
+        Scaled::Absolute(ks),
+        LinearDamping::Dashpots {
             eta_n: Scaled::Absolute(eta),
             eta_s: Scaled::Absolute(eta),
         },
         friction,
-        normal_force: NormalForce::Depth,
-        rolling: None,
-    }
+    )
+    .with_normal_force(NormalForce::Depth)
 }
 
 fn floor(spec: ContactSpec) -> Boundary {
@@ -236,14 +235,13 @@ fn ellipse_on_its_flat_side_sinks_mg_over_kn() {
     let g = 980.0;
     let m = std::f64::consts::PI * a * b;
     let kn = 36400.0 * g; // P's stiffness, ρ = 1
-    let spec = ContactSpec::Linear {
-        kn: Scaled::Absolute(kn),
-        ks: Scaled::Absolute(kn),
-        damping: LinearDamping::Restitution(0.1),
-        friction: 0.5,
-        normal_force: NormalForce::Depth,
-        rolling: None,
-    };
+    let spec = ContactSpec::linear(
+        Scaled::Absolute(kn),
+        Scaled::Absolute(kn),
+        LinearDamping::Restitution(0.1),
+        0.5,
+    )
+    .with_normal_force(NormalForce::Depth);
     let mut w = on_floor(
         Shape::Ellipse { a, b },
         b,
@@ -462,14 +460,8 @@ fn hertz_impact_matches_closed_form_and_an_independent_integration() {
     let d_max = (15.0 * m * v0 * v0 / (16.0 * e_star * r.sqrt())).powf(0.4);
     let tc = 2.9432 * d_max / v0;
     for e in [1.0, 0.9, 0.7, 0.5] {
-        let spec = ContactSpec::HertzMindlin {
-            young,
-            poisson: nu,
-            restitution: e,
-            friction: 0.0,
-            normal_force: NormalForce::Depth,
-            rolling: None,
-        };
+        let spec =
+            ContactSpec::hertz_mindlin(young, nu, e, 0.0).with_normal_force(NormalForce::Depth);
         let mut w = on_floor(
             Shape::Circle { r },
             r,

@@ -119,11 +119,13 @@ fn trajectories_are_bit_identical_to_the_stored_ones() {
             .expect("case file");
         let case = Case::from_json(&text).expect("case");
         for model in [RollingModel::Cdt, RollingModel::Epsd] {
-            let c = case.clone().with_rolling(Some(RollingPart {
-                model,
-                friction: 0.05,
-                damping: None,
-            }));
+            let c = case.clone().map_contacts(|c| {
+                c.with_rolling(Some(RollingPart {
+                    model,
+                    friction: 0.05,
+                    damping: None,
+                }))
+            });
             got.insert(
                 format!("{name}/{} 0.05", model.as_str()),
                 run(&c, 20_000, 1),

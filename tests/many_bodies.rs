@@ -3,7 +3,7 @@
 //! trajectory is bit-identical for any number of threads; the generated piles are what their
 //! description says, and the 10 000-body case files are exactly the generator's output.
 
-use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
+use dem2d::contact_law::{ContactSpec, LinearDamping, Scaled};
 use dem2d::dynamics::Partner;
 use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::{Shape, Vec2, Wall};
@@ -30,17 +30,15 @@ impl Lcg {
 }
 
 fn law(friction: f64) -> ContactSpec {
-    ContactSpec::Linear {
-        kn: Scaled::Absolute(2e5),
-        ks: Scaled::Absolute(2e5),
-        damping: LinearDamping::Dashpots {
+    ContactSpec::linear(
+        Scaled::Absolute(2e5),
+        Scaled::Absolute(2e5),
+        LinearDamping::Dashpots {
             eta_n: Scaled::Absolute(20.0),
             eta_s: Scaled::Absolute(20.0),
         },
         friction,
-        normal_force: NormalForce::Area,
-        rolling: None,
-    }
+    )
 }
 
 /// A random scene: circles, ellipses and rectangles with sizes spread 1:5, packed densely in a

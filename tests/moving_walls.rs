@@ -24,14 +24,13 @@ use std::f64::consts::PI;
 const KN: f64 = 36400.0 * 980.0;
 
 fn spec(damping: LinearDamping, friction: f64, nf: NormalForce) -> ContactSpec {
-    ContactSpec::Linear {
-        kn: Scaled::Absolute(KN),
-        ks: Scaled::Absolute(KN),
+    ContactSpec::linear(
+        Scaled::Absolute(KN),
+        Scaled::Absolute(KN),
         damping,
         friction,
-        normal_force: nf,
-        rolling: None,
-    }
+    )
+    .with_normal_force(nf)
 }
 
 fn body(shape: Shape, x: f64, y: f64, v: Vec2) -> BodyInit {

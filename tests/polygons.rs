@@ -14,7 +14,7 @@
 //! Swap symmetry and the loop work of the area law for polygon pairs are in
 //! `tests/swap_symmetry.rs` and `tests/area_law.rs`.
 
-use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
+use dem2d::contact_law::{ContactSpec, LinearDamping, Scaled};
 use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::{Polygon, Pose, Shape, Vec2, Wall};
 use dem2d::narrow_phase::{Contact, ContactState, Object, contact};
@@ -320,17 +320,15 @@ fn containment_either_way_is_contained() {
 
 /// The law of the convergence test: linear, k_n = 1, undamped and frictionless, area law.
 fn area_spec() -> ContactSpec {
-    ContactSpec::Linear {
-        kn: Scaled::Absolute(1.0),
-        ks: Scaled::Absolute(1.0),
-        damping: LinearDamping::Dashpots {
+    ContactSpec::linear(
+        Scaled::Absolute(1.0),
+        Scaled::Absolute(1.0),
+        LinearDamping::Dashpots {
             eta_n: Scaled::Absolute(0.0),
             eta_s: Scaled::Absolute(0.0),
         },
-        friction: 0.0,
-        normal_force: NormalForce::Area,
-        rolling: None,
-    }
+        0.0,
+    )
 }
 
 fn init(shape: Shape, x: Vec2, angle: f64) -> BodyInit {
@@ -672,17 +670,15 @@ fn undamped_frictionless_polygons_conserve_energy_to_second_order() {
     // dropped tilted and spinning onto a floor (bounces on vertices and faces), and two
     // polygons colliding off-centre in free space; the energy error over the run, averaged over
     // four release phases (where an impact's onset falls within a step), against Δt.
-    let spec = ContactSpec::Linear {
-        kn: Scaled::Absolute(36400.0 * 980.0),
-        ks: Scaled::Absolute(36400.0 * 980.0),
-        damping: LinearDamping::Dashpots {
+    let spec = ContactSpec::linear(
+        Scaled::Absolute(36400.0 * 980.0),
+        Scaled::Absolute(36400.0 * 980.0),
+        LinearDamping::Dashpots {
             eta_n: Scaled::Absolute(0.0),
             eta_s: Scaled::Absolute(0.0),
         },
-        friction: 0.0,
-        normal_force: NormalForce::Area,
-        rolling: None,
-    };
+        0.0,
+    );
     let p16 = Shape::Polygon(Polygon::equal_area_ellipse(16, 1.5, 1.0, 0.0).unwrap());
     let hex = Shape::Polygon(Polygon::regular(6, 1.2, 0.0).unwrap());
     let dropped = |dt: f64, phase: f64| {

@@ -103,7 +103,7 @@ fn library_round_trip(threads: usize) {
         let active: Vec<_> = state.slots.iter().filter(|s| s.slot.active).collect();
         assert!(active.len() > 20, "a heap of contacts: {}", active.len());
         assert!(active.iter().any(|s| s.slot.shear != 0.0), "shear springs");
-        assert!(active.iter().any(|s| s.rolling != 0.0), "rolling springs");
+        assert!(active.iter().any(|s| s.more[0] != 0.0), "rolling springs");
         assert!(active.iter().any(|s| !s.cache.is_empty()), "warm starts");
         assert!(
             active
@@ -400,7 +400,7 @@ fn extreme_numbers_read_back_as_the_same_bits() {
     let k = state.slots.iter().position(|s| s.slot.active).unwrap();
     state.slots[k].slot.shear = -1e-320;
     state.slots[k].slot.history_energy = 1e300;
-    state.slots[k].rolling = -0.0;
+    state.slots[k].more[0] = -0.0;
     state.slots[k].data.couple = 0.1 + 0.2;
     state.slots[k].cache =
         dem2d::narrow_phase::PairCache::from_saved([-0.0, f32::from_bits(1), f32::MAX, f32::NAN]);
@@ -427,7 +427,7 @@ fn extreme_numbers_read_back_as_the_same_bits() {
     assert_eq!(read.run.as_ref(), Some(&run));
     // Bit for bit where Debug could hide it.
     assert_eq!(back.bodies[0].velocity.x.to_bits(), (-0.0f64).to_bits());
-    assert_eq!(back.slots[k].rolling.to_bits(), (-0.0f64).to_bits());
+    assert_eq!(back.slots[k].more[0].to_bits(), (-0.0f64).to_bits());
     let warm = back.slots[k].cache.saved();
     assert_eq!(warm[0].to_bits(), (-0.0f32).to_bits());
     assert_eq!(warm[1].to_bits(), 1);

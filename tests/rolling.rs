@@ -24,14 +24,14 @@ const G: f64 = 980.0;
 const KN: f64 = 36400.0 * G; // P's stiffness, ρ = 1
 
 fn spec(friction: f64, rolling: Option<RollingPart>, damping: LinearDamping) -> ContactSpec {
-    ContactSpec::Linear {
-        kn: Scaled::Absolute(KN),
-        ks: Scaled::Absolute(KN),
+    ContactSpec::linear(
+        Scaled::Absolute(KN),
+        Scaled::Absolute(KN),
         damping,
         friction,
-        normal_force: NormalForce::Depth,
-        rolling,
-    }
+    )
+    .with_normal_force(NormalForce::Depth)
+    .with_rolling(rolling)
 }
 
 fn rolling(model: RollingModel, mu_r: f64) -> Option<RollingPart> {
@@ -232,7 +232,7 @@ fn the_energy_account_closes_with_rolling_resistance() {
             worst = worst.max((w.energies.total() - e0).abs());
             most_stored = most_stored.max(w.contacts.slots[0].history_energy);
             assert!(
-                w.contacts.rolling_moment(0).abs() < 0.5 * PI * G,
+                w.contacts.history_of(0).0[1].abs() < 0.5 * PI * G,
                 "below the cap"
             );
         })
@@ -331,7 +331,9 @@ fn the_thrown_circle_and_ellipse_of_p_fig_3_come_to_rest_with_rolling_resistance
         let case = dem2d::scene::Case::from_json(&text).unwrap();
         let (_, never) = rest_time(&case, case.duration);
         assert_eq!(never, None, "{name} without rolling resistance");
-        let rolling = case.clone().with_rolling(rolling(RollingModel::Epsd, 0.05));
+        let rolling = case
+            .clone()
+            .map_contacts(|c| c.with_rolling(rolling(RollingModel::Epsd, 0.05)));
         let (w, at) = rest_time(&rolling, case.duration);
         eprintln!(
             "{name}, EPSD μ_r = 0.05: at rest at t = {at:?} s, x = {:.2} cm",
@@ -356,7 +358,14 @@ fn the_angle_of_repose_of_a_heap_rises_with_rolling_friction() {
     let bodies = column.lattice_bodies();
     let mut angles = Vec::new();
     for mu_r in [0.0, 0.1, 0.3] {
-        let text = column.case_json("repose", &bodies, 100.0, rolling(RollingModel::Epsd, mu_r));
+        let r = rolling(RollingModel::Epsd, mu_r);
+        let text = column.case_json(
+            "repose",
+            &bodies,
+            100.0,
+            &r.map_or(vec![], |r| r.given()),
+            "Rolling resistance: EPSD.",
+        );
         let case = dem2d::scene::Case::from_json(&text).unwrap();
         let (w, at) = rest_time(&case, 2.5);
         let (angle, h, toe) = heap_surface(&w, 2.0);

@@ -12,20 +12,19 @@ use std::fmt::Write as _;
 
 /// A linear law with stiffness `kn`, restitution `e` (None: undamped) and no friction.
 fn linear(kn: f64, e: Option<f64>, nf: NormalForce) -> ContactSpec {
-    ContactSpec::Linear {
-        kn: Scaled::Absolute(kn),
-        ks: Scaled::Absolute(kn),
-        damping: match e {
+    ContactSpec::linear(
+        Scaled::Absolute(kn),
+        Scaled::Absolute(kn),
+        match e {
             Some(e) => LinearDamping::Restitution(e),
             None => LinearDamping::Dashpots {
                 eta_n: Scaled::Absolute(0.0),
                 eta_s: Scaled::Absolute(0.0),
             },
         },
-        friction: 0.0,
-        normal_force: nf,
-        rolling: None,
-    }
+        0.0,
+    )
+    .with_normal_force(nf)
 }
 
 fn body(shape: Shape, x: Vec2, angle: f64, v: Vec2, omega: f64) -> BodyInit {
@@ -162,14 +161,7 @@ pub fn force_overlap_table() -> String {
 /// Rebound speed over impact speed of a body thrown at a floor (no gravity, no rotation).
 fn rebound(shape: Shape, angle: f64, nf: NormalForce, e: f64, hertz: bool) -> f64 {
     let spec = if hertz {
-        ContactSpec::HertzMindlin {
-            young: 1e8,
-            poisson: 0.3,
-            restitution: e,
-            friction: 0.0,
-            normal_force: nf,
-            rolling: None,
-        }
+        ContactSpec::hertz_mindlin(1e8, 0.3, e, 0.0).with_normal_force(nf)
     } else {
         linear(36400.0 * 980.0, Some(e), nf)
     };

@@ -764,14 +764,13 @@ fn speed_vs_error(opts: &FigureOptions) -> Result<SpeedVsError, ReportError> {
     // impact).
     let (drop, _) = load_case(&opts.cases.join("drop_rebound_mu05.json"))?;
     let mut elastic = drop.clone();
-    elastic.contact = dem2d::contact_law::ContactSpec::Linear {
-        kn: dem2d::contact_law::Scaled::OverRhoG(36400.0),
-        ks: dem2d::contact_law::Scaled::OverRhoG(36400.0),
-        damping: dem2d::contact_law::LinearDamping::Restitution(1.0),
-        friction: 0.0,
-        normal_force: drop.contact.normal_force(),
-        rolling: None,
-    };
+    elastic.contact = dem2d::contact_law::ContactSpec::linear(
+        dem2d::contact_law::Scaled::OverRhoG(36400.0),
+        dem2d::contact_law::Scaled::OverRhoG(36400.0),
+        dem2d::contact_law::LinearDamping::Restitution(1.0),
+        0.0,
+    )
+    .with_normal_force(drop.contact.normal_force());
     for w in &mut elastic.walls {
         w.spec = elastic.contact;
     }

@@ -1,15 +1,138 @@
 //! The damping part of a contact law: the normal and shear dashpots, given or derived from a
-//! coefficient of restitution (T12, T14).
+//! coefficient of restitution (T12, T14). As a case gives it ([`DampingSpec`]: `eta_n`, `eta_s`
+//! absolute or per ρg, or `restitution`), and resolved for a pair ([`DampingPart`]).
 
-use super::normal::NormalSpring;
+use super::keys::{Check, Keys, ParamError};
+use super::normal::{NormalSpec, NormalSpring, SpringSpec};
+use super::params::Scaled;
+
+/// How a linear contact is damped.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LinearDamping {
+    /// Given dashpots.
+    Dashpots { eta_n: Scaled, eta_s: Scaled },
+    /// From a coefficient of restitution: `η_n = 2α√(m* k_n)` (T12), `η_s = η_n`.
+    Restitution(f64),
+}
+
+/// The damping part as a case gives it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum DampingSpec {
+    /// With the linear spring.
+    Linear(LinearDamping),
+    /// With the Hertz spring: from a coefficient of restitution (T14).
+    Hertz { restitution: f64 },
+}
+
+impl DampingSpec {
+    /// The keys this part reads.
+    pub const KEYS: &[&str] = &[
+        "eta_n",
+        "eta_n_over_rho_g",
+        "eta_s",
+        "eta_s_over_rho_g",
+        "restitution",
+    ];
+
+    /// The inherited keys a wall's override `key` replaces (see
+    /// [`super::ContactSpec::replaced_by`]): dashpots and a restitution are one choice.
+    pub fn replaced_by(key: &str) -> &'static [&'static str] {
+        if Self::KEYS.contains(&key) {
+            Self::KEYS
+        } else {
+            &[]
+        }
+    }
+
+    /// Reads the dashpots or the restitution for the normal spring `normal`.
+    pub fn parse(k: &impl Keys, normal: &NormalSpec) -> Result<Self, ParamError> {
+        let restitution = |required: bool| -> Result<Option<f64>, ParamError> {
+            match k.number("restitution", Check::Positive)? {
+                Some(e) if e > 1.0 => {
+                    Err(k.error("restitution", format!("must be in (0, 1], got {e}")))
+                }
+                None if required => Err(k.missing("restitution", "is missing".into())),
+                e => Ok(e),
+            }
+        };
+        match normal.spring {
+            SpringSpec::Linear { .. } => {
+                let eta_n = k.scaled("eta_n", "eta_n_over_rho_g", Check::NonNegative)?;
+                let eta_s = k.scaled("eta_s", "eta_s_over_rho_g", Check::NonNegative)?;
+                let damping = match (eta_n, restitution(false)?) {
+                    (Some(_), Some(_)) => {
+                        return Err(k.error(
+                            "restitution",
+                            "give dashpots (`eta_n…`) or `restitution`, not both".into(),
+                        ));
+                    }
+                    (Some(eta_n), None) => LinearDamping::Dashpots {
+                        eta_n,
+                        eta_s: eta_s.unwrap_or(eta_n),
+                    },
+                    (None, Some(e)) => {
+                        if eta_s.is_some() {
+                            return Err(k.error(
+                                "eta_s",
+                                "with `restitution`, η_s = η_n (T); do not give `eta_s`".into(),
+                            ));
+                        }
+                        LinearDamping::Restitution(e)
+                    }
+                    (None, None) => {
+                        return Err(k.missing(
+                            "eta_n_over_rho_g",
+                            "is missing (or give `eta_n` or `restitution`)".into(),
+                        ));
+                    }
+                };
+                Ok(DampingSpec::Linear(damping))
+            }
+            SpringSpec::Hertz { .. } => {
+                k.refuse(
+                    &["eta_n", "eta_n_over_rho_g", "eta_s", "eta_s_over_rho_g"],
+                    normal.model(),
+                )?;
+                Ok(DampingSpec::Hertz {
+                    restitution: restitution(true)?.expect("required"),
+                })
+            }
+        }
+    }
+
+    /// The dashpots for a pair of density `rho` under |g| `g`.
+    pub fn resolve(&self, rho: f64, g: f64) -> DampingPart {
+        match *self {
+            DampingSpec::Linear(LinearDamping::Dashpots { eta_n, eta_s }) => {
+                DampingPart::Dashpots {
+                    eta_n: eta_n.value(rho, g),
+                    eta_s: eta_s.value(rho, g),
+                }
+            }
+            DampingSpec::Linear(LinearDamping::Restitution(e)) => DampingPart::Restitution {
+                alpha: damping_ratio_linear(e),
+            },
+            DampingSpec::Hertz { restitution } => DampingPart::Hertz {
+                beta: damping_factor_hertz(restitution),
+            },
+        }
+    }
+
+    /// True when the dashpots depend on the pair's effective mass (restitution-tuned linear
+    /// dashpots), so that the law cannot be resolved once for every pair.
+    pub fn depends_on_mass(&self) -> bool {
+        matches!(self, DampingSpec::Linear(LinearDamping::Restitution(_)))
+    }
+}
 
 /// The dashpots of a contact, resolved for one pair.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum DampingPart {
-    /// Constant dashpots `η_n`, `η_s`: given, or from a restitution coefficient for the linear
-    /// spring, `η_n = η_s = 2α√(m* k_n)` with α of T12 (resolved once per pair: k_n is
-    /// constant).
+    /// Constant dashpots `η_n`, `η_s`.
     Dashpots { eta_n: f64, eta_s: f64 },
+    /// From a restitution coefficient for the linear spring: `η_n = η_s = 2α√(m* k_n)` with α
+    /// of T12.
+    Restitution { alpha: f64 },
     /// Hertz: `η_n = β √(m* k_n)` with the current `k_n` (T14), `η_t = η_n`.
     Hertz { beta: f64 },
 }
@@ -20,6 +143,7 @@ impl DampingPart {
     pub fn normal(&self, s: &NormalSpring, m_eff: f64) -> f64 {
         match *self {
             DampingPart::Dashpots { eta_n, .. } => eta_n,
+            DampingPart::Restitution { alpha } => restitution_dashpot(alpha, m_eff, s.k),
             DampingPart::Hertz { beta } => hertz_dashpot(beta, m_eff, s.k),
         }
     }
@@ -29,16 +153,20 @@ impl DampingPart {
     pub fn tangential(&self, eta_n: f64) -> f64 {
         match *self {
             DampingPart::Dashpots { eta_s, .. } => eta_s,
-            DampingPart::Hertz { .. } => eta_n, // η_t = η_n (T)
+            DampingPart::Restitution { .. } => eta_n, // η_s = η_n (T)
+            DampingPart::Hertz { .. } => eta_n,       // η_t = η_n (T)
         }
     }
 
-    /// The damping ratio of the normal mode, `ζ = η_n / (2√(m* k_n))`: the rolling dashpot takes
-    /// it when none is given (see [`super::rolling`]).
+    /// The damping ratio of the normal mode, `ζ = η_n / (2√(m* k_n))`: other parts' dashpots
+    /// take it when none is given.
     #[inline]
     pub fn ratio(&self, s: &NormalSpring, m_eff: f64) -> f64 {
         match *self {
             DampingPart::Dashpots { eta_n, .. } => eta_n / (2.0 * (m_eff * s.k).sqrt()),
+            DampingPart::Restitution { alpha } => {
+                restitution_dashpot(alpha, m_eff, s.k) / (2.0 * (m_eff * s.k).sqrt())
+            }
             DampingPart::Hertz { beta } => 0.5 * beta,
         }
     }
@@ -51,6 +179,13 @@ impl DampingPart {
 #[inline(never)]
 fn hertz_dashpot(beta: f64, m_eff: f64, k: f64) -> f64 {
     beta * (m_eff * k).sqrt() // T(14)
+}
+
+/// T12's linear dashpot `η_n = 2α√(m* k_n)`, out of line for the same reason as
+/// [`hertz_dashpot`].
+#[inline(never)]
+fn restitution_dashpot(alpha: f64, m_eff: f64, k: f64) -> f64 {
+    2.0 * alpha * (m_eff * k).sqrt() // T(12)
 }
 
 /// α of T12: the damping ratio that gives restitution `e` for a linear spring–dashpot,

@@ -12,10 +12,15 @@
 //! - [`tangential`]: the shear spring and Coulomb's slider, written once for every spring;
 //! - [`rolling`] (optional): the rolling-resistance couple (Ai et al. 2011's CDT or EPSD).
 //!
-//! A case still names a model (`linear`, `hertz_mindlin`) with its parameters, plus the
-//! optional rolling keys; [`params`] reads nothing, it resolves a pair's parameters into the
-//! parts once ([`ContactSpec::resolve`]). Adding a part touches its file, its parameter parsing
-//! (`scene::case`) and [`Law::force`], the one place where the parts are registered.
+//! Each part owns its parameters and its per-contact history, as LAMMPS's granular sub-models
+//! do: it reads its own keys from the case's contact object through [`Keys`] (the core never
+//! sees JSON: the scene implements it), resolves them for a pair, and declares the history
+//! values its contacts carry (their names in a restart file). This file is the one place where
+//! the parts are registered: [`ContactSpec`] (the parts as given, [`ContactSpec::parse`],
+//! [`ContactSpec::resolve`], [`ContactSpec::keys`]), [`Law`] and [`Law::force`] (the parts in
+//! order), and the history's layout ([`History`]). Adding a part touches its file and this one.
+//! A case names a model (`linear`, `hertz_mindlin`: the normal part's key, which the damping
+//! and tangential parts follow) with its parameters, plus the optional rolling keys.
 //!
 //! Conventions: `n` points from i to j; `t = (−n_y, n_x)` (n turned a quarter counter-clockwise);
 //! the relative velocity is that of j's material point minus i's, at the contact point, with
@@ -45,41 +50,24 @@
 //!   depth). See [`EquivalentOverlap`] for two flat faces.
 
 pub mod damping;
+pub mod keys;
 pub mod normal;
 pub mod overlap;
 pub mod params;
 pub mod rolling;
 pub mod tangential;
 
-pub use damping::{DampingPart, damping_factor_hertz, damping_ratio_linear};
-pub use normal::{NormalPart, NormalSpring};
+pub use damping::{
+    DampingPart, DampingSpec, LinearDamping, damping_factor_hertz, damping_ratio_linear,
+};
+pub use keys::{Check, Given, Keys, ParamError};
+pub use normal::{NormalForce, NormalPart, NormalSpec, NormalSpring, SpringSpec};
 pub use overlap::{PairFacts, SpringOn};
-pub use params::{ContactSpec, LinearDamping, Scaled};
+pub use params::Scaled;
 pub use rolling::{RollingKinematics, RollingModel, RollingPart};
-pub use tangential::{ShearStiffness, TangentialPart};
+pub use tangential::{ShearSpec, ShearStiffness, TangentialPart, TangentialSpec};
 
 use crate::geometry::overlap_area::DiskLens;
-
-/// What the normal spring acts on (a case's `contact.normal_force`); see the module
-/// documentation.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum NormalForce {
-    /// P's spring on the depth δ (kept to reproduce P; not conservative for non-circular bodies).
-    Depth,
-    /// The overlap-area potential `W(A)`: conservative for every pair.
-    #[default]
-    Area,
-}
-
-impl NormalForce {
-    /// The name used in case files.
-    pub fn as_str(&self) -> &'static str {
-        match self {
-            NormalForce::Depth => "depth",
-            NormalForce::Area => "area",
-        }
-    }
-}
 
 /// How an overlap area A maps to the overlap the spring acts on, `δ_eq(A)`, and its
 /// compliance `dδ_eq/dA = 1/L_eq`.
@@ -216,16 +204,34 @@ impl Kinematics {
     }
 }
 
-/// The per-contact state carried from step to step while the contact lasts (T16): the shear
-/// spring's elongation along the current tangent `t`, and the rolling spring's moment. In 2D the
-/// tangent plane is a line, so a scalar along `t` is the displacement "kept in the current
-/// tangent direction as the contact rotates". Dropped when the contact ends.
+/// Where each part's history values sit in a contact's [`History`]: the tangential part's first,
+/// then the rolling part's (each part declares how many, and their names: `HISTORY`).
+const AT_TANGENTIAL: usize = 0;
+const AT_ROLLING: usize = AT_TANGENTIAL + TangentialPart::HISTORY.len();
+
+/// How many history values a contact can carry: every part's.
+pub const HISTORY_LEN: usize = AT_ROLLING + RollingPart::HISTORY.len();
+
+/// The per-contact state carried from step to step while the contact lasts (T16), every part's
+/// values at its place (dropped when the contact ends): the shear spring's elongation along the
+/// current tangent `t` (in 2D the tangent plane is a line, so a scalar along `t` is the
+/// displacement "kept in the current tangent direction as the contact rotates"), then EPSD's
+/// rolling spring moment.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct History {
-    /// Shear spring elongation δ_t along `t` (T16).
-    pub shear: f64,
-    /// EPSD's rolling spring moment `M_k` on j (Ai et al. 2011, type C); 0 for other laws.
-    pub rolling: f64,
+pub struct History(pub [f64; HISTORY_LEN]);
+
+/// How many leading [`History`] values a law with these parts keeps: the tangential part's
+/// always (the slot holds it), the rolling part's where it keeps a spring.
+fn history_kept(rolling: Option<RollingPart>) -> usize {
+    match rolling {
+        Some(r) if r.keeps_history() => HISTORY_LEN,
+        Some(_) | None => AT_ROLLING,
+    }
+}
+
+impl History {
+    /// The name of each value, as a restart file writes it.
+    pub const NAMES: [&str; HISTORY_LEN] = [TangentialPart::HISTORY[0], RollingPart::HISTORY[0]];
 }
 
 /// Force on j (components along n and t), the elastic energy stored in the contact and its
@@ -263,6 +269,152 @@ pub struct ContactForce {
     pub couple_non_elastic: f64,
 }
 
+/// A contact law as a case gives it: its parts' parameters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactSpec {
+    pub normal: NormalSpec,
+    pub damping: DampingSpec,
+    pub tangential: TangentialSpec,
+    pub rolling: Option<RollingPart>,
+}
+
+impl ContactSpec {
+    /// Every key of a contact object, each part's.
+    pub fn keys() -> impl Iterator<Item = &'static str> {
+        [
+            NormalSpec::KEYS,
+            DampingSpec::KEYS,
+            TangentialSpec::KEYS,
+            RollingPart::KEYS,
+        ]
+        .into_iter()
+        .flatten()
+        .copied()
+    }
+
+    /// The keys a wall's override `key` replaces in the scene's contact object it inherits:
+    /// every key for `model` (a wall naming a model starts afresh), else each part's rule (the
+    /// keys that give the same parameter another way, and what depends on the key).
+    pub fn replaced_by(key: &str) -> Vec<&'static str> {
+        if key == "model" {
+            return Self::keys().collect();
+        }
+        [
+            NormalSpec::replaced_by(key),
+            DampingSpec::replaced_by(key),
+            TangentialSpec::replaced_by(key),
+            RollingPart::replaced_by(key),
+        ]
+        .into_iter()
+        .flatten()
+        .copied()
+        .collect()
+    }
+
+    /// Every part read from a contact object (the normal part first: the damping and the
+    /// tangential part follow its model).
+    pub fn parse(k: &impl Keys) -> Result<Self, ParamError> {
+        let normal = NormalSpec::parse(k)?;
+        let tangential = TangentialSpec::parse(k, &normal)?;
+        let rolling = RollingPart::parse(k)?;
+        let damping = DampingSpec::parse(k, &normal)?;
+        Ok(ContactSpec {
+            normal,
+            damping,
+            tangential,
+            rolling,
+        })
+    }
+
+    /// P's linear spring–dashpot with Coulomb friction (`"model": "linear"`), under the area
+    /// law and without rolling resistance.
+    pub fn linear(kn: Scaled, ks: Scaled, damping: LinearDamping, friction: f64) -> Self {
+        ContactSpec {
+            normal: NormalSpec {
+                spring: SpringSpec::Linear { kn },
+                normal_force: NormalForce::default(),
+            },
+            damping: DampingSpec::Linear(damping),
+            tangential: TangentialSpec {
+                stiffness: ShearSpec::Constant(ks),
+                friction,
+            },
+            rolling: None,
+        }
+    }
+
+    /// Hertz–Mindlin (`"model": "hertz_mindlin"`; T10–T19), under the area law and without
+    /// rolling resistance.
+    pub fn hertz_mindlin(young: f64, poisson: f64, restitution: f64, friction: f64) -> Self {
+        ContactSpec {
+            normal: NormalSpec {
+                spring: SpringSpec::Hertz { young, poisson },
+                normal_force: NormalForce::default(),
+            },
+            damping: DampingSpec::Hertz { restitution },
+            tangential: TangentialSpec {
+                stiffness: ShearSpec::Mindlin,
+                friction,
+            },
+            rolling: None,
+        }
+    }
+
+    /// What the normal spring acts on.
+    pub fn normal_force(&self) -> NormalForce {
+        self.normal.normal_force
+    }
+
+    /// The same spec with the normal spring acting on `normal_force`.
+    pub fn with_normal_force(mut self, normal_force: NormalForce) -> Self {
+        self.normal.normal_force = normal_force;
+        self
+    }
+
+    /// Rolling resistance, if any.
+    pub fn rolling(&self) -> Option<RollingPart> {
+        self.rolling
+    }
+
+    /// The same spec with rolling resistance `rolling`.
+    pub fn with_rolling(mut self, rolling: Option<RollingPart>) -> Self {
+        self.rolling = rolling;
+        self
+    }
+
+    /// Coulomb friction coefficient.
+    pub fn friction(&self) -> f64 {
+        self.tangential.friction
+    }
+
+    /// How many of the [`History`] values the contacts of this law carry (the leading ones;
+    /// the parts' after the last that keeps any are left out).
+    pub fn history_kept(&self) -> usize {
+        history_kept(self.rolling)
+    }
+
+    /// The law for a pair: `self` is the spec that governs the pair (a wall's own, when it
+    /// overrides), `other_material` the spec of the other side's material (Hertz–Mindlin mixes
+    /// the two materials, T11, T19); `rho` the pair's density, `g` = |gravity|. (The effective
+    /// mass is not needed here: a dashpot that depends on it reads it at each contact.)
+    pub fn resolve(&self, other_material: &ContactSpec, rho: f64, g: f64) -> Law {
+        Law {
+            normal: self.normal.resolve(&other_material.normal, rho, g),
+            damping: self.damping.resolve(rho, g),
+            tangential: self
+                .tangential
+                .resolve(&self.normal, &other_material.normal, rho, g),
+            rolling: self.rolling,
+        }
+    }
+
+    /// True when the resolved law's dashpots depend on the pair's effective mass
+    /// (restitution-tuned linear dashpots).
+    pub fn depends_on_mass(&self) -> bool {
+        self.damping.depends_on_mass()
+    }
+}
+
 /// A contact law with its parameters resolved for one pair: the parts it is composed of.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Law {
@@ -298,7 +450,7 @@ impl Law {
     #[inline(always)]
     pub fn needs(&self) -> Needs {
         Needs {
-            m_eff: matches!(self.damping, DampingPart::Hertz { .. }) || self.rolling.is_some(),
+            m_eff: !matches!(self.damping, DampingPart::Dashpots { .. }) || self.rolling.is_some(),
             r_eff: matches!(self.normal, NormalPart::Hertz { .. }),
             rolling: self.rolling.is_some(),
         }
@@ -336,11 +488,18 @@ impl Law {
         };
         if self.tangential.friction > 0.0 || self.rolling.is_some() {
             let kt = self.tangential.stiffness(&s);
-            self.tangential
-                .apply(kt, self.damping.tangential(eta_n), k.vt, k.dt, h, &mut out);
+            let (tangential, rolling) = h.0.split_at_mut(AT_ROLLING);
+            self.tangential.apply(
+                kt,
+                self.damping.tangential(eta_n),
+                k.vt,
+                k.dt,
+                &mut tangential[AT_TANGENTIAL..],
+                &mut out,
+            );
             if let Some(r) = &self.rolling {
                 let zeta = self.damping.ratio(&s, k.m_eff);
-                r.apply(&k.rolling, k.spin, kt, zeta, k.dt, h, &mut out);
+                r.apply(&k.rolling, k.spin, kt, zeta, k.dt, rolling, &mut out);
             }
         }
         out
@@ -372,6 +531,12 @@ impl Law {
     /// Coulomb friction coefficient μ.
     pub fn friction(&self) -> f64 {
         self.tangential.friction
+    }
+
+    /// How many of the [`History`] values its contacts carry (see
+    /// [`ContactSpec::history_kept`]).
+    pub fn history_kept(&self) -> usize {
+        history_kept(self.rolling)
     }
 }
 

@@ -36,7 +36,8 @@
 //! The **rolling radius** `R_r` and the **rolling inertia** `I_r` come from the kinematics
 //! ([`RollingKinematics`]); see `dynamics::kinematics` for dem2d's choice for non-round bodies.
 
-use super::{ContactForce, History};
+use super::ContactForce;
+use super::keys::{Check, Given, Keys, ParamError};
 
 /// Which rolling-resistance model (a case's `rolling_model`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -80,6 +81,98 @@ pub struct RollingKinematics {
 }
 
 impl RollingPart {
+    /// The keys this part reads.
+    pub const KEYS: &[&str] = &["rolling_model", "rolling_friction", "rolling_damping"];
+
+    /// Its per-contact history: EPSD's rolling spring moment `M_k` on j (none for CDT: see
+    /// [`RollingPart::keeps_history`]).
+    pub const HISTORY: &[&str] = &["rolling"];
+
+    /// Whether its contacts carry [`RollingPart::HISTORY`] (EPSD's spring; CDT has no state).
+    pub fn keeps_history(&self) -> bool {
+        self.model == RollingModel::Epsd
+    }
+
+    /// The inherited keys a wall's override `key` replaces (see
+    /// [`super::ContactSpec::replaced_by`]): another rolling model does not inherit the scene's
+    /// model's damping.
+    pub fn replaced_by(key: &str) -> &'static [&'static str] {
+        match key {
+            "rolling_model" => &["rolling_damping"],
+            _ => &[],
+        }
+    }
+
+    /// Reads `rolling_model` (`cdt` or `epsd`) with `rolling_friction` μ_r ≥ 0, and for EPSD an
+    /// optional `rolling_damping` η_r ≥ 0. `None` when not given, or when μ_r = 0 (no couple at
+    /// all).
+    pub fn parse(k: &impl Keys) -> Result<Option<Self>, ParamError> {
+        let Some(model) = k.string("rolling_model")? else {
+            for key in ["rolling_friction", "rolling_damping"] {
+                if k.has(key) {
+                    return Err(k.error(key, "needs `rolling_model` (`cdt` or `epsd`)".into()));
+                }
+            }
+            return Ok(None);
+        };
+        let model = match model.as_str() {
+            "cdt" => RollingModel::Cdt,
+            "epsd" => RollingModel::Epsd,
+            other => {
+                return Err(k.error(
+                    "rolling_model",
+                    format!("unknown rolling model `{other}` (expected `cdt` or `epsd`)"),
+                ));
+            }
+        };
+        let friction = k
+            .number("rolling_friction", Check::NonNegative)?
+            .ok_or_else(|| {
+                k.missing(
+                "rolling_friction",
+                "is missing (the coefficient of rolling friction μ_r that `rolling_model` needs)"
+                    .into(),
+            )
+            })?;
+        let damping = match model {
+            RollingModel::Cdt if k.has("rolling_damping") => {
+                return Err(k.error(
+                    "rolling_damping",
+                    "is not a parameter of the `cdt` rolling model (only `epsd` has a rolling \
+                     dashpot)"
+                        .into(),
+                ));
+            }
+            RollingModel::Cdt => None,
+            RollingModel::Epsd => k.number("rolling_damping", Check::NonNegative)?,
+        };
+        if friction == 0.0 {
+            return Ok(None);
+        }
+        Ok(Some(RollingPart {
+            model,
+            friction,
+            damping,
+        }))
+    }
+
+    /// Its keys as a case file gives them (what [`RollingPart::parse`] reads back).
+    pub fn given(&self) -> Vec<(&'static str, Given)> {
+        let mut keys = vec![
+            ("rolling_model", Given::Text(self.model.as_str())),
+            ("rolling_friction", Given::Number(self.friction)),
+        ];
+        if let Some(d) = self.damping {
+            keys.push(("rolling_damping", Given::Number(d)));
+        }
+        keys
+    }
+
+    /// A line for a case's description: the model and μ_r.
+    pub fn describe(&self) -> String {
+        format!("{} with μ_r = {}", self.model.as_str(), self.friction)
+    }
+
     /// Adds the rolling couple to `out` (whose `normal` is set): on j (its opposite on i) for the
     /// relative spin `spin = ω_j − ω_i`, with the shear stiffness `kt` (EPSD's `k_r = k_t R_r²`),
     /// the normal mode's damping ratio `zeta_n` (EPSD's default) and the step `dt` (the
@@ -95,7 +188,7 @@ impl RollingPart {
         kt: f64,
         zeta_n: f64,
         dt: f64,
-        h: &mut History,
+        h: &mut [f64],
         out: &mut ContactForce,
     ) {
         let limit = self.friction * rk.radius * out.normal; // Ai et al.: M_r = μ_r R_r F_n
@@ -117,13 +210,13 @@ impl RollingPart {
             RollingModel::Epsd => {
                 let kr = kt * rk.radius * rk.radius; // Iwashita & Oda: k_r = k_t R_r²
                 let energy = |m: f64| if kr > 0.0 { 0.5 * m * m / kr } else { 0.0 };
-                let before = energy(h.rolling);
-                let mut m = h.rolling - kr * spin * dt;
+                let before = energy(h[0]);
+                let mut m = h[0] - kr * spin * dt;
                 let full = m.abs() > limit;
                 if full {
                     m = limit.copysign(m);
                 }
-                h.rolling = m;
+                h[0] = m;
                 let zeta = self.damping.unwrap_or(zeta_n);
                 let cr = zeta * 2.0 * (rk.inertia * kr).sqrt();
                 let damper = if full { 0.0 } else { -cr * spin };

@@ -7,7 +7,7 @@
 //!    the giver as i and the receiver as j ([`Sides`]: the normal points from the giver to the
 //!    receiver, which gets +F).
 //! 2. **Kinematics** at the contact point ([`super::kinematics`]): the relative velocity and
-//!    spin, and what the law asks for ([`Law::needs`]): m*, R*, the rolling radius and inertias.
+//!    spin, and what else the law asks for ([`Law::needs`]).
 //! 3. **The law** ([`Law::force`]) with the slot's history.
 //! 4. **The record**: the slot's history, its [`ContactData`] (read by the force gather), the
 //!    wall's load, the pass's sums (contacts, elastic energy, the history springs' energy, the
@@ -17,8 +17,8 @@
 //! [`contact_slot`] is generic over where its geometry comes from ([`Geometry`]: the circle
 //! kernels on the bodies' radii in a scene of disks, a circle pair's lean contact computed ahead
 //! for the chunk, or the dispatcher with the slot's pair cache), over its laws ([`LawSource`]:
-//! all linear with constant dashpots — the law's kinds then known, so that m*, R* and the
-//! rolling kinematics are never computed — or resolved), and over whether the slot pairs two
+//! all linear with constant dashpots — the law's kinds then known, so that nothing it does not
+//! read is computed — or resolved), and over whether the slot pairs two
 //! bodies (`PAIR`: no wall branch left). Each combination the pass takes is a copy of the same
 //! source compiled for it: the same arithmetic, the same bits, in as few instructions as that
 //! scene allows (10⁴ disks: ~40 % fewer per slot than the general copy).
@@ -26,11 +26,11 @@
 use super::body::Bodies;
 use super::boundary::{Boundary, BoundaryKind, WallLoad};
 use super::contacts::{ContactData, ContactExtra, ContactList, Slot};
-use super::kinematics;
+use super::kinematics::{self, Contact};
 use super::members;
 use super::partner::{Partner, Sides};
-use crate::contact_law::{ContactSpec, History, Kinematics, Law, LinearDashpots, NormalForce};
-use crate::contact_law::{PairFacts, RollingKinematics, RollingModel, SpringOn};
+use crate::contact_law::{ContactSpec, History, Law, LinearDashpots, NormalForce};
+use crate::contact_law::{HISTORY_LEN, Needs, PairFacts, SpringOn};
 use crate::geometry::Vec2;
 use crate::geometry::overlap_area::DiskLens;
 use crate::narrow_phase::circle_circle::overlap_circle_circle;
@@ -58,7 +58,7 @@ pub(crate) struct SlotPartial {
     pub deep: u64,
     pub contained: u64,
     pub max_depth_ratio: f64,
-    /// Σ of the change of the history springs' energy (shear and rolling).
+    /// Σ of the change of the history springs' energy.
     pub history_energy_change: f64,
 }
 
@@ -115,8 +115,8 @@ pub(crate) struct ContactPass {
     /// Laws resolved once per step when every pair of a kind has the same (`[0]` body pairs,
     /// `[1 + w]` wall w).
     laws: Vec<Law>,
-    /// The same laws' numbers when every one is linear with constant dashpots and no rolling
-    /// part ([`LinearDashpots`]; empty otherwise): the slots then take the copies compiled for
+    /// The same laws' numbers when every one is linear with constant dashpots and nothing more
+    /// ([`LinearDashpots`]; empty otherwise): the slots then take the copies compiled for
     /// such laws.
     linear: Vec<LinearDashpots>,
 }
@@ -169,9 +169,9 @@ impl ContactPass {
         if spec.depends_on_mass() || walls.iter().any(|w| w.spec.depends_on_mass()) {
             return;
         }
-        self.laws.push(spec.resolve(spec, rho, g, f64::NAN));
+        self.laws.push(spec.resolve(spec, rho, g));
         for w in walls {
-            self.laws.push(w.spec.resolve(spec, rho, g, f64::NAN));
+            self.laws.push(w.spec.resolve(spec, rho, g));
         }
         for law in &self.laws {
             match LinearDashpots::of(law) {
@@ -202,10 +202,12 @@ impl ContactPass {
             slots,
             data,
             cache,
-            rolling,
+            history,
+            stride,
             adjacency_start,
             ..
         } = list;
+        let stride = *stride;
         let cx = PassContext {
             bodies,
             walls,
@@ -228,7 +230,7 @@ impl ContactPass {
             .zip(data.par_chunks_mut(SLOT_CHUNK))
             .zip(self.partials.par_iter_mut())
             .zip(self.wall_partials.par_chunks_mut(nw));
-        match (cache.is_empty(), rolling.is_empty()) {
+        match (cache.is_empty(), history.is_empty()) {
             (true, true) => chunks.for_each(|(((slots, data), part), loads)| {
                 *part = chunk.run(slots, data, loads, None, None)
             }),
@@ -237,16 +239,16 @@ impl ContactPass {
                     *part = chunk.run(slots, data, loads, Some(cache), None)
                 },
             ),
-            (true, false) => chunks.zip(rolling.par_chunks_mut(SLOT_CHUNK)).for_each(
-                |((((slots, data), part), loads), rolling)| {
-                    *part = chunk.run(slots, data, loads, None, Some(rolling))
-                },
-            ),
+            (true, false) => chunks
+                .zip(history.par_chunks_mut(SLOT_CHUNK * stride))
+                .for_each(|((((slots, data), part), loads), more)| {
+                    *part = chunk.run(slots, data, loads, None, Some((more, stride)))
+                }),
             (false, false) => chunks
                 .zip(cache.par_chunks_mut(SLOT_CHUNK))
-                .zip(rolling.par_chunks_mut(SLOT_CHUNK))
-                .for_each(|(((((slots, data), part), loads), cache), rolling)| {
-                    *part = chunk.run(slots, data, loads, Some(cache), Some(rolling))
+                .zip(history.par_chunks_mut(SLOT_CHUNK * stride))
+                .for_each(|(((((slots, data), part), loads), cache), more)| {
+                    *part = chunk.run(slots, data, loads, Some(cache), Some((more, stride)))
                 }),
         }
         let mut sum = SlotPartial::default();
@@ -281,10 +283,12 @@ impl ContactPass {
             slots,
             extra,
             cache,
-            rolling,
+            history,
+            stride,
             adjacency_start,
             ..
         } = list;
+        let stride = *stride;
         let cx = PassContext {
             bodies,
             walls,
@@ -294,7 +298,7 @@ impl ContactPass {
             adjacency_start,
         };
         let laws = Resolved((!self.laws.is_empty()).then_some(&self.laws[..]));
-        let (cache, rolling) = (&cache[..], &rolling[..]);
+        let (cache, history) = (&cache[..], &history[..]);
         slots
             .par_chunks(SLOT_CHUNK)
             .zip(extra.par_chunks_mut(SLOT_CHUNK))
@@ -308,11 +312,19 @@ impl ContactPass {
                     }
                     let (mut slot, mut data) = (*slot, ContactData::default());
                     let mut cache = cache.get(c * SLOT_CHUNK + k).copied();
-                    let mut rolling = rolling.get(c * SLOT_CHUNK + k).copied();
+                    let at = (c * SLOT_CHUNK + k) * stride;
+                    let mut more = [0.0; HISTORY_LEN];
+                    let more = match history.get(at..at + stride) {
+                        Some(h) if stride > 0 => {
+                            more[..stride].copy_from_slice(h);
+                            Some(&mut more[..stride])
+                        }
+                        _ => None,
+                    };
                     let to = SlotOut {
                         data: &mut data,
                         extra: Some(extra),
-                        rolling: rolling.as_mut(),
+                        history: more,
                     };
                     match lean_of(&slot, &cx) {
                         Some(l) => contact_slot::<_, _, false>(
@@ -388,15 +400,15 @@ struct Chunk<'a> {
 }
 
 impl Chunk<'_> {
-    /// The chunk's slots (with their pair caches and rolling springs when the scene keeps them);
-    /// returns its sums.
+    /// The chunk's slots (with their pair caches, and their further history values with their
+    /// number per slot, when the scene keeps them); returns its sums.
     fn run(
         &self,
         slots: &mut [Slot],
         data: &mut [ContactData],
         loads: &mut [WallLoad],
         mut cache: Option<&mut [PairCache]>,
-        mut rolling: Option<&mut [f64]>,
+        mut history: Option<(&mut [f64], usize)>,
     ) -> SlotPartial {
         let cx = self.cx;
         let mut p = SlotPartial::default();
@@ -446,8 +458,10 @@ impl Chunk<'_> {
             }
         }
         for (k, (slot, data)) in slots.iter_mut().zip(data).enumerate() {
-            // A linear law keeps no rolling spring.
-            let r = rolling.as_deref_mut().map(|r| &mut r[k]);
+            // (A linear law keeps no further history.)
+            let r = history
+                .as_mut()
+                .map(|(h, stride)| &mut h[k * *stride..(k + 1) * *stride]);
             let cache = cache.as_deref_mut().map(|c| &mut c[k]);
             let (resolved, to) = (self.resolved, SlotOut::data(data));
             match lean[k] {
@@ -456,7 +470,7 @@ impl Chunk<'_> {
                 }
                 Some(l) => contact_slot_apart::<_, _, false>(
                     slot,
-                    to.with_rolling(r),
+                    to.with_history(r),
                     Lean(l),
                     resolved,
                     cx,
@@ -465,7 +479,7 @@ impl Chunk<'_> {
                 ),
                 None if !is_linear => contact_slot_apart::<_, _, false>(
                     slot,
-                    to.with_rolling(r),
+                    to.with_history(r),
                     Dispatch(cache),
                     resolved,
                     cx,
@@ -498,11 +512,11 @@ impl Chunk<'_> {
 }
 
 /// Where a slot's contact goes: its data, its extras when asked (reports, the critical step),
-/// and its rolling spring when the scene keeps them.
+/// and its further history values when the scene keeps them.
 pub(crate) struct SlotOut<'a> {
     data: &'a mut ContactData,
     extra: Option<&'a mut ContactExtra>,
-    rolling: Option<&'a mut f64>,
+    history: Option<&'a mut [f64]>,
 }
 
 impl<'a> SlotOut<'a> {
@@ -511,13 +525,13 @@ impl<'a> SlotOut<'a> {
         SlotOut {
             data,
             extra: None,
-            rolling: None,
+            history: None,
         }
     }
 
     #[inline(always)]
-    fn with_rolling(self, rolling: Option<&'a mut f64>) -> Self {
-        SlotOut { rolling, ..self }
+    fn with_history(self, history: Option<&'a mut [f64]>) -> Self {
+        SlotOut { history, ..self }
     }
 }
 
@@ -659,9 +673,9 @@ impl PairFacts for Facts<'_> {
 
 /// The laws a slot's contact takes.
 pub(crate) trait LawSource: Copy {
-    /// Every law of the step is linear with constant dashpots and no rolling part
-    /// ([`LinearDashpots`]): the copy is compiled with the law's kinds known, reads no m*, R* or
-    /// rolling kinematics, keeps no rolling spring and fills no extras.
+    /// Every law of the step is linear with constant dashpots and nothing more
+    /// ([`LinearDashpots`]): the copy is compiled with the law's kinds known, reads nothing the
+    /// law does not need ([`Law::needs`]), keeps no further history and fills no extras.
     const LINEAR: bool;
     /// The law of the pair `sides` (`wall`: its wall) and the pair's m* where the law reads it
     /// (NaN otherwise).
@@ -699,7 +713,7 @@ impl LawSource for Resolved<'_> {
             None => {
                 let m = m_eff();
                 let rho = kinematics::density(cx.bodies, sides);
-                (cx.governing(sides).resolve(cx.spec, rho, cx.g, m), m)
+                (cx.governing(sides).resolve(cx.spec, rho, cx.g), m)
             }
         }
     }
@@ -741,7 +755,7 @@ fn contact_slot_apart<G: Geometry, L: LawSource, const PAIR: bool>(
 
 /// One slot's contact (see the module documentation): geometry, kinematics at the contact
 /// point, the law and the history; an inactive slot drops its history (the shear spring, and
-/// the rolling spring when the scene keeps them). `loads` (one per wall, or empty) receives the
+/// its further history values when the scene keeps them). `loads` (one per wall, or empty) receives the
 /// sums of each wall's contacts.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
@@ -754,14 +768,14 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool>(
     p: &mut SlotPartial,
     loads: &mut [WallLoad],
 ) {
-    // A linear law has no rolling spring and fills no extras: constants in its copies.
+    // A linear law keeps no further history and fills no extras: constants in its copies.
     let SlotOut {
         data,
         extra,
-        rolling: rolling_spring,
+        history: more,
     } = if L::LINEAR {
         SlotOut {
-            rolling: None,
+            history: None,
             extra: None,
             ..to
         }
@@ -780,8 +794,8 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool>(
                 p.lost_history += slot.history_energy;
             }
             *slot = Slot::with_sub(slot.i, slot.j, slot.sub);
-            if let Some(r) = rolling_spring {
-                *r = 0.0;
+            if let Some(r) = more {
+                r.fill(0.0);
             }
             *data = ContactData::default(); // zero forces: the gather adds them unconditionally
             if let Some(e) = extra {
@@ -797,49 +811,38 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool>(
     }
     let (point, n_) = spring.point_normal(geo_point, geo_normal);
     let t_ = Vec2::new(-n_.y, n_.x);
-    let rel = kinematics::relative(b, cx.walls, sides, point);
-    let vn = rel.velocity.dot(&n_);
     let (law, m_eff) = laws.law(sides, cx);
-    let needs = law.needs();
-    let r_eff = if !L::LINEAR && needs.r_eff {
-        kinematics::effective_radius_for(b, sides, n_, spring.lens())
+    // What the law reads beyond the overlap and the velocities: nothing for a linear law.
+    let needs = if L::LINEAR {
+        Needs::default()
     } else {
-        f64::NAN
+        law.needs()
     };
-    let (spring_depth, energy_depth) = spring.depths(depth);
-    let kin = Kinematics {
-        depth: spring_depth,
-        energy_depth,
-        vn,
-        vt: rel.velocity.dot(&t_),
-        m_eff,
-        r_eff,
-        dt: cx.dt,
-        area: spring.area_kinematics(vn, rel.spin),
-        spin: rel.spin,
-        rolling: if !L::LINEAR && needs.rolling {
-            kinematics::rolling(b, sides, point, n_, |k| {
-                cx.adjacency_start[k + 1] - cx.adjacency_start[k]
-            })
-        } else {
-            RollingKinematics {
-                radius: f64::NAN,
-                inertia: f64::NAN,
-                spin_inertia: f64::NAN,
-            }
+    let kin = kinematics::of_contact(
+        &Contact {
+            bodies: b,
+            walls: cx.walls,
+            sides,
+            point,
+            normal: n_,
+            depth,
+            spring: &spring,
         },
-    };
-    let mut history = if slot.active {
-        History {
-            shear: slot.shear,
-            rolling: rolling_spring.as_deref().copied().unwrap_or(0.0),
+        m_eff,
+        needs,
+        cx.dt,
+        |k| cx.adjacency_start[k + 1] - cx.adjacency_start[k],
+    );
+    let mut history = History::default();
+    if slot.active {
+        history.0[0] = slot.shear;
+        if let Some(r) = more.as_deref() {
+            history.0[1..1 + r.len()].copy_from_slice(r);
         }
-    } else {
-        History::default()
-    };
+    }
     debug_assert!(
-        rolling_spring.is_some() || law.rolling.is_none_or(|r| r.model == RollingModel::Cdt),
-        "an EPSD contact without a rolling spring slot"
+        law.history_kept() <= 1 + more.as_deref().map_or(0, <[f64]>::len),
+        "a contact whose law keeps more history than its slot has room for"
     );
     let cf = law.force(&kin, &mut history);
     let f = n_ * cf.normal + t_ * cf.tangential; // T(5): on the receiving body
@@ -871,11 +874,11 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool>(
         sub: slot.sub,
         active: true,
         state,
-        shear: history.shear,
+        shear: history.0[0],
         history_energy: cf.history_energy,
     };
-    if let Some(r) = rolling_spring {
-        *r = history.rolling;
+    if let Some(r) = more {
+        r.copy_from_slice(&history.0[1..1 + r.len()]);
     }
     *data = ContactData {
         point,

@@ -30,6 +30,7 @@
 //! can touch before the next build, however the bodies turn.
 
 use super::partner::{Partner, Sides};
+use crate::contact_law::History;
 use crate::geometry::Vec2;
 use crate::narrow_phase::{ContactState, PairCache};
 
@@ -63,11 +64,12 @@ pub struct Slot {
     pub active: bool,
     /// Geometry state (overlap, deep, contained, …).
     pub state: ContactState,
-    /// Shear spring elongation δ_t along the current tangent (T16), dropped when the contact
-    /// ends. (EPSD's rolling spring, the rest of the contact's history, is kept beside the
-    /// slots: [`ContactList::rolling_moment`].)
+    /// The contact's first history value ([`History`]: the tangential part's shear spring
+    /// elongation δ_t along the current tangent, T16), dropped when the contact ends. The rest
+    /// of the contact's history, where its law keeps any, is kept beside the slots
+    /// ([`ContactList::history_of`]).
     pub shear: f64,
-    /// Energy stored in the history springs, shear and rolling (lost when the contact opens).
+    /// Energy stored in the history springs (lost when the contact opens).
     pub history_energy: f64,
 }
 
@@ -166,7 +168,8 @@ pub struct ContactExtra {
     pub eta_n: f32,
     pub kt: f32,
     pub eta_t: f32,
-    /// Rolling spring and dashpot (EPSD; zero otherwise).
+    /// The spring and dashpot against the two bodies' relative rotation (zero for a law
+    /// without one).
     pub kr: f32,
     pub cr: f32,
 }
@@ -247,10 +250,14 @@ pub struct ContactList {
     /// there), or empty when no pair of the scene keeps anything ([`PairCache::kept_with`]): a
     /// disk pile neither stores nor streams them.
     pub(crate) cache: Vec<PairCache>,
-    /// Each slot's rolling spring moment (EPSD, Ai et al. 2011; same index) — contact history,
-    /// carried like the shear spring — or empty when no contact law of the scene has one (so
-    /// that the slots, streamed every step, stay 32 bytes).
-    pub(crate) rolling: Vec<f64>,
+    /// Each slot's further history values (beyond the first, which the slot holds), `stride`
+    /// per slot in slot order ([`History`]: the values the scene's laws keep,
+    /// [`crate::contact_law::ContactSpec::history_kept`]) — carried like the shear spring — or
+    /// empty when no law of the scene keeps more than one (so that the slots, streamed every
+    /// step, stay 32 bytes).
+    pub(crate) history: Vec<f64>,
+    /// Further history values per slot.
+    pub(crate) stride: usize,
     pub(crate) adjacency_fill: Vec<u32>,
 }
 
@@ -269,9 +276,13 @@ impl ContactList {
             })
     }
 
-    /// The rolling spring moment of slot `k` (0 without EPSD).
-    pub fn rolling_moment(&self, k: usize) -> f64 {
-        self.rolling.get(k).copied().unwrap_or(0.0)
+    /// Slot `k`'s whole history (zero where the scene's laws keep nothing).
+    pub fn history_of(&self, k: usize) -> History {
+        let mut h = History::default();
+        h.0[0] = self.slots[k].shear;
+        let more = &self.history[k * self.stride..(k + 1) * self.stride];
+        h.0[1..1 + more.len()].copy_from_slice(more);
+        h
     }
 
     /// Number of contacts this step.
@@ -285,13 +296,15 @@ impl ContactList {
     }
 
     /// Replaces the slots by `keys` (sorted, unique), carrying every continuing slot with its
-    /// history (and its pair cache when `cached`, its rolling spring when `rolling`); rebuilds
-    /// each body's adjacency for `n` bodies. Returns the history springs' energy
-    /// of contacts that were active but are no longer candidates (lost, as when a contact opens).
-    pub(crate) fn rebuild_from_keys(&mut self, n: usize, cached: bool, rolling: bool) -> f64 {
+    /// history (and its pair cache when `cached`, its further history values, `stride` of them
+    /// per slot); rebuilds each body's adjacency for `n` bodies. Returns the history springs'
+    /// energy of contacts that were active but are no longer candidates (lost, as when a contact
+    /// opens).
+    pub(crate) fn rebuild_from_keys(&mut self, n: usize, cached: bool, stride: usize) -> f64 {
         let (old_len, new_len) = (self.slots.len(), self.keys.len());
         let carry_cache = cached && self.cache.len() == old_len;
-        let carry_rolling = rolling && self.rolling.len() == old_len;
+        let carry_history =
+            stride > 0 && self.stride == stride && self.history.len() == old_len * stride;
         // The new list is the merge of the sorted keys with the old slots (sorted by key),
         // written over the old slots in place — no second list to carry them through (at 10⁴
         // ellipses that list and its caches held 146 of the 992 heap bytes per body) — once
@@ -327,8 +340,8 @@ impl ContactList {
         if carry_cache {
             shift_up(&mut self.cache, lead, total, PairCache::EMPTY);
         }
-        if carry_rolling {
-            shift_up(&mut self.rolling, lead, total, 0.0);
+        if carry_history {
+            shift_up(&mut self.history, lead * stride, total * stride, 0.0);
         }
         let mut old = 0;
         for (k, &(i, j, sub)) in self.keys.iter().enumerate() {
@@ -340,8 +353,9 @@ impl ContactList {
                 if carry_cache {
                     self.cache[k] = self.cache[lead + old];
                 }
-                if carry_rolling {
-                    self.rolling[k] = self.rolling[lead + old];
+                if carry_history {
+                    let from = (lead + old) * stride;
+                    self.history.copy_within(from..from + stride, k * stride);
                 }
                 old += 1;
             } else {
@@ -349,8 +363,8 @@ impl ContactList {
                 if carry_cache {
                     self.cache[k] = PairCache::EMPTY;
                 }
-                if carry_rolling {
-                    self.rolling[k] = 0.0;
+                if carry_history {
+                    self.history[k * stride..(k + 1) * stride].fill(0.0);
                 }
             }
         }
@@ -364,12 +378,13 @@ impl ContactList {
             reserve_for(&mut self.cache, new_len);
             self.cache.resize(new_len, PairCache::EMPTY);
         }
-        if !carry_rolling {
-            self.rolling.clear();
+        if !carry_history {
+            self.history.clear();
         }
-        if rolling {
-            reserve_for(&mut self.rolling, new_len);
-            self.rolling.resize(new_len, 0.0);
+        self.stride = stride;
+        if stride > 0 {
+            reserve_for(&mut self.history, new_len * stride);
+            self.history.resize(new_len * stride, 0.0);
         }
         // The data are recomputed from the slots every step: only their number changes.
         reserve_for(&mut self.data, self.slots.len());
@@ -454,7 +469,7 @@ mod tests {
     }
 
     /// The in-place merge against a map from key to old slot: every new key keeps its old
-    /// slot, pair cache and rolling spring when it had one and starts empty otherwise, and the
+    /// slot, pair cache and further history when it had one and starts empty otherwise, and the
     /// energy lost is that of the active old slots whose keys are gone — over lists that grow,
     /// shrink, and whose new keys come before, between and after the old ones.
     #[test]
@@ -472,14 +487,15 @@ mod tests {
                 s.shear = m as f64 + 0.5;
                 s.history_energy = (m + 1) as f64; // small integers: every sum is exact
                 let cache = PairCache::with_warm(Some(Warm::Axis([m as f64, 1.0])));
-                let rolling = -(m as f64);
+                let more = -(m as f64);
                 list.slots.push(s);
                 list.cache.push(cache);
-                list.rolling.push(rolling);
-                reference.insert((i, j, sub), (s, cache, rolling));
+                list.history.push(more);
+                reference.insert((i, j, sub), (s, cache, more));
             }
             list.keys = new_keys.clone();
-            let lost = list.rebuild_from_keys(12, true, true);
+            list.stride = 1;
+            let lost = list.rebuild_from_keys(12, true, 1);
             let expected_lost: f64 = reference
                 .iter()
                 .filter(|(k, (s, _, _))| s.active && new_keys.binary_search(k).is_err())
@@ -488,9 +504,9 @@ mod tests {
             assert_eq!(lost, expected_lost, "case {case}");
             assert_eq!(list.slots.len(), new_keys.len(), "case {case}");
             assert_eq!(list.cache.len(), new_keys.len(), "case {case}");
-            assert_eq!(list.rolling.len(), new_keys.len(), "case {case}");
+            assert_eq!(list.history.len(), new_keys.len(), "case {case}");
             for (k, &(i, j, sub)) in new_keys.iter().enumerate() {
-                let (slot, cache, rolling) = match reference.get(&(i, j, sub)) {
+                let (slot, cache, more) = match reference.get(&(i, j, sub)) {
                     Some(&(s, c, r)) => (s, c, r),
                     None => (Slot::with_sub(i, j, sub), PairCache::EMPTY, 0.0),
                 };
@@ -500,7 +516,7 @@ mod tests {
                     cache.warm().map(|w| format!("{w:?}")),
                     "case {case}, slot {k}"
                 );
-                assert_eq!(list.rolling[k], rolling, "case {case}, slot {k}");
+                assert_eq!(list.history[k], more, "case {case}, slot {k}");
             }
         }
     }
@@ -511,9 +527,9 @@ mod tests {
         let mut list = ContactList::default();
         list.slots.push(Slot::with_sub(0, 1, 0));
         list.keys = vec![(0, 1, 0), (0, 2, 0)];
-        list.rebuild_from_keys(3, true, false);
+        list.rebuild_from_keys(3, true, 0);
         assert_eq!(list.cache.len(), 2);
         assert!(list.cache.iter().all(|c| c.is_empty()));
-        assert!(list.rolling.is_empty());
+        assert!(list.history.is_empty());
     }
 }

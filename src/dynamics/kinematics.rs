@@ -44,10 +44,66 @@
 use super::body::Bodies;
 use super::boundary::Boundary;
 use super::partner::{Partner, Sides};
-use crate::contact_law::RollingKinematics;
 use crate::contact_law::params::pair_density;
+use crate::contact_law::{Kinematics, Needs, RollingKinematics, SpringOn};
 use crate::geometry::Vec2;
 use crate::geometry::overlap_area::DiskLens;
+
+/// A contact as the kinematics sees it: the two sides, where the force acts, along which
+/// normal (from the giver to the receiver), how deep, and what the spring acts on.
+pub struct Contact<'a> {
+    pub bodies: &'a Bodies,
+    pub walls: &'a [Boundary],
+    pub sides: Sides,
+    pub point: Vec2,
+    pub normal: Vec2,
+    pub depth: f64,
+    pub spring: &'a SpringOn,
+}
+
+/// What the law reads of the contact `c` (T5–T22: [`Kinematics`]): the overlap its spring acts
+/// on, the relative velocity and spin at the contact point, and what the law `needs` beyond
+/// them (NaN where it does not): R*, the rolling radius and inertias (`slots(k)`: body k's
+/// number of neighbour-list slots, the CDT limiter's share); `m_eff` m* (NaN unless the law
+/// reads it), `dt` the step.
+#[inline(always)]
+pub fn of_contact(
+    c: &Contact,
+    m_eff: f64,
+    needs: Needs,
+    dt: f64,
+    slots: impl Fn(usize) -> u32,
+) -> Kinematics {
+    let (b, sides, n) = (c.bodies, c.sides, c.normal);
+    let t = Vec2::new(-n.y, n.x);
+    let rel = relative(b, c.walls, sides, c.point);
+    let vn = rel.velocity.dot(&n);
+    let (depth, energy_depth) = c.spring.depths(c.depth);
+    Kinematics {
+        depth,
+        energy_depth,
+        vn,
+        vt: rel.velocity.dot(&t),
+        m_eff,
+        r_eff: if needs.r_eff {
+            effective_radius_for(b, sides, n, c.spring.lens())
+        } else {
+            f64::NAN
+        },
+        dt,
+        area: c.spring.area_kinematics(vn, rel.spin),
+        spin: rel.spin,
+        rolling: if needs.rolling {
+            rolling(b, sides, c.point, n, slots)
+        } else {
+            RollingKinematics {
+                radius: f64::NAN,
+                inertia: f64::NAN,
+                spin_inertia: f64::NAN,
+            }
+        },
+    }
+}
 
 /// The relative motion at a contact point.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -9,7 +9,7 @@ use super::contacts::{ContactList, reserve_for};
 use super::members;
 use super::partner::Partner;
 use super::restart::{Kept, RestartState};
-use crate::contact_law::{ContactSpec, RollingModel};
+use crate::contact_law::ContactSpec;
 use crate::narrow_phase::PairCache;
 
 /// The skin of the neighbour list as a fraction of the largest bounding radius: larger means
@@ -73,8 +73,8 @@ impl Builder {
                 }
             }
         }
-        let Kept { cached, rolling } = kept(&bodies.shape, spec, walls);
-        let lost = list.rebuild_from_keys(n, cached, rolling);
+        let Kept { cached, history } = kept(&bodies.shape, spec, walls);
+        let lost = list.rebuild_from_keys(n, cached, history - 1);
         list.built_at.clear();
         reserve_for(&mut list.built_at, n);
         list.built_at
@@ -103,20 +103,19 @@ pub(crate) fn restore(
     list: &mut ContactList,
 ) {
     let n = bodies.len();
-    let Kept { cached, rolling } = kept(&bodies.shape, spec, walls);
+    let Kept { cached, history } = kept(&bodies.shape, spec, walls);
     *list = ContactList::default();
     list.skin = skin(bodies);
     list.keys.extend(saved.slots.iter().map(|s| s.slot.key()));
-    list.rebuild_from_keys(n, cached, rolling);
+    let stride = history - 1;
+    list.rebuild_from_keys(n, cached, stride);
     for (k, s) in saved.slots.iter().enumerate() {
         list.slots[k] = s.slot;
         list.data[k] = s.data;
         if cached {
             list.cache[k] = s.cache;
         }
-        if rolling {
-            list.rolling[k] = s.rolling;
-        }
+        list.history[k * stride..(k + 1) * stride].copy_from_slice(&s.more[..stride]);
     }
     list.built_at.extend_from_slice(&saved.built_at);
     list.wall_built_at.extend_from_slice(&saved.wall_built_at);
@@ -124,18 +123,17 @@ pub(crate) fn restore(
 }
 
 /// What a scene keeps beside its slots: pair caches where some pair keeps something in them
-/// (conic pairs: warm starts), rolling springs where a contact law has one (EPSD).
+/// (conic pairs: warm starts), and as many history values as its most demanding law keeps.
 pub(crate) fn kept(
     shapes: &[crate::geometry::Shape],
     spec: &ContactSpec,
     walls: &[Boundary],
 ) -> Kept {
-    let epsd = |spec: &ContactSpec| {
-        spec.rolling()
-            .is_some_and(|r| r.model == RollingModel::Epsd)
-    };
     Kept {
         cached: shapes.iter().any(PairCache::kept_with),
-        rolling: epsd(spec) || walls.iter().any(|w| epsd(&w.spec)),
+        history: walls
+            .iter()
+            .map(|w| w.spec.history_kept())
+            .fold(spec.history_kept(), usize::max),
     }
 }

@@ -10,11 +10,11 @@
 //! - every wall's current point, the velocity of its next drift (a servo's was set from the last
 //!   load) and that load;
 //! - the neighbour list as built: every slot (pair) in key order, active or not, with its
-//!   history — shear spring, rolling spring, the energy they hold, the geometry state — its
+//!   history — every part's history values, the energy they hold, the geometry state — its
 //!   narrow-phase [`PairCache`] (the conic pairs' warm start: the next step's crossings are
 //!   refined from it, so the last bits of the result depend on it) and its contact this step
 //!   ([`ContactData`], for the outputs read before the next step); the positions the list was
-//!   built from (they decide when it is rebuilt, and a body's number of slots enters the rolling
+//!   built from (they decide when it is rebuilt, and a body's number of slots enters the contact
 //!   kinematics) and the number of builds;
 //! - the step count (the time is `step × Δt`), the energy account and the diagnostic counters.
 //!
@@ -28,6 +28,7 @@ use super::body::BodyInit;
 use super::boundary::{Boundary, WallLoad};
 use super::contacts::{ContactData, Slot};
 use super::partner::Partner;
+use crate::contact_law::{HISTORY_LEN, History};
 use crate::geometry::Vec2;
 use crate::narrow_phase::{ContactState, PairCache};
 use std::fmt;
@@ -61,8 +62,9 @@ pub struct WallRestart {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SlotRestart {
     pub slot: Slot,
-    /// The rolling spring moment (EPSD; 0 otherwise).
-    pub rolling: f64,
+    /// The history values after the first (which the slot holds: [`History`]), zero where the
+    /// scene's laws keep none.
+    pub more: [f64; HISTORY_LEN - 1],
     pub cache: PairCache,
     pub data: ContactData,
 }
@@ -111,11 +113,12 @@ impl fmt::Display for RestartError {
 
 impl std::error::Error for RestartError {}
 
-/// What the scene keeps beside its slots: pair caches (warm starts) and rolling springs.
+/// What the scene keeps beside its slots: pair caches (warm starts), and how many of the
+/// [`History`] values its laws keep (the first is in the slot).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Kept {
     pub cached: bool,
-    pub rolling: bool,
+    pub history: usize,
 }
 
 impl RestartState {
@@ -227,15 +230,22 @@ impl RestartState {
                     "a warm start, but no pair of this scene keeps one (no ellipse)",
                 ));
             }
-            if !kept.rolling && s.rolling != 0.0 {
-                return Err(RestartError::new(
-                    at("rolling"),
-                    "a rolling spring, but no contact law of this scene has one (rolling_model \
-                     `epsd`)",
-                ));
+            for (m, &v) in s.more.iter().enumerate() {
+                if 1 + m >= kept.history && v != 0.0 {
+                    let name = History::NAMES[1 + m];
+                    return Err(RestartError::new(
+                        at(name),
+                        format!(
+                            "a `{name}` history value, but no contact law of this scene keeps \
+                             one"
+                        ),
+                    ));
+                }
             }
             if !s.slot.active
-                && (s.slot.shear != 0.0 || s.slot.history_energy != 0.0 || s.rolling != 0.0)
+                && (s.slot.shear != 0.0
+                    || s.slot.history_energy != 0.0
+                    || s.more.iter().any(|&v| v != 0.0))
             {
                 return Err(RestartError::new(
                     at("active"),

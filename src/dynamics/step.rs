@@ -9,7 +9,7 @@
 //!    here with the step and the body. Moving walls drift to time level n+1 too
 //!    ([`super::boundary`]).
 //! 3. **Forces** `F_{n+1}, M_{n+1}` from the positions `x_{n+1}, θ_{n+1}` and, for the dashpots,
-//!    the shear displacement and the rolling spring, the velocities `v_{n+½}, ω_{n+½}` (the
+//!    the contacts' history springs, the velocities `v_{n+½}, ω_{n+½}` (the
 //!    latest available; as in LAMMPS and LIGGGHTS) and the walls' drift velocities: neighbour
 //!    list → narrow phase → kinematics at the contact ([`super::kinematics`]) → contact law →
 //!    `F`, `r × F` and the contact's couple on each body (T3, T4, T22; `r` from the centroid to
@@ -379,7 +379,8 @@ impl Stepper {
     /// the sums of the body pass (net force and moment, energies, first non-finite body).
     fn gather_forces(&mut self, wd: &mut Parts, kick: Option<f64>) -> BodyPartial {
         let gravity = wd.gravity;
-        // Disks under linear laws have no contact couples (no rolling part; a disk's area
+        // Disks under linear laws have no contact couples (nothing but the spring, the dashpot
+        // and the slider; a disk's area
         // potential is its depth spring).
         let couples = !self.facts.disks || !self.pass.linear();
         let list = &*wd.contacts;

@@ -169,9 +169,7 @@ pub fn estimate_critical_dt(
         };
         // Each part's stiffness and dashpot (Hertz's at an overlap of 1 % of the smallest
         // inscribed radius).
-        let modes = s
-            .resolve(spec, rho, g, m_eff)
-            .modes(delta, r_eff, m_eff, &rk);
+        let modes = s.resolve(spec, rho, g).modes(delta, r_eff, m_eff, &rk);
         let (kn, eta_n) = modes.normal;
         let (kt, eta_t) = modes.tangential;
         // The rolling spring turns the bodies about their centroids: inverse inertia Σ 1/I.

@@ -7,7 +7,7 @@ use super::contacts::ContactList;
 use super::neighbour_list::kept;
 use super::restart::{BodyRestart, RestartError, RestartState, SlotRestart, WallRestart};
 use super::step::{Blowup, Parts, StepReport, Stepper};
-use crate::contact_law::ContactSpec;
+use crate::contact_law::{ContactSpec, HISTORY_LEN};
 use crate::geometry::{Pose, Vec2};
 use crate::narrow_phase::PairCache;
 
@@ -145,7 +145,12 @@ impl World {
             slots: (0..c.slots.len())
                 .map(|k| SlotRestart {
                     slot: c.slots[k],
-                    rolling: c.rolling_moment(k),
+                    more: {
+                        let h = c.history_of(k);
+                        let mut more = [0.0; HISTORY_LEN - 1];
+                        more.copy_from_slice(&h.0[1..]);
+                        more
+                    },
                     cache: c.cache.get(k).copied().unwrap_or(PairCache::EMPTY),
                     data: c.data[k],
                 })
@@ -295,7 +300,7 @@ impl World {
             ("bodies", bodies),
             (
                 "slots and contact data",
-                held(&c.slots) + held(&c.data) + held(&c.extra) + held(&c.cache) + held(&c.rolling),
+                held(&c.slots) + held(&c.data) + held(&c.extra) + held(&c.cache) + held(&c.history),
             ),
             (
                 "adjacency",

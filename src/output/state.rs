@@ -17,6 +17,7 @@
 
 use super::summary::Status;
 use super::trace::WriteError;
+use crate::contact_law::History;
 use crate::dynamics::restart::{RestartState, state_name};
 use crate::dynamics::{BodyInit, World};
 use crate::geometry::Vec2;
@@ -226,10 +227,19 @@ fn write_state_block(
             let d = &c.data;
             let _ = write!(
                 out,
-                ", \"active\": true, \"state\": \"{}\", \"shear\": {}, \"rolling\": {}, \"history_energy\": {}, \"point\": {}, \"force\": {}, \"force_non_elastic\": {}, \"couple\": {}, \"couple_non_elastic\": {}",
-                state_name(slot.state),
-                num(slot.shear),
-                num(c.rolling),
+                ", \"active\": true, \"state\": \"{}\"",
+                state_name(slot.state)
+            );
+            // The history, each part's values by their names (the first is the slot's).
+            for (name, v) in History::NAMES
+                .iter()
+                .zip(std::iter::once(slot.shear).chain(c.more))
+            {
+                let _ = write!(out, ", \"{name}\": {}", num(v));
+            }
+            let _ = write!(
+                out,
+                ", \"history_energy\": {}, \"point\": {}, \"force\": {}, \"force_non_elastic\": {}, \"couple\": {}, \"couple_non_elastic\": {}",
                 num(slot.history_energy),
                 vec2(d.point),
                 vec2(d.force),

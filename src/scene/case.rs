@@ -22,9 +22,7 @@ use super::fields::{
     vec2,
 };
 use super::ranges::{Placed, SpecContext, check_extent, check_spec, check_steps};
-use crate::contact_law::{
-    ContactSpec, LinearDamping, NormalForce, RollingModel, RollingPart, Scaled,
-};
+use crate::contact_law::{Check, ContactSpec, Keys, NormalForce, ParamError};
 use crate::dynamics::{BodyInit, Boundary, Motion, Servo, Span};
 use crate::geometry::Vec2;
 use serde_json::{Map, Value};
@@ -70,39 +68,6 @@ pub struct OutputSpec {
     /// axis-aligned walls, else the bodies' extent).
     pub analysis_window: Option<[f64; 4]>,
 }
-
-const CONTACT_KEYS: [&str; 17] = [
-    "model",
-    "normal_force",
-    "kn",
-    "kn_over_rho_g",
-    "ks",
-    "ks_over_rho_g",
-    "eta_n",
-    "eta_n_over_rho_g",
-    "eta_s",
-    "eta_s_over_rho_g",
-    "restitution",
-    "friction",
-    "young",
-    "poisson",
-    "rolling_model",
-    "rolling_friction",
-    "rolling_damping",
-];
-
-/// Keys that replace each other when a wall overrides one of them.
-const GROUPS: [&[&str]; 3] = [
-    &["kn", "kn_over_rho_g"],
-    &["ks", "ks_over_rho_g"],
-    &[
-        "eta_n",
-        "eta_n_over_rho_g",
-        "eta_s",
-        "eta_s_over_rho_g",
-        "restitution",
-    ],
-];
 
 impl Case {
     /// Reads a case from its JSON text. Errors name the field (`bodies[2].shape.a`, …).
@@ -321,23 +286,18 @@ impl Case {
         self
     }
 
-    /// The same case with every contact (the scene's and each wall's) with the rolling
-    /// resistance `rolling`.
-    pub fn with_rolling(mut self, rolling: Option<RollingPart>) -> Case {
-        self.contact = self.contact.with_rolling(rolling);
+    /// The same case with every contact law (the scene's and each wall's) changed by `f`.
+    pub fn map_contacts(mut self, f: impl Fn(ContactSpec) -> ContactSpec) -> Case {
+        self.contact = f(self.contact);
         for w in &mut self.walls {
-            w.spec = w.spec.with_rolling(rolling);
+            w.spec = f(w.spec);
         }
         self
     }
 
     /// The same case with every contact (the scene's and each wall's) under `normal_force`.
-    pub fn with_normal_force(mut self, normal_force: NormalForce) -> Case {
-        self.contact = self.contact.with_normal_force(normal_force);
-        for w in &mut self.walls {
-            w.spec = w.spec.with_normal_force(normal_force);
-        }
-        self
+    pub fn with_normal_force(self, normal_force: NormalForce) -> Case {
+        self.map_contacts(|c| c.with_normal_force(normal_force))
     }
 
     /// P's quiescence criterion as the case states it (None: no stop at rest).
@@ -473,291 +433,110 @@ fn count(v: &Value, path: &str) -> Result<u64, FieldError> {
     }
 }
 
-/// A wall's contact overrides: every known contact key given on the wall replaces the scene's
-/// (with the keys of its group); `None` when the wall overrides nothing.
+/// A wall's contact overrides: every contact key given on the wall replaces the scene's, with
+/// the inherited keys it replaces ([`ContactSpec::replaced_by`]); `None` when the wall overrides
+/// nothing.
 fn wall_overrides(
     w: &mut Obj,
     defaults: &Map<String, Value>,
 ) -> Result<Option<ContactSpec>, FieldError> {
+    let given: Vec<(&str, Value)> = ContactSpec::keys()
+        .filter_map(|key| w.get(key).map(|v| (key, v.clone())))
+        .collect();
+    if given.is_empty() {
+        return Ok(None);
+    }
     let mut merged = defaults.clone();
-    let mut any = false;
-    let mut given: Vec<String> = Vec::new();
-    for key in CONTACT_KEYS.iter() {
-        if let Some(v) = w.get(key) {
-            any = true;
-            if *key == "model" {
-                merged.clear();
-            }
-            // Another rolling model does not inherit the scene's model's damping.
-            if *key == "rolling_model" && !w.has("rolling_damping") {
-                merged.remove("rolling_damping");
-            }
-            for group in GROUPS {
-                if group.contains(key) && !given.iter().any(|g| group.contains(&g.as_str())) {
-                    for k in group.iter() {
-                        merged.remove(*k);
-                    }
-                }
-            }
-            merged.insert(key.to_string(), v.clone());
-            given.push(key.to_string());
+    for (key, _) in &given {
+        for k in ContactSpec::replaced_by(key) {
+            merged.remove(k);
         }
     }
-    if !any {
-        return Ok(None);
+    for (key, v) in given {
+        merged.insert(key.to_string(), v);
     }
     let path = w.path().to_string();
     parse_contact(&merged, &path, &path).map(Some)
 }
 
-/// The contact object. `path` prefixes field paths; `missing_at` is where a missing field is
-/// reported.
+/// The contact object, each part reading its keys ([`ContactSpec::parse`]). `path` prefixes
+/// field paths; `missing_at` is where a missing field is reported.
 fn parse_contact(
     map: &Map<String, Value>,
     path: &str,
     missing_at: &str,
 ) -> Result<ContactSpec, FieldError> {
-    let field = |k: &str| join(path, k);
-    let get = |k: &str| map.get(k);
-    for k in CONTACT_KEYS {
+    let keys: Vec<&str> = ContactSpec::keys().collect();
+    for k in &keys {
         super::fields::note_key(path, k);
     }
     for k in map.keys() {
-        if !CONTACT_KEYS.contains(&k.as_str()) {
-            return Err(FieldError::new(field(k), unknown_field(k, &CONTACT_KEYS)));
+        if !keys.contains(&k.as_str()) {
+            return Err(FieldError::new(join(path, k), unknown_field(k, &keys)));
         }
     }
-    let model = match get("model") {
-        Some(v) => string(v, &field("model"))?,
-        None => return Err(FieldError::new(join(missing_at, "model"), "is missing")),
+    let keys = ContactKeys {
+        map,
+        path,
+        missing_at,
     };
-    let friction = match get("friction") {
-        Some(v) => non_negative(v, &field("friction"))?,
-        None => return Err(FieldError::new(join(missing_at, "friction"), "is missing")),
-    };
-    let normal_force = match get("normal_force") {
-        None => NormalForce::default(),
-        Some(v) => match string(v, &field("normal_force"))?.as_str() {
-            "area" => NormalForce::Area,
-            "depth" => NormalForce::Depth,
-            other => {
-                return Err(FieldError::new(
-                    field("normal_force"),
-                    format!("unknown normal force `{other}` (expected `area` or `depth`)"),
-                ));
-            }
-        },
-    };
-    let rolling = parse_rolling(map, path, missing_at)?;
-    // A stiffness is a scale (zero would let bodies pass through each other); a damping may be
-    // zero.
-    type Reader = fn(&Value, &str) -> Result<f64, FieldError>;
-    let scaled = |abs: &str, rel: &str| -> Result<Option<Scaled>, FieldError> {
-        let read: Reader = if abs.starts_with('k') {
-            scale
-        } else {
-            non_negative
+    ContactSpec::parse(&keys).map_err(|e| FieldError::new(e.field, e.message))
+}
+
+/// A contact object's keys as the law's parts read them ([`Keys`]).
+struct ContactKeys<'a> {
+    map: &'a Map<String, Value>,
+    path: &'a str,
+    missing_at: &'a str,
+}
+
+impl Keys for ContactKeys<'_> {
+    fn has(&self, key: &str) -> bool {
+        self.map.contains_key(key)
+    }
+
+    fn string(&self, key: &str) -> Result<Option<String>, ParamError> {
+        self.map
+            .get(key)
+            .map(|v| string(v, &join(self.path, key)))
+            .transpose()
+            .map_err(param_error)
+    }
+
+    fn number(&self, key: &str, check: Check) -> Result<Option<f64>, ParamError> {
+        let read: fn(&Value, &str) -> Result<f64, FieldError> = match check {
+            Check::Any => number,
+            Check::NonNegative => non_negative,
+            Check::Positive => positive,
+            Check::Scale => scale,
         };
-        match (get(abs), get(rel)) {
-            (Some(_), Some(_)) => Err(FieldError::new(
-                field(rel),
-                format!("give `{abs}` or `{rel}`, not both"),
-            )),
-            (Some(v), None) => Ok(Some(Scaled::Absolute(read(v, &field(abs))?))),
-            (None, Some(v)) => Ok(Some(Scaled::OverRhoG(read(v, &field(rel))?))),
-            (None, None) => Ok(None),
+        self.map
+            .get(key)
+            .map(|v| read(v, &join(self.path, key)))
+            .transpose()
+            .map_err(param_error)
+    }
+
+    fn error(&self, key: &str, message: String) -> ParamError {
+        ParamError {
+            field: join(self.path, key),
+            message,
         }
-    };
-    let restitution = |required: bool| -> Result<Option<f64>, FieldError> {
-        match get("restitution") {
-            Some(v) => {
-                let e = positive(v, &field("restitution"))?;
-                if e > 1.0 {
-                    return Err(FieldError::new(
-                        field("restitution"),
-                        format!("must be in (0, 1], got {e}"),
-                    ));
-                }
-                Ok(Some(e))
-            }
-            None if required => Err(FieldError::new(
-                join(missing_at, "restitution"),
-                "is missing",
-            )),
-            None => Ok(None),
+    }
+
+    fn missing(&self, key: &str, message: String) -> ParamError {
+        ParamError {
+            field: join(self.missing_at, key),
+            message,
         }
-    };
-    let refuse = |keys: &[&str], model: &str| -> Result<(), FieldError> {
-        for k in keys {
-            if get(k).is_some() {
-                return Err(FieldError::new(
-                    field(k),
-                    format!("is not a parameter of the `{model}` model"),
-                ));
-            }
-        }
-        Ok(())
-    };
-    match model.as_str() {
-        "linear" => {
-            refuse(&["young", "poisson"], "linear")?;
-            let kn = scaled("kn", "kn_over_rho_g")?.ok_or_else(|| {
-                FieldError::new(
-                    join(missing_at, "kn_over_rho_g"),
-                    "is missing (or give `kn`)",
-                )
-            })?;
-            let ks = scaled("ks", "ks_over_rho_g")?.unwrap_or(kn);
-            let eta_n = scaled("eta_n", "eta_n_over_rho_g")?;
-            let eta_s = scaled("eta_s", "eta_s_over_rho_g")?;
-            let e = restitution(false)?;
-            let damping = match (eta_n, e) {
-                (Some(_), Some(_)) => {
-                    return Err(FieldError::new(
-                        field("restitution"),
-                        "give dashpots (`eta_n…`) or `restitution`, not both",
-                    ));
-                }
-                (Some(eta_n), None) => LinearDamping::Dashpots {
-                    eta_n,
-                    eta_s: eta_s.unwrap_or(eta_n),
-                },
-                (None, Some(e)) => {
-                    if eta_s.is_some() {
-                        return Err(FieldError::new(
-                            field("eta_s"),
-                            "with `restitution`, η_s = η_n (T); do not give `eta_s`",
-                        ));
-                    }
-                    LinearDamping::Restitution(e)
-                }
-                (None, None) => {
-                    return Err(FieldError::new(
-                        join(missing_at, "eta_n_over_rho_g"),
-                        "is missing (or give `eta_n` or `restitution`)",
-                    ));
-                }
-            };
-            Ok(ContactSpec::Linear {
-                kn,
-                ks,
-                damping,
-                friction,
-                normal_force,
-                rolling,
-            })
-        }
-        "hertz_mindlin" => {
-            refuse(
-                &[
-                    "kn",
-                    "kn_over_rho_g",
-                    "ks",
-                    "ks_over_rho_g",
-                    "eta_n",
-                    "eta_n_over_rho_g",
-                    "eta_s",
-                    "eta_s_over_rho_g",
-                ],
-                "hertz_mindlin",
-            )?;
-            let young = match get("young") {
-                Some(v) => scale(v, &field("young"))?,
-                None => return Err(FieldError::new(join(missing_at, "young"), "is missing")),
-            };
-            let poisson = match get("poisson") {
-                Some(v) => {
-                    let nu = number(v, &field("poisson"))?;
-                    // At ν = −1 the contact moduli E* and G* (T11, T19) are infinite.
-                    if !(nu > -1.0 && nu < 0.5) {
-                        return Err(FieldError::new(
-                            field("poisson"),
-                            format!("must be in (-1, 0.5), got {nu}"),
-                        ));
-                    }
-                    nu
-                }
-                None => return Err(FieldError::new(join(missing_at, "poisson"), "is missing")),
-            };
-            let restitution = restitution(true)?.expect("required");
-            Ok(ContactSpec::HertzMindlin {
-                young,
-                poisson,
-                restitution,
-                friction,
-                normal_force,
-                rolling,
-            })
-        }
-        other => Err(FieldError::new(
-            field("model"),
-            format!("unknown contact model `{other}` (expected `linear` or `hertz_mindlin`)"),
-        )),
     }
 }
 
-/// The rolling-resistance keys of a contact object (Ai et al. 2011): `rolling_model` (`cdt` or
-/// `epsd`) with `rolling_friction` μ_r ≥ 0, and for EPSD an optional `rolling_damping` η_r ≥ 0.
-/// None when not given, or when μ_r = 0 (no couple at all).
-fn parse_rolling(
-    map: &Map<String, Value>,
-    path: &str,
-    missing_at: &str,
-) -> Result<Option<RollingPart>, FieldError> {
-    let field = |k: &str| join(path, k);
-    let (model, friction, damping) = (
-        map.get("rolling_model"),
-        map.get("rolling_friction"),
-        map.get("rolling_damping"),
-    );
-    let Some(model) = model else {
-        for (k, v) in [("rolling_friction", friction), ("rolling_damping", damping)] {
-            if v.is_some() {
-                return Err(FieldError::new(
-                    field(k),
-                    "needs `rolling_model` (`cdt` or `epsd`)",
-                ));
-            }
-        }
-        return Ok(None);
-    };
-    let model = match string(model, &field("rolling_model"))?.as_str() {
-        "cdt" => RollingModel::Cdt,
-        "epsd" => RollingModel::Epsd,
-        other => {
-            return Err(FieldError::new(
-                field("rolling_model"),
-                format!("unknown rolling model `{other}` (expected `cdt` or `epsd`)"),
-            ));
-        }
-    };
-    let friction = match friction {
-        Some(v) => non_negative(v, &field("rolling_friction"))?,
-        None => {
-            return Err(FieldError::new(
-                join(missing_at, "rolling_friction"),
-                "is missing (the coefficient of rolling friction μ_r that `rolling_model` needs)",
-            ));
-        }
-    };
-    let damping = match (damping, model) {
-        (None, _) => None,
-        (Some(_), RollingModel::Cdt) => {
-            return Err(FieldError::new(
-                field("rolling_damping"),
-                "is not a parameter of the `cdt` rolling model (only `epsd` has a rolling dashpot)",
-            ));
-        }
-        (Some(v), RollingModel::Epsd) => Some(non_negative(v, &field("rolling_damping"))?),
-    };
-    if friction == 0.0 {
-        return Ok(None);
+fn param_error(e: FieldError) -> ParamError {
+    ParamError {
+        field: e.path,
+        message: e.message,
     }
-    Ok(Some(RollingPart {
-        model,
-        friction,
-        damping,
-    }))
 }
 
 /// A wall's motion: `"velocity": [vx, vy]` (cm/s), or `"servo": {"stress": σ, "span": S or

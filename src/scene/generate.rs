@@ -4,7 +4,7 @@
 //!
 //! The 10 000-body piles of `cases/` are `generate --shape disks|ellipses --n 10000 --seed 1`.
 
-use crate::contact_law::{NormalForce, damping_ratio_linear};
+use crate::contact_law::{Given, NormalForce, damping_ratio_linear};
 use crate::dynamics::BodyInit;
 use crate::geometry::{Shape, Vec2};
 use serde_json::{Value, json};
@@ -452,14 +452,16 @@ impl ColumnSpec {
     }
 
     /// The case of `bodies` in the column, the gate withdrawing at `gate_speed` (cm/s; 0:
-    /// fixed), with rolling resistance `rolling` on every contact; P's quiescence criterion at
-    /// 1e-7 cm per step held for 1000 steps, or 6 s.
+    /// fixed), with the further contact keys `extra` on every contact (a part's `given`) and a
+    /// sentence on them for the description; P's quiescence criterion at 1e-7 cm per step held
+    /// for 1000 steps, or 6 s.
     pub fn case_json(
         &self,
         name: &str,
         bodies: &[BodyInit],
         gate_speed: f64,
-        rolling: Option<crate::contact_law::RollingPart>,
+        extra: &[(&'static str, Given)],
+        note: &str,
     ) -> String {
         let eta = {
             let m = DENSITY * std::f64::consts::PI;
@@ -470,24 +472,20 @@ impl ColumnSpec {
             "model": "linear", "normal_force": "area", "kn_over_rho_g": KN_OVER_RHO_G,
             "eta_n": eta, "friction": self.friction,
         });
-        if let Some(r) = rolling {
-            contact["rolling_model"] = json!(r.model.as_str());
-            contact["rolling_friction"] = json!(r.friction);
-            if let Some(d) = r.damping {
-                contact["rolling_damping"] = json!(d);
-            }
+        for &(k, v) in extra {
+            contact[k] = match v {
+                Given::Number(x) => json!(x),
+                Given::Text(t) => json!(t),
+            };
         }
         let mut gate = json!({"point": [self.width, 0.0], "normal": [-1.0, 0.0]});
         if gate_speed != 0.0 {
             gate["velocity"] = json!([gate_speed, 0.0]);
         }
-        let rolling_text = rolling.map_or("none".to_string(), |r| {
-            format!("{} with μ_r = {}", r.model.as_str(), r.friction)
-        });
         let description = format!(
             "Angle of repose (dem2d study repose): {} disks in a column {} cm wide; the right wall \
              withdraws at {gate_speed} cm/s and the grains flow out over the floor until at rest. \
-             Rolling resistance: {rolling_text}.",
+             {note}",
             bodies.len(),
             self.width
         );

@@ -22,7 +22,7 @@
 //! | an input file | ≤ [`MAX_INPUT_BYTES`] (256 MiB) |
 
 use super::fields::FieldError;
-use crate::contact_law::{ContactSpec, LinearDamping, Scaled};
+use crate::contact_law::{ContactSpec, DampingSpec, LinearDamping, Scaled, ShearSpec, SpringSpec};
 use crate::geometry::{Shape, Vec2};
 use std::io::Read;
 
@@ -234,36 +234,31 @@ pub fn check_spec(
         }
         Ok(())
     };
-    match *spec {
-        ContactSpec::Linear {
-            kn, ks, damping, ..
-        } => {
-            scaled(kn, "kn", "kn_over_rho_g", true)?;
-            scaled(ks, "ks", "ks_over_rho_g", true)?;
-            if let LinearDamping::Dashpots { eta_n, eta_s } = damping {
-                scaled(eta_n, "eta_n", "eta_n_over_rho_g", false)?;
-                scaled(eta_s, "eta_s", "eta_s_over_rho_g", false)?;
-            }
-        }
-        ContactSpec::HertzMindlin { young, poisson, .. } => {
-            let (e2, nu2) = match *other {
-                ContactSpec::HertzMindlin { young, poisson, .. } => (young, poisson),
-                ContactSpec::Linear { .. } => (young, poisson),
-            };
-            let e_star = 1.0 / ((1.0 - poisson * poisson) / young + (1.0 - nu2 * nu2) / e2); // T(11)
-            let g_star = 1.0
-                / (2.0 * (2.0 - poisson) * (1.0 + poisson) / young
-                    + 2.0 * (2.0 - nu2) * (1.0 + nu2) / e2); // T(19)
-            for (name, v) in [("E*", e_star), ("G*", g_star)] {
-                if !in_window(v) {
-                    return Err(FieldError::new(
-                        field("young"),
-                        format!(
-                            "with this `poisson`, the contact modulus {name} = {v:e}, outside \
-                             the accepted range {MIN_SCALE:e} … {MAX_MAGNITUDE:e}"
-                        ),
-                    ));
-                }
+    if let SpringSpec::Linear { kn } = spec.normal.spring {
+        scaled(kn, "kn", "kn_over_rho_g", true)?;
+    }
+    if let ShearSpec::Constant(ks) = spec.tangential.stiffness {
+        scaled(ks, "ks", "ks_over_rho_g", true)?;
+    }
+    if let DampingSpec::Linear(LinearDamping::Dashpots { eta_n, eta_s }) = spec.damping {
+        scaled(eta_n, "eta_n", "eta_n_over_rho_g", false)?;
+        scaled(eta_s, "eta_s", "eta_s_over_rho_g", false)?;
+    }
+    if let Some((young, poisson)) = spec.normal.moduli() {
+        let (e2, nu2) = other.normal.moduli().unwrap_or((young, poisson));
+        let e_star = 1.0 / ((1.0 - poisson * poisson) / young + (1.0 - nu2 * nu2) / e2); // T(11)
+        let g_star = 1.0
+            / (2.0 * (2.0 - poisson) * (1.0 + poisson) / young
+                + 2.0 * (2.0 - nu2) * (1.0 + nu2) / e2); // T(19)
+        for (name, v) in [("E*", e_star), ("G*", g_star)] {
+            if !in_window(v) {
+                return Err(FieldError::new(
+                    field("young"),
+                    format!(
+                        "with this `poisson`, the contact modulus {name} = {v:e}, outside \
+                         the accepted range {MIN_SCALE:e} … {MAX_MAGNITUDE:e}"
+                    ),
+                ));
             }
         }
     }

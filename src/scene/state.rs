@@ -10,6 +10,7 @@
 
 use super::case::Case;
 use super::fields::{FieldError, Obj, index, join, parse_json, type_of};
+use crate::contact_law::{HISTORY_LEN, History};
 use crate::dynamics::World;
 use crate::dynamics::account::{Diagnostics, Energies};
 use crate::dynamics::boundary::WallLoad;
@@ -564,7 +565,7 @@ fn parse_contact(v: &Value, path: &str) -> Result<SlotRestart, FieldError> {
         })?
         .unwrap_or(0);
     let mut slot = Slot::with_sub(i, j, sub);
-    let mut rolling = 0.0;
+    let mut more = [0.0; HISTORY_LEN - 1];
     let mut data = ContactData::default();
     if active {
         let state = c.req_with("state", |v, p| {
@@ -580,8 +581,11 @@ fn parse_contact(v: &Value, path: &str) -> Result<SlotRestart, FieldError> {
         })?;
         slot.active = true;
         slot.state = state;
-        slot.shear = c.req_with("shear", float)?;
-        rolling = c.req_with("rolling", float)?;
+        // The history, each part's values by their names (the first is the slot's).
+        slot.shear = c.req_with(History::NAMES[0], float)?;
+        for (v, name) in more.iter_mut().zip(&History::NAMES[1..]) {
+            *v = c.req_with(name, float)?;
+        }
         slot.history_energy = c.req_with("history_energy", float)?;
         data = ContactData {
             point: c.req_with("point", pair)?,
@@ -595,7 +599,7 @@ fn parse_contact(v: &Value, path: &str) -> Result<SlotRestart, FieldError> {
     c.finish()?;
     Ok(SlotRestart {
         slot,
-        rolling,
+        more,
         cache,
         data,
     })

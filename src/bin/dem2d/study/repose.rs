@@ -40,6 +40,14 @@ fn run_to_rest(case: &Case) -> Result<(World, Option<f64>), RunError> {
     Ok((w, rest))
 }
 
+/// The sentence on rolling resistance in a column case's description.
+fn resistance(rolling: Option<RollingPart>) -> String {
+    format!(
+        "Rolling resistance: {}.",
+        rolling.map_or("none".to_string(), |r| r.describe())
+    )
+}
+
 pub fn run(write: bool) -> Result<String, RunError> {
     let column = ColumnSpec {
         n: 300,
@@ -49,7 +57,9 @@ pub fn run(write: bool) -> Result<String, RunError> {
     };
     // Settle the column (gate fixed), then keep the bodies' positions.
     let lattice = column.lattice_bodies();
-    let settle = Case::from_json(&column.case_json("column", &lattice, 0.0, None)).unwrap();
+    let settle =
+        Case::from_json(&column.case_json("column", &lattice, 0.0, &[], &resistance(None)))
+            .unwrap();
     let (w, rest) = run_to_rest(&settle)?;
     eprintln!("column settled at t = {rest:?}");
     let settled: Vec<BodyInit> = (0..w.bodies.len())
@@ -85,7 +95,13 @@ pub fn run(write: bool) -> Result<String, RunError> {
             None => "none".to_string(),
             Some(m) => format!("{}_mu_r_{mu_r}", m.as_str()),
         };
-        let text = column.case_json(&format!("repose_{name}"), &settled, GATE_SPEED, rolling);
+        let text = column.case_json(
+            &format!("repose_{name}"),
+            &settled,
+            GATE_SPEED,
+            &rolling.map_or(vec![], |r| r.given()),
+            &resistance(rolling),
+        );
         if write {
             super::put_case(&dir.join(format!("{name}.json")), &text);
         }

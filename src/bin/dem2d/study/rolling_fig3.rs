@@ -32,14 +32,13 @@ pub fn run() -> Result<String, RunError> {
         for nf in [NormalForce::Depth, NormalForce::Area] {
             for model in [RollingModel::Cdt, RollingModel::Epsd] {
                 for mu_r in [0.01, 0.05] {
-                    let case = base
-                        .clone()
-                        .with_normal_force(nf)
-                        .with_rolling(Some(RollingPart {
+                    let case = base.clone().with_normal_force(nf).map_contacts(|c| {
+                        c.with_rolling(Some(RollingPart {
                             model,
                             friction: mu_r,
                             damping: None,
-                        }));
+                        }))
+                    });
                     let cell = match rest_time(&case, 20.0)? {
                         Some((t, x)) => format!("{t:.3} | {x:.2}"),
                         None => "not in 20 s | —".into(),
