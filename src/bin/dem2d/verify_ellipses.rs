@@ -27,6 +27,7 @@
 use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
 use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::{Shape, Vec2, Wall};
+use dem2d::run::{RunError, Simulation};
 
 /// One comparison: quantity, dem2d's value, the reference (text), the tolerance (text), pass.
 pub type Row = (String, f64, String, String, bool);
@@ -71,7 +72,7 @@ fn lowest(a: f64, b: f64, angle: f64) -> (f64, f64) {
 }
 
 /// The rocking period of the ellipse on a floor (see the module documentation).
-fn rocking() -> Vec<Row> {
+fn rocking() -> Result<Vec<Row>, RunError> {
     let (a, b) = (1.5, 1.0);
     let theta0: f64 = 0.03;
     // P's stiffness (k_n = 36400 ρ g), a dashpot for the bounce of the first touch.
@@ -94,14 +95,14 @@ fn rocking() -> Vec<Row> {
     // Zero crossings of the angle, interpolated within the step.
     let mut crossings = Vec::new();
     let mut last = angle(&w);
-    while w.time < 2.0 && crossings.len() < 9 {
-        w.step().expect("finite");
-        let now = angle(&w);
+    Simulation::new(&mut w).until_time(2.0).run_until(|w, _| {
+        let now = angle(w);
         if (now < 0.0) != (last < 0.0) {
             crossings.push(w.time - w.dt * now / (now - last));
         }
         last = now;
-    }
+        crossings.len() >= 9
+    })?;
     let measured = if crossings.len() >= 9 {
         // Four whole periods from the first crossing to the ninth.
         (crossings[8] - crossings[0]) / 4.0
@@ -112,7 +113,7 @@ fn rocking() -> Vec<Row> {
         * std::f64::consts::PI
         * (((a * a + b * b) / 4.0 + b * b) / (G * (a * a / b - b))).sqrt();
     let tol = 5e-3;
-    vec![(
+    Ok(vec![(
         format!(
             "ellipse a = {a}, b = {b} rocking on a floor (area law, tilted {theta0} rad): period (s)"
         ),
@@ -120,11 +121,11 @@ fn rocking() -> Vec<Row> {
         format!("{expected:.6e} (rigid body rolling: 2π √((I + m b²)/(m g (a²/b − b))))"),
         format!("{tol:.0e} relative"),
         ((measured - expected) / expected).abs() <= tol,
-    )]
+    )])
 }
 
 /// The rebound of the tilted ellipse from a frictionless floor (see the module documentation).
-fn tilted_drop() -> Vec<Row> {
+fn tilted_drop() -> Result<Vec<Row>, RunError> {
     let (a, b) = (1.5, 1.0);
     let (theta, v) = (0.5f64, 50.0);
     let kn = 1e10;
@@ -144,15 +145,17 @@ fn tilted_drop() -> Vec<Row> {
         s,
         2e-8,
     );
+    // Until the first step after the contact.
     let mut touched = false;
-    while w.time < 1e-3 {
-        let report = w.step().expect("finite");
-        if report.contacts > 0 {
-            touched = true;
-        } else if touched {
-            break;
-        }
-    }
+    Simulation::new(&mut w)
+        .until_time(1e-3)
+        .run_until(|_, report| {
+            if report.contacts > 0 {
+                touched = true;
+                return false;
+            }
+            touched
+        })?;
     let m = w.bodies.mass[0];
     let i = w.bodies.inertia[0];
     let j = 2.0 * m * v / (1.0 + m * r * r / i);
@@ -160,7 +163,7 @@ fn tilted_drop() -> Vec<Row> {
     let st = w.bodies.state[0];
     let tol = 2e-3;
     let rel = |x: f64, y: f64| ((x - y) / y).abs();
-    vec![
+    Ok(vec![
         (
             format!(
                 "ellipse a = {a}, b = {b} tilted {theta} rad onto a frictionless floor at {v} cm/s, undamped (area law): v_y' (cm/s)"
@@ -179,7 +182,7 @@ fn tilted_drop() -> Vec<Row> {
             format!("{tol:.0e} relative"),
             rel(st.omega, omega) <= tol,
         ),
-    ]
+    ])
 }
 
 /// The resting pose of an (a, b) ellipse on the incline through the origin with normal `n`
@@ -200,11 +203,11 @@ fn pose_on_incline(a: f64, b: f64, n: Vec2, t: f64) -> (f64, Vec2) {
 /// resting pose it stays (turns by less than 1e-3 rad in 1 s); placed 0.02 (in `t`) beside it,
 /// it rocks (the control); on a 40° incline, placed at the pose that comes closest to holding
 /// (`u = ½`), it rolls away.
-fn incline() -> Vec<Row> {
+fn incline() -> Result<Vec<Row>, RunError> {
     let (a, b) = (2.0, 1.0);
     let (aa, bb) = (a * a, b * b);
     // Largest turn from the starting angle within 1 s, starting at rest at contact parameter t.
-    let turn = |beta: f64, t: f64| -> f64 {
+    let turn = |beta: f64, t: f64| -> Result<f64, RunError> {
         let n = Vec2::new(-beta.sin(), beta.cos());
         let s = spec(
             36400.0 * G,
@@ -222,11 +225,10 @@ fn incline() -> Vec<Row> {
             1e-5,
         );
         let mut most = 0.0f64;
-        while w.time < 1.0 {
-            w.step().expect("finite");
-            most = most.max((w.bodies.state[0].pose.angle() - phi).abs());
-        }
-        most
+        Simulation::new(&mut w)
+            .until_time(1.0)
+            .run_each(|w, _| most = most.max((w.bodies.state[0].pose.angle() - phi).abs()))?;
+        Ok(most)
     };
     // The stable resting point at β: the root u₁ of u(1 − u) = c, as a contact parameter t
     // (of the two with cos²t = u₁, the one whose centroid is above the contact point).
@@ -245,12 +247,12 @@ fn incline() -> Vec<Row> {
     let u = 0.5 * (1.0 - (1.0 - 4.0 * c).sqrt());
     let t = resting(beta, u);
     let height = a * b / (bb * u + aa * (1.0 - u)).sqrt();
-    let stays = turn(beta, t);
-    let beside = turn(beta, t + 0.02);
+    let stays = turn(beta, t)?;
+    let beside = turn(beta, t + 0.02)?;
     let limit = ((aa - bb) / (2.0 * a * b)).atan().to_degrees();
     let beta40 = 40f64.to_radians();
-    let away = turn(beta40, resting(beta40, 0.5));
-    vec![
+    let away = turn(beta40, resting(beta40, 0.5))?;
+    Ok(vec![
         (
             format!(
                 "ellipse a/b = 2 at rest on a 30° incline at the closed-form resting pose \
@@ -281,7 +283,7 @@ fn incline() -> Vec<Row> {
             "> 1".into(),
             away > 1.0,
         ),
-    ]
+    ])
 }
 
 /// Force and moment on body j (the second) from i — a body, or a wall when `i` is `None` — as
@@ -410,11 +412,11 @@ fn loops() -> Vec<Row> {
     rows
 }
 
-/// Every ellipse comparison (a second or two).
-pub fn checks() -> Vec<Row> {
-    let mut rows = rocking();
-    rows.extend(tilted_drop());
-    rows.extend(incline());
+/// Every ellipse comparison (a second or two); a run that blows up is the error.
+pub fn checks() -> Result<Vec<Row>, RunError> {
+    let mut rows = rocking()?;
+    rows.extend(tilted_drop()?);
+    rows.extend(incline()?);
     rows.extend(loops());
-    rows
+    Ok(rows)
 }
