@@ -449,8 +449,8 @@ mod bug_walls_csv_held_no_wall_loads {
 /// (naming both), and the watch counts a fall of the dissipated energy as energy created.
 mod bug_a_wall_given_300_times_ran_to_exit_0 {
     use super::*;
-    use dem2d::dynamics::World;
-    use dem2d::dynamics::watch::{BlowupWatch, Trigger};
+    use dem2d::run::watch::ENERGY_GROWTH;
+    use dem2d::run::{RunError, Simulation};
     use dem2d::scene::Case;
 
     #[test]
@@ -488,32 +488,24 @@ mod bug_a_wall_given_300_times_ran_to_exit_0 {
             Case::from_json(&std::fs::read_to_string(case("throw_square.json")).unwrap()).unwrap();
         let floor = c.walls[0];
         c.walls = vec![floor; 300];
-        let mut w = World::new(&c.bodies, c.walls.clone(), c.gravity, c.contact, c.dt);
-        let mut watch = BlowupWatch::new(&w);
-        let mut fired = None;
-        while w.time < c.duration {
-            w.step().unwrap();
-            if let Some(t) = watch.check(&w) {
-                fired = Some(t);
-                break;
-            }
-        }
+        let mut w = c.build_world();
+        let mut sim = Simulation::new(&mut w).until_time(c.duration);
+        let ended = sim.run();
+        let watch = sim.progress().watch.clone();
         let e = w.energies;
         eprintln!(
-            "300 floors: stopped at t = {:.4} s ({fired:?}); K {:.3e} D {:.3e}",
+            "300 floors: stopped at t = {:.4} s ({ended:?}); K {:.3e} D {:.3e}",
             w.time, e.kinetic, e.dissipated
         );
-        let Some(Trigger::Energy { available, .. }) = fired else {
-            panic!("{fired:?}");
+        let Err(RunError::Blowup(b)) = &ended else {
+            panic!("{ended:?}");
         };
+        assert!(b.reason.contains("the energy grew"), "{b}");
         // What the account alone shows, E − E₀ − W: the created kinetic energy cancelled by the
         // negative dissipation, far below the threshold (the watch that read only this never
         // fired).
         let account = e.total() - watch.total0 - e.boundary_work;
-        assert!(
-            account < dem2d::dynamics::watch::ENERGY_GROWTH * available,
-            "{account}"
-        );
+        assert!(account < ENERGY_GROWTH * watch.available(), "{account}");
         assert!(e.dissipated < 0.0);
     }
 }

@@ -4,6 +4,8 @@
 //! the end of the duration: a run that comes to rest stops sooner) and the unbalanced-force
 //! ratio, PFC's and Yade's measure of how far the pile is from equilibrium.
 
+use crate::dynamics::World;
+use crate::run::{End, Observer, ObserverError, Plan, StepInfo};
 use std::io::{IsTerminal, Write};
 use std::time::{Duration, Instant};
 
@@ -62,6 +64,61 @@ impl Progress {
         if self.shown && self.tty {
             let _ = writeln!(std::io::stderr());
         }
+    }
+}
+
+/// Progress lines of a run (an observer): silent for its first two seconds, then a [`line`] when
+/// one is due, not on the step the run stops at.
+pub struct ProgressLines {
+    name: String,
+    enabled: bool,
+    shown: Option<(Progress, Instant)>,
+}
+
+impl ProgressLines {
+    /// Lines naming the run `name`; none unless `enabled`.
+    pub fn new(name: &str, enabled: bool) -> Self {
+        ProgressLines {
+            name: name.to_string(),
+            enabled,
+            shown: None,
+        }
+    }
+}
+
+impl Observer for ProgressLines {
+    fn start(&mut self, _: &mut World, _: &Plan) -> Result<(), ObserverError> {
+        self.shown = Some((
+            Progress::new(self.enabled, Duration::from_secs(2)),
+            Instant::now(),
+        ));
+        Ok(())
+    }
+
+    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+        if let Some((progress, start)) = &mut self.shown
+            && !info.stopping
+            && progress.due()
+        {
+            // The unbalanced ratio costs a pass over the contacts: only when a line is due.
+            progress.show(&line(&Fields {
+                name: &self.name,
+                step: info.step,
+                steps: info.last.unwrap_or(info.step),
+                time: world.time,
+                elapsed: start.elapsed().as_secs_f64(),
+                contacts: info.report.contacts,
+                unbalanced: world.unbalanced_ratios().0,
+            }));
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self, _: &mut World, _: &End) -> Result<(), ObserverError> {
+        if let Some((progress, _)) = &self.shown {
+            progress.finish();
+        }
+        Ok(())
     }
 }
 
