@@ -11,29 +11,33 @@
 //!   vertical stretch (dyn/cm²).
 
 use super::run_data::ReadError;
-use super::trace::{LineFile, WriteError, time_text};
+use super::trace::{LineFile, WriteError};
 use crate::dynamics::World;
 use crate::dynamics::cell::Cell;
 use crate::geometry::Vec2;
+use crate::run::time::time_text;
+use crate::run::{End, Observer, ObserverError, Plan, StepInfo};
 use std::path::Path;
 
 pub const CELL_HEADER: &str = "step,t,lx,ly,offset,shift,sxx,sxy,syx,syy,stiffness_yy";
 
-/// The writer of `cell.csv`.
+/// The writer of `cell.csv`; as an observer of a run, at the trajectory's frames.
 pub struct CellWriter {
     out: LineFile,
     last_step: Option<u64>,
+    every: u64,
 }
 
 impl CellWriter {
-    /// Creates `dir/cell.csv` with its header.
-    pub fn create(dir: &Path) -> Result<Self, WriteError> {
+    /// Creates `dir/cell.csv` with its header; as an observer it writes every `every` steps.
+    pub fn create(dir: &Path, every: u64) -> Result<Self, WriteError> {
         let mut out = LineFile::create(&dir.join("cell.csv"))?;
         out.line(format_args!("{CELL_HEADER}"))?;
         out.flush()?;
         Ok(CellWriter {
             out,
             last_step: None,
+            every: every.max(1),
         })
     }
 
@@ -57,6 +61,25 @@ impl CellWriter {
 
     pub fn flush(&mut self) -> Result<(), WriteError> {
         self.out.flush()
+    }
+}
+
+impl Observer for CellWriter {
+    fn start(&mut self, world: &mut World, _: &Plan) -> Result<(), ObserverError> {
+        self.write(world, world.step)?;
+        Ok(self.flush()?)
+    }
+
+    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+        if !info.blowup && info.step.is_multiple_of(self.every) {
+            self.write(world, info.step)?;
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
+        self.write(world, end.step)?;
+        Ok(self.flush()?)
     }
 }
 
