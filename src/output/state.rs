@@ -29,7 +29,7 @@ use std::path::Path;
 
 /// The case's top-level fields in the order a state file lists them (the bodies and the state
 /// come last).
-const CASE_ORDER: [&str; 13] = [
+const CASE_ORDER: [&str; 14] = [
     "version",
     "name",
     "description",
@@ -43,6 +43,7 @@ const CASE_ORDER: [&str; 13] = [
     "output",
     "contact",
     "walls",
+    "cell",
 ];
 
 /// A double in its shortest round-trip form (`null` if not finite).
@@ -79,6 +80,15 @@ pub fn state_text(
         };
         if let Some(v) = value {
             let _ = writeln!(out, "  {}: {v},", compact(&Value::from(key)));
+        }
+    }
+    // Keys this list does not know yet still travel with the state (a restart reads the case
+    // from it): after the known ones, in the case's order.
+    if let Some(obj) = case.as_object() {
+        for (key, v) in obj {
+            if !CASE_ORDER.contains(&key.as_str()) && key != "bodies" && key != "state" {
+                let _ = writeln!(out, "  {}: {},", compact(&Value::from(key.as_str())), compact(v));
+            }
         }
     }
     // The bodies: the case's, at their current pose and velocity.
