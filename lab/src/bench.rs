@@ -13,13 +13,13 @@
 use dem2d::contact_law::NormalForce;
 use dem2d::dynamics::timestep::estimate_critical_dt;
 use dem2d::dynamics::{BodyInit, World};
-use dem2d::output::progress::Progress;
+use dem2d::output::progress::CommandProgress;
 use dem2d::run::Simulation;
 use dem2d::scene::Case;
 use dem2d::scene::generate::{PileShape, PileSpec, WIDTH_10K};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 /// Mean speed (cm/s) below which a pile counts as settled for the benchmark.
 pub const SETTLED_SPEED: f64 = 0.5;
@@ -125,26 +125,21 @@ fn settle(spec: &PileSpec, progress: bool) -> Result<String, BenchError> {
     let start = Instant::now();
     let check = ((0.01 / dt).round() as u64).max(1);
     let mut speed = mean_speed(&w);
-    let mut shown = Progress::new(progress, Duration::ZERO);
-    Simulation::new(&mut w)
-        .until_time(SETTLE_TIME_MAX)
-        .run_until(|w, _| {
-            if !w.step.is_multiple_of(check) {
-                return false;
-            }
-            speed = mean_speed(w);
-            if shown.due() {
-                shown.show(&format!(
-                    "settling {}: t = {:.2} s, mean speed {speed:.3} cm/s, {} contacts",
-                    spec.name(),
-                    w.time,
-                    w.contacts.len()
-                ));
-            }
-            w.time > 0.2 && speed < SETTLED_SPEED
-        })
-        .map_err(|e| BenchError(format!("settling {}: {e}", spec.name())))?;
-    shown.finish();
+    // `dem2d run`'s line (the step's contacts, not the neighbour list's pairs).
+    let mut lines = CommandProgress::new(format!("settling {}", spec.name()));
+    let mut sim = Simulation::new(&mut w).until_time(SETTLE_TIME_MAX);
+    if progress {
+        sim = sim.observe(&mut lines);
+    }
+    sim.run_until(|w, _| {
+        if !w.step.is_multiple_of(check) {
+            return false;
+        }
+        speed = mean_speed(w);
+        w.time > 0.2 && speed < SETTLED_SPEED
+    })
+    .map_err(|e| BenchError(format!("settling {}: {e}", spec.name())))?;
+    drop(sim);
     let description = format!(
         "{} settled at Δt = {dt:.3e} s for {:.2} s (mean speed {speed:.3} cm/s; {:.0} s of wall time) by `dem2d bench`, from: {}",
         spec.name(),

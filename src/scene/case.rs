@@ -10,7 +10,12 @@
 //!   "bodies": [ { "shape": {"type": "ellipse", "a": 1.5, "b": 1.0}, "position": [0, 5],
 //!                 "angle": 0.5, "velocity": [20, 0], "omega": 0, "density": 1.0 } ] }
 //! ```
-//! Unknown fields are errors; a state file's `"state"` block is read by [`super::state`]. `contact.model` is `linear` (stiffness `kn` or `kn_over_rho_g`;
+//! Shapes (`bodies[].shape`, [`super::body`]): `{"type": "circle", "r"}`, `{"type": "ellipse",
+//! "a", "b"}`, `{"type": "rectangle", "w", "h"}`, `{"type": "polygon", "vertices": [[x, y], …]}`
+//! (convex, counter-clockwise, at most 1000) and `{"type": "clump", "disks": [{"center": [x, y],
+//! "r"}, …]}`. Unknown fields are errors (naming what was likely meant and the valid keys); a
+//! state file's `"state"` block is read by [`super::state`]. `contact.model` is `linear`
+//! (stiffness `kn` or `kn_over_rho_g`;
 //! `ks`/`ks_over_rho_g`, default equal to the normal one as in P; damping `eta_n`/
 //! `eta_n_over_rho_g` with `eta_s`/`eta_s_over_rho_g` defaulting to it (T: η_t = η_n), or
 //! `restitution` instead (T12); `friction`) or `hertz_mindlin` (`young`, `poisson`,

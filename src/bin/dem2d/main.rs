@@ -6,6 +6,7 @@ mod impact;
 mod runner;
 mod study;
 mod verify;
+mod verify_ellipses;
 
 use crate::runner::{RunError, RunOptions, default_out_dir, run_case, signal_name};
 use clap::{Parser, Subcommand};
@@ -27,7 +28,8 @@ static GLOBAL: dem2d::alloc::HugePageAllocator = dem2d::alloc::HugePageAllocator
 #[command(
     name = "dem2d",
     version,
-    about = "2D discrete element method with circles, ellipses and rectangles"
+    about = "2D discrete element method with circles, ellipses, rectangles, convex polygons and \
+             clumps of disks"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -36,8 +38,9 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Run one of the studies behind the user guide's tables (rolling-fig3, repose, biaxial) and
-    /// print its Markdown table; run from the repository (the studies read `cases/`).
+    /// Run one of the studies behind the user guide's tables (rolling-fig3, repose, biaxial,
+    /// impacts, biaxial-shape, packing, representation) and print its Markdown table; run from
+    /// the repository (the studies read `cases/`).
     Study {
         /// Which study.
         #[arg(value_enum)]

@@ -1,8 +1,10 @@
 //! `dem2d verify`: the benchmarks with known answers, each comparison printed as
 //! `quantity | dem2d | reference | tolerance | pass/fail`, exit status 1 if any fails.
 //!
-//! - `--quick` (CI, a few seconds): the impact benchmarks (closed forms) and the Love–Weber
-//!   stress of a servo-compacted sample of 100 disks against its boundary stress (1 %).
+//! - `--quick` (CI, a few seconds): the impact benchmarks (closed forms), the Love–Weber
+//!   stress of a servo-compacted sample of 100 disks against its boundary stress (1 %), and
+//!   ellipses under the area law against closed forms and a conservation law (rocking period,
+//!   tilted drop, incline equilibrium, loop work: [`crate::verify_ellipses`]).
 //! - default (about a minute): also the published trend of the biaxial test — the residual
 //!   stress ratio grows with the grains' elongation (Rothenburg & Bathurst 1992; Azéma & Radjaï 2010;
 //!   Saint-Cyr et al. 2012) — on samples of 144 grains, α = 1 and 2; and the packing fraction
@@ -169,6 +171,15 @@ pub fn run(level: Level) -> Result<(bool, String), RunError> {
     let mut checks = relative(impacts::normal_rows()?);
     checks.extend(relative(impacts::oblique_rows(&[40.0, 60.0, 80.0])?));
     checks.extend(stress_checks()?);
+    checks.extend(crate::verify_ellipses::checks()?.into_iter().map(
+        |(quantity, value, reference, tolerance, pass)| Check {
+            quantity,
+            value,
+            reference,
+            tolerance,
+            pass,
+        },
+    ));
     match level {
         Level::Quick => {}
         Level::Default => {

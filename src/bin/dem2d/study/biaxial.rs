@@ -17,6 +17,7 @@
 
 use dem2d::dynamics::{BodyInit, World};
 use dem2d::geometry::{Shape, Vec2};
+use dem2d::output::progress::CommandProgress;
 use dem2d::run::{RunError, Simulation};
 use dem2d::scene::Case;
 use dem2d::scene::generate::case_text_from;
@@ -118,7 +119,8 @@ pub fn run(write: bool) -> Result<String, RunError> {
     let case = Case::from_json(&compaction).unwrap();
     let mut w = case.build_world();
     let mut last = f64::INFINITY;
-    let mut sim = Simulation::new(&mut w).for_steps(5000);
+    let mut lines = CommandProgress::new(case.name.clone());
+    let mut sim = Simulation::new(&mut w).observe(&mut lines).for_steps(5000);
     loop {
         sim.run()?;
         let w = sim.world();
@@ -172,7 +174,9 @@ pub fn run(write: bool) -> Result<String, RunError> {
     );
     let steps_per_percent = (0.01 / STRAIN_RATE / case.dt).round() as u64;
     let (mut sum, mut count) = ([0.0; 2], 0.0);
+    let mut lines = CommandProgress::new(case.name.clone());
     Simulation::new(&mut w)
+        .observe(&mut lines)
         .until_step(case.steps())
         .run_each(|w, _| {
             let (ax, lat, width, height) = stresses(w);

@@ -25,6 +25,7 @@ use dem2d::dynamics::World;
 use dem2d::dynamics::boundary::span_length;
 use dem2d::dynamics::{BodyInit, Span};
 use dem2d::output::plot::{self, LinePanel, Series};
+use dem2d::output::progress::CommandProgress;
 use dem2d::run::{RunError, Simulation};
 use dem2d::scene::Case;
 use dem2d::scene::servo_box::ServoBox;
@@ -57,7 +58,8 @@ pub fn wall_state(w: &World) -> (f64, f64, f64, f64) {
 pub fn compact(w: &mut World, max_time: f64) -> Result<u64, RunError> {
     let mut steps = 0;
     let mut last = f64::INFINITY;
-    let mut sim = Simulation::new(w).for_steps(2000);
+    let mut lines = CommandProgress::new(format!("compaction of {} grains", w.bodies.len()));
+    let mut sim = Simulation::new(w).observe(&mut lines).for_steps(2000);
     while sim.world().time < max_time {
         sim.run()?;
         steps += 2000;
@@ -175,7 +177,9 @@ pub fn run_one(
     };
     let (mut sum, mut count) = ([0.0; 2], 0.0);
     let mut frames = Vec::new();
+    let mut lines = CommandProgress::new(case.name.clone());
     Simulation::new(&mut w)
+        .observe(&mut lines)
         .until_step(case.steps())
         .run_each(|w, _| {
             let (_, _, ax, lat) = wall_state(w);

@@ -166,7 +166,7 @@ pub fn run() -> Result<String, RunError> {
     writeln!(
         md,
         "\nDisk r = {} cm, ρ = {} g/cm³ (m = {:.4} g per cm of thickness, I = m r²/2), wall y = 0; \
-         linear k_n = {KN:e} dyn/cm², Hertz E = {YOUNG:e} dyn/cm², ν = {POISSON} (the wall of the \
+         linear k_n = {KN:e} dyn/cm (of a 1 cm slice: dyn per cm of thickness per cm of overlap), Hertz E = {YOUNG:e} dyn/cm², ν = {POISSON} (the wall of the \
          same material), normal speed {V_NORMAL} cm/s; oblique at {V_OBLIQUE} cm/s, μ = {MU}, e = 1, \
          k_t = k_n; Δt = t_c/2000. Oblique sweep: {} impacts, {steps} steps.",
         impact::RADIUS,

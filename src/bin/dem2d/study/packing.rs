@@ -21,6 +21,7 @@ use dem2d::contact_law::NormalForce;
 use dem2d::dynamics::BodyInit;
 use dem2d::geometry::{Shape, Vec2};
 use dem2d::output::plot::{self, LinePanel, Series};
+use dem2d::output::progress::CommandProgress;
 use dem2d::run::{RunError, Simulation, Stop};
 use dem2d::scene::Case;
 use dem2d::scene::generate::{DENSITY, PileShape, PileSizes, PileSpec, R_SMALL};
@@ -158,7 +159,9 @@ pub fn pour_shaped(
     let case = Case::from_json(&text).expect("valid case");
     let mut w = case.build_world();
     let mut contacts = 0usize;
+    let mut lines = CommandProgress::new(case.name.clone());
     let stop = Simulation::new(&mut w)
+        .observe(&mut lines)
         .until_step(case.steps())
         .quiescence(Some(case.quiescence_criterion().expect("a rest criterion")))
         .run_each(|_, r| contacts += r.contacts)?;

@@ -19,6 +19,7 @@
 use dem2d::contact_law::{RollingModel, RollingPart};
 use dem2d::dynamics::analysis::heap_surface;
 use dem2d::dynamics::{BodyInit, World};
+use dem2d::output::progress::CommandProgress;
 use dem2d::run::{RunError, Simulation, Stop};
 use dem2d::scene::Case;
 use dem2d::scene::generate::ColumnSpec;
@@ -29,7 +30,9 @@ const GATE_SPEED: f64 = 100.0;
 /// at rest.
 fn run_to_rest(case: &Case) -> Result<(World, Option<f64>), RunError> {
     let mut w = case.build_world();
+    let mut lines = CommandProgress::new(case.name.clone());
     let stop = Simulation::new(&mut w)
+        .observe(&mut lines)
         .until_step(case.steps())
         .quiescence(case.quiescence_criterion())
         .run()?;
@@ -61,7 +64,10 @@ pub fn run(write: bool) -> Result<String, RunError> {
         Case::from_json(&column.case_json("column", &lattice, 0.0, &[], &resistance(None)))
             .unwrap();
     let (w, rest) = run_to_rest(&settle)?;
-    eprintln!("column settled at t = {rest:?}");
+    match rest {
+        Some(t) => eprintln!("column settled at t = {t} s"),
+        None => eprintln!("column not at rest within its duration: continuing from where it is"),
+    }
     let settled: Vec<BodyInit> = (0..w.bodies.len())
         .map(|k| BodyInit {
             position: w.bodies.state[k]

@@ -5,13 +5,16 @@
 //! criterion (the case's threshold, held for the case's window) first holds, in a run of up to
 //! 20 s.
 use dem2d::contact_law::{NormalForce, RollingModel, RollingPart};
+use dem2d::output::progress::CommandProgress;
 use dem2d::run::{RunError, Simulation, Stop};
 use dem2d::scene::Case;
 
 /// When (and where: the body's x) P's criterion first holds, in a run of up to `limit` seconds.
 fn rest_time(case: &Case, limit: f64) -> Result<Option<(f64, f64)>, RunError> {
     let mut w = case.build_world();
+    let mut lines = CommandProgress::new(case.name.clone());
     let stop = Simulation::new(&mut w)
+        .observe(&mut lines)
         .quiescence(case.quiescence_criterion())
         .run_until(|w, _| w.time >= limit)?;
     Ok(match stop {
