@@ -16,6 +16,8 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+mod common;
+
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
@@ -406,7 +408,7 @@ fn the_outputs_reference_lists_every_file_and_column_a_run_writes() {
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("case.json"), &case).unwrap();
     let out = dir.join("run");
-    let status = Command::new(env!("CARGO_BIN_EXE_dem2d"))
+    let status = Command::new(common::bin())
         .args(["run", "case.json", "--out", "run", "--quiet"])
         .current_dir(&dir)
         .status()
@@ -534,7 +536,7 @@ fn the_command_line_reference_names_every_option() {
     for command in [
         "run", "plot", "analyze", "contact", "generate", "verify", "study",
     ] {
-        let out = Command::new(env!("CARGO_BIN_EXE_dem2d"))
+        let out = Command::new(common::bin())
             .args(["help", command])
             .output()
             .unwrap();

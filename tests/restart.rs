@@ -9,31 +9,12 @@ use dem2d::dynamics::World;
 use dem2d::run::{BlowupWatch, RunProgress, Simulation};
 use dem2d::scene::CaseFile;
 use serde_json::Value;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-fn bin() -> &'static str {
-    env!("CARGO_BIN_EXE_dem2d")
-}
-
-fn dem2d(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(bin()).args(args).output().expect("run dem2d");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-    )
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("restart")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+mod common;
+use common::{bin, dem2d, scratch};
 
 /// A pile in a box: 24 bodies — circles, ellipses, a rectangle and a hexagon — dropped onto a floor
 /// between two walls, frictional (μ = 0.5) with EPSD rolling springs, so that by step 9000 it

@@ -15,10 +15,13 @@
 use dem2d::contact_law::{
     ContactSpec, LinearDamping, NormalForce, RollingModel, RollingPart, Scaled,
 };
-use dem2d::dynamics::{BodyInit, Boundary, World};
-use dem2d::geometry::{Shape, Vec2, Wall};
+use dem2d::dynamics::{BodyInit, World};
+use dem2d::geometry::{Shape, Vec2};
 use dem2d::run::{Simulation, Stop};
 use std::f64::consts::PI;
+
+mod common;
+use common::floor;
 
 const G: f64 = 980.0;
 const KN: f64 = 36400.0 * G; // P's stiffness, ρ = 1
@@ -56,7 +59,7 @@ fn disk_on_floor(r: f64, v: f64, gravity: Vec2, spec: ContactSpec, dt: f64) -> W
         omega: -v / (r - delta),
         density: 1.0,
     };
-    let floor = Boundary::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), spec);
+    let floor = floor(spec);
     World::new(&[body], vec![floor], gravity, spec, dt)
 }
 
@@ -447,7 +450,7 @@ fn an_ellipse_rests_on_slopes_up_to_mu_r_plus_its_shapes_own_limit() {
             omega: 0.0,
             density: 1.0,
         };
-        let floor = Boundary::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), law);
+        let floor = floor(law);
         let gravity = Vec2::new(G * beta.sin(), -G * beta.cos());
         let mut w = World::new(&[body], vec![floor], gravity, law, 1e-5);
         Simulation::new(&mut w).for_steps(50_000).run().unwrap();

@@ -44,7 +44,23 @@ impl World {
         spec: ContactSpec,
         dt: f64,
     ) -> Self {
-        let mut w = World {
+        let mut w = World::unevaluated(bodies, walls, gravity, spec, dt);
+        w.evaluate_forces();
+        Stepper::update_servos(&mut w.parts().1);
+        w.energies.kinetic = w.kinetic_energy();
+        w.energies.potential = w.potential_energy();
+        w
+    }
+
+    /// The scene at t = 0 with nothing evaluated: no contacts, no forces, no energies.
+    fn unevaluated(
+        bodies: &[BodyInit],
+        walls: Vec<Boundary>,
+        gravity: Vec2,
+        spec: ContactSpec,
+        dt: f64,
+    ) -> Self {
+        World {
             bodies: Bodies::new(bodies),
             walls,
             gravity,
@@ -61,12 +77,7 @@ impl World {
             last_increments: [0.0; 3],
             cell: None,
             stepper: Stepper::default(),
-        };
-        w.evaluate_forces();
-        Stepper::update_servos(&mut w.parts().1);
-        w.energies.kinetic = w.kinetic_energy();
-        w.energies.potential = w.potential_energy();
-        w
+        }
     }
 
     /// A world resumed from a restart taken of a world of the same scene (`bodies`, `walls`,
@@ -84,19 +95,13 @@ impl World {
         let shapes: Vec<_> = bodies.iter().map(|b| b.shape).collect();
         saved.check(bodies, &walls, dt, kept(&shapes, &spec, &walls))?;
         let mut w = World {
-            bodies: Bodies::new(bodies),
-            walls,
-            gravity,
-            spec,
-            dt,
             time: saved.time,
             step: saved.step,
-            contacts: ContactList::default(),
             energies: saved.energies,
             diagnostics: saved.diagnostics,
             last_increments: saved.last_increments,
             cell: saved.cell,
-            stepper: Stepper::default(),
+            ..World::unevaluated(bodies, walls, gravity, spec, dt)
         };
         if saved.cell.is_some() {
             w.bodies.image = saved.bodies.iter().map(|r| r.image).collect();

@@ -24,7 +24,7 @@ use crate::geometry::Vec2;
 use crate::run::{End, Observer, ObserverError, RunError, RunProgress, StepInfo};
 use serde_json::Value;
 use std::fmt::Write as _;
-use std::io::{self, Write};
+use std::io;
 use std::path::Path;
 
 /// The case's top-level fields in the order a state file lists them (the bodies and the state
@@ -343,16 +343,7 @@ pub fn write_state(
         bodies,
         status,
     );
-    let tmp = dir.join("state.json.tmp");
-    let result = std::fs::File::create(&tmp).and_then(|mut f| {
-        f.write_all(text.as_bytes())?;
-        f.sync_all()
-    });
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(e);
-    }
-    std::fs::rename(&tmp, dir.join("state.json"))
+    super::write_atomically(dir, "state.json", &text)
 }
 
 /// The writer of a run's `state.json` (an observer): when the run ends, however it ends but by a

@@ -40,11 +40,13 @@ use dem2d::dynamics::{RestartState, World};
 use dem2d::output::analysis::AnalysisOutput;
 use dem2d::output::cell::CellWriter;
 use dem2d::output::progress::ProgressLines;
+use dem2d::output::run_data::BodyState;
 use dem2d::output::state::StateWriter;
-use dem2d::output::summary::{DeepCounts, EnergyReport, FinalBody, Status, Summary, write_summary};
+use dem2d::output::summary::{DeepCounts, EnergyReport, Status, Summary, write_summary};
 use dem2d::output::trace::{IncrementsWriter, TrajectoryWriter, WriteError};
 use dem2d::output::vtk::VtkWriter;
 use dem2d::output::walls::WallsWriter;
+use dem2d::output::write_atomically;
 use dem2d::run::time::time_value;
 use dem2d::run::{CriticalStepSampler, RunProgress, Simulation, Stop, watch};
 use dem2d::scene::Case;
@@ -298,21 +300,6 @@ fn same_file(a: &Path, b: &Path) -> bool {
         (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
         _ => false,
     }
-}
-
-/// Writes `text` to `dir/name` atomically: into `name.tmp`, synced, renamed over it.
-fn write_atomically(dir: &Path, name: &str, text: &str) -> io::Result<()> {
-    use std::io::Write;
-    let tmp = dir.join(format!("{name}.tmp"));
-    let result = std::fs::File::create(&tmp).and_then(|mut f| {
-        f.write_all(text.as_bytes())?;
-        f.sync_all()
-    });
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(e);
-    }
-    std::fs::rename(&tmp, dir.join(name))
 }
 
 /// Refuses a directory holding an earlier run's outputs, or (with `overwrite`) removes them,
@@ -661,7 +648,7 @@ fn summarize(
 ) -> Summary {
     let b = &world.bodies;
     let final_state = (0..b.len())
-        .map(|k| FinalBody {
+        .map(|k| BodyState {
             x: b.state[k].pose.position.x,
             y: b.state[k].pose.position.y,
             angle: b.state[k].pose.angle(),

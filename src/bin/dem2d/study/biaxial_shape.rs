@@ -393,16 +393,15 @@ pub fn run(grains: usize, write: bool) -> Result<String, RunError> {
         results
             .iter()
             .enumerate()
-            .map(|(c, r)| Series {
-                label: format!("α = {}", r.aspect),
-                points: r
-                    .curve
-                    .iter()
-                    .map(|p| (100.0 * p.0, if k == 0 { p.1 } else { 100.0 * p.2 }))
-                    .collect(),
-                color: c,
-                line: true,
-                ..Default::default()
+            .map(|(c, r)| {
+                Series::line(
+                    format!("α = {}", r.aspect),
+                    r.curve
+                        .iter()
+                        .map(|p| (100.0 * p.0, if k == 0 { p.1 } else { 100.0 * p.2 }))
+                        .collect(),
+                    c,
+                )
             })
             .collect()
     };
