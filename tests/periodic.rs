@@ -9,11 +9,13 @@
 use dem2d::contact_law::{ContactSpec, LinearDamping, Scaled};
 use dem2d::dynamics::cell::{Cell, Periodic, Pressure};
 use dem2d::dynamics::{BodyInit, World};
-use dem2d::geometry::{Pose, Shape, Vec2};
+use dem2d::geometry::{Shape, Vec2};
 use dem2d::narrow_phase::{Object, contact};
 use dem2d::run::Simulation;
 use dem2d::scene::Case;
 use std::collections::BTreeSet;
+
+mod common;
 
 /// A small deterministic generator (xorshift).
 struct Rng(u64);
@@ -91,7 +93,10 @@ fn brute_force_pairs(w: &World, cell: &Cell) -> BTreeSet<(usize, usize)> {
                     }
                 }
             }
-            assert!(touching <= 1, "pair ({i}, {j}) touches through {touching} images");
+            assert!(
+                touching <= 1,
+                "pair ({i}, {j}) touches through {touching} images"
+            );
             if touching == 1 {
                 out.insert((i, j));
             }
@@ -289,7 +294,10 @@ fn momentum_and_energy_are_conserved_across_seams() {
     let crossed = w.bodies.image.iter().filter(|i| **i != [0, 0]).count();
     assert!(crossed > 10, "only {crossed} bodies crossed a seam");
     let dp = (w.momentum() - momentum0).norm();
-    assert!(dp < 1e-9 * (1.0 + momentum0.norm()), "momentum changed by {dp}");
+    assert!(
+        dp < 1e-9 * (1.0 + momentum0.norm()),
+        "momentum changed by {dp}"
+    );
     let de = (w.energies.total() - e0).abs();
     assert!(de < 1e-3 * e0, "energy changed by {de} of {e0}");
 }
@@ -377,9 +385,7 @@ fn a_sheared_cell_at_an_imposed_pressure_flows_with_a_linear_profile() {
 /// bodies' image counts are in the state).
 #[test]
 fn a_sheared_cell_continues_exactly_from_its_state() {
-    let dir = std::env::temp_dir().join(format!("dem2d-periodic-restart-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::scratch("restart");
     let mut rng = Rng(3);
     let bodies: Vec<String> = (0..36)
         .map(|k| {
@@ -409,16 +415,40 @@ fn a_sheared_cell_continues_exactly_from_its_state() {
     );
     std::fs::write(dir.join("case.json"), case).unwrap();
     let run = |args: &[&str]| {
-        let s = std::process::Command::new(env!("CARGO_BIN_EXE_dem2d"))
+        let s = std::process::Command::new(common::bin())
             .args(args)
             .current_dir(&dir)
             .status()
             .unwrap();
         assert!(s.success(), "dem2d {args:?}");
     };
-    run(&["run", "case.json", "--out", "whole", "--max-steps", "3000", "--quiet"]);
-    run(&["run", "case.json", "--out", "first", "--max-steps", "1700", "--quiet"]);
-    run(&["run", "first/state.json", "--out", "second", "--max-steps", "1300", "--quiet"]);
+    run(&[
+        "run",
+        "case.json",
+        "--out",
+        "whole",
+        "--max-steps",
+        "3000",
+        "--quiet",
+    ]);
+    run(&[
+        "run",
+        "case.json",
+        "--out",
+        "first",
+        "--max-steps",
+        "1700",
+        "--quiet",
+    ]);
+    run(&[
+        "run",
+        "first/state.json",
+        "--out",
+        "second",
+        "--max-steps",
+        "1300",
+        "--quiet",
+    ]);
     let last_frame = |d: &str| {
         let text = std::fs::read_to_string(dir.join(d).join("trajectory.csv")).unwrap();
         let rows: Vec<&str> = text.lines().collect();
@@ -432,5 +462,4 @@ fn a_sheared_cell_continues_exactly_from_its_state() {
         text.lines().last().unwrap().to_string()
     };
     assert_eq!(cell("second"), cell("whole"));
-    let _ = std::fs::remove_dir_all(&dir);
 }

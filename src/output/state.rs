@@ -87,7 +87,12 @@ pub fn state_text(
     if let Some(obj) = case.as_object() {
         for (key, v) in obj {
             if !CASE_ORDER.contains(&key.as_str()) && key != "bodies" && key != "state" {
-                let _ = writeln!(out, "  {}: {},", compact(&Value::from(key.as_str())), compact(v));
+                let _ = writeln!(
+                    out,
+                    "  {}: {},",
+                    compact(&Value::from(key.as_str())),
+                    compact(v)
+                );
             }
         }
     }
