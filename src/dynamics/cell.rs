@@ -165,14 +165,30 @@ impl Cell {
         k
     }
 
-    /// σ_yy, the normal stress on the cell's horizontal faces (compressive positive).
-    pub fn normal_stress(&self) -> f64 {
-        self.stress[3]
+    /// Whether the cell measures its stress: a cell periodic in x and y (in an `"x"` cell the
+    /// walls carry part of the load, and the packing's stress is `analysis`'s).
+    #[inline]
+    pub fn measures_stress(&self) -> bool {
+        self.periodic_y()
     }
 
-    /// The shear stress `(σ_xy + σ_yx)/2`.
+    /// σ_yy, the normal stress on the cell's horizontal faces (compressive positive; NaN where
+    /// the cell does not measure it).
+    pub fn normal_stress(&self) -> f64 {
+        if self.measures_stress() {
+            self.stress[3]
+        } else {
+            f64::NAN
+        }
+    }
+
+    /// The shear stress `(σ_xy + σ_yx)/2` (NaN where the cell does not measure it).
     pub fn shear_stress(&self) -> f64 {
-        0.5 * (self.stress[1] + self.stress[2])
+        if self.measures_stress() {
+            0.5 * (self.stress[1] + self.stress[2])
+        } else {
+            f64::NAN
+        }
     }
 
     /// Under an imposed pressure, the cell's height for the next step from the stress of the
@@ -198,6 +214,14 @@ impl Cell {
         let work = -self.area() * self.elastic_yy * (lambda - 1.0);
         self.size.y *= lambda;
         (lambda, work)
+    }
+
+    /// Whether `p` (inside the cell) lies within `margin` of one of its seams.
+    #[inline]
+    pub fn near_seam(&self, p: Vec2, margin: f64) -> bool {
+        p.x < margin
+            || p.x > self.size.x - margin
+            || (self.periodic_y() && (p.y < margin || p.y > self.size.y - margin))
     }
 
     /// Whether the cell repeats in y.
@@ -232,7 +256,7 @@ impl Cell {
         let mut offset = Vec2::zeros();
         let mut velocity = Vec2::zeros();
         if self.periodic_y() {
-            let sy = (d.y / self.size.y).round();
+            let sy = periods(d.y, self.size.y);
             if sy != 0.0 {
                 // The giver's image `sy` cells above: shifted by sy·(s, L_y), moving at sy·γ̇L_y.
                 offset = Vec2::new(sy * self.offset, sy * self.size.y);
@@ -240,7 +264,7 @@ impl Cell {
                 d -= offset;
             }
         }
-        let sx = (d.x / self.size.x).round();
+        let sx = periods(d.x, self.size.x);
         if sx != 0.0 {
             offset.x += sx * self.size.x;
         }
@@ -252,13 +276,13 @@ impl Cell {
     #[inline]
     pub fn shortest(&self, mut d: Vec2) -> Vec2 {
         if self.periodic_y() {
-            let sy = (d.y / self.size.y).round();
+            let sy = periods(d.y, self.size.y);
             if sy != 0.0 {
                 d.x -= sy * self.offset;
                 d.y -= sy * self.size.y;
             }
         }
-        let sx = (d.x / self.size.x).round();
+        let sx = periods(d.x, self.size.x);
         if sx != 0.0 {
             d.x -= sx * self.size.x;
         }
@@ -329,6 +353,21 @@ impl Cell {
     /// The cell's area (per unit thickness).
     pub fn area(&self) -> f64 {
         self.size.x * self.size.y
+    }
+}
+
+/// The whole number of periods `l` nearest to `d` (ties either way: both images are then equally
+/// near). Pairs and lever arms lie within one and a half periods (positions are wrapped), decided
+/// by comparisons; the division and rounding (a library call on x86-64's baseline) only beyond.
+#[inline(always)]
+fn periods(d: f64, l: f64) -> f64 {
+    let a = d.abs();
+    if a <= 0.5 * l {
+        0.0
+    } else if a <= 1.5 * l {
+        1.0f64.copysign(d)
+    } else {
+        (d / l).round()
     }
 }
 

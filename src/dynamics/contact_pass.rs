@@ -228,6 +228,7 @@ impl ContactPass {
             history,
             stride,
             adjacency_start,
+            near_seam,
             ..
         } = list;
         let stride = *stride;
@@ -239,6 +240,7 @@ impl ContactPass {
             dt,
             adjacency_start,
             cell,
+            near_seam,
         };
         let nw = walls.len().max(1);
         let (linear, laws) = (&self.linear[..], &self.laws[..]);
@@ -254,17 +256,49 @@ impl ContactPass {
             .zip(data.par_chunks_mut(SLOT_CHUNK))
             .zip(self.partials.par_iter_mut())
             .zip(self.wall_partials.par_chunks_mut(nw));
-        // A periodic cell's copies of the pass shift each giver to its nearest image.
+        // A periodic cell's copy of the pass shifts each giver to its nearest image and sums
+        // the cell's stress: taken by every slot where the cell measures its stress, else by
+        // the runs of slots with a body near a seam. The others meet no image: the
+        // wall-bounded copy, the same bits (the sums run through the chunk in order either way).
+        let measures = cell.is_some_and(Cell::measures_stress);
+        let near_seam = cx.near_seam;
+        let near = |s: &Slot| match s.partner() {
+            Partner::Body(k) => near_seam[k] || near_seam[s.i as usize],
+            Partner::Wall(_) => false,
+        };
         let run = |slots: &mut [Slot],
                    data: &mut [ContactData],
                    loads: &mut [WallLoad],
-                   cache: Option<&mut [PairCache]>,
-                   more: Option<(&mut [f64], usize)>| {
-            if cell.is_some() {
-                chunk.run::<true>(slots, data, loads, cache, more)
+                   mut cache: Option<&mut [PairCache]>,
+                   mut more: Option<(&mut [f64], usize)>| {
+            let mut p = SlotPartial::default();
+            loads.fill(WallLoad::default());
+            if cell.is_none() {
+                chunk.run::<false>(slots, data, loads, cache, more, &mut p);
+            } else if measures {
+                chunk.run::<true>(slots, data, loads, cache, more, &mut p);
             } else {
-                chunk.run::<false>(slots, data, loads, cache, more)
+                let mut a = 0;
+                while a < slots.len() {
+                    let here = near(&slots[a]);
+                    let b = slots[a..]
+                        .iter()
+                        .position(|s| near(s) != here)
+                        .map_or(slots.len(), |k| a + k);
+                    let cache = cache.as_deref_mut().map(|c| &mut c[a..b]);
+                    let more = more
+                        .as_mut()
+                        .map(|(h, stride)| (&mut h[a * *stride..b * *stride], *stride));
+                    let (s, d) = (&mut slots[a..b], &mut data[a..b]);
+                    if here {
+                        chunk.run::<true>(s, d, loads, cache, more, &mut p);
+                    } else {
+                        chunk.run::<false>(s, d, loads, cache, more, &mut p);
+                    }
+                    a = b;
+                }
             }
+            p
         };
         match (cache.is_empty(), history.is_empty()) {
             (true, true) => chunks.for_each(|(((slots, data), part), loads)| {
@@ -323,6 +357,7 @@ impl ContactPass {
             history,
             stride,
             adjacency_start,
+            near_seam,
             ..
         } = list;
         let stride = *stride;
@@ -334,6 +369,7 @@ impl ContactPass {
             dt: 0.0,
             adjacency_start,
             cell,
+            near_seam,
         };
         let laws = Resolved((!self.laws.is_empty()).then_some(&self.laws[..]));
         let (cache, history) = (&cache[..], &history[..]);
@@ -402,13 +438,15 @@ pub(crate) struct PassContext<'a> {
     pub adjacency_start: &'a [u32],
     /// The periodic cell, if the scene has one.
     pub cell: Option<&'a Cell>,
+    /// In a periodic cell, the bodies near a seam (the only ones whose pairs may meet through
+    /// an image: [`ContactList::mark_near_seams`]).
+    pub near_seam: &'a [bool],
 }
 
 impl PassContext<'_> {
     /// The sides of a slot's pair as the narrow phase takes them: the giver as i, the receiver
-    /// as j.
-    #[inline(always)]
     /// as j; a giver seen through a periodic image is placed at the image, in `store`.
+    #[inline(always)]
     fn sides<'s>(&'s self, sides: Sides, store: &'s mut Pose) -> (Side<'s>, Side<'s>) {
         let b = self.bodies;
         let i = match sides.giver {
@@ -437,7 +475,10 @@ impl PassContext<'_> {
     #[inline(always)]
     fn slot_sides<const PAIR: bool, const PERIODIC: bool>(&self, slot: &Slot) -> Sides {
         let mut sides = sides_of_slot::<PAIR>(slot);
-        if PERIODIC && let (Some(cell), Partner::Body(k)) = (self.cell, sides.giver) {
+        if PERIODIC
+            && let (Some(cell), Partner::Body(k)) = (self.cell, sides.giver)
+            && (self.near_seam[k] || self.near_seam[sides.receiver])
+        {
             let b = &self.bodies.state;
             sides.image = cell.nearest_image(b[k].pose.position, b[sides.receiver].pose.position);
         }
@@ -468,7 +509,8 @@ struct Chunk<'a> {
 
 impl Chunk<'_> {
     /// The chunk's slots (with their pair caches, and their further history values with their
-    /// number per slot, when the scene keeps them); returns its sums.
+    /// number per slot, when the scene keeps them), their sums added to `p` and their walls'
+    /// loads to `loads`.
     fn run<const PERIODIC: bool>(
         &self,
         slots: &mut [Slot],
@@ -476,10 +518,9 @@ impl Chunk<'_> {
         loads: &mut [WallLoad],
         mut cache: Option<&mut [PairCache]>,
         mut history: Option<(&mut [f64], usize)>,
-    ) -> SlotPartial {
+        p: &mut SlotPartial,
+    ) {
         let cx = self.cx;
-        let mut p = SlotPartial::default();
-        loads.fill(WallLoad::default());
         let linear = self.linear;
         let is_linear = !linear.0.is_empty();
         if self.disks {
@@ -501,16 +542,16 @@ impl Chunk<'_> {
                         Disks,
                         Linear(&pair_law),
                         cx,
-                        &mut p,
+                        p,
                         loads,
                     );
                 } else {
                     contact_slot_apart::<_, _, false, PERIODIC>(
-                        slot, to, Disks, linear, cx, &mut p, loads,
+                        slot, to, Disks, linear, cx, p, loads,
                     );
                 }
             }
-            return p;
+            return;
         }
         // With circles in the scene, the circle pairs' geometry first, for the whole chunk: a
         // short loop whose square roots and divisions overlap from slot to slot (inside the
@@ -540,7 +581,7 @@ impl Chunk<'_> {
                     Lean(l),
                     linear,
                     cx,
-                    &mut p,
+                    p,
                     loads,
                 ),
                 Some(l) => contact_slot_apart::<_, _, false, PERIODIC>(
@@ -549,7 +590,7 @@ impl Chunk<'_> {
                     Lean(l),
                     resolved,
                     cx,
-                    &mut p,
+                    p,
                     loads,
                 ),
                 None if !is_linear => contact_slot_apart::<_, _, false, PERIODIC>(
@@ -558,7 +599,7 @@ impl Chunk<'_> {
                     Dispatch(cache),
                     resolved,
                     cx,
-                    &mut p,
+                    p,
                     loads,
                 ),
                 // Body pairs in a copy compiled for them (no wall branch left).
@@ -568,7 +609,7 @@ impl Chunk<'_> {
                     Dispatch(cache),
                     linear,
                     cx,
-                    &mut p,
+                    p,
                     loads,
                 ),
                 None => contact_slot_apart::<_, _, false, PERIODIC>(
@@ -577,12 +618,11 @@ impl Chunk<'_> {
                     Dispatch(cache),
                     linear,
                     cx,
-                    &mut p,
+                    p,
                     loads,
                 ),
             }
         }
-        p
     }
 }
 
@@ -939,8 +979,12 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool, const PERIODIC: boo
     if depth > p.max_depth_ratio * scale {
         p.max_depth_ratio = depth / scale; // divide only when the maximum grows
     }
-    if PERIODIC && let Some(k) = giver {
-        // The cell's stress (Love–Weber) and its stiffness against a vertical stretch.
+    if PERIODIC
+        && let Some(k) = giver
+        && cx.cell.is_some_and(Cell::measures_stress)
+    {
+        // The cell's stress (Love–Weber) and its stiffness against a vertical stretch (only
+        // an `"xy"` cell shears, so only there does an image move).
         let at = b.state[k].pose.position + sides.image.map_or(Vec2::zeros(), |i| i.offset);
         let l = b.state[recv].pose.position - at;
         p.stress[0] += f.x * l.x;

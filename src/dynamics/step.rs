@@ -227,7 +227,9 @@ impl Stepper {
         if let Some(body) = bodies_sum.bad {
             return Err(blowup(body, "velocity"));
         }
-        if let Some(cell) = wd.cell.as_deref_mut() {
+        if let Some(cell) = wd.cell.as_deref_mut()
+            && cell.measures_stress()
+        {
             cell.measure(
                 &slots.stress,
                 slots.stiffness_yy,
@@ -290,7 +292,7 @@ impl Stepper {
             mass,
             ..
         } = &mut *wd.bodies;
-        let built_at = &wd.contacts.built_at;
+        let (built_at, near_seam) = (&wd.contacts.built_at, &wd.contacts.near_seam[..]);
         let fresh = built_at.len() == n;
         let images = &image[..];
         // A periodic cell's bodies re-enter it: their image counts change (rarely: gathered
@@ -351,7 +353,10 @@ impl Stepper {
                         // periodic cell, the displacement's shortest image (a body that
                         // re-entered has not moved by a period).
                         let moved = match cell {
-                            Some(cell) if PERIODIC => cell.shortest(pos - built_at[k]),
+                            // (Only a body near a seam can have crossed one.)
+                            Some(cell) if PERIODIC && near_seam.get(g) != Some(&false) => {
+                                cell.shortest(pos - built_at[k])
+                            }
                             _ => pos - built_at[k],
                         };
                         top_two(&mut p.disp, moved.norm_squared());
@@ -435,6 +440,13 @@ impl Stepper {
     /// The pass's input for the step just drifted over, `dt` (0 at the start).
     fn pass_input<'a>(&self, wd: &'a mut Parts, dt: f64) -> (PassInput<'a>, &'a mut ContactList) {
         let g = wd.gravity.norm();
+        if let Some(cell) = wd.cell.as_deref()
+            && wd.contacts.near_seam.len() != wd.bodies.len()
+        {
+            let max_bound = wd.bodies.bound.iter().copied().fold(0.0f64, f64::max);
+            let skin = wd.contacts.skin;
+            wd.contacts.mark_near_seams(cell, 2.0 * (max_bound + skin));
+        }
         (
             PassInput {
                 bodies: &*wd.bodies,
@@ -497,10 +509,11 @@ impl Stepper {
         // potential is its depth spring).
         let couples = !self.facts.disks || !self.pass.linear();
         let list = &*wd.contacts;
-        let (data, start, adjacency) = (
+        let (data, start, adjacency, near_seam) = (
             &list.data[..],
             &list.adjacency_start[..],
             &list.adjacency[..],
+            &list.near_seam[..],
         );
         let Bodies {
             state,
@@ -536,10 +549,17 @@ impl Stepper {
                     let x = s.pose.position;
                     let adj = &adjacency[start[k] as usize..start[k + 1] as usize];
                     let f0 = gravity * mass[k]; // T(3): body force
-                    let (f, m, f_ne, m_ne) = if couples {
-                        sum_contacts::<true, PERIODIC>(adj, data, x, f0, cell)
-                    } else {
-                        sum_contacts::<false, PERIODIC>(adj, data, x, f0, cell)
+                    // Only a body near a seam may have a contact through an image.
+                    let (f, m, f_ne, m_ne) = match cell {
+                        Some(cell) if PERIODIC && near_seam.get(g) != Some(&false) => {
+                            if couples {
+                                sum_contacts::<true, true>(adj, data, x, f0, Some(cell))
+                            } else {
+                                sum_contacts::<false, true>(adj, data, x, f0, Some(cell))
+                            }
+                        }
+                        _ if couples => sum_contacts::<true, false>(adj, data, x, f0, None),
+                        _ => sum_contacts::<false, false>(adj, data, x, f0, None),
                     };
                     force[k] = f;
                     torque[k] = m;
@@ -554,16 +574,23 @@ impl Stepper {
                             + 0.5 * inertia[k] * s.omega * s.omega;
                         match cell {
                             Some(cell) if PERIODIC => {
-                                let at = cell.unwrapped(x, image[g]);
+                                // (From the unwrapped position: a body that crossed a seam
+                                // has not moved against gravity by a period.)
+                                let at = match image[g] {
+                                    [0, 0] => x,
+                                    images => cell.unwrapped(x, images),
+                                };
                                 p.potential -= mass[k] * gravity.dot(&at);
-                                // The kinetic stress, about the shear's mean flow.
-                                let v = Vec2::new(
-                                    s.vel.x - cell.shear_rate * (x.y - 0.5 * cell.size.y),
-                                    s.vel.y,
-                                );
-                                p.kinetic_stress[0] += mass[k] * v.x * v.x;
-                                p.kinetic_stress[1] += mass[k] * v.x * v.y;
-                                p.kinetic_stress[2] += mass[k] * v.y * v.y;
+                                if cell.measures_stress() {
+                                    // The kinetic stress, about the shear's mean flow.
+                                    let v = Vec2::new(
+                                        s.vel.x - cell.shear_rate * (x.y - 0.5 * cell.size.y),
+                                        s.vel.y,
+                                    );
+                                    p.kinetic_stress[0] += mass[k] * v.x * v.x;
+                                    p.kinetic_stress[1] += mass[k] * v.x * v.y;
+                                    p.kinetic_stress[2] += mass[k] * v.y * v.y;
+                                }
                             }
                             _ => p.potential -= mass[k] * gravity.dot(&x),
                         }
@@ -590,7 +617,8 @@ impl Stepper {
 /// One body's contact sums from its adjacency `adj` (its slots, in key order, with the sign of
 /// each slot's force on it), its centroid `x` and its body force `f0`: the force `f0 + Σ F`
 /// (T4), the moment `Σ r × F` (T22, `r` from the centroid to the contact point) plus the
-/// contacts' couples, and the same two sums of the forces' non-elastic parts. `COUPLES`
+/// contacts' couples, and the same two sums of the forces' non-elastic parts; `cell` the
+/// periodic cell when some contact may lie across a seam. `COUPLES`
 /// false leaves the couples out (a scene whose contacts have none): adding their ±0 would
 /// change no bit, since a sum that starts at +0 is never −0.
 #[inline(always)]

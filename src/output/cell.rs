@@ -8,7 +8,8 @@
 //!   `ix,iy` from `trajectory.csv`;
 //! - `sxx,sxy,syx,syy` the cell's mean stress (dyn/cm², compression positive, kinetic part
 //!   included: see `dynamics::cell`), `stiffness_yy` the contacts' affine stiffness against a
-//!   vertical stretch (dyn/cm²).
+//!   vertical stretch (dyn/cm²); these five are empty in an `"x"` cell, whose walls carry part
+//!   of the load (`analysis.csv` gives the packing's stress).
 
 use super::run_data::ReadError;
 use super::trace::{LineFile, WriteError};
@@ -52,11 +53,19 @@ impl CellWriter {
         }
         self.last_step = Some(step);
         let t = time_text(step, world.dt);
-        let [sxx, sxy, syx, syy] = c.stress;
-        self.out.line(format_args!(
-            "{step},{t},{},{},{},{},{sxx},{sxy},{syx},{syy},{}",
-            c.size.x, c.size.y, c.offset, c.shift, c.stiffness_yy
-        ))
+        if c.measures_stress() {
+            let [sxx, sxy, syx, syy] = c.stress;
+            self.out.line(format_args!(
+                "{step},{t},{},{},{},{},{sxx},{sxy},{syx},{syy},{}",
+                c.size.x, c.size.y, c.offset, c.shift, c.stiffness_yy
+            ))
+        } else {
+            // An `"x"` cell measures no stress: empty fields.
+            self.out.line(format_args!(
+                "{step},{t},{},{},{},{},,,,,",
+                c.size.x, c.size.y, c.offset, c.shift
+            ))
+        }
     }
 
     pub fn flush(&mut self) -> Result<(), WriteError> {
@@ -107,7 +116,17 @@ pub fn read_cells(dir: &Path, case_cell: &Cell) -> Result<Vec<(u64, Cell)>, Read
     }
     let mut out = Vec::new();
     for (k, line) in lines.enumerate() {
-        let v: Result<Vec<f64>, _> = line.split(',').map(str::parse::<f64>).collect();
+        // (An empty field: a stress the cell does not measure.)
+        let v: Result<Vec<f64>, _> = line
+            .split(',')
+            .map(|f| {
+                if f.is_empty() {
+                    Ok(f64::NAN)
+                } else {
+                    f.parse::<f64>()
+                }
+            })
+            .collect();
         let v = v.map_err(|e| bad(k + 2, format!("not a number: {e}")))?;
         if v.len() != 11 {
             return Err(bad(k + 2, format!("{} fields, expected 11", v.len())));
