@@ -8,6 +8,7 @@ pub mod outline;
 pub mod panels;
 pub mod plot;
 pub mod progress;
+pub mod run_dir;
 pub mod run_data;
 pub mod state;
 pub mod summary;

@@ -3,12 +3,11 @@
 
 mod analyze;
 mod impact;
-mod runner;
 mod study;
 mod verify;
 mod verify_ellipses;
 
-use crate::runner::{RunError, RunOptions, default_out_dir, run_case, signal_name};
+use dem2d::output::run_dir::{RunError, RunOptions, default_out_dir, run_case, signal_name};
 use clap::{Parser, Subcommand};
 use dem2d::narrow_phase::contact;
 use dem2d::output::contacts::contact_json;
