@@ -28,3 +28,7 @@ class BlowupError(RunError):
 
 class OutputError(Error, OSError):
     """A file of the run could not be written (the message names it)."""
+
+
+for _cls in (Error, InputError, RunError, BlowupError, OutputError):
+    _cls.__module__ = "dem2d"

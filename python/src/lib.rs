@@ -76,7 +76,8 @@ struct Case {
 impl Case {
     fn parse(py: Python<'_>, text: String, source: Option<PathBuf>) -> PyResult<Case> {
         let prefix = source.as_ref().map(|p| p.display().to_string());
-        let file = CaseFile::from_json(&text).map_err(|e| field_error(py, prefix.as_deref(), &e))?;
+        let file =
+            CaseFile::from_json(&text).map_err(|e| field_error(py, prefix.as_deref(), &e))?;
         Ok(Case { file, text, source })
     }
 
@@ -134,7 +135,9 @@ impl Case {
 
     /// The case's keys as a dict (the JSON text read back: every number bit for bit).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        py.import("json")?.getattr("loads")?.call1((self.text.as_str(),))
+        py.import("json")?
+            .getattr("loads")?
+            .call1((self.text.as_str(),))
     }
 
     /// Writes the JSON text to `path`, byte for byte what `to_json()` gives.
@@ -311,10 +314,7 @@ impl Simulation {
         }
         // `vtk=True`: the case's `output.vtk_every`, else its `output_every`; a number: the
         // steps between frames; False or None: as the case says (`output.vtk`).
-        let case_vtk = scene
-            .output
-            .vtk_every
-            .unwrap_or(scene.output_every);
+        let case_vtk = scene.output.vtk_every.unwrap_or(scene.output_every);
         let vtk: Option<u64> = match vtk {
             None => scene.output.vtk.then_some(case_vtk),
             Some(v) if v.is_instance_of::<pyo3::types::PyBool>() => {
@@ -361,13 +361,14 @@ impl Simulation {
                     input: c.source.clone(),
                     warnings: c.file.warnings.clone(),
                 };
-                let files = RunDir::open(scene, &c.text, &mut world, &opts).map_err(|e| match e {
-                    DirError::Occupied { .. } | DirError::Locked { .. } => {
-                        input_error(py, e.to_string())
-                    }
-                    DirError::State(_) => input_error(py, e.to_string()),
-                    DirError::Io(_) => error(py, "OutputError", e.to_string(), &[]),
-                })?;
+                let files =
+                    RunDir::open(scene, &c.text, &mut world, &opts).map_err(|e| match e {
+                        DirError::Occupied { .. } | DirError::Locked { .. } => {
+                            input_error(py, e.to_string())
+                        }
+                        DirError::State(_) => input_error(py, e.to_string()),
+                        DirError::Io(_) => error(py, "OutputError", e.to_string(), &[]),
+                    })?;
                 Some(files)
             }
         };
@@ -549,11 +550,7 @@ impl Simulation {
     /// The output directory (None when the simulation writes none).
     #[getter]
     fn out(&self, py: Python<'_>) -> PyResult<Option<PathBuf>> {
-        Ok(self
-            .lock(py)?
-            .files
-            .as_ref()
-            .map(|f| f.dir().to_path_buf()))
+        Ok(self.lock(py)?.files.as_ref().map(|f| f.dir().to_path_buf()))
     }
 
     #[getter]
@@ -939,8 +936,8 @@ fn vector<'py>(py: Python<'py>, v: impl Iterator<Item = f64>) -> PyResult<Bound<
 /// run wrote it), as a dict of arrays; analysis.csv and state.json are read by the Python side.
 #[pyfunction]
 fn load_run<'py>(py: Python<'py>, dir: PathBuf) -> PyResult<Bound<'py, PyDict>> {
-    let run = dem2d::output::run_data::RunData::load(&dir)
-        .map_err(|e| input_error(py, e.to_string()))?;
+    let run =
+        dem2d::output::run_data::RunData::load(&dir).map_err(|e| input_error(py, e.to_string()))?;
     let d = PyDict::new(py);
     let frames = &run.frames;
     let n = frames.first().map_or(0, |f| f.bodies.len());
@@ -999,8 +996,8 @@ fn load_run<'py>(py: Python<'py>, dir: PathBuf) -> PyResult<Bound<'py, PyDict>> 
     d.set_item("summary", run.summary.to_string())?;
     d.set_item("incomplete", run.incomplete.clone())?;
     if dir.join("contacts.csv").exists() {
-        let frames = dem2d::output::analysis::read_contact_frames(&dir)
-            .map_err(|e| input_error(py, e))?;
+        let frames =
+            dem2d::output::analysis::read_contact_frames(&dir).map_err(|e| input_error(py, e))?;
         let all: Vec<(u64, &analysis::FrameContact)> = frames
             .contacts
             .iter()
@@ -1033,11 +1030,25 @@ fn load_run<'py>(py: Python<'py>, dir: PathBuf) -> PyResult<Bound<'py, PyDict>> 
         c.set_item("normal", pairs(py, all.iter().map(|(_, k)| k.normal))?)?;
         c.set_item("depth", vector(py, all.iter().map(|(_, k)| k.depth))?)?;
         c.set_item("force", pairs(py, all.iter().map(|(_, k)| k.force))?)?;
-        c.set_item("fn", vector(py, all.iter().map(|(_, k)| k.normal_force()))?)?;
-        c.set_item(
-            "ft",
-            vector(py, all.iter().map(|(_, k)| k.tangential_force()))?,
-        )?;
+        // `fn` and `ft` as written (the reader keeps the force vector, `fn n + ft t`, whose
+        // projections are those numbers only to rounding).
+        let text = std::fs::read_to_string(dir.join("contacts.csv"))
+            .map_err(|e| input_error(py, format!("{}: {e}", dir.join("contacts.csv").display())))?;
+        let (whole, _) = dem2d::output::run_data::whole_lines(&text);
+        let mut fn_ = Vec::with_capacity(all.len());
+        let mut ft = Vec::with_capacity(all.len());
+        for line in whole.lines().skip(1) {
+            let mut f = line.split(',').skip(8);
+            let mut next = || {
+                f.next()
+                    .and_then(|v| v.parse::<f64>().ok())
+                    .unwrap_or(f64::NAN)
+            };
+            fn_.push(next());
+            ft.push(next());
+        }
+        c.set_item("fn", PyArray1::from_vec(py, fn_))?;
+        c.set_item("ft", PyArray1::from_vec(py, ft))?;
         c.set_item("couple", vector(py, all.iter().map(|(_, k)| k.couple))?)?;
         let states: Vec<&str> = all.iter().map(|(_, k)| k.state.as_str()).collect();
         c.set_item("state", states)?;

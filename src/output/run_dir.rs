@@ -48,11 +48,11 @@ use crate::output::walls::WallsWriter;
 use crate::output::write_atomically;
 use crate::run::time::time_value;
 use crate::run::{CriticalStepSampler, RunProgress, Simulation, Stop, watch};
+use crate::run::{ObserverError, RunError as RunFailure};
 use crate::scene::Case;
 use std::fmt;
 use std::io;
 use std::path::{Path, PathBuf};
-use crate::run::{ObserverError, RunError as RunFailure};
 use std::sync::atomic::AtomicI32;
 
 /// Where and how to run.
@@ -470,8 +470,12 @@ impl RunDir {
         prepare_dir(dir, opts.overwrite, opts.input.as_deref())?;
         let case_file = dir.join("case.json");
         write_atomically(dir, "case.json", case_text).map_err(io_at(&case_file))?;
-        let dt_critical =
-            estimate_critical_dt(&world.bodies, &world.spec, &world.walls, case.gravity.norm());
+        let dt_critical = estimate_critical_dt(
+            &world.bodies,
+            &world.spec,
+            &world.walls,
+            case.gravity.norm(),
+        );
         let mut warnings = opts.warnings.clone();
         if case.dt > dt_critical {
             warnings.push(format!(
@@ -511,37 +515,38 @@ impl RunDir {
             .ok()
             .map(|v| StateWriter::new(dir, v, case.duration, &case.bodies));
         let every = case.output_every;
-        let writers = TrajectoryWriter::create(&dir.join("trajectory.csv"), every).and_then(|traj| {
-            let incs = IncrementsWriter::create(&dir.join("increments.csv"), every)?;
-            let walls = match world.walls.is_empty() {
-                true => None,
-                false => Some(WallsWriter::create(dir, every)?),
-            };
-            let vtk = match opts.vtk_every {
-                Some(n) => Some(VtkWriter::create(dir, world, n)?),
-                None => None,
-            };
-            let analysis = match opts.analysis || opts.contacts {
-                true => Some(AnalysisOutput::create(
-                    dir,
-                    opts.analysis,
-                    opts.contacts,
-                    opts.analysis_window
-                        .map(|[x0, x1, y0, y1]| crate::analysis::Window { x0, x1, y0, y1 }),
-                    every,
-                )?),
-                false => None,
-            };
-            Ok(Writers {
-                incs,
-                traj,
-                walls,
-                sampler: CriticalStepSampler { every },
-                analysis,
-                vtk,
-                lines: ProgressLines::new(&case.name, opts.progress),
-            })
-        });
+        let writers =
+            TrajectoryWriter::create(&dir.join("trajectory.csv"), every).and_then(|traj| {
+                let incs = IncrementsWriter::create(&dir.join("increments.csv"), every)?;
+                let walls = match world.walls.is_empty() {
+                    true => None,
+                    false => Some(WallsWriter::create(dir, every)?),
+                };
+                let vtk = match opts.vtk_every {
+                    Some(n) => Some(VtkWriter::create(dir, world, n)?),
+                    None => None,
+                };
+                let analysis = match opts.analysis || opts.contacts {
+                    true => Some(AnalysisOutput::create(
+                        dir,
+                        opts.analysis,
+                        opts.contacts,
+                        opts.analysis_window
+                            .map(|[x0, x1, y0, y1]| crate::analysis::Window { x0, x1, y0, y1 }),
+                        every,
+                    )?),
+                    false => None,
+                };
+                Ok(Writers {
+                    incs,
+                    traj,
+                    walls,
+                    sampler: CriticalStepSampler { every },
+                    analysis,
+                    vtk,
+                    lines: ProgressLines::new(&case.name, opts.progress),
+                })
+            });
         Ok(RunDir {
             dir: dir.clone(),
             _lock: lock,
