@@ -25,7 +25,7 @@ use crate::run::{End, Observer, ObserverError, RunError, RunProgress, StepInfo};
 use serde_json::Value;
 use std::fmt::Write as _;
 use std::io;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The case's top-level fields in the order a state file lists them (the bodies and the state
 /// come last).
@@ -327,21 +327,21 @@ pub fn write_state(
 /// The writer of a run's `state.json` (an observer): when the run ends, however it ends but by a
 /// blow-up (a non-finite or unphysical state is nothing to continue from), with the status of
 /// its end.
-pub struct StateWriter<'c> {
-    dir: &'c Path,
-    case: &'c Value,
+pub struct StateWriter {
+    dir: PathBuf,
+    case: Value,
     duration: f64,
-    bodies: &'c [BodyInit],
+    bodies: Vec<BodyInit>,
 }
 
-impl<'c> StateWriter<'c> {
+impl StateWriter {
     /// Into `dir`, for the run of `case` (its JSON) of `duration` with the case's `bodies`.
-    pub fn new(dir: &'c Path, case: &'c Value, duration: f64, bodies: &'c [BodyInit]) -> Self {
+    pub fn new(dir: &Path, case: &Value, duration: f64, bodies: &[BodyInit]) -> Self {
         StateWriter {
-            dir,
-            case,
+            dir: dir.to_path_buf(),
+            case: case.clone(),
             duration,
-            bodies,
+            bodies: bodies.to_vec(),
         }
     }
 
@@ -353,11 +353,11 @@ impl<'c> StateWriter<'c> {
         status: Status,
     ) -> Result<(), WriteError> {
         write_state(
-            self.dir,
-            self.case,
+            &self.dir,
+            &self.case,
             self.duration,
             world,
-            self.bodies,
+            &self.bodies,
             run,
             status.as_str(),
         )
@@ -368,7 +368,7 @@ impl<'c> StateWriter<'c> {
     }
 }
 
-impl Observer for StateWriter<'_> {
+impl Observer for StateWriter {
     fn after_step(&mut self, _: &mut World, _: &StepInfo) -> Result<(), ObserverError> {
         Ok(())
     }
