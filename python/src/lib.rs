@@ -31,6 +31,11 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicI32, Ordering};
 use std::time::Duration;
 
+/// The allocator of the `dem2d` binary (huge pages for large blocks: [`dem2d::alloc`]), so that
+/// a world steps here as fast as there; it serves the extension's own Rust allocations only.
+#[global_allocator]
+static GLOBAL: dem2d::alloc::HugePageAllocator = dem2d::alloc::HugePageAllocator;
+
 /// SIGINT's number: what Ctrl-C and `Simulation.interrupt()` put in the stop flag.
 const SIGINT: i32 = 2;
 

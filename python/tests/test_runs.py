@@ -190,3 +190,19 @@ def test_duration_and_until_rest(tmp_path):
     del no_rest["quiescence"]
     with pytest.raises(dem2d.InputError, match="until_rest: the case has no `quiescence`"):
         dem2d.Simulation(dem2d.Case(no_rest)).run(until_rest=True)
+
+
+def test_the_tutorial_script_runs(tmp_path):
+    # docs/python/pour.py, small and short: it builds its scene, runs, prints the profile.
+    import subprocess
+    import sys
+
+    p = subprocess.run(
+        [sys.executable, str(ROOT / "docs" / "python" / "pour.py"), "--n", "40", "--width", "30",
+         "--steps", "2000", "--threads", "1", "--out", str(tmp_path / "pour")],
+        capture_output=True, text=True, timeout=300,
+    )
+    assert p.returncode == 0, p.stderr
+    assert "40 ellipses: max_steps at t = 0.0200 s (step 2000)" in p.stdout
+    assert "depth (cm)  packing fraction" in p.stdout
+    assert dem2d.load_run(tmp_path / "pour").step[-1] == 2000
