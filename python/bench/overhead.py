@@ -11,7 +11,9 @@ steps from the same state, each the median over the repetitions:
   released and taken back, the worker thread, the pool);
 - python+files: the same with `out=` (the writers of `dem2d run`, and a frame at the end of the call).
 The overhead is python / cli − 1. Speed is noisy on a shared machine: interleaving puts each pair
-under the same load.
+under the same load. And within each Python call, free of that noise: the call's wall time against
+its own step loop's (`Simulation.wall_seconds`, the run driver's clock, as the summary's
+`wall_seconds`), the cost of the Python layer itself.
 """
 
 import argparse
@@ -35,6 +37,7 @@ def main():
     a = p.parse_args()
     case = dem2d.Case.load(a.pile)
     times = {"cli": [], "python": [], "python+files": []}
+    within = {"python": [], "python+files": []}
     with tempfile.TemporaryDirectory() as tmp:
         for rep in range(a.reps):
             out = Path(tmp) / "cli"
@@ -49,6 +52,7 @@ def main():
                 start = time.perf_counter()
                 sim.run(a.steps)
                 times[name].append(time.perf_counter() - start)
+                within[name].append(times[name][-1] / sim.wall_seconds - 1)
                 del sim
             print(f"rep {rep + 1}: " + ", ".join(f"{k} {v[-1]:.4f} s" for k, v in times.items()), flush=True)
     med = {k: statistics.median(v) for k, v in times.items()}
@@ -57,6 +61,8 @@ def main():
     for k, v in med.items():
         over = "" if k == "cli" else f", overhead {100 * (v / med['cli'] - 1):+.2f} %"
         print(f"  {k:13s} {v:.4f} s ({n * a.steps / v / 1e6:.2f} M particle-steps/s){over}")
+    for k, v in within.items():
+        print(f"  {k:13s} call against its own step loop: {100 * statistics.median(v):+.2f} % (median)")
 
 
 if __name__ == "__main__":
