@@ -31,6 +31,11 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicI32, Ordering};
 use std::time::Duration;
 
+/// The allocator of the `dem2d` binary (huge pages for large blocks: [`dem2d::alloc`]), so that
+/// a world steps here as fast as there; it serves the extension's own Rust allocations only.
+#[global_allocator]
+static GLOBAL: dem2d::alloc::HugePageAllocator = dem2d::alloc::HugePageAllocator;
+
 /// SIGINT's number: what Ctrl-C and `Simulation.interrupt()` put in the stop flag.
 const SIGINT: i32 = 2;
 
@@ -237,6 +242,10 @@ struct Inner {
     counts: Counts,
     files: Option<RunDir>,
     pool: rayon::ThreadPool,
+    /// Wall time of the last call's steps (s).
+    last_wall: f64,
+    /// `close()` released the output directory (runs are then refused).
+    closed: bool,
 }
 
 /// A world stepping through `dem2d::run::Simulation`, optionally writing a run directory.
@@ -388,6 +397,8 @@ impl Simulation {
                 counts,
                 files,
                 pool,
+                last_wall: 0.0,
+                closed: false,
             }),
             stop: AtomicI32::new(0),
             threads,
@@ -420,6 +431,16 @@ impl Simulation {
     ) -> PyResult<String> {
         let mut guard = self.lock(py)?;
         let inner = &mut *guard;
+        if inner.closed {
+            return Err(error(
+                py,
+                "RunError",
+                "the simulation was closed (its output directory released): make a new one, from \
+                 its state.json to continue"
+                    .into(),
+                &[],
+            ));
+        }
         let case_obj = inner.case.clone_ref(py);
         let case = case_obj.get().scene();
         if steps.is_some() && duration.is_some() {
@@ -488,6 +509,7 @@ impl Simulation {
         acc.first_contact_step = counts.first_contact_step;
         acc.contact_sum = counts.contact_sum;
         acc.wall_seconds += counts.wall_seconds;
+        inner.last_wall = counts.wall_seconds;
         let acc = *acc;
         let (status, blowup, io_error) = match inner.files.as_mut() {
             Some(files) => {
@@ -530,10 +552,38 @@ impl Simulation {
         Ok(status.as_str().to_string())
     }
 
+    /// Releases the output directory (its lock; every file was written at the end of the last
+    /// run) and refuses further runs. A simulation without one is only marked closed. Also what
+    /// leaving a `with` block does.
+    fn close(&self, py: Python<'_>) -> PyResult<()> {
+        let mut g = self.lock(py)?;
+        g.files = None;
+        g.closed = true;
+        Ok(())
+    }
+
+    fn __enter__(slf: Py<Self>) -> Py<Self> {
+        slf
+    }
+
+    #[pyo3(signature = (*_args))]
+    fn __exit__(&self, py: Python<'_>, _args: &Bound<'_, pyo3::types::PyTuple>) -> PyResult<bool> {
+        self.close(py)?;
+        Ok(false)
+    }
+
     /// Asks a run of this simulation (in another thread) to stop after its current step, as
     /// Ctrl-C does: it returns `"interrupted"`.
     fn interrupt(&self) {
         self.stop.store(SIGINT, Ordering::Relaxed);
+    }
+
+    /// Wall time of the last run's steps (s): the run driver's step loop, without what comes
+    /// before the first step and after the last (the observers' first and last words, the
+    /// summary, this module's thread and GIL handling).
+    #[getter]
+    fn wall_seconds(&self, py: Python<'_>) -> PyResult<f64> {
+        Ok(self.lock(py)?.last_wall)
     }
 
     /// The worker threads of the simulation's pool.

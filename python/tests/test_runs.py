@@ -190,3 +190,36 @@ def test_duration_and_until_rest(tmp_path):
     del no_rest["quiescence"]
     with pytest.raises(dem2d.InputError, match="until_rest: the case has no `quiescence`"):
         dem2d.Simulation(dem2d.Case(no_rest)).run(until_rest=True)
+
+
+def test_the_tutorial_script_runs(tmp_path):
+    # docs/python/pour.py, small and short: it builds its scene, runs, prints the profile.
+    import subprocess
+    import sys
+
+    p = subprocess.run(
+        [sys.executable, str(ROOT / "docs" / "python" / "pour.py"), "--n", "40", "--width", "30",
+         "--steps", "2000", "--threads", "1", "--out", str(tmp_path / "pour")],
+        capture_output=True, text=True, timeout=300,
+    )
+    assert p.returncode == 0, p.stderr
+    assert "40 ellipses: max_steps at t = 0.0200 s (step 2000)" in p.stdout
+    assert "depth (cm)  packing fraction" in p.stdout
+    assert dem2d.load_run(tmp_path / "pour").step[-1] == 2000
+
+
+def test_vtk_frames_are_the_command_lines(tmp_path):
+    path = ROOT / "cases" / "settle3_dt1e-4.json"
+    a, b = tmp_path / "cli", tmp_path / "py"
+    cli("run", path, "--out", a, "--quiet", "--vtk-every", "500")
+    with dem2d.Simulation(dem2d.Case.load(path), out=b, vtk=500) as sim:
+        sim.run()
+    frames = sorted(p.name for p in (a / "vtk").iterdir())
+    assert len(frames) > 2 and frames == sorted(p.name for p in (b / "vtk").iterdir())
+    for f in ["run.pvd"] + [f"vtk/{n}" for n in frames]:
+        assert (a / f).read_bytes() == (b / f).read_bytes(), f
+    # Closed: the directory is free for another run, this simulation refuses to go on.
+    assert not (b / ".dem2d.lock").exists()
+    with pytest.raises(dem2d.RunError, match="was closed"):
+        sim.run(10)
+    dem2d.Simulation(dem2d.Case.load(path), out=b, overwrite=True).run(10)
