@@ -46,12 +46,8 @@ fn law(friction: f64, restitution: Option<f64>) -> ContactSpec {
 
 fn body(shape: Shape, position: Vec2, angle: f64, velocity: Vec2) -> BodyInit {
     BodyInit {
-        shape,
-        position,
-        angle,
         velocity,
-        omega: 0.0,
-        density: 1.0,
+        ..common::body(shape, position, angle)
     }
 }
 

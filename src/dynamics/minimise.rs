@@ -119,9 +119,8 @@ impl std::error::Error for RelaxError {}
 
 /// Checks that `world`'s laws are frictionless (see the module documentation).
 pub fn check_frictionless(world: &World) -> Result<(), RelaxError> {
-    let rough = |s: &crate::contact_law::ContactSpec| {
-        s.tangential.friction > 0.0 || s.rolling.is_some()
-    };
+    let rough =
+        |s: &crate::contact_law::ContactSpec| s.tangential.friction > 0.0 || s.rolling.is_some();
     if rough(&world.spec) {
         return Err(RelaxError::Friction("contact".into()));
     }

@@ -14,6 +14,7 @@ pub mod contacts;
 pub mod kinematics;
 pub mod materials;
 pub mod members;
+pub mod minimise;
 pub mod neighbour_list;
 pub mod partner;
 pub mod restart;

@@ -404,7 +404,9 @@ impl Stepper {
         self.rebuild_neighbours(wd);
         let slots = self.compute_slots(wd, 0.0);
         self.gather_forces(wd, None);
-        if let Some(cell) = wd.cell.as_deref_mut() {
+        if let Some(cell) = wd.cell.as_deref_mut()
+            && cell.measures_stress()
+        {
             let kinetic = cell.kinetic_stress(wd.bodies);
             cell.measure(
                 &slots.stress,

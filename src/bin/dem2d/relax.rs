@@ -35,9 +35,9 @@ pub fn run(args: RelaxArgs) -> Result<(), Failure> {
     let case = file.case;
     let mut world = match &file.restart {
         None => case.build_world(),
-        Some(state) => case
-            .resume_world(state)
-            .map_err(|e| Failure::input(format!("{name}: field `state.{}`: {}", e.path, e.message)))?,
+        Some(state) => case.resume_world(state).map_err(|e| {
+            Failure::input(format!("{name}: field `state.{}`: {}", e.path, e.message))
+        })?,
     };
     dem2d::dynamics::minimise::check_frictionless(&world).map_err(|e| match e {
         // (Named as the case file names the law: its `contact`, or a wall's.)
@@ -53,8 +53,7 @@ pub fn run(args: RelaxArgs) -> Result<(), Failure> {
             )));
         }
     }
-    std::fs::create_dir_all(out)
-        .map_err(|e| Failure::failed(format!("{}: {e}", out.display())))?;
+    std::fs::create_dir_all(out).map_err(|e| Failure::failed(format!("{}: {e}", out.display())))?;
     let tol = Tolerance {
         force: args.tolerance,
         max_iterations: args.max_iterations,
