@@ -331,6 +331,31 @@ fn the_case_file_reference_lists_exactly_the_keys_the_reader_accepts() {
         documented.remove("walls[].<contact key>"),
         "the reference should say that a wall takes every contact key"
     );
+    // `materials.<name>.<contact key>` every contact key but the scene's own (`model`,
+    // `normal_force`), `pairs[].<contact key>` those and not the moduli either.
+    for (row, prefix, refused) in [
+        (
+            "materials.<name>.<contact key>",
+            "materials.<name>",
+            &["model", "normal_force"][..],
+        ),
+        (
+            "pairs[].<contact key>",
+            "pairs[]",
+            &["model", "normal_force", "young", "poisson"][..],
+        ),
+    ] {
+        assert!(
+            documented.remove(row),
+            "the reference should say which contact keys `{prefix}` takes"
+        );
+        for k in contact_keys
+            .iter()
+            .filter(|k| !refused.contains(&k.as_str()))
+        {
+            documented.insert(format!("{prefix}.{k}"));
+        }
+    }
     for k in contact_keys {
         documented.insert(format!("walls[].{k}"));
     }

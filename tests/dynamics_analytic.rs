@@ -368,6 +368,8 @@ fn rotating_the_whole_scene_rotates_the_trajectory() {
         let wall = Wall::new(r(Vec2::new(0.0, 0.0)), r(Vec2::y())).unwrap();
         World::new(
             &[BodyInit {
+                material: 0,
+                prescribed: false,
                 shape: Shape::Ellipse { a: 1.5, b: 1.0 },
                 position: r(Vec2::new(0.3, 3.0)),
                 angle: 0.4 + angle,

@@ -52,6 +52,8 @@ fn disk_on_floor(r: f64, v: f64, gravity: Vec2, spec: ContactSpec, dt: f64) -> W
     let m = PI * r * r;
     let delta = m * gravity.y.abs() / KN;
     let body = BodyInit {
+        material: 0,
+        prescribed: false,
         shape: Shape::Circle { r },
         position: Vec2::new(0.0, r - delta),
         angle: 0.0,
@@ -443,6 +445,8 @@ fn an_ellipse_rests_on_slopes_up_to_mu_r_plus_its_shapes_own_limit() {
             LinearDamping::Restitution(0.5),
         );
         let body = BodyInit {
+            material: 0,
+            prescribed: false,
             shape: Shape::Ellipse { a, b },
             position: Vec2::new(0.0, h),
             angle: th,

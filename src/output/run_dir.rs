@@ -35,7 +35,7 @@
 //!   created beyond what the initial state and gravity supply, or an overlap deeper than the
 //!   bodies); the report names the step, the body and the reason.
 
-use crate::dynamics::timestep::estimate_critical_dt;
+use crate::dynamics::timestep::estimate_critical_dt_of;
 use crate::dynamics::{RestartState, World};
 use crate::output::analysis::AnalysisOutput;
 use crate::output::progress::ProgressLines;
@@ -470,9 +470,9 @@ impl RunDir {
         prepare_dir(dir, opts.overwrite, opts.input.as_deref())?;
         let case_file = dir.join("case.json");
         write_atomically(dir, "case.json", case_text).map_err(io_at(&case_file))?;
-        let dt_critical = estimate_critical_dt(
+        let dt_critical = estimate_critical_dt_of(
             &world.bodies,
-            &world.spec,
+            &world.pairs,
             &world.walls,
             case.gravity.norm(),
         );

@@ -29,7 +29,7 @@ use std::path::{Path, PathBuf};
 
 /// The case's top-level fields in the order a state file lists them (the bodies and the state
 /// come last).
-const CASE_ORDER: [&str; 13] = [
+const CASE_ORDER: [&str; 15] = [
     "version",
     "name",
     "description",
@@ -42,6 +42,8 @@ const CASE_ORDER: [&str; 13] = [
     "output_every",
     "output",
     "contact",
+    "materials",
+    "pairs",
     "walls",
 ];
 

@@ -89,6 +89,8 @@ impl ServoBox {
                     )
                 };
                 BodyInit {
+                    material: 0,
+                    prescribed: false,
                     shape,
                     position: Vec2::new(
                         round6(s * ((k % n) as f64 + 0.5)),

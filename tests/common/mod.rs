@@ -82,6 +82,8 @@ pub fn case_path(name: &str) -> PathBuf {
 /// A body of `shape` at `position` and `angle`, at rest, of density 1.
 pub fn body(shape: Shape, position: Vec2, angle: f64) -> BodyInit {
     BodyInit {
+        material: 0,
+        prescribed: false,
         shape,
         position,
         angle,

@@ -54,6 +54,8 @@ fn undamped() -> LinearDamping {
 
 fn ellipse(a: f64, b: f64, x: Vec2, angle: f64, v: Vec2) -> BodyInit {
     BodyInit {
+        material: 0,
+        prescribed: false,
         shape: Shape::Ellipse { a, b },
         position: x,
         angle,

@@ -96,6 +96,8 @@ pub fn run(write: bool) -> Result<String, RunError> {
     let s = 2.6;
     let bodies: Vec<BodyInit> = (0..N_SIDE * N_SIDE)
         .map(|k| BodyInit {
+            material: 0,
+            prescribed: false,
             shape: Shape::Circle {
                 r: round6(0.8 + 0.4 * uniform()),
             },

@@ -126,6 +126,8 @@ pub fn run_one(
     }
     let bodies: Vec<BodyInit> = (0..n)
         .map(|k| BodyInit {
+            material: 0,
+            prescribed: false,
             shape: w.bodies.shape[k],
             position: w.bodies.state[k].pose.position,
             angle: w.bodies.state[k].pose.angle(),
