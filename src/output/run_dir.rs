@@ -1,7 +1,12 @@
-//! Runs a case: builds the world (or resumes it from a state file's state), steps it until the
-//! duration ends, P's quiescence criterion holds, `--max-steps` is reached, a blow-up is
-//! detected or a stop is asked for (SIGINT, SIGTERM), and writes `trajectory.csv`,
-//! `increments.csv`, `case.json`, `state.json` and `summary.json` into the output directory.
+//! A run's output directory: what `dem2d run` does ([`run_case`]: builds the world, or resumes
+//! it from a state file's state, steps it until the duration ends, P's quiescence criterion
+//! holds, `--max-steps` is reached, a blow-up is detected or a stop is asked for — SIGINT,
+//! SIGTERM — and writes `trajectory.csv`, `increments.csv`, `case.json`, `state.json` and
+//! `summary.json` into the output directory), in three parts that the Python module drives in
+//! several calls: [`RunDir::open`] (the lock, an earlier run's outputs, `case.json`, the first
+//! summary, the writers), [`RunDir::run`] (a [`Simulation`] with the writers as its observers),
+//! [`RunDir::finish`] (the summary of how it ended). The command line and Python share this code
+//! path, so a case run from either writes the same files.
 //!
 //! # What a run leaves behind
 //! - One run at a time writes into a directory: the run holds a lock on `DIR/.dem2d.lock`
