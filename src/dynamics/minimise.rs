@@ -10,8 +10,9 @@
 //! or rolling resistance. Under the area law (and Hertz) the forces derive from the contacts'
 //! stored energy, which FIRE then minimises with gravity's potential; under the depth law of a
 //! non-circular pair the contact torque is not the derivative of an energy, and FIRE finds a
-//! force and moment balance. Walls stay where they are (a moving or servo wall is not moved);
-//! a periodic cell keeps its size and shift.
+//! force and moment balance. Walls stay where they are (a moving or servo wall is not moved),
+//! and so do prescribed bodies (their velocity is theirs again afterwards); a periodic cell keeps
+//! its size and shift.
 //!
 //! Mixed translations and rotations are weighted by the bodies' masses and moments of inertia:
 //! the mixing `v ← (1 − α) v + α |v|_M M⁻¹F / |F|_{M⁻¹}` uses the norms `|v|_M² = Σ m v² + I ω²`
@@ -151,7 +152,9 @@ pub fn residual(world: &World) -> f64 {
     if mean == 0.0 {
         return 0.0;
     }
+    // (A prescribed body's force is the reaction it exerts, not out of balance.)
     let worst = (0..n)
+        .filter(|&k| !b.is_prescribed(k))
         .map(|k| b.force[k].norm() + b.torque[k].abs() / b.bound[k])
         .fold(0.0f64, f64::max);
     worst / mean
@@ -163,6 +166,12 @@ pub fn residual(world: &World) -> f64 {
 pub fn relax(world: &mut World, fire: &Fire, tol: &Tolerance) -> Result<Relaxed, RelaxError> {
     check_frictionless(world)?;
     let n = world.bodies.len();
+    let prescribed: Vec<(usize, Vec2, f64)> = world
+        .bodies
+        .prescribed
+        .iter()
+        .map(|&k| (k, world.bodies.state[k].vel, world.bodies.state[k].omega))
+        .collect();
     for s in &mut world.bodies.state {
         s.vel = Vec2::zeros();
         s.omega = 0.0;
@@ -184,6 +193,10 @@ pub fn relax(world: &mut World, fire: &Fire, tol: &Tolerance) -> Result<Relaxed,
             });
         }
         if r < tol.force || iterations >= tol.max_iterations {
+            for &(k, v, w) in &prescribed {
+                world.bodies.state[k].vel = v;
+                world.bodies.state[k].omega = w;
+            }
             world.energies.kinetic = 0.0;
             world.energies.potential = world.potential_energy();
             return Ok(Relaxed {

@@ -26,8 +26,11 @@
 //!   killed.
 //! - The CSV files always end with a whole line; after a blow-up they hold everything up to it.
 //!   `walls.csv` ([`crate::output::walls`]: each wall's position, velocity, load and stress) is
-//!   written at the trajectory's frames by every run whose case has walls.
-//! - The summary's energies include the work the moving walls did on the bodies (`walls_work`):
+//!   written at the trajectory's frames by every run whose case has walls, `reactions.csv`
+//!   ([`crate::output::reactions`]: each prescribed body's reaction and power) by every run
+//!   whose case has prescribed bodies.
+//! - The summary's energies include the work the moving walls and the prescribed bodies did on
+//!   the bodies (`walls_work`):
 //!   `final_total − initial_total − walls_work` is the energy the integration created
 //!   (`unaccounted`, zero in exact arithmetic).
 //! - `state.json` (atomically, before the final summary) holds the state the run ended in, from
@@ -45,6 +48,7 @@ use crate::dynamics::{RestartState, World};
 use crate::output::analysis::AnalysisOutput;
 use crate::output::cell::CellWriter;
 use crate::output::progress::ProgressLines;
+use crate::output::reactions::ReactionsWriter;
 use crate::output::run_data::BodyState;
 use crate::output::state::StateWriter;
 use crate::output::summary::{DeepCounts, EnergyReport, Status, Summary, write_summary};
@@ -97,7 +101,7 @@ pub struct RunOptions {
 
 /// The files a run writes (and `dem2d plot`'s default outputs, drawn from them): what is
 /// removed from a directory before a run replaces an earlier one. The summary comes first.
-pub const OUTPUT_FILES: [&str; 15] = [
+pub const OUTPUT_FILES: [&str; 16] = [
     "summary.json",
     "summary.json.tmp",
     "case.json",
@@ -113,6 +117,7 @@ pub const OUTPUT_FILES: [&str; 15] = [
     "contacts.csv",
     "walls.csv",
     "cell.csv",
+    "reactions.csv",
 ];
 
 /// The result of a run that started (its directory was prepared and its first summary written).
@@ -434,6 +439,7 @@ struct Writers {
     traj: TrajectoryWriter,
     walls: Option<WallsWriter>,
     cells: Option<CellWriter>,
+    reactions: Option<ReactionsWriter>,
     sampler: CriticalStepSampler,
     analysis: Option<AnalysisOutput>,
     vtk: Option<VtkWriter>,
@@ -542,6 +548,10 @@ impl RunDir {
                     true => Some(CellWriter::create(dir, every)?),
                     false => None,
                 };
+                let reactions = match world.bodies.prescribed.is_empty() {
+                    true => None,
+                    false => Some(ReactionsWriter::create(dir, every)?),
+                };
                 let vtk = match opts.vtk_every {
                     Some(n) => Some(VtkWriter::create(dir, world, n)?),
                     None => None,
@@ -563,6 +573,7 @@ impl RunDir {
                     traj,
                     walls,
                     cells,
+                    reactions,
                     sampler: CriticalStepSampler { every },
                     analysis,
                     vtk,
@@ -615,6 +626,9 @@ impl RunDir {
         }
         if let Some(c) = w.cells.as_mut() {
             sim = sim.observe(c);
+        }
+        if let Some(x) = w.reactions.as_mut() {
+            sim = sim.observe(x);
         }
         sim = sim.observe(&mut w.sampler);
         if let Some(a) = w.analysis.as_mut() {
