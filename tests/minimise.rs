@@ -16,6 +16,7 @@ fn tight() -> Tolerance {
     Tolerance {
         force: 1e-11,
         max_iterations: 200_000,
+        energy: 0.0,
     }
 }
 

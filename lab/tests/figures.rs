@@ -132,6 +132,7 @@ fn figures_quick_writes_every_figure_and_table_of_the_guide() {
                 "biaxial_shape",
                 "packing",
                 "representation",
+                "jamming",
                 "verify",
             ];
             if !others.contains(&name) && !name.contains(char::is_uppercase) {

@@ -64,6 +64,10 @@ pub struct Tolerance {
     pub force: f64,
     /// The most iterations (force evaluations) taken.
     pub max_iterations: u64,
+    /// A potential energy (erg) at or below which the bodies count as at rest too (0: none;
+    /// with neither gravity nor walls, a packing whose energy falls this low is unjammed, which
+    /// FIRE otherwise approaches only slowly).
+    pub energy: f64,
 }
 
 impl Default for Tolerance {
@@ -71,6 +75,7 @@ impl Default for Tolerance {
         Tolerance {
             force: 1e-9,
             max_iterations: 1_000_000,
+            energy: 0.0,
         }
     }
 }
@@ -192,7 +197,9 @@ pub fn relax(world: &mut World, fire: &Fire, tol: &Tolerance) -> Result<Relaxed,
                 body: k,
             });
         }
-        if r < tol.force || iterations >= tol.max_iterations {
+        let potential = world.energies.elastic + world.potential_energy();
+        let low = tol.energy > 0.0 && potential <= tol.energy;
+        if r < tol.force || low || iterations >= tol.max_iterations {
             for &(k, v, w) in &prescribed {
                 world.bodies.state[k].vel = v;
                 world.bodies.state[k].omega = w;
@@ -203,7 +210,7 @@ pub fn relax(world: &mut World, fire: &Fire, tol: &Tolerance) -> Result<Relaxed,
                 iterations,
                 residual: r,
                 potential: world.energies.elastic + world.energies.potential,
-                converged: r < tol.force,
+                converged: r < tol.force || low,
             });
         }
         // The power of the forces on FIRE's velocities.

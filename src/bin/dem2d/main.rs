@@ -52,6 +52,13 @@ enum Command {
         /// square number, default 400; packing: default 300).
         #[arg(long)]
         grains: Option<usize>,
+        /// Packings per aspect ratio (jamming; default 10).
+        #[arg(long)]
+        packings: Option<usize>,
+        /// Worker threads (default: all cores; the jamming study runs its packings in
+        /// parallel).
+        #[arg(long)]
+        threads: Option<usize>,
         /// Also put the table into its marked region of the user guide (README.md, docs/src;
         /// run from the repository).
         #[arg(long)]
@@ -833,9 +840,19 @@ fn main() -> ExitCode {
             name,
             write_cases,
             grains,
+            packings,
+            threads,
             docs,
             check,
-        } => study::run(*name, *write_cases, *grains, docs_mode(*docs, *check)),
+        } => set_threads(*threads).and_then(|()| {
+            study::run(
+                *name,
+                *write_cases,
+                *grains,
+                *packings,
+                docs_mode(*docs, *check),
+            )
+        }),
         Command::Run {
             case,
             out,

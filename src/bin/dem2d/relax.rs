@@ -57,6 +57,7 @@ pub fn run(args: RelaxArgs) -> Result<(), Failure> {
     let tol = Tolerance {
         force: args.tolerance,
         max_iterations: args.max_iterations,
+        energy: 0.0,
     };
     let start = std::time::Instant::now();
     let relaxed = relax(&mut world, &Fire::default(), &tol)

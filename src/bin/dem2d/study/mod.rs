@@ -5,6 +5,7 @@
 pub mod biaxial;
 pub mod biaxial_shape;
 pub mod impacts;
+pub mod jamming;
 pub mod packing;
 pub mod repose;
 pub mod representation;
@@ -38,6 +39,10 @@ pub enum Study {
     /// 2, 3), P Fig. 4's settling and a poured pile of 300 (`--grains`) grains; error against
     /// cost; writes figures/representation_pareto.svg and figures/representation.md.
     Representation,
+    /// Isotropic jamming of 256 (`--grains`) frictionless bidisperse grains in a periodic cell
+    /// by FIRE, 10 (`--packings`) packings per aspect ratio (1–3): φ_J and Z_J against the
+    /// published values; writes figures/jamming.svg and figures/jamming.md.
+    Jamming,
 }
 
 impl Study {
@@ -51,6 +56,7 @@ impl Study {
             Study::BiaxialShape => "biaxial_shape",
             Study::Packing => "packing",
             Study::Representation => "representation",
+            Study::Jamming => "jamming",
         }
     }
 }
@@ -112,6 +118,7 @@ pub fn run(
     study: Study,
     write_cases: bool,
     grains: Option<usize>,
+    packings: Option<usize>,
     docs: Option<Mode>,
 ) -> Result<(), crate::Failure> {
     let checking = docs == Some(Mode::Check);
@@ -132,6 +139,10 @@ pub fn run(
         Study::BiaxialShape => biaxial_shape::run(grains.unwrap_or(400), write),
         Study::Packing => packing::run(grains.unwrap_or(packing::N), write),
         Study::Representation => representation::run(grains.unwrap_or(packing::N)),
+        Study::Jamming => jamming::run(
+            grains.unwrap_or(jamming::N),
+            packings.unwrap_or(jamming::PACKINGS),
+        ),
     }
     // A run that blows up ends the study with its report.
     .map_err(|e| crate::Failure::failed(format!("dem2d study: {e}")))?;

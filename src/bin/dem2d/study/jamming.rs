@@ -1,0 +1,356 @@
+//! Isotropic jamming of frictionless bidisperse grains in a periodic cell, against the aspect
+//! ratio α (O'Hern, Silbert, Liu & Nagel, PRE 68 (2003) 011306; for ellipses Schreck, Xu &
+//! O'Hern, Soft Matter 6 (2010) 2960, and VanderWerf, Jin, Shattuck & O'Hern, PRE 97 (2018)
+//! 012909).
+//!
+//! `dem2d study jamming` writes `figures/jamming.svg` and `figures/jamming.md` and prints the
+//! table. Each packing: [`N`] grains (`--grains`), half with equal-area radius [`R_SMALL`], half
+//! 1.4 times it (the diameter ratio of the papers), ellipses `a = r√α`, `b = r/√α`, placed at
+//! random (positions and orientations, overlaps allowed) in a square cell periodic in x and y at
+//! φ = [`PHI_START`]; frictionless linear law on the overlap area (the energy-conserving default,
+//! so that the forces derive from the energy minimised). The protocol is O'Hern's: minimise the
+//! energy with FIRE (`dynamics::minimise`); compress affinely by δφ while the energy per grain
+//! is below `U_TOL k_n d²` (d the small diameter), decompress while it is above twice that,
+//! halving δφ at each change of direction, until the energy per grain lies in
+//! `[U_TOL, 2 U_TOL] k_n d²` ([`U_TOL`] = 1e-12): φ_J is the packing fraction there, Z_J the
+//! contacts per grain with rattlers (grains with fewer than 3 contacts, removed repeatedly) left
+//! out. [`PACKINGS`] packings per α (different seeds), in parallel.
+
+use super::Table;
+use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
+use dem2d::dynamics::World;
+use dem2d::dynamics::cell::{Cell, Periodic};
+use dem2d::dynamics::minimise::{Fire, Tolerance, relax};
+use dem2d::dynamics::partner::Partner;
+use dem2d::dynamics::BodyInit;
+use dem2d::geometry::{Pose, Shape, Vec2};
+use dem2d::output::plot::{self, LinePanel, Series};
+use dem2d::scene::Case;
+use rayon::prelude::*;
+use std::fmt::Write as _;
+use std::time::Instant;
+
+/// Grains per packing by default.
+pub const N: usize = 256;
+/// Packings per aspect ratio.
+pub const PACKINGS: usize = 10;
+/// The aspect ratios.
+pub const ASPECTS: [f64; 8] = [1.0, 1.1, 1.2, 1.3, 1.5, 2.0, 2.5, 3.0];
+/// Equal-area radius of the small grains (cm).
+pub const R_SMALL: f64 = 0.5;
+/// The packing fraction the grains are placed at.
+pub const PHI_START: f64 = 0.70;
+/// The energy band's lower edge, per grain, in units of `k_n d²`.
+pub const U_TOL: f64 = 1e-12;
+const KN: f64 = 1e3;
+
+/// One jammed packing.
+#[derive(Clone, Copy, Debug)]
+pub struct Packing {
+    pub aspect: f64,
+    pub phi: f64,
+    pub z: f64,
+    pub rattlers: f64,
+    pub minimisations: usize,
+    pub iterations: u64,
+    pub found: bool,
+}
+
+/// A small deterministic generator (xorshift).
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+fn area(shape: &Shape) -> f64 {
+    match *shape {
+        Shape::Circle { r } => std::f64::consts::PI * r * r,
+        Shape::Ellipse { a, b } => std::f64::consts::PI * a * b,
+        _ => unreachable!("the study makes circles and ellipses"),
+    }
+}
+
+/// The world of packing `seed` at aspect ratio `aspect`, its grains placed at random.
+fn world(n: usize, aspect: f64, seed: u64) -> World {
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ seed.wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 1);
+    let shapes: Vec<Shape> = (0..n)
+        .map(|k| {
+            let r = if k % 2 == 0 { R_SMALL } else { 1.4 * R_SMALL };
+            if aspect == 1.0 {
+                Shape::Circle { r }
+            } else {
+                Shape::Ellipse {
+                    a: r * aspect.sqrt(),
+                    b: r / aspect.sqrt(),
+                }
+            }
+        })
+        .collect();
+    let total: f64 = shapes.iter().map(area).sum();
+    let side = (total / PHI_START).sqrt();
+    let bodies = shapes
+        .into_iter()
+        .map(|shape| BodyInit {
+            material: 0,
+            prescribed: false,
+            shape,
+            position: Vec2::new(side * rng.next(), side * rng.next()),
+            angle: std::f64::consts::PI * rng.next(),
+            velocity: Vec2::zeros(),
+            omega: 0.0,
+            density: 1.0,
+        })
+        .collect();
+    let law = ContactSpec::linear(
+        Scaled::Absolute(KN),
+        Scaled::Absolute(KN),
+        LinearDamping::Dashpots {
+            eta_n: Scaled::Absolute(0.0),
+            eta_s: Scaled::Absolute(0.0),
+        },
+        0.0,
+    )
+    .with_normal_force(NormalForce::Area);
+    // FIRE's step: a tenth of the small grains' contact period.
+    let m = std::f64::consts::PI * R_SMALL * R_SMALL;
+    let dt = 0.1 * (m / KN).sqrt();
+    let cell = Cell::new(Vec2::new(side, side), Periodic::XY, 0.0, None);
+    Case::new(bodies, Vec::new(), Vec2::zeros(), law, dt)
+        .with_cell(cell)
+        .build_world()
+}
+
+/// The packing fraction of `w`'s grains in its cell.
+fn phi(w: &World, total: f64) -> f64 {
+    let c = w.cell.expect("a cell");
+    total / (c.size.x * c.size.y)
+}
+
+/// Scales the cell and every grain's position by `f` (an affine compression for f < 1).
+fn scale(w: &mut World, f: f64) {
+    let c = w.cell.as_mut().expect("a cell");
+    c.size *= f;
+    for s in &mut w.bodies.state {
+        s.pose = Pose::new(s.pose.position * f, s.pose.angle());
+    }
+}
+
+/// Contacts per grain with rattlers (fewer than 3 contacts, removed repeatedly) left out, and
+/// the rattlers' fraction.
+fn coordination(w: &World) -> (f64, f64) {
+    let n = w.bodies.len();
+    let pairs: Vec<(usize, usize)> = w
+        .contacts
+        .active()
+        .filter_map(|c| match c.slot.partner() {
+            Partner::Body(j) => Some((c.slot.i as usize, j)),
+            Partner::Wall(_) => None,
+        })
+        .collect();
+    let mut alive = vec![true; n];
+    loop {
+        let mut z = vec![0usize; n];
+        for &(i, j) in &pairs {
+            if alive[i] && alive[j] {
+                z[i] += 1;
+                z[j] += 1;
+            }
+        }
+        let gone: Vec<usize> = (0..n).filter(|&k| alive[k] && z[k] < 3).collect();
+        if gone.is_empty() {
+            let kept = alive.iter().filter(|&&a| a).count();
+            let contacts: usize = z.iter().sum::<usize>() / 2;
+            let zj = if kept > 0 {
+                2.0 * contacts as f64 / kept as f64
+            } else {
+                f64::NAN
+            };
+            return (zj, (n - kept) as f64 / n as f64);
+        }
+        for k in gone {
+            alive[k] = false;
+        }
+    }
+}
+
+/// Jams packing `seed` at `aspect` (see the module documentation).
+pub fn jam(n: usize, aspect: f64, seed: u64) -> Packing {
+    let mut w = world(n, aspect, seed);
+    let total: f64 = w.bodies.shape.iter().map(area).sum();
+    let d = 2.0 * R_SMALL;
+    let unit = n as f64 * KN * d * d;
+    let tol = Tolerance {
+        force: 1e-9,
+        max_iterations: 100_000,
+        energy: 1e-3 * U_TOL * unit,
+    };
+    let fire = Fire::default();
+    let (mut dphi, mut up) = (0.05f64, true);
+    let (mut minimisations, mut iterations) = (0, 0);
+    let mut found = false;
+    for _ in 0..400 {
+        let r = relax(&mut w, &fire, &tol).expect("frictionless");
+        minimisations += 1;
+        iterations += r.iterations;
+        let u = r.potential / unit;
+        if std::env::var_os("DEM2D_JAMMING_TRACE").is_some() {
+            eprintln!(
+                "    α = {aspect}, packing {seed}: φ = {:.6}, u = {u:.3e}, {} iterations, residual {:.2e}",
+                phi(&w, total),
+                r.iterations,
+                r.residual
+            );
+        }
+        if (U_TOL..=2.0 * U_TOL).contains(&u) {
+            found = true;
+            break;
+        }
+        let go_up = u < U_TOL;
+        if go_up != up {
+            dphi *= 0.5;
+            up = go_up;
+        }
+        if dphi < 1e-12 {
+            break;
+        }
+        // φ → φ(1 ± δφ): lengths by (1 ± δφ)^(−1/2).
+        let f = if up { 1.0 + dphi } else { 1.0 - dphi };
+        scale(&mut w, f.powf(-0.5));
+    }
+    let (z, rattlers) = coordination(&w);
+    Packing {
+        aspect,
+        phi: phi(&w, total),
+        z,
+        rattlers,
+        minimisations,
+        iterations,
+        found,
+    }
+}
+
+fn mean_sd(x: &[f64]) -> (f64, f64) {
+    let n = x.len() as f64;
+    let m = x.iter().sum::<f64>() / n;
+    let v = x.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / (n - 1.0).max(1.0);
+    (m, v.sqrt())
+}
+
+/// The published values beside each aspect ratio: φ_J and Z_J (VanderWerf et al. 2018, Fig. 2
+/// and 4; O'Hern et al. 2003 for disks), as text.
+fn published(aspect: f64) -> &'static str {
+    match aspect {
+        a if a == 1.0 => "φ_J ≈ 0.84, Z_J = 4 (O'Hern 2003)",
+        a if (1.25..=1.5).contains(&a) => "φ_J peak 0.891–0.897 (α ≈ 1.3–1.45)",
+        a if a >= 1.5 => "Z_J ≈ 5.5–5.8 (1.5 ≤ α ≤ 3)",
+        _ => "Z_J − 4 ∝ √(α − 1)",
+    }
+}
+
+pub fn run(n: usize, packings: usize) -> Result<String, dem2d::run::RunError> {
+    let start = Instant::now();
+    let jobs: Vec<(f64, u64)> = ASPECTS
+        .iter()
+        .flat_map(|&a| (0..packings as u64).map(move |s| (a, s)))
+        .collect();
+    eprintln!(
+        "dem2d study jamming: {} packings of {n} grains ({} aspect ratios)",
+        jobs.len(),
+        ASPECTS.len()
+    );
+    let done: Vec<Packing> = jobs
+        .par_iter()
+        .map(|&(a, s)| {
+            let p = jam(n, a, s);
+            eprintln!(
+                "  α = {a}, packing {s}: φ_J = {:.4}, Z_J = {:.3}{}",
+                p.phi,
+                p.z,
+                if p.found { "" } else { " (band not reached)" }
+            );
+            p
+        })
+        .collect();
+    let mut table = Table::new(
+        "| α | φ_J (mean ± sd) | Z_J, rattlers out (mean ± sd) | rattlers | packings in the band | minimisations, FIRE iterations (mean) | published |\n|---|---|---|---|---|---|---|",
+    );
+    let mut rows = Vec::new();
+    for &a in &ASPECTS {
+        let ps: Vec<&Packing> = done.iter().filter(|p| p.aspect == a).collect();
+        let phis: Vec<f64> = ps.iter().map(|p| p.phi).collect();
+        let zs: Vec<f64> = ps.iter().map(|p| p.z).collect();
+        let (pm, psd) = mean_sd(&phis);
+        let (zm, zsd) = mean_sd(&zs);
+        let rat = ps.iter().map(|p| p.rattlers).sum::<f64>() / ps.len() as f64;
+        let found = ps.iter().filter(|p| p.found).count();
+        let k = ps.len() as f64;
+        let mins = ps.iter().map(|p| p.minimisations as f64).sum::<f64>() / k;
+        let its = ps.iter().map(|p| p.iterations as f64).sum::<f64>() / k;
+        table.row(format!(
+            "| {a} | {pm:.4} ± {psd:.4} | {zm:.3} ± {zsd:.3} | {:.1} % | {found} of {} | {mins:.0}, {its:.0} | {} |",
+            100.0 * rat,
+            ps.len(),
+            published(a)
+        ));
+        rows.push((a, pm, psd, zm, zsd));
+    }
+    let wall = start.elapsed().as_secs_f64();
+    let mut md = table.text();
+    let _ = writeln!(
+        md,
+        "\n{} packings of {n} grains, {:.0} s of wall time on {} threads.",
+        done.len(),
+        wall,
+        rayon::current_num_threads()
+    );
+    let series = |k: usize| {
+        vec![Series {
+            label: "dem2d, FIRE, mean ± sd".into(),
+            points: rows
+                .iter()
+                .map(|r| (r.0, if k == 0 { r.1 } else { r.3 }))
+                .collect(),
+            color: 0,
+            line: true,
+            markers: true,
+            ..Default::default()
+        }]
+    };
+    let panels = [
+        LinePanel {
+            title: "Jamming packing fraction".into(),
+            x_label: "aspect ratio α = a/b (–)".into(),
+            y_label: "φ_J (–)".into(),
+            series: series(0),
+            hlines: vec![
+                (0.84, "bidisperse disks ≈ 0.84 (O'Hern 2003)".into()),
+                (0.894, "ellipses' peak 0.891–0.897 (VanderWerf 2018)".into()),
+            ],
+            legend: plot::Legend::Auto,
+            ..Default::default()
+        },
+        LinePanel {
+            title: "Contacts per grain at jamming".into(),
+            x_label: "aspect ratio α = a/b (–)".into(),
+            y_label: "Z_J, rattlers out (–)".into(),
+            series: series(1),
+            hlines: vec![
+                (4.0, "isostatic disks: 4".into()),
+                (6.0, "isostatic ellipses: 6".into()),
+            ],
+            legend: plot::Legend::Auto,
+            ..Default::default()
+        },
+    ];
+    std::fs::create_dir_all("target/figure-png").expect("target/figure-png");
+    for path in ["figures/jamming.svg", "target/figure-png/jamming.png"] {
+        plot::line_panels(std::path::Path::new(path), (1200, 480), (1, 2), &panels).expect(path);
+    }
+    std::fs::write("figures/jamming.md", &md).expect("figures/jamming.md");
+    Ok(md)
+}
