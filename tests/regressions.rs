@@ -1036,3 +1036,78 @@ mod bug_verify_had_no_ellipse_under_the_area_law {
         }
     }
 }
+
+/// Issue 29, item 15: the CDT limiter shared a body's couple by its neighbour-list slots, so a
+/// neighbour inside the list's skin that did not touch it (0.05 cm away) doubled a creeping
+/// ellipse's rate (2.95e-4 → 5.76e-4 rad/s). It is shared by the body's contacts now.
+mod bug_the_cdt_limiter_counted_neighbours_that_do_not_touch {
+    use dem2d::contact_law::{RollingModel, RollingPart};
+    use dem2d::geometry::{Shape, Vec2};
+    use dem2d::run::Simulation;
+    use dem2d::scene::Case;
+
+    /// An ellipse rocking on a floor under CDT rolling resistance, and with `neighbour` a fixed
+    /// disk just above it; the ellipse's poses over 0.3 s and its contacts with the disk.
+    fn ellipse_poses(neighbour: bool) -> (Vec<(Vec2, f64)>, usize) {
+        let law = super::common::linear(1e6, 40.0, 0.5).with_rolling(Some(RollingPart {
+            model: RollingModel::Cdt,
+            friction: 0.1,
+            damping: None,
+        }));
+        let mut bodies = vec![super::common::body(
+            Shape::Ellipse { a: 1.0, b: 0.5 },
+            Vec2::new(0.0, 0.52),
+            0.15,
+        )];
+        if neighbour {
+            // A fixed disk over the ellipse, 0.05 cm above its highest point (its top only
+            // sinks as it rocks flatter): inside the list's skin (0.1 cm), never touching.
+            bodies.push(dem2d::dynamics::BodyInit {
+                prescribed: true,
+                ..super::common::body(Shape::Circle { r: 0.5 }, Vec2::new(0.0, 1.587), 0.0)
+            });
+        }
+        let case = Case::new(
+            bodies,
+            vec![super::common::floor(law)],
+            Vec2::new(0.0, -980.0),
+            law,
+            1e-5,
+        );
+        let mut w = case.build_world();
+        let mut poses = Vec::new();
+        let mut touched = 0usize;
+        Simulation::new(&mut w)
+            .until_step(30_000)
+            .run_each(|w, _| {
+                let s = w.bodies.state[0];
+                poses.push((s.pose.position, s.pose.angle()));
+                touched += w
+                    .contacts
+                    .active()
+                    .filter(|c| c.slot.i == 0 && !c.slot.is_wall())
+                    .count();
+            })
+            .unwrap();
+        (poses, touched)
+    }
+
+    #[test]
+    fn a_neighbour_that_never_touches_changes_no_bit_of_the_ellipse() {
+        let (alone, _) = ellipse_poses(false);
+        let (beside, touched) = ellipse_poses(true);
+        assert_eq!(touched, 0, "the neighbour touched the ellipse");
+        // The ellipse moves (a creep or a rock to compare), and bit for bit as alone.
+        let turned = (alone.last().unwrap().1 - alone[0].1).abs();
+        assert!(turned > 1e-4, "the ellipse turned only {turned} rad");
+        assert_eq!(alone.len(), beside.len());
+        if let Some(k) = (0..alone.len()).find(|&k| alone[k] != beside[k]) {
+            panic!(
+                "step {}: the ellipse at {:?} beside the disk, {:?} alone",
+                k + 1,
+                beside[k],
+                alone[k]
+            );
+        }
+    }
+}

@@ -144,7 +144,7 @@ pub(crate) struct ContactPass {
 }
 
 /// What a step's pass reads: the bodies, the walls, the scene's law, |g|, the step Δt, and the
-/// neighbour list's per-body slot ranges (a body's number of slots: the CDT limiter's share).
+/// neighbour list's per-body contact counts (the CDT limiter's share).
 pub(crate) struct PassInput<'a> {
     pub bodies: &'a Bodies,
     pub walls: &'a mut [Boundary],
@@ -234,8 +234,8 @@ impl ContactPass {
             cache,
             history,
             stride,
-            adjacency_start,
             near_seam,
+            touching,
             ..
         } = list;
         let stride = *stride;
@@ -246,9 +246,9 @@ impl ContactPass {
             pairs,
             g,
             dt,
-            adjacency_start,
             cell,
             near_seam,
+            touching,
         };
         let nw = walls.len().max(1);
         let (linear, laws) = (&self.linear[..], &self.laws[..]);
@@ -365,8 +365,8 @@ impl ContactPass {
             cache,
             history,
             stride,
-            adjacency_start,
             near_seam,
+            touching,
             ..
         } = list;
         let stride = *stride;
@@ -377,9 +377,9 @@ impl ContactPass {
             pairs,
             g,
             dt: 0.0,
-            adjacency_start,
             cell,
             near_seam,
+            touching,
         };
         let laws = Resolved::new(&self.laws, pairs);
         let (cache, history) = (&cache[..], &history[..]);
@@ -437,7 +437,7 @@ impl ContactPass {
 }
 
 /// What every slot's contact is computed from: the bodies, the walls, the scene's law, |g|, the
-/// step Δt and the neighbour list's per-body slot ranges.
+/// step Δt and the neighbour list's per-body contact counts.
 #[derive(Clone, Copy)]
 pub(crate) struct PassContext<'a> {
     pub bodies: &'a Bodies,
@@ -446,12 +446,13 @@ pub(crate) struct PassContext<'a> {
     pub pairs: &'a PairTable,
     pub g: f64,
     pub dt: f64,
-    pub adjacency_start: &'a [u32],
     /// The periodic cell, if the scene has one.
     pub cell: Option<&'a Cell>,
     /// In a periodic cell, the bodies near a seam (the only ones whose pairs may meet through
     /// an image: [`ContactList::mark_near_seams`]).
     pub near_seam: &'a [bool],
+    /// With rolling resistance, each body's contacts (the last pass's): the CDT limiter's share.
+    pub touching: &'a [u32],
 }
 
 impl PassContext<'_> {
@@ -1001,7 +1002,7 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool, const PERIODIC: boo
         m_eff,
         needs,
         cx.dt,
-        |k| cx.adjacency_start[k + 1] - cx.adjacency_start[k],
+        |k| cx.touching.get(k).copied().unwrap_or(1),
     );
     let mut history = History::default();
     if slot.active {

@@ -243,6 +243,9 @@ pub struct ContactList {
     /// In a periodic cell, whether each body lay near a seam when the list was built
     /// ([`ContactList::mark_near_seams`]); empty until marked.
     pub(crate) near_seam: Vec<bool>,
+    /// With rolling resistance, each body's contacts as the slots' flags stand (the last
+    /// pass's: [`ContactList::count_touching`]); empty otherwise.
+    pub(crate) touching: Vec<u32>,
     /// Margin added to the bounding circles at the build.
     pub skin: f64,
     /// Number of builds so far.
@@ -265,6 +268,20 @@ pub struct ContactList {
 }
 
 impl ContactList {
+    /// Counts each of `n` bodies' contacts from the slots' flags (the last pass's contacts): the
+    /// CDT limiter's share (`contact_law::rolling`), which a neighbour inside the skin that does
+    /// not touch must not change.
+    pub(crate) fn count_touching(&mut self, n: usize) {
+        self.touching.clear();
+        self.touching.resize(n, 0);
+        for s in self.slots.iter().filter(|s| s.active) {
+            self.touching[s.i as usize] += 1;
+            if let Partner::Body(j) = s.partner() {
+                self.touching[j] += 1;
+            }
+        }
+    }
+
     /// Marks the bodies that lay near a seam of `cell` at the build (within `margin`, twice the
     /// largest bounding radius and the skin): only a pair with such a body can meet through a
     /// periodic image before the next build. A body moves less than the skin between builds,

@@ -64,7 +64,7 @@ pub struct Contact<'a> {
 /// What the law reads of the contact `c` (T5–T22: [`Kinematics`]): the overlap its spring acts
 /// on, the relative velocity and spin at the contact point, and what the law `needs` beyond
 /// them (NaN where it does not): R*, the rolling radius and inertias (`slots(k)`: body k's
-/// number of neighbour-list slots, the CDT limiter's share); `m_eff` m* (NaN unless the law
+/// number of contacts, the CDT limiter's share); `m_eff` m* (NaN unless the law
 /// reads it), `dt` the step.
 #[inline(always)]
 pub fn of_contact(
@@ -185,8 +185,8 @@ pub fn effective_radius_for(b: &Bodies, sides: Sides, n: Vec2, lens: Option<Disk
 }
 
 /// The rolling radius and inertias of a contact at `point` with normal `n` (from the giver to
-/// the receiver): see the module documentation. `slots(k)` is the number of neighbour-list
-/// slots of body k (the CDT limiter's share, see `contact_law::rolling`).
+/// the receiver): see the module documentation. `slots(k)` is the number of contacts of body k
+/// (the CDT limiter's share, see `contact_law::rolling`; at least 1).
 pub fn rolling(
     b: &Bodies,
     sides: Sides,

@@ -471,6 +471,9 @@ impl Stepper {
             let skin = wd.contacts.skin;
             wd.contacts.mark_near_seams(cell, 2.0 * (max_bound + skin));
         }
+        if wd.pairs.all().any(|p| p.spec.rolling.is_some()) {
+            wd.contacts.count_touching(wd.bodies.len());
+        }
         (
             PassInput {
                 bodies: &*wd.bodies,

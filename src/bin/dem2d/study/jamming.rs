@@ -18,11 +18,11 @@
 
 use super::Table;
 use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
+use dem2d::dynamics::BodyInit;
 use dem2d::dynamics::World;
 use dem2d::dynamics::cell::{Cell, Periodic};
 use dem2d::dynamics::minimise::{Fire, Tolerance, relax};
 use dem2d::dynamics::partner::Partner;
-use dem2d::dynamics::BodyInit;
 use dem2d::geometry::{Pose, Shape, Vec2};
 use dem2d::output::plot::{self, LinePanel, Series};
 use dem2d::scene::Case;
