@@ -25,6 +25,7 @@
 
 use super::body::Bodies;
 use super::boundary::{Boundary, BoundaryKind, WallLoad};
+use super::cell::Cell;
 use super::contacts::{ContactData, ContactExtra, ContactList, Slot};
 use super::kinematics::{self, Contact};
 use super::materials::PairTable;
@@ -32,8 +33,8 @@ use super::members;
 use super::partner::{Partner, Sides};
 use crate::contact_law::{ContactSpec, History, Law, LinearDashpots, NormalForce, PairSpec};
 use crate::contact_law::{HISTORY_LEN, Needs, PairFacts, SpringOn};
-use crate::geometry::Vec2;
 use crate::geometry::overlap_area::DiskLens;
+use crate::geometry::{Pose, Vec2};
 use crate::narrow_phase::circle_circle::overlap_circle_circle;
 use crate::narrow_phase::circle_wall::overlap_wall_circle;
 use crate::narrow_phase::{
@@ -61,6 +62,19 @@ pub(crate) struct SlotPartial {
     pub max_depth_ratio: f64,
     /// Σ of the change of the history springs' energy.
     pub history_energy_change: f64,
+    /// In a periodic cell, over the pairs of bodies: `Σ f ⊗ l` (xx, xy, yx, yy; f the force on
+    /// the receiver, l the branch vector from the giver's image to the receiver: Love–Weber),
+    /// and the contacts' affine stiffness against a vertical stretch `Σ k_n (n_y l_y)²`.
+    pub stress: [f64; 4],
+    pub stiffness_yy: f64,
+    /// `Σ F_s n_y l_y`, F_s the elastic part of the normal force: minus the rate at which the
+    /// contacts' stored energy changes under a vertical affine stretch.
+    pub elastic_yy: f64,
+    /// In a Lees–Edwards cell, the power of the contacts across its y seam on the image's
+    /// extra velocity u, `Σ f·u`, and of their non-elastic parts (the boundary's work: see
+    /// `dynamics::cell`).
+    pub image_power: f64,
+    pub image_power_ne: f64,
 }
 
 impl SlotPartial {
@@ -73,6 +87,13 @@ impl SlotPartial {
         self.contained += p.contained;
         self.max_depth_ratio = self.max_depth_ratio.max(p.max_depth_ratio);
         self.history_energy_change += p.history_energy_change;
+        for (a, b) in self.stress.iter_mut().zip(p.stress) {
+            *a += b;
+        }
+        self.stiffness_yy += p.stiffness_yy;
+        self.elastic_yy += p.elastic_yy;
+        self.image_power += p.image_power;
+        self.image_power_ne += p.image_power_ne;
     }
 }
 
@@ -122,9 +143,8 @@ pub(crate) struct ContactPass {
     linear: Vec<LinearDashpots>,
 }
 
-/// What a step's pass reads: the bodies, the walls, the scene's law and every pair's, |g|, the
-/// step Δt, and the neighbour list's per-body slot ranges (a body's number of slots: the CDT
-/// limiter's share).
+/// What a step's pass reads: the bodies, the walls, the scene's law, |g|, the step Δt, and the
+/// neighbour list's per-body slot ranges (a body's number of slots: the CDT limiter's share).
 pub(crate) struct PassInput<'a> {
     pub bodies: &'a Bodies,
     pub walls: &'a mut [Boundary],
@@ -133,6 +153,7 @@ pub(crate) struct PassInput<'a> {
     pub g: f64,
     pub dt: f64,
     pub facts: SceneFacts,
+    pub cell: Option<&'a Cell>,
 }
 
 impl ContactPass {
@@ -162,9 +183,7 @@ impl ContactPass {
 
     /// When every pair of a kind has the same law — one density for all bodies, and no law that
     /// depends on the pair's mass (restitution-tuned dashpots) — resolves the body–body law and
-    /// each wall's once instead of at every contact: with one material, the body pairs' and
-    /// each wall's; with several, every pair of the table's. Only a scene of one material takes
-    /// the copies compiled for linear laws.
+    /// each wall's once instead of at every contact.
     fn resolve(&mut self, pairs: &PairTable, walls: &[Boundary], facts: &SceneFacts, g: f64) {
         self.laws.clear();
         self.linear.clear();
@@ -205,6 +224,7 @@ impl ContactPass {
             g,
             dt,
             facts,
+            cell,
         } = input;
         self.resolve(pairs, walls, &facts, g);
         self.size(list.slots.len(), walls.len());
@@ -215,6 +235,7 @@ impl ContactPass {
             history,
             stride,
             adjacency_start,
+            near_seam,
             ..
         } = list;
         let stride = *stride;
@@ -226,6 +247,8 @@ impl ContactPass {
             g,
             dt,
             adjacency_start,
+            cell,
+            near_seam,
         };
         let nw = walls.len().max(1);
         let (linear, laws) = (&self.linear[..], &self.laws[..]);
@@ -241,25 +264,69 @@ impl ContactPass {
             .zip(data.par_chunks_mut(SLOT_CHUNK))
             .zip(self.partials.par_iter_mut())
             .zip(self.wall_partials.par_chunks_mut(nw));
+        // A periodic cell's copy of the pass shifts each giver to its nearest image and sums
+        // the cell's stress: taken by every slot where the cell measures its stress, else by
+        // the runs of slots with a body near a seam. The others meet no image: the
+        // wall-bounded copy, the same bits (the sums run through the chunk in order either way).
+        let measures = cell.is_some_and(Cell::measures_stress);
+        let near_seam = cx.near_seam;
+        let near = |s: &Slot| match s.partner() {
+            Partner::Body(k) => near_seam[k] || near_seam[s.i as usize],
+            Partner::Wall(_) => false,
+        };
+        let run = |slots: &mut [Slot],
+                   data: &mut [ContactData],
+                   loads: &mut [WallLoad],
+                   mut cache: Option<&mut [PairCache]>,
+                   mut more: Option<(&mut [f64], usize)>| {
+            let mut p = SlotPartial::default();
+            loads.fill(WallLoad::default());
+            if cell.is_none() {
+                chunk.run::<false>(slots, data, loads, cache, more, &mut p);
+            } else if measures {
+                chunk.run::<true>(slots, data, loads, cache, more, &mut p);
+            } else {
+                let mut a = 0;
+                while a < slots.len() {
+                    let here = near(&slots[a]);
+                    let b = slots[a..]
+                        .iter()
+                        .position(|s| near(s) != here)
+                        .map_or(slots.len(), |k| a + k);
+                    let cache = cache.as_deref_mut().map(|c| &mut c[a..b]);
+                    let more = more
+                        .as_mut()
+                        .map(|(h, stride)| (&mut h[a * *stride..b * *stride], *stride));
+                    let (s, d) = (&mut slots[a..b], &mut data[a..b]);
+                    if here {
+                        chunk.run::<true>(s, d, loads, cache, more, &mut p);
+                    } else {
+                        chunk.run::<false>(s, d, loads, cache, more, &mut p);
+                    }
+                    a = b;
+                }
+            }
+            p
+        };
         match (cache.is_empty(), history.is_empty()) {
             (true, true) => chunks.for_each(|(((slots, data), part), loads)| {
-                *part = chunk.run(slots, data, loads, None, None)
+                *part = run(slots, data, loads, None, None)
             }),
             (false, true) => chunks.zip(cache.par_chunks_mut(SLOT_CHUNK)).for_each(
                 |((((slots, data), part), loads), cache)| {
-                    *part = chunk.run(slots, data, loads, Some(cache), None)
+                    *part = run(slots, data, loads, Some(cache), None)
                 },
             ),
             (true, false) => chunks
                 .zip(history.par_chunks_mut(SLOT_CHUNK * stride))
                 .for_each(|((((slots, data), part), loads), more)| {
-                    *part = chunk.run(slots, data, loads, None, Some((more, stride)))
+                    *part = run(slots, data, loads, None, Some((more, stride)))
                 }),
             (false, false) => chunks
                 .zip(cache.par_chunks_mut(SLOT_CHUNK))
                 .zip(history.par_chunks_mut(SLOT_CHUNK * stride))
                 .for_each(|(((((slots, data), part), loads), cache), more)| {
-                    *part = chunk.run(slots, data, loads, Some(cache), Some((more, stride)))
+                    *part = run(slots, data, loads, Some(cache), Some((more, stride)))
                 }),
         }
         let mut sum = SlotPartial::default();
@@ -288,6 +355,7 @@ impl ContactPass {
             pairs,
             g,
             facts,
+            cell,
             ..
         } = input;
         self.resolve(pairs, walls, &facts, g);
@@ -298,6 +366,7 @@ impl ContactPass {
             history,
             stride,
             adjacency_start,
+            near_seam,
             ..
         } = list;
         let stride = *stride;
@@ -309,6 +378,8 @@ impl ContactPass {
             g,
             dt: 0.0,
             adjacency_start,
+            cell,
+            near_seam,
         };
         let laws = Resolved::new(&self.laws, pairs);
         let (cache, history) = (&cache[..], &history[..]);
@@ -339,8 +410,9 @@ impl ContactPass {
                         extra: Some(extra),
                         history: more,
                     };
-                    match lean_of(&slot, &cx) {
-                        Some(l) => contact_slot::<_, _, false>(
+                    // (Reports only: the periodic copy serves every scene.)
+                    match lean_of::<true>(&slot, &cx) {
+                        Some(l) => contact_slot::<_, _, false, true>(
                             &mut slot,
                             to,
                             Lean(l),
@@ -349,7 +421,7 @@ impl ContactPass {
                             &mut p,
                             &mut [],
                         ),
-                        None => contact_slot::<_, _, false>(
+                        None => contact_slot::<_, _, false, true>(
                             &mut slot,
                             to,
                             Dispatch(cache.as_mut()),
@@ -364,8 +436,8 @@ impl ContactPass {
     }
 }
 
-/// What every slot's contact is computed from: the bodies, the walls, the scene's law and every
-/// pair's, |g|, the step Δt and the neighbour list's per-body slot ranges.
+/// What every slot's contact is computed from: the bodies, the walls, the scene's law, |g|, the
+/// step Δt and the neighbour list's per-body slot ranges.
 #[derive(Clone, Copy)]
 pub(crate) struct PassContext<'a> {
     pub bodies: &'a Bodies,
@@ -375,20 +447,53 @@ pub(crate) struct PassContext<'a> {
     pub g: f64,
     pub dt: f64,
     pub adjacency_start: &'a [u32],
+    /// The periodic cell, if the scene has one.
+    pub cell: Option<&'a Cell>,
+    /// In a periodic cell, the bodies near a seam (the only ones whose pairs may meet through
+    /// an image: [`ContactList::mark_near_seams`]).
+    pub near_seam: &'a [bool],
 }
 
 impl PassContext<'_> {
     /// The sides of a slot's pair as the narrow phase takes them: the giver as i, the receiver
-    /// as j.
+    /// as j; a giver seen through a periodic image is placed at the image, in `store`.
     #[inline(always)]
-    fn sides(&self, sides: Sides) -> (Side<'_>, Side<'_>) {
+    fn sides<'s>(&'s self, sides: Sides, store: &'s mut Pose) -> (Side<'s>, Side<'s>) {
         let b = self.bodies;
         let i = match sides.giver {
             Partner::Wall(w) => self.walls[w].side(),
-            Partner::Body(k) => Side::Body(&b.shape[k], &b.state[k].pose),
+            Partner::Body(k) => Side::Body(&b.shape[k], self.giver_pose(k, sides, store)),
         };
         let recv = sides.receiver;
         (i, Side::Body(&b.shape[recv], &b.state[recv].pose))
+    }
+
+    /// Body `k`'s pose as the giver of `sides`: its own, or its periodic image's (in `store`).
+    #[inline(always)]
+    fn giver_pose<'s>(&'s self, k: usize, sides: Sides, store: &'s mut Pose) -> &'s Pose {
+        match sides.image {
+            None => &self.bodies.state[k].pose,
+            Some(image) => {
+                *store = self.bodies.state[k].pose;
+                store.position += image.offset;
+                store
+            }
+        }
+    }
+
+    /// `slot`'s sides (see [`sides_of_slot`]), with the giver's nearest periodic image in a
+    /// periodic cell (`PERIODIC`).
+    #[inline(always)]
+    fn slot_sides<const PAIR: bool, const PERIODIC: bool>(&self, slot: &Slot) -> Sides {
+        let mut sides = sides_of_slot::<PAIR>(slot);
+        if PERIODIC
+            && let (Some(cell), Partner::Body(k)) = (self.cell, sides.giver)
+            && (self.near_seam[k] || self.near_seam[sides.receiver])
+        {
+            let b = &self.bodies.state;
+            sides.image = cell.nearest_image(b[k].pose.position, b[sides.receiver].pose.position);
+        }
+        sides
     }
 
     /// What the normal spring of a pair acts on: a wall's own law's choice, or the scene's
@@ -438,18 +543,18 @@ struct Chunk<'a> {
 
 impl Chunk<'_> {
     /// The chunk's slots (with their pair caches, and their further history values with their
-    /// number per slot, when the scene keeps them); returns its sums.
-    fn run(
+    /// number per slot, when the scene keeps them), their sums added to `p` and their walls'
+    /// loads to `loads`.
+    fn run<const PERIODIC: bool>(
         &self,
         slots: &mut [Slot],
         data: &mut [ContactData],
         loads: &mut [WallLoad],
         mut cache: Option<&mut [PairCache]>,
         mut history: Option<(&mut [f64], usize)>,
-    ) -> SlotPartial {
+        p: &mut SlotPartial,
+    ) {
         let cx = self.cx;
-        let mut p = SlotPartial::default();
-        loads.fill(WallLoad::default());
         let linear = self.linear;
         let is_linear = !linear.0.is_empty();
         if self.disks {
@@ -465,20 +570,22 @@ impl Chunk<'_> {
                 // Body pairs in a copy compiled for them; wall slots (few) out of line, so that
                 // the pair loop stays short.
                 if !slot.is_wall() {
-                    contact_slot::<_, _, true>(
+                    contact_slot::<_, _, true, PERIODIC>(
                         slot,
                         to,
                         Disks,
                         Linear(&pair_law),
                         cx,
-                        &mut p,
+                        p,
                         loads,
                     );
                 } else {
-                    contact_slot_apart::<_, _, false>(slot, to, Disks, linear, cx, &mut p, loads);
+                    contact_slot_apart::<_, _, false, PERIODIC>(
+                        slot, to, Disks, linear, cx, p, loads,
+                    );
                 }
             }
-            return p;
+            return;
         }
         // With circles in the scene, the circle pairs' geometry first, for the whole chunk: a
         // short loop whose square roots and divisions overlap from slot to slot (inside the
@@ -491,7 +598,7 @@ impl Chunk<'_> {
                 if let Some(ahead) = slots.get(k + PREFETCH_AHEAD) {
                     prefetch_partner(cx.bodies, ahead, &cx.bodies.shape);
                 }
-                *l = lean_of(slot, cx);
+                *l = lean_of::<PERIODIC>(slot, cx);
             }
         }
         for (k, (slot, data)) in slots.iter_mut().zip(data).enumerate() {
@@ -502,49 +609,54 @@ impl Chunk<'_> {
             let cache = cache.as_deref_mut().map(|c| &mut c[k]);
             let (resolved, to) = (self.resolved, SlotOut::data(data));
             match lean[k] {
-                Some(l) if is_linear => {
-                    contact_slot_apart::<_, _, false>(slot, to, Lean(l), linear, cx, &mut p, loads)
-                }
-                Some(l) => contact_slot_apart::<_, _, false>(
+                Some(l) if is_linear => contact_slot_apart::<_, _, false, PERIODIC>(
+                    slot,
+                    to,
+                    Lean(l),
+                    linear,
+                    cx,
+                    p,
+                    loads,
+                ),
+                Some(l) => contact_slot_apart::<_, _, false, PERIODIC>(
                     slot,
                     to.with_history(r),
                     Lean(l),
                     resolved,
                     cx,
-                    &mut p,
+                    p,
                     loads,
                 ),
-                None if !is_linear => contact_slot_apart::<_, _, false>(
+                None if !is_linear => contact_slot_apart::<_, _, false, PERIODIC>(
                     slot,
                     to.with_history(r),
                     Dispatch(cache),
                     resolved,
                     cx,
-                    &mut p,
+                    p,
                     loads,
                 ),
                 // Body pairs in a copy compiled for them (no wall branch left).
-                None if !slot.is_wall() => contact_slot_apart::<_, _, true>(
+                None if !slot.is_wall() => contact_slot_apart::<_, _, true, PERIODIC>(
                     slot,
                     to,
                     Dispatch(cache),
                     linear,
                     cx,
-                    &mut p,
+                    p,
                     loads,
                 ),
-                None => contact_slot_apart::<_, _, false>(
+                None => contact_slot_apart::<_, _, false, PERIODIC>(
                     slot,
                     to,
                     Dispatch(cache),
                     linear,
                     cx,
-                    &mut p,
+                    p,
                     loads,
                 ),
             }
         }
-        p
     }
 }
 
@@ -581,7 +693,7 @@ pub(crate) trait Geometry {
     /// Every body is a circle: a body's inscribed radius is its bounding radius.
     const DISKS: bool;
     /// The slot's contact (`None`, or a depth ≤ 0: apart).
-    fn find<const PAIR: bool>(self, slot: &Slot, cx: &PassContext) -> Option<Found>;
+    fn find(self, sides: Sides, cx: &PassContext) -> Option<Found>;
 }
 
 /// A scene of disks: the circle kernels on the bodies' bounding radii, without the
@@ -593,16 +705,18 @@ struct Disks;
 impl Geometry for Disks {
     const DISKS: bool = true;
     #[inline(always)]
-    fn find<const PAIR: bool>(self, slot: &Slot, cx: &PassContext) -> Option<Found> {
+    fn find(self, sides: Sides, cx: &PassContext) -> Option<Found> {
         let b = cx.bodies;
-        let sides = sides_of_slot::<PAIR>(slot);
         let recv = sides.receiver;
         let (rj, pj) = (b.bound[recv], &b.state[recv].pose);
+        let mut store = Pose::IDENTITY;
         let found = match sides.giver {
             Partner::Wall(w) => match &cx.walls[w].kind {
                 BoundaryKind::Wall(wall) => overlap_wall_circle(wall, rj, pj),
             },
-            Partner::Body(k) => overlap_circle_circle(b.bound[k], &b.state[k].pose, rj, pj),
+            Partner::Body(k) => {
+                overlap_circle_circle(b.bound[k], cx.giver_pose(k, sides, &mut store), rj, pj)
+            }
         };
         found.map(|(state, point, normal, depth)| (state, point, normal, depth, SpringOn::Depth))
     }
@@ -617,7 +731,7 @@ struct Lean(Option<LeanContact>);
 impl Geometry for Lean {
     const DISKS: bool = false;
     #[inline(always)]
-    fn find<const PAIR: bool>(self, _: &Slot, _: &PassContext) -> Option<Found> {
+    fn find(self, _: Sides, _: &PassContext) -> Option<Found> {
         self.0
             .map(|c| (c.state, c.point, c.normal, c.depth, SpringOn::Depth))
     }
@@ -631,8 +745,7 @@ struct Dispatch<'a>(Option<&'a mut PairCache>);
 impl Geometry for Dispatch<'_> {
     const DISKS: bool = false;
     #[inline(always)]
-    fn find<const PAIR: bool>(self, slot: &Slot, cx: &PassContext) -> Option<Found> {
-        let sides = sides_of_slot::<PAIR>(slot);
+    fn find(self, sides: Sides, cx: &PassContext) -> Option<Found> {
         let area_law = cx.normal_force(sides) == NormalForce::Area;
         let facts = Facts {
             bodies: cx.bodies,
@@ -643,7 +756,8 @@ impl Geometry for Dispatch<'_> {
             Some(c) => c,
             None => &mut scratch,
         };
-        let (i, j) = cx.sides(sides);
+        let mut store = Pose::IDENTITY;
+        let (i, j) = cx.sides(sides, &mut store);
         // The conic pairs through the dispatcher's lean record ([`conic_lean`]: the same kernel
         // without the chord's world coordinates and the full record, whose copies cost the
         // 10⁴-ellipse pile ~5 % of its step); the other kinds through the full dispatcher.
@@ -797,7 +911,7 @@ fn sides_of_slot<const PAIR: bool>(slot: &Slot) -> Sides {
 /// [`contact_slot`] out of line (its own copy for each geometry, law source and `PAIR`).
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
-fn contact_slot_apart<G: Geometry, L: LawSource, const PAIR: bool>(
+fn contact_slot_apart<G: Geometry, L: LawSource, const PAIR: bool, const PERIODIC: bool>(
     slot: &mut Slot,
     to: SlotOut,
     geometry: G,
@@ -806,7 +920,7 @@ fn contact_slot_apart<G: Geometry, L: LawSource, const PAIR: bool>(
     p: &mut SlotPartial,
     loads: &mut [WallLoad],
 ) {
-    contact_slot::<G, L, PAIR>(slot, to, geometry, laws, cx, p, loads);
+    contact_slot::<G, L, PAIR, PERIODIC>(slot, to, geometry, laws, cx, p, loads);
 }
 
 /// One slot's contact (see the module documentation): geometry, kinematics at the contact
@@ -815,7 +929,7 @@ fn contact_slot_apart<G: Geometry, L: LawSource, const PAIR: bool>(
 /// sums of each wall's contacts.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool>(
+fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool, const PERIODIC: bool>(
     slot: &mut Slot,
     to: SlotOut,
     geometry: G,
@@ -839,10 +953,10 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool>(
         to
     };
     let b = cx.bodies;
-    let sides = sides_of_slot::<PAIR>(slot);
+    let sides = cx.slot_sides::<PAIR, PERIODIC>(slot);
     let recv = sides.receiver;
     let (wall, giver) = (sides.wall(), sides.giving_body());
-    let (state, geo_point, geo_normal, depth, spring) = match geometry.find::<PAIR>(slot, cx) {
+    let (state, geo_point, geo_normal, depth, spring) = match geometry.find(sides, cx) {
         Some(l) if l.3 > 0.0 => l,
         // Separated, or touching without overlap: no force, no history.
         _ => {
@@ -918,6 +1032,27 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool>(
     if depth > p.max_depth_ratio * scale {
         p.max_depth_ratio = depth / scale; // divide only when the maximum grows
     }
+    if PERIODIC
+        && let Some(k) = giver
+        && cx.cell.is_some_and(Cell::measures_stress)
+    {
+        // The cell's stress (Love–Weber) and its stiffness against a vertical stretch (only
+        // an `"xy"` cell shears, so only there does an image move).
+        let at = b.state[k].pose.position + sides.image.map_or(Vec2::zeros(), |i| i.offset);
+        let l = b.state[recv].pose.position - at;
+        p.stress[0] += f.x * l.x;
+        p.stress[1] += f.x * l.y;
+        p.stress[2] += f.y * l.x;
+        p.stress[3] += f.y * l.y;
+        p.stiffness_yy += cf.kn * (n_.y * l.y) * (n_.y * l.y);
+        p.elastic_yy += (cf.normal - cf.normal_non_elastic) * n_.y * l.y;
+        if let Some(image) = sides.image {
+            // The relative velocity the law saw is the receiver's less the image's, which moves
+            // at the giver's plus u: the bodies' power exceeds the contact's by f·u.
+            p.image_power += f.dot(&image.velocity);
+            p.image_power_ne += f_ne.dot(&image.velocity);
+        }
+    }
     if let Some(load) = wall.and_then(|w| loads.get_mut(w)) {
         load.force += f;
         load.force_non_elastic += f_ne;
@@ -961,11 +1096,13 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool>(
 /// circles, a circle and a wall, or a clump's member pair ([`members::lean_contact`]); `None`
 /// for the other pair kinds.
 #[inline(always)]
-fn lean_of(slot: &Slot, cx: &PassContext) -> Option<Option<LeanContact>> {
+fn lean_of<const PERIODIC: bool>(slot: &Slot, cx: &PassContext) -> Option<Option<LeanContact>> {
+    let sides = cx.slot_sides::<false, PERIODIC>(slot);
     if slot.sub != 0 {
-        return Some(members::lean_contact(cx.bodies, cx.walls, slot));
+        return Some(members::lean_contact(cx.bodies, cx.walls, slot, sides));
     }
-    let (i, j) = cx.sides(slot.sides());
+    let mut store = Pose::IDENTITY;
+    let (i, j) = cx.sides(sides, &mut store);
     overlap_lean(i, j)
 }
 

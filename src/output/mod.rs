@@ -1,6 +1,7 @@
 //! Output formats. Readers of results only: nothing here changes the world.
 
 pub mod analysis;
+pub mod cell;
 pub mod contacts;
 pub mod docs_tables;
 pub mod forces;
@@ -8,6 +9,7 @@ pub mod outline;
 pub mod panels;
 pub mod plot;
 pub mod progress;
+pub mod reactions;
 pub mod run_data;
 pub mod run_dir;
 pub mod state;
