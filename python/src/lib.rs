@@ -1012,6 +1012,7 @@ impl Simulation {
         let tol = Tolerance {
             force: tolerance,
             max_iterations,
+            energy: 0.0,
         };
         let Inner { world, pool, .. } = inner;
         let relaxed = py

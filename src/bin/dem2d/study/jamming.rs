@@ -244,11 +244,14 @@ fn mean_sd(x: &[f64]) -> (f64, f64) {
 /// The published values beside each aspect ratio: φ_J and Z_J (VanderWerf et al. 2018, Fig. 2
 /// and 4; O'Hern et al. 2003 for disks), as text.
 fn published(aspect: f64) -> &'static str {
-    match aspect {
-        a if a == 1.0 => "φ_J ≈ 0.84, Z_J = 4 (O'Hern 2003)",
-        a if (1.25..=1.5).contains(&a) => "φ_J peak 0.891–0.897 (α ≈ 1.3–1.45)",
-        a if a >= 1.5 => "Z_J ≈ 5.5–5.8 (1.5 ≤ α ≤ 3)",
-        _ => "Z_J − 4 ∝ √(α − 1)",
+    if aspect == 1.0 {
+        "φ_J ≈ 0.84, Z_J = 4 (O'Hern 2003)"
+    } else if (1.25..=1.5).contains(&aspect) {
+        "φ_J peak 0.891–0.897 (α ≈ 1.3–1.45)"
+    } else if aspect >= 1.5 {
+        "Z_J ≈ 5.5–5.8 (1.5 ≤ α ≤ 3)"
+    } else {
+        "Z_J − 4 ∝ √(α − 1)"
     }
 }
 
