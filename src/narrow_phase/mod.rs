@@ -318,8 +318,6 @@ pub fn contact_with<'a>(
     if let Some(t) = request.trace {
         t.set(false); // (the conic pairs' kernel records whether the warm start gave the result)
     }
-    // A clump's contacts are its members' (circles): the deepest, for one record.
-    let clump = || clump::contact_clump(i, j, r);
     match (i, j) {
         (Side::Wall(_), Side::Wall(_)) => None,
         (Side::Wall(w), Side::Body(sj, pj)) => match sj {
@@ -328,7 +326,8 @@ pub fn contact_with<'a>(
             Rectangle { .. } | Polygon(_) => {
                 cold(|| polygon_wall::contact_wall_polygon(w, sj, pj, r))
             }
-            Clump(_) => cold(clump),
+            // A clump's contacts are its members' (circles): the deepest, for one record.
+            Clump(_) => cold(|| clump::contact_clump(i, j, r)),
         },
         (Side::Body(si, pi), Side::Wall(w)) => match si {
             Circle { r: ri } => turned(circle_wall::contact_wall_circle(w, *ri, pi, r)),
@@ -336,7 +335,7 @@ pub fn contact_with<'a>(
             Rectangle { .. } | Polygon(_) => {
                 turned(cold(|| polygon_wall::contact_wall_polygon(w, si, pi, r)))
             }
-            Clump(_) => cold(clump),
+            Clump(_) => cold(|| clump::contact_clump(i, j, r)),
         },
         (Side::Body(si, pi), Side::Body(sj, pj)) => match (si, sj) {
             (Circle { r: ri }, Circle { r: rj }) => {
@@ -378,7 +377,7 @@ pub fn contact_with<'a>(
                     turned(polygon_polygon::contact_polygon_polygon(sj, pj, si, pi, r))
                 }
             }),
-            (Clump(_), _) | (_, Clump(_)) => cold(clump),
+            (Clump(_), _) | (_, Clump(_)) => cold(|| clump::contact_clump(i, j, r)),
         },
     }
 }
