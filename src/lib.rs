@@ -23,4 +23,5 @@ pub mod dynamics;
 pub mod geometry;
 pub mod narrow_phase;
 pub mod output;
+pub mod run;
 pub mod scene;

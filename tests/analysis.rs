@@ -4,21 +4,22 @@
 
 use dem2d::analysis::{self, Frame};
 use dem2d::dynamics::World;
+use dem2d::run::Simulation;
 use dem2d::scene::Case;
 use dem2d::scene::servo_box::ServoBox;
 
 /// Steps `world` in chunks until the box area changes by less than `1e-6` of itself over a
 /// chunk and the unbalanced force ratio is below 1e-3 (or `max_time` passes); returns whether
 /// it got there.
-fn settle(world: &mut World, chunk: usize, max_time: f64) -> bool {
+fn settle(world: &mut World, chunk: u64, max_time: f64) -> bool {
     let area = |w: &World| Frame::from_world(w).wall_box.map_or(0.0, |b| b.area());
     let mut last = area(world);
-    while world.time < max_time {
-        for _ in 0..chunk {
-            world.step().unwrap();
-        }
-        let a = area(world);
-        if (a - last).abs() < 1e-6 * a && world.unbalanced_ratios().0 < 1e-3 {
+    let mut sim = Simulation::new(world).for_steps(chunk);
+    while sim.world().time < max_time {
+        sim.run().unwrap();
+        let w = sim.world();
+        let a = area(w);
+        if (a - last).abs() < 1e-6 * a && w.unbalanced_ratios().0 < 1e-3 {
             return true;
         }
         last = a;

@@ -20,6 +20,7 @@ use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::overlap_area::DiskLens;
 use dem2d::geometry::{Polygon, Pose, Shape, Vec2, Wall};
 use dem2d::narrow_phase::{ContactState, Object, contact};
+use dem2d::run::Simulation;
 use dem2d_validation::overlap_reference::{OverlapState, reference_overlap};
 use dem2d_validation::reference::{RObj, RShape};
 use dem2d_validation::rng::Rng;
@@ -677,13 +678,13 @@ fn energy_spec(nf: NormalForce, restitution: Option<f64>) -> ContactSpec {
 }
 
 /// The largest |E − E₀|/E₀ over a run (E = kinetic + potential + elastic; nothing dissipates).
-fn energy_drift(mut w: World, steps: usize) -> f64 {
+fn energy_drift(mut w: World, steps: u64) -> f64 {
     let e0 = w.energies.total();
     let mut worst = 0.0f64;
-    for _ in 0..steps {
-        w.step().unwrap();
-        worst = worst.max(((w.energies.total() - e0) / e0).abs());
-    }
+    Simulation::new(&mut w)
+        .for_steps(steps)
+        .run_each(|w, _| worst = worst.max(((w.energies.total() - e0) / e0).abs()))
+        .unwrap();
     worst
 }
 
@@ -731,7 +732,7 @@ fn undamped_frictionless_ellipses_conserve_energy_to_second_order() {
                 .map(|k| {
                     energy_drift(
                         scene(nf, dt, k as f64 / 8.0),
-                        (duration / dt).round() as usize,
+                        (duration / dt).round() as u64,
                     )
                 })
                 .sum::<f64>()
@@ -780,14 +781,14 @@ fn obtained_restitution(shape: Shape, angle: f64, nf: NormalForce, e: f64, hertz
     body.velocity = Vec2::new(0.0, -v0);
     let mut w = World::new(&[body], vec![floor], Vec2::zeros(), spec, 2e-7);
     let mut touched = false;
-    loop {
-        w.step().unwrap();
-        let c = !w.contacts.is_empty();
-        touched |= c;
-        if touched && !c {
-            return w.bodies.state[0].vel.y / v0;
-        }
-    }
+    Simulation::new(&mut w)
+        .run_until(|w, _| {
+            let c = !w.contacts.is_empty();
+            touched |= c;
+            touched && !c
+        })
+        .unwrap();
+    w.bodies.state[0].vel.y / v0
 }
 
 #[test]

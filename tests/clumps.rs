@@ -15,6 +15,7 @@
 use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
 use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::{Clump, Shape, Vec2, Wall};
+use dem2d::run::Simulation;
 use std::f64::consts::PI;
 
 fn clump(disks: &[([f64; 2], f64)]) -> Clump {
@@ -188,9 +189,7 @@ fn a_clump_of_one_disk_steps_like_the_circle() {
         b.velocity = Vec2::new(20.0, 0.0);
         b.omega = 5.0;
         let mut w = World::new(&[b], vec![floor(spec)], Vec2::new(0.0, -980.0), spec, 1e-5);
-        for _ in 0..20_000 {
-            w.step().unwrap();
-        }
+        Simulation::new(&mut w).for_steps(20_000).run().unwrap();
         let s = w.bodies.state[0];
         (
             s.pose.position,
@@ -366,10 +365,10 @@ fn a_dropped_clump_comes_to_rest_and_its_energy_account_closes() {
         let mut w = World::new(&[b], vec![floor(spec)], Vec2::new(0.0, -980.0), spec, dt);
         let e0 = w.energies.total();
         let mut worst = 0.0f64;
-        while w.time < until {
-            w.step().unwrap();
-            worst = worst.max(((w.energies.total() - e0) / e0).abs());
-        }
+        Simulation::new(&mut w)
+            .until_time(until)
+            .run_each(|w, _| worst = worst.max(((w.energies.total() - e0) / e0).abs()))
+            .unwrap();
         (worst, w)
     };
     let elastic = linear(36400.0 * 980.0, 0.0, 0.0);

@@ -5,6 +5,7 @@ use approx::assert_relative_eq;
 use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
 use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::{Shape, Vec2, Wall};
+use dem2d::run::Simulation;
 
 fn body(shape: Shape, x: f64, y: f64, angle: f64, v: Vec2, omega: f64) -> BodyInit {
     BodyInit {
@@ -45,6 +46,25 @@ fn on_floor(shape: Shape, y: f64, v: Vec2, gravity: Vec2, spec: ContactSpec, dt:
     )
 }
 
+/// Steps a disk of radius `r` that starts touching the floor y = 0, thrown down, until its
+/// overlap closes again; returns that instant, interpolated between the steps (and fails past
+/// `limit`).
+fn separation_time(w: &mut World, r: f64, limit: f64) -> f64 {
+    let (mut y_prev, mut t_prev, mut t_end) = (r, 0.0, None);
+    Simulation::new(w)
+        .run_until(|w, _| {
+            let y = w.bodies.state[0].pose.position.y;
+            if y >= r && y_prev < r {
+                t_end = Some(t_prev + (r - y_prev) / (y - y_prev) * (w.time - t_prev));
+            }
+            (y_prev, t_prev) = (y, w.time);
+            assert!(w.time < limit, "no rebound");
+            t_end.is_some()
+        })
+        .unwrap();
+    t_end.unwrap()
+}
+
 #[test]
 fn free_fall_is_exact_to_round_off() {
     // Velocity Verlet integrates constant acceleration exactly: x = x0 + v0 t + ½ g t².
@@ -65,9 +85,7 @@ fn free_fall_is_exact_to_round_off() {
         spec,
         1e-4,
     );
-    for _ in 0..5000 {
-        w.step().unwrap();
-    }
+    Simulation::new(&mut w).for_steps(5000).run().unwrap();
     let t = w.time;
     let p = w.bodies.state[0].pose.position;
     // Round-off: each of the N steps rounds a position of size ≲ 120 (half an ulp each).
@@ -123,21 +141,10 @@ fn disk_impact_matches_the_exact_clamped_spring_dashpot() {
             spec,
             dt,
         );
-        let (mut y_prev, mut t_prev) = (r, 0.0);
-        let mut t_end = None;
-        while t_end.is_none() {
-            w.step().unwrap();
-            let y = w.bodies.state[0].pose.position.y;
-            if y >= r && y_prev < r {
-                // Interpolate the instant the overlap closes.
-                t_end = Some(t_prev + (r - y_prev) / (y - y_prev) * (w.time - t_prev));
-            }
-            (y_prev, t_prev) = (y, w.time);
-            assert!(w.time < 10.0 * tc_exact, "no rebound");
-        }
+        let t_end = separation_time(&mut w, r, 10.0 * tc_exact);
         let e = w.bodies.state[0].vel.y / v0;
         assert_relative_eq!(e, e_exact, max_relative = 1e-3);
-        assert_relative_eq!(t_end.unwrap(), tc_exact, max_relative = 1e-3);
+        assert_relative_eq!(t_end, tc_exact, max_relative = 1e-3);
     }
 }
 
@@ -163,9 +170,7 @@ fn sliding_disk_ends_rolling_at_two_thirds_speed() {
         2e-6,
     );
     // Sliding lasts v0/(3μg) ≈ 0.057 s.
-    for _ in 0..60_000 {
-        w.step().unwrap();
-    }
+    Simulation::new(&mut w).for_steps(60_000).run().unwrap();
     let v = w.bodies.state[0].vel.x;
     assert_relative_eq!(v, 2.0 / 3.0 * v0, max_relative = 1e-3);
     assert_relative_eq!(w.bodies.state[0].omega * r, -v, max_relative = 1e-3);
@@ -196,17 +201,19 @@ fn sliding_square_decelerates_at_mu_g_and_stops_at_v0_squared_over_2_mu_g() {
     );
     let t_stop = v0 / (mu * g);
     let (mut st, mut sv, mut stt, mut stv, mut count) = (0.0, 0.0, 0.0, 0.0, 0.0);
-    while w.time < 1.5 * t_stop {
-        w.step().unwrap();
-        if w.time > 0.1 * t_stop && w.time < 0.9 * t_stop {
-            let (t, v) = (w.time, w.bodies.state[0].vel.x);
-            st += t;
-            sv += v;
-            stt += t * t;
-            stv += t * v;
-            count += 1.0;
-        }
-    }
+    Simulation::new(&mut w)
+        .until_time(1.5 * t_stop)
+        .run_each(|w, _| {
+            if w.time > 0.1 * t_stop && w.time < 0.9 * t_stop {
+                let (t, v) = (w.time, w.bodies.state[0].vel.x);
+                st += t;
+                sv += v;
+                stt += t * t;
+                stv += t * v;
+                count += 1.0;
+            }
+        })
+        .unwrap();
     let slope = (count * stv - st * sv) / (count * stt - st * st);
     assert_relative_eq!(slope, -mu * g, max_relative = 1e-3);
     assert!(
@@ -243,9 +250,7 @@ fn ellipse_on_its_flat_side_sinks_mg_over_kn() {
         spec,
         1e-5,
     );
-    for _ in 0..20_000 {
-        w.step().unwrap();
-    }
+    Simulation::new(&mut w).for_steps(20_000).run().unwrap();
     let depth = b - w.bodies.state[0].pose.position.y;
     assert_relative_eq!(depth, m * g / kn, max_relative = 1e-9);
     assert!(w.bodies.state[0].pose.angle().abs() < 1e-12);
@@ -265,15 +270,17 @@ fn bounce_energy_error(dt: f64) -> f64 {
     );
     let e0 = w.energies.total();
     let mut worst: f64 = 0.0;
-    while w.time < 0.5 {
-        w.step().unwrap();
-        let e = w.energies.kinetic + w.energies.potential + w.energies.elastic;
-        worst = worst.max((e - e0).abs() / e0);
-        assert_eq!(
-            w.energies.dissipated, 0.0,
-            "no dissipation without dashpots and friction"
-        );
-    }
+    Simulation::new(&mut w)
+        .until_time(0.5)
+        .run_each(|w, _| {
+            let e = w.energies.kinetic + w.energies.potential + w.energies.elastic;
+            worst = worst.max((e - e0).abs() / e0);
+            assert_eq!(
+                w.energies.dissipated, 0.0,
+                "no dissipation without dashpots and friction"
+            );
+        })
+        .unwrap();
     worst
 }
 
@@ -327,10 +334,10 @@ fn free_collision_conserves_momentum_to_round_off() {
     let (p0, l0) = (w.momentum(), w.angular_momentum());
     let e0 = w.energies.total();
     let mut touched = false;
-    for _ in 0..100_000 {
-        w.step().unwrap();
-        touched |= !w.contacts.is_empty();
-    }
+    Simulation::new(&mut w)
+        .for_steps(100_000)
+        .run_each(|w, _| touched |= !w.contacts.is_empty())
+        .unwrap();
     assert!(touched, "the bodies never met");
     // Round-off: 1e5 steps each rounding terms of size Σm|v| (momentum) and Σ(m|x||v| + I|ω|)
     // (angular momentum about the origin) by an ulp or so.
@@ -390,11 +397,14 @@ fn rotating_the_whole_scene_rotates_the_trajectory() {
             1e-5,
         )
     };
-    let mut a = make(&|v| v, 0.0);
-    let mut b = make(&rot, psi);
+    let (mut a, mut b) = (make(&|v| v, 0.0), make(&rot, psi));
+    // The two worlds in lockstep, one step per call.
+    let mut sa = Simulation::new(&mut a).for_steps(1);
+    let mut sb = Simulation::new(&mut b).for_steps(1);
     for step in 0..20_000 {
-        a.step().unwrap();
-        b.step().unwrap();
+        sa.run().unwrap();
+        sb.run().unwrap();
+        let (a, b) = (sa.world(), sb.world());
         if step % 500 == 0 {
             let pa = rot(a.bodies.state[0].pose.position);
             let pb = b.bodies.state[0].pose.position;
@@ -460,16 +470,7 @@ fn hertz_impact_matches_closed_form_and_an_independent_integration() {
             spec,
             tc / 2e4,
         );
-        let (mut y_prev, mut t_prev, mut t_end) = (r, 0.0, None);
-        while t_end.is_none() {
-            w.step().unwrap();
-            let y = w.bodies.state[0].pose.position.y;
-            if y >= r && y_prev < r {
-                t_end = Some(t_prev + (r - y_prev) / (y - y_prev) * (w.time - t_prev));
-            }
-            (y_prev, t_prev) = (y, w.time);
-            assert!(w.time < 10.0 * tc, "no rebound");
-        }
+        let t_end = separation_time(&mut w, r, 10.0 * tc);
         let measured = w.bodies.state[0].vel.y / v0;
         let beta = dem2d::contact_law::damping_factor_hertz(e);
         assert_relative_eq!(
@@ -478,7 +479,7 @@ fn hertz_impact_matches_closed_form_and_an_independent_integration() {
             max_relative = 1e-3
         );
         if e == 1.0 {
-            assert_relative_eq!(t_end.unwrap(), tc, max_relative = 1e-3);
+            assert_relative_eq!(t_end, tc, max_relative = 1e-3);
         }
     }
 }

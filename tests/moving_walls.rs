@@ -16,6 +16,7 @@
 use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
 use dem2d::dynamics::{BodyInit, Boundary, Motion, Servo, Span, World};
 use dem2d::geometry::{Shape, Vec2, Wall};
+use dem2d::run::Simulation;
 use dem2d::scene::Case;
 use dem2d::scene::generate::{PileShape, PileSpec};
 use std::f64::consts::PI;
@@ -69,14 +70,14 @@ fn collide(
         dt,
     );
     let mut first = None;
-    loop {
-        let r = w.step().unwrap();
-        if r.contacts > 0 {
-            first.get_or_insert(w.step);
-        } else if first.is_some() {
-            break;
-        }
-    }
+    Simulation::new(&mut w)
+        .run_until(|w, r| {
+            if r.contacts > 0 {
+                first.get_or_insert(w.step);
+            }
+            r.contacts == 0 && first.is_some()
+        })
+        .unwrap();
     let v = w.bodies.state[0].vel.x;
     (first.unwrap(), v, w)
 }
@@ -169,9 +170,7 @@ fn a_disk_set_down_on_a_moving_belt_ends_rolling_at_a_third_of_its_speed() {
         s,
         1e-5,
     );
-    while w.time < 0.3 {
-        w.step().unwrap();
-    }
+    Simulation::new(&mut w).until_time(0.3).run().unwrap();
     let st = &w.bodies.state[0];
     eprintln!(
         "belt at {speed}: v = {:.6} ({:.6} V), ωr = {:.6}, slip {:.2e}",
@@ -197,9 +196,7 @@ fn servo_on_pile(n: usize, sigma: f64) -> (World, Vec<f64>, f64) {
     let spec = PileSpec::new(PileShape::Disks, n, 3);
     let case = Case::from_json(&spec.case_json()).unwrap();
     let mut w = case.build_world();
-    while w.time < 1.0 {
-        w.step().unwrap();
-    }
+    Simulation::new(&mut w).until_time(1.0).run().unwrap();
     let top = w
         .bodies
         .state
@@ -229,21 +226,23 @@ fn servo_on_pile(n: usize, sigma: f64) -> (World, Vec<f64>, f64) {
     let mut w = World::new(&bodies, walls, case.gravity, case.contact, case.dt);
     let e0 = w.energies.total();
     let mut stress = Vec::new();
-    while w.time < 1.0 {
-        w.step().unwrap();
-        let (s, _) = w.walls[3].measured_stress(&w.walls).unwrap();
-        stress.push(s);
-        if std::env::var_os("SERVO_TRACE").is_some() && w.step.is_multiple_of(500) {
-            eprintln!(
-                "t {:.4} σ {s:.1} y {:.5} v {:.4e} contacts {} K {:.3e}",
-                w.time,
-                w.walls[3].line().point.y,
-                w.walls[3].velocity.y,
-                w.walls[3].load.contacts,
-                w.energies.kinetic
-            );
-        }
-    }
+    Simulation::new(&mut w)
+        .until_time(1.0)
+        .run_each(|w, _| {
+            let (s, _) = w.walls[3].measured_stress(&w.walls).unwrap();
+            stress.push(s);
+            if std::env::var_os("SERVO_TRACE").is_some() && w.step.is_multiple_of(500) {
+                eprintln!(
+                    "t {:.4} σ {s:.1} y {:.5} v {:.4e} contacts {} K {:.3e}",
+                    w.time,
+                    w.walls[3].line().point.y,
+                    w.walls[3].velocity.y,
+                    w.walls[3].load.contacts,
+                    w.energies.kinetic
+                );
+            }
+        })
+        .unwrap();
     (w, stress, e0)
 }
 
@@ -280,10 +279,10 @@ fn a_servo_wall_on_a_settled_pile_holds_its_target_stress_within_one_percent() {
 
 /// The blow-up watch counts the walls' work: a wall that hits a resting body gives it all its
 /// energy (nothing was in motion before), which is no blow-up; the same scene at a step far
-/// above the critical one is one.
+/// above the critical one is one, found by the energy criterion before anything is non-finite.
 #[test]
 fn the_blow_up_watch_counts_the_work_of_moving_walls() {
-    use dem2d::dynamics::watch::{BlowupWatch, Trigger};
+    use dem2d::run::RunError;
     let undamped = LinearDamping::Dashpots {
         eta_n: Scaled::Absolute(0.0),
         eta_s: Scaled::Absolute(0.0),
@@ -302,22 +301,16 @@ fn the_blow_up_watch_counts_the_work_of_moving_walls() {
             s,
             dt,
         );
-        let mut watch = BlowupWatch::new(&w);
-        while w.time < 0.02 {
-            w.step().unwrap();
-            if let Some(t) = watch.check(&w) {
-                return (Some(t), w);
-            }
-        }
-        (None, w)
+        let ended = Simulation::new(&mut w).until_time(0.02).run();
+        (ended, w)
     };
-    let (trigger, w) = run(1e-6);
-    assert_eq!(trigger, None);
+    let (ended, w) = run(1e-6);
+    assert!(ended.is_ok(), "{ended:?}");
     assert!(w.energies.kinetic > 0.9 * 2.0 * PI * 100.0 * 100.0); // ½ m (2V)²
     // ωΔt = 3370 × 2e-3 ≫ 2: unstable.
-    let (trigger, _) = run(2e-3);
+    let (ended, _) = run(2e-3);
     assert!(
-        matches!(trigger, Some(Trigger::Energy { .. })),
-        "{trigger:?}"
+        matches!(&ended, Err(RunError::Blowup(b)) if !b.within_step && b.reason.contains("the energy grew")),
+        "{ended:?}"
     );
 }

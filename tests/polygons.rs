@@ -18,6 +18,7 @@ use dem2d::contact_law::{ContactSpec, LinearDamping, Scaled};
 use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::{Polygon, Pose, Shape, Vec2, Wall};
 use dem2d::narrow_phase::{Contact, ContactState, Object, contact};
+use dem2d::run::Simulation;
 use dem2d_validation::dd::DD;
 use dem2d_validation::polygon_reference::{PObj, polygon_overlap};
 use dem2d_validation::rng::Rng;
@@ -654,10 +655,12 @@ fn force_and_moment_are_minus_the_gradient_of_the_reference_area_potential() {
 fn energy_drift(mut w: World, steps: usize) -> f64 {
     let e0 = w.energies.total();
     let mut worst = 0.0f64;
-    for _ in 0..steps {
-        w.step().unwrap();
-        worst = worst.max(((w.energies.total() - e0) / e0).abs());
-    }
+    Simulation::new(&mut w)
+        .for_steps(steps as u64)
+        .run_each(|w, _| {
+            worst = worst.max(((w.energies.total() - e0) / e0).abs());
+        })
+        .unwrap();
     worst
 }
 

@@ -6,6 +6,7 @@
 //! the same bits, extreme ones included. A bad state file is refused naming the field.
 
 use dem2d::dynamics::World;
+use dem2d::run::{BlowupWatch, RunProgress, Simulation};
 use dem2d::scene::CaseFile;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -95,13 +96,9 @@ fn library_round_trip(threads: usize) {
     let file = CaseFile::from_json(&text).unwrap();
     in_pool(threads, || {
         let mut whole = file.build_world();
-        for _ in 0..c_step {
-            whole.step().unwrap();
-        }
+        Simulation::new(&mut whole).for_steps(c_step).run().unwrap();
         let mut first = file.build_world();
-        for _ in 0..b_step {
-            first.step().unwrap();
-        }
+        Simulation::new(&mut first).for_steps(b_step).run().unwrap();
         let state = first.restart_state();
         let active: Vec<_> = state.slots.iter().filter(|s| s.slot.active).collect();
         assert!(active.len() > 20, "a heap of contacts: {}", active.len());
@@ -118,6 +115,7 @@ fn library_round_trip(threads: usize) {
             &file.value,
             file.case.duration,
             &state,
+            None,
             &file.case.bodies,
             "max_steps",
         );
@@ -129,9 +127,10 @@ fn library_round_trip(threads: usize) {
         );
         let mut resumed = read.build_world();
         assert_eq!(full_state(&resumed), full_state(&first));
-        for _ in b_step..c_step {
-            resumed.step().unwrap();
-        }
+        Simulation::new(&mut resumed)
+            .until_step(c_step)
+            .run()
+            .unwrap();
         assert_eq!(resumed.step, c_step);
         assert_eq!(full_state(&resumed), full_state(&whole));
     });
@@ -381,17 +380,15 @@ fn a_run_stopped_by_sigterm_leaves_a_state_that_continues_it_exactly() {
 fn extreme_numbers_read_back_as_the_same_bits() {
     let file = CaseFile::from_json(&pile_case(0.3)).unwrap();
     let mut w = file.build_world();
-    for _ in 0..9000 {
-        w.step().unwrap();
-    }
+    Simulation::new(&mut w).for_steps(9000).run().unwrap();
     let mut state = w.restart_state();
-    state.run = Some(dem2d::dynamics::RunProgress {
+    let run = RunProgress {
         initial_total: -1e300,
         quiescence_streak: u64::MAX,
         first_contact_step: None,
         contact_sum: 1 << 60,
-        watch: dem2d::dynamics::watch::BlowupWatch::new(&w),
-    });
+        watch: BlowupWatch::new(&w),
+    };
     let sub = f64::from_bits(1); // 5e-324, the smallest subnormal
     state.bodies[0].velocity = dem2d::geometry::Vec2::new(-0.0, sub);
     state.bodies[0].omega = -2.5e-310;
@@ -411,6 +408,7 @@ fn extreme_numbers_read_back_as_the_same_bits() {
         &file.value,
         file.case.duration,
         &state,
+        Some(&run),
         &file.case.bodies,
         "max_steps",
     );
@@ -426,6 +424,7 @@ fn extreme_numbers_read_back_as_the_same_bits() {
     let read = CaseFile::from_json(&text).unwrap();
     let back = read.restart.unwrap();
     assert_eq!(format!("{back:?}"), format!("{state:?}"));
+    assert_eq!(read.run.as_ref(), Some(&run));
     // Bit for bit where Debug could hide it.
     assert_eq!(back.bodies[0].velocity.x.to_bits(), (-0.0f64).to_bits());
     assert_eq!(back.slots[k].more[0].to_bits(), (-0.0f64).to_bits());
@@ -438,6 +437,7 @@ fn extreme_numbers_read_back_as_the_same_bits() {
         &read.value,
         read.case.duration,
         &back,
+        read.run.as_ref(),
         &read.case.bodies,
         "max_steps",
     );
@@ -491,9 +491,7 @@ fn a_ten_thousand_body_state_is_written_and_read_back() {
     );
     let file = CaseFile::from_json(&text).unwrap();
     let mut w = file.build_world();
-    for _ in 0..20 {
-        w.step().unwrap();
-    }
+    Simulation::new(&mut w).for_steps(20).run().unwrap();
     let state = w.restart_state();
     let active = state.slots.iter().filter(|s| s.slot.active).count();
     assert!(active > 10_000, "{active} contacts");
@@ -505,12 +503,12 @@ fn a_ten_thousand_body_state_is_written_and_read_back() {
         file.case.duration,
         &w,
         &file.case.bodies,
-        dem2d::dynamics::RunProgress {
+        &RunProgress {
             initial_total: 0.0,
             quiescence_streak: 0,
             first_contact_step: Some(1),
             contact_sum: 0,
-            watch: dem2d::dynamics::watch::BlowupWatch::new(&w),
+            watch: BlowupWatch::new(&w),
         },
         "max_steps",
     )
@@ -529,8 +527,7 @@ fn a_ten_thousand_body_state_is_written_and_read_back() {
         write.as_secs_f64() * 1e3,
         read_time.as_secs_f64() * 1e3
     );
-    let mut back = resumed.restart_state();
-    back.run = None;
+    let back = resumed.restart_state();
     assert_eq!(format!("{back:?}"), format!("{state:?}"));
     assert!(write < Duration::from_secs(20) && read_time < Duration::from_secs(20));
 }

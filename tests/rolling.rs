@@ -17,6 +17,7 @@ use dem2d::contact_law::{
 };
 use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::{Shape, Vec2, Wall};
+use dem2d::run::{Simulation, Stop};
 use std::f64::consts::PI;
 
 const G: f64 = 980.0;
@@ -87,17 +88,19 @@ fn cdt_disk_rolling_on_a_floor_decelerates_at_two_thirds_mu_r_g_and_stops_at_the
         // the shear spring loading up, and from the stop).
         let (mut ts, mut vs) = (Vec::new(), Vec::new());
         let mut stopped_at = None;
-        while w.time < 1.2 * t_stop {
-            w.step().unwrap();
-            let v = w.bodies.state[0].vel.x;
-            if w.time > 0.1 * t_stop && w.time < 0.9 * t_stop && w.step.is_multiple_of(10) {
-                ts.push(w.time);
-                vs.push(v);
-            }
-            if stopped_at.is_none() && v <= 1e-9 * v0 {
-                stopped_at = Some((w.time, w.bodies.state[0].pose.position.x));
-            }
-        }
+        Simulation::new(&mut w)
+            .until_time(1.2 * t_stop)
+            .run_each(|w, _| {
+                let v = w.bodies.state[0].vel.x;
+                if w.time > 0.1 * t_stop && w.time < 0.9 * t_stop && w.step.is_multiple_of(10) {
+                    ts.push(w.time);
+                    vs.push(v);
+                }
+                if stopped_at.is_none() && v <= 1e-9 * v0 {
+                    stopped_at = Some((w.time, w.bodies.state[0].pose.position.x));
+                }
+            })
+            .unwrap();
         let a = -slope(&ts, &vs);
         let (t, x) = stopped_at.expect("the disk stops");
         eprintln!(
@@ -140,16 +143,18 @@ fn on_slope(beta: f64, mu_r: f64, time: f64) -> (f64, f64, f64) {
     let mut w = disk_on_floor(1.0, 0.0, gravity, s, 1e-5);
     let (mut ts, mut vs) = (Vec::new(), Vec::new());
     let mut x_half = None;
-    while w.time < time {
-        w.step().unwrap();
-        if w.time >= 0.5 * time {
-            x_half.get_or_insert(w.bodies.state[0].pose.position.x);
-            if w.step.is_multiple_of(10) {
-                ts.push(w.time);
-                vs.push(w.bodies.state[0].vel.x);
+    Simulation::new(&mut w)
+        .until_time(time)
+        .run_each(|w, _| {
+            if w.time >= 0.5 * time {
+                x_half.get_or_insert(w.bodies.state[0].pose.position.x);
+                if w.step.is_multiple_of(10) {
+                    ts.push(w.time);
+                    vs.push(w.bodies.state[0].vel.x);
+                }
             }
-        }
-    }
+        })
+        .unwrap();
     let st = &w.bodies.state[0];
     (
         st.pose.position.x - x_half.unwrap(),
@@ -221,15 +226,17 @@ fn the_energy_account_closes_with_rolling_resistance() {
     let e0 = w.energies.total();
     let k0 = w.energies.kinetic;
     let (mut worst, mut most_stored) = (0.0f64, 0.0f64);
-    for _ in 0..20_000 {
-        w.step().unwrap();
-        worst = worst.max((w.energies.total() - e0).abs());
-        most_stored = most_stored.max(w.contacts.slots[0].history_energy);
-        assert!(
-            w.contacts.history_of(0).0[1].abs() < 0.5 * PI * G,
-            "below the cap"
-        );
-    }
+    Simulation::new(&mut w)
+        .for_steps(20_000)
+        .run_each(|w, _| {
+            worst = worst.max((w.energies.total() - e0).abs());
+            most_stored = most_stored.max(w.contacts.slots[0].history_energy);
+            assert!(
+                w.contacts.history_of(0).0[1].abs() < 0.5 * PI * G,
+                "below the cap"
+            );
+        })
+        .unwrap();
     eprintln!(
         "EPSD elastic: |ΔE| ≤ {worst:.3e} erg, initial kinetic {k0:.3e}, rolling spring held up to \
          {most_stored:.3e}, dissipated {:.3e}",
@@ -249,9 +256,7 @@ fn the_energy_account_closes_with_rolling_resistance() {
     let mut w = disk_on_floor(1.0, 20.0, Vec2::new(0.0, -G), s, 1e-5);
     let e0 = w.energies.total();
     let k0 = w.energies.kinetic;
-    while w.time < 0.8 {
-        w.step().unwrap();
-    }
+    Simulation::new(&mut w).until_time(0.8).run().unwrap();
     let e = w.energies;
     eprintln!(
         "CDT: kinetic {k0:.4e} → {:.3e}, dissipated {:.6e}, account error {:.2e}",
@@ -305,14 +310,15 @@ fn rolling_keys_are_read_and_walls_override_them() {
 /// Runs a case until P's criterion holds (the time at rest) or `limit` s.
 fn rest_time(case: &dem2d::scene::Case, limit: f64) -> (World, Option<f64>) {
     let mut w = case.build_world();
-    let mut q = case.quiescence_criterion().expect("quiescence");
-    while w.time < limit {
-        let r = w.step().unwrap();
-        if let Some(s) = q.observe(w.step, &r.increments) {
-            return (w, Some(s as f64 * case.dt));
-        }
+    let stop = Simulation::new(&mut w)
+        .until_time(limit)
+        .quiescence(Some(case.quiescence_criterion().expect("quiescence")))
+        .run()
+        .unwrap();
+    match stop {
+        Stop::AtRest { since } => (w, Some(since as f64 * case.dt)),
+        _ => (w, None),
     }
-    (w, None)
 }
 
 /// P Fig. 3: without rolling resistance the thrown circle rolls on and the ellipse rocks on for
@@ -444,9 +450,7 @@ fn an_ellipse_rests_on_slopes_up_to_mu_r_plus_its_shapes_own_limit() {
         let floor = Boundary::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), law);
         let gravity = Vec2::new(G * beta.sin(), -G * beta.cos());
         let mut w = World::new(&[body], vec![floor], gravity, law, 1e-5);
-        for _ in 0..50_000 {
-            w.step().unwrap();
-        }
+        Simulation::new(&mut w).for_steps(50_000).run().unwrap();
         let x = w.bodies.state[0].pose.position.x;
         let turned = (w.bodies.state[0].pose.angle() - th).abs();
         if holds {

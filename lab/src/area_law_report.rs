@@ -5,6 +5,8 @@ use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
 use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::support::support_local;
 use dem2d::geometry::{Shape, Vec2, Wall};
+use dem2d::run::Simulation;
+use dem2d::scene::Case;
 use std::f64::consts::FRAC_PI_2;
 use std::fmt::Write as _;
 
@@ -57,8 +59,8 @@ fn force(delta: f64, wall: Option<f64>, pair: (f64, f64), nf: NormalForce) -> f6
     let w = match wall {
         Some(angle) => {
             let h = support(&e, angle, Vec2::new(0.0, -1.0)) - delta;
-            World::new(
-                &[body(e, Vec2::new(0.0, h), angle, Vec2::zeros(), 0.0)],
+            Case::new(
+                vec![body(e, Vec2::new(0.0, h), angle, Vec2::zeros(), 0.0)],
                 vec![floor(spec)],
                 Vec2::zeros(),
                 spec,
@@ -68,8 +70,8 @@ fn force(delta: f64, wall: Option<f64>, pair: (f64, f64), nf: NormalForce) -> f6
         None => {
             let x = Vec2::x();
             let d = support(&e, pair.0, x) + support(&e, pair.1, -x) - delta;
-            World::new(
-                &[
+            Case::new(
+                vec![
                     body(e, Vec2::zeros(), pair.0, Vec2::zeros(), 0.0),
                     body(e, Vec2::new(d, 0.0), pair.1, Vec2::zeros(), 0.0),
                 ],
@@ -79,7 +81,8 @@ fn force(delta: f64, wall: Option<f64>, pair: (f64, f64), nf: NormalForce) -> f6
                 1e-6,
             )
         }
-    };
+    }
+    .build_world();
     w.bodies.force[w.bodies.len() - 1].norm()
 }
 
@@ -164,8 +167,8 @@ fn rebound(shape: Shape, angle: f64, nf: NormalForce, e: f64, hertz: bool) -> f6
     };
     let h = support(&shape, angle, Vec2::new(0.0, -1.0));
     let v0 = 50.0;
-    let mut w = World::new(
-        &[body(
+    let mut w = Case::new(
+        vec![body(
             shape,
             Vec2::new(0.0, h + 0.05),
             angle,
@@ -176,19 +179,20 @@ fn rebound(shape: Shape, angle: f64, nf: NormalForce, e: f64, hertz: bool) -> f6
         Vec2::zeros(),
         spec,
         2e-7,
-    );
+    )
+    .build_world();
     let mut touched = false;
-    while w.time < 1.0 {
-        if w.step().is_err() {
-            return f64::NAN;
-        }
+    let mut ratio = f64::NAN;
+    // A blow-up leaves the ratio undefined.
+    let _ = Simulation::new(&mut w).until_time(1.0).run_until(|w, _| {
         let c = !w.contacts.is_empty();
         touched |= c;
         if touched && !c {
-            return w.bodies.state[0].vel.y / v0;
+            ratio = w.bodies.state[0].vel.y / v0;
         }
-    }
-    f64::NAN
+        touched && !c
+    });
+    ratio
 }
 
 /// Requested → obtained restitution: a disk (the spring on the depth, itself the exact clamped
@@ -222,11 +226,11 @@ fn drift(scene: &dyn Fn(f64, f64) -> World, dt: f64, seconds: f64) -> f64 {
         let mut w = scene(dt, k as f64 / 8.0);
         let e0 = w.energies.total();
         let mut worst = 0.0f64;
-        while w.time < seconds {
-            if w.step().is_err() {
-                return f64::NAN;
-            }
-            worst = worst.max(((w.energies.total() - e0) / e0).abs());
+        let run = Simulation::new(&mut w)
+            .until_time(seconds)
+            .run_each(|w, _| worst = worst.max(((w.energies.total() - e0) / e0).abs()));
+        if run.is_err() {
+            return f64::NAN;
         }
         total += worst;
     }
@@ -244,8 +248,8 @@ pub fn energy_table() -> String {
     for nf in [NormalForce::Depth, NormalForce::Area] {
         let spec = linear(kn, None, nf);
         let bounce = move |dt: f64, phase: f64| {
-            World::new(
-                &[body(
+            Case::new(
+                vec![body(
                     e,
                     Vec2::new(0.0, 2.2 + 0.013 * phase),
                     0.5,
@@ -257,10 +261,11 @@ pub fn energy_table() -> String {
                 spec,
                 dt,
             )
+            .build_world()
         };
         let collide = move |dt: f64, phase: f64| {
-            World::new(
-                &[
+            Case::new(
+                vec![
                     body(
                         e,
                         Vec2::new(-0.006 * phase, 0.0),
@@ -275,6 +280,7 @@ pub fn energy_table() -> String {
                 spec,
                 dt,
             )
+            .build_world()
         };
         type Scene<'a> = (&'a str, &'a dyn Fn(f64, f64) -> World, f64);
         let scenes: [Scene; 2] = [

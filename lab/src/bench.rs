@@ -13,12 +13,13 @@
 use dem2d::contact_law::NormalForce;
 use dem2d::dynamics::timestep::estimate_critical_dt;
 use dem2d::dynamics::{BodyInit, World};
-use dem2d::output::progress::Progress;
+use dem2d::output::progress::CommandProgress;
+use dem2d::run::Simulation;
 use dem2d::scene::Case;
 use dem2d::scene::generate::{PileShape, PileSpec, WIDTH_10K};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 /// Mean speed (cm/s) below which a pile counts as settled for the benchmark.
 pub const SETTLED_SPEED: f64 = 0.5;
@@ -89,16 +90,6 @@ impl std::fmt::Display for BenchError {
 
 impl std::error::Error for BenchError {}
 
-fn world_of(case: &Case, dt: f64) -> World {
-    World::new(
-        &case.bodies,
-        case.walls.clone(),
-        case.gravity,
-        case.contact,
-        dt,
-    )
-}
-
 /// Mean speed of the bodies (cm/s).
 fn mean_speed(w: &World) -> f64 {
     let b = &w.bodies;
@@ -130,30 +121,25 @@ fn settle(spec: &PileSpec, progress: bool) -> Result<String, BenchError> {
         case.gravity.norm(),
     );
     let dt = (0.4 * dt_crit).min(5.0 * case.dt);
-    let mut w = world_of(&case, dt);
+    let mut w = case.clone().with_dt(dt).build_world();
     let start = Instant::now();
     let check = ((0.01 / dt).round() as u64).max(1);
     let mut speed = mean_speed(&w);
-    let mut shown = Progress::new(progress, Duration::ZERO);
-    while w.time < SETTLE_TIME_MAX {
-        w.step()
-            .map_err(|b| BenchError(format!("settling {}: {b}", spec.name())))?;
-        if w.step.is_multiple_of(check) {
-            speed = mean_speed(&w);
-            if shown.due() {
-                shown.show(&format!(
-                    "settling {}: t = {:.2} s, mean speed {speed:.3} cm/s, {} contacts",
-                    spec.name(),
-                    w.time,
-                    w.contacts.len()
-                ));
-            }
-            if w.time > 0.2 && speed < SETTLED_SPEED {
-                break;
-            }
-        }
+    // `dem2d run`'s line (the step's contacts, not the neighbour list's pairs).
+    let mut lines = CommandProgress::new(format!("settling {}", spec.name()));
+    let mut sim = Simulation::new(&mut w).until_time(SETTLE_TIME_MAX);
+    if progress {
+        sim = sim.observe(&mut lines);
     }
-    shown.finish();
+    sim.run_until(|w, _| {
+        if !w.step.is_multiple_of(check) {
+            return false;
+        }
+        speed = mean_speed(w);
+        w.time > 0.2 && speed < SETTLED_SPEED
+    })
+    .map_err(|e| BenchError(format!("settling {}: {e}", spec.name())))?;
+    drop(sim);
     let description = format!(
         "{} settled at Δt = {dt:.3e} s for {:.2} s (mean speed {speed:.3} cm/s; {:.0} s of wall time) by `dem2d bench`, from: {}",
         spec.name(),
@@ -286,13 +272,13 @@ pub fn run(
                 for &normal_force in &opts.normal_forces {
                     let case = settled.clone().with_normal_force(normal_force);
                     let before = heap();
-                    let mut w = world_of(&case, case.dt);
+                    let mut w = case.build_world();
                     // Warm-up: contact histories, buffers at their working sizes.
-                    pool.install(|| -> Result<(), BenchError> {
-                        for _ in 0..opts.steps.min(200) {
-                            w.step().map_err(|b| BenchError(b.to_string()))?;
-                        }
-                        Ok(())
+                    pool.install(|| {
+                        Simulation::new(&mut w)
+                            .for_steps(opts.steps.min(200))
+                            .run()
+                            .map_err(|e| BenchError(e.to_string()))
                     })?;
                     let bytes = heap().saturating_sub(before);
                     let builds = w.contacts.builds;
@@ -317,10 +303,11 @@ pub fn run(
                 pools[run.pool].install(|| -> Result<(), BenchError> {
                     let allocs = allocations();
                     let (start, cpu) = (Instant::now(), process_cpu_seconds());
-                    for _ in 0..opts.steps {
-                        let r = run.w.step().map_err(|b| BenchError(b.to_string()))?;
-                        run.contacts += r.contacts as u64;
-                    }
+                    let contacts = &mut run.contacts;
+                    Simulation::new(&mut run.w)
+                        .for_steps(opts.steps)
+                        .run_each(|_, r| *contacts += r.contacts as u64)
+                        .map_err(|e| BenchError(e.to_string()))?;
                     run.walls.push(start.elapsed().as_secs_f64());
                     run.cpus.push(process_cpu_seconds() - cpu);
                     run.allocations += allocations() - allocs;

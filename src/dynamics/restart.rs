@@ -16,19 +16,18 @@
 //!   ([`ContactData`], for the outputs read before the next step); the positions the list was
 //!   built from (they decide when it is rebuilt, and a body's number of slots enters the contact
 //!   kinematics) and the number of builds;
-//! - the step count (the time is `step × Δt`), the energy account and the diagnostic counters;
-//! - the run's own progress ([`RunProgress`]): the quiescence streak, the counters of the
-//!   summary and the blow-up watch's reference state.
+//! - the step count (the time is `step × Δt`), the energy account and the diagnostic counters.
 //!
-//! The core neither reads nor writes it: `output::state` writes it into `state.json`,
-//! `scene::state` reads it back.
+//! It is the world's state only: what the run around the world keeps (the quiescence streak,
+//! the summary's counters, the blow-up watch's reference) is [`crate::run::RunProgress`],
+//! saved beside it. The core neither reads nor writes it: `output::state` writes it into
+//! `state.json`, `scene::state` reads it back.
 
 use super::account::{Diagnostics, Energies};
 use super::body::BodyInit;
 use super::boundary::{Boundary, WallLoad};
 use super::contacts::{ContactData, Slot};
 use super::partner::Partner;
-use super::watch::BlowupWatch;
 use crate::contact_law::{HISTORY_LEN, History};
 use crate::geometry::Vec2;
 use crate::narrow_phase::{ContactState, PairCache};
@@ -70,21 +69,6 @@ pub struct SlotRestart {
     pub data: ContactData,
 }
 
-/// What the run around the world keeps (the command line's step loop): restored with the world
-/// so that the continued run stops, and reports, as the uninterrupted one would.
-#[derive(Clone, Debug, PartialEq)]
-pub struct RunProgress {
-    /// `K + P + E_el + D` at t = 0 of the whole run.
-    pub initial_total: f64,
-    /// Consecutive steps the quiescence criterion has held.
-    pub quiescence_streak: u64,
-    pub first_contact_step: Option<u64>,
-    /// Σ over steps of the number of contacts (for the mean per step).
-    pub contact_sum: u64,
-    /// The blow-up watch's reference state (from t = 0 of the whole run).
-    pub watch: BlowupWatch,
-}
-
 /// A world's full state (see the module documentation).
 #[derive(Clone, Debug, PartialEq)]
 pub struct RestartState {
@@ -102,8 +86,6 @@ pub struct RestartState {
     pub energies: Energies,
     pub diagnostics: Diagnostics,
     pub last_increments: [f64; 3],
-    /// The run's progress (`None` from [`super::World::restart_state`]: the run adds it).
-    pub run: Option<RunProgress>,
 }
 
 /// A restart that does not fit the scene it is resumed with: where (a path below the state,

@@ -13,10 +13,12 @@
 //!   couple — a body's torque is `Σ (p − x) × F + couple`), the overlap δ (cm) and the
 //!   geometry state. Runs written before the couple have no `couple` column (read as 0).
 
-use super::trace::{LineFile, WriteError, time_text};
+use super::trace::{LineFile, WriteError};
 use crate::analysis::{self, Frame, FrameContact, Measures, Window};
 use crate::dynamics::{Partner, World};
 use crate::geometry::Vec2;
+use crate::run::time::time_text;
+use crate::run::{End, Observer, ObserverError, Plan, StepInfo};
 use std::path::Path;
 
 pub const ANALYSIS_HEADER: &str = "t,area,sxx,syy,sxy,p,q,q_over_p,boundary_sxx,boundary_syy,\
@@ -72,22 +74,26 @@ pub fn analysis_row(t: &str, m: &Measures) -> String {
     .join(",")
 }
 
-/// The writers of a run's analysis outputs (each optional).
+/// The writers of a run's analysis outputs (each optional); as an observer of a run, at the
+/// trajectory's frames (the first, every `every` steps, the last — not a non-finite one).
 pub struct AnalysisOutput {
     analysis: Option<LineFile>,
     contacts: Option<LineFile>,
     window: Option<Window>,
     last_step: Option<u64>,
+    every: u64,
 }
 
 impl AnalysisOutput {
     /// Creates `analysis.csv` when `analysis`, `contacts.csv` when `contacts`, in
-    /// `dir`; `window` the region of the measures (default: the wall box, else the bodies' extent).
+    /// `dir`; `window` the region of the measures (default: the wall box, else the bodies'
+    /// extent); as an observer it writes every `every` steps.
     pub fn create(
         dir: &Path,
         analysis: bool,
         contacts: bool,
         window: Option<Window>,
+        every: u64,
     ) -> Result<Self, WriteError> {
         let a = if analysis {
             let mut f = LineFile::create(&dir.join("analysis.csv"))?;
@@ -108,6 +114,7 @@ impl AnalysisOutput {
             contacts: c,
             window,
             last_step: None,
+            every: every.max(1),
         })
     }
 
@@ -157,6 +164,26 @@ impl AnalysisOutput {
             c.flush()?;
         }
         Ok(())
+    }
+}
+
+impl Observer for AnalysisOutput {
+    fn start(&mut self, world: &mut World, _: &Plan) -> Result<(), ObserverError> {
+        Ok(self.write(world, world.step)?)
+    }
+
+    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+        if !info.blowup && info.step.is_multiple_of(self.every) {
+            self.write(world, info.step)?;
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
+        if end.finite {
+            self.write(world, end.step)?;
+        }
+        Ok(self.flush()?)
     }
 }
 

@@ -4,8 +4,9 @@
 
 use super::analysis::ContactFrames;
 use super::run_data::RunData;
-use crate::dynamics::{BodyInit, World};
+use crate::dynamics::BodyInit;
 use crate::geometry::Vec2;
+use crate::scene::Case;
 
 /// The normal contact force on each body at frame `k` of `run`, `Σ F_n` over its contacts (dyn
 /// per unit thickness).
@@ -58,7 +59,12 @@ pub fn normal_force_per_body(
         })
         .collect();
     let (walls, _) = run.walls_at(k);
-    let mut world = World::new(&bodies, walls, case.gravity, case.contact, case.dt);
+    let mut world = Case {
+        bodies,
+        walls,
+        ..case.clone()
+    }
+    .build_world();
     world.refresh_contact_extras();
     for c in world.contacts.active() {
         let fn_ = c.data.force.dot(&c.extra.normal);

@@ -914,6 +914,53 @@ where
     Ok(())
 }
 
+/// A box in pixels: left, top, width, height.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct LabelBox {
+    x: i32,
+    y: i32,
+    w: i32,
+    h: i32,
+}
+
+impl LabelBox {
+    fn new(x: i32, y: i32, w: i32, h: i32) -> Self {
+        LabelBox { x, y, w, h }
+    }
+
+    fn overlaps(&self, o: &LabelBox) -> bool {
+        self.x < o.x + o.w && o.x < self.x + self.w && self.y < o.y + o.h && o.y < self.y + self.h
+    }
+}
+
+/// Where the label `text` of the point at pixel `at` goes, as the offset of its top-left corner
+/// from the point: the first of eight places around it (upper right first) whose box overlaps
+/// none of `boxes` (the markers and the labels placed so far), which it then joins; `None`
+/// when every place overlaps something. 12-point text: about 7 units per character, 12 high.
+fn place_label(at: (i32, i32), text: &str, boxes: &mut Vec<LabelBox>) -> Option<(i32, i32)> {
+    let s = S as i32;
+    let (w, h) = (7 * s * text.chars().count() as i32, 12 * s);
+    let gap = 5 * s;
+    let candidates = [
+        (gap, -h - gap / 2),
+        (gap, gap / 2),
+        (-gap - w, -h - gap / 2),
+        (-gap - w, gap / 2),
+        (gap + s, -h / 2),
+        (-gap - s - w, -h / 2),
+        (-w / 2, -h - gap - s),
+        (-w / 2, gap + s),
+    ];
+    for (dx, dy) in candidates {
+        let b = LabelBox::new(at.0 + dx, at.1 + dy, w, h);
+        if !boxes.iter().any(|o| o.overlaps(&b)) {
+            boxes.push(b);
+            return Some((dx, dy));
+        }
+    }
+    None
+}
+
 /// The legend box, in the house style, at `position`.
 fn draw_legend<'a, DB, CT>(
     chart: &mut ChartContext<'a, DB, CT>,
@@ -1262,6 +1309,23 @@ where
         }
     }
     let mut labelled = !p.vlines.iter().chain(&p.hlines).all(|(_, l)| l.is_empty());
+    let shown = |&(x, y): &(f64, f64)| {
+        x.is_finite() && y.is_finite() && (!p.log_x || x > 0.0) && (!p.log_y || y > 0.0)
+    };
+    // Point labels are placed beside their points where they overlap no other label and no
+    // marker of any series (a label that fits nowhere is left out rather than drawn over
+    // another).
+    let mut boxes: Vec<LabelBox> = p
+        .series
+        .iter()
+        .filter(|s| s.markers)
+        .flat_map(|s| s.points.iter().filter(|q| shown(q)))
+        .map(|q| {
+            let (x, y) = chart.backend_coord(q);
+            let r = 4 * S as i32;
+            LabelBox::new(x - r, y - r, 2 * r, 2 * r)
+        })
+        .collect();
     for s in &p.series {
         let col = color(s.color);
         let pts: Vec<(f64, f64)> = s
@@ -1311,21 +1375,23 @@ where
         }
         if !s.point_labels.is_empty() {
             let font = ("sans-serif", 12 * S).into_font().color(&col);
+            let mut placed = Vec::new();
+            for (&q, l) in s
+                .points
+                .iter()
+                .zip(&s.point_labels)
+                .filter(|(q, _)| shown(q))
+            {
+                let at = chart.backend_coord(&q);
+                if let Some(offset) = place_label(at, l, &mut boxes) {
+                    placed.push((q, l.clone(), offset));
+                }
+            }
             chart
                 .draw_series(
-                    s.points
-                        .iter()
-                        .zip(&s.point_labels)
-                        .filter(|((x, y), _)| {
-                            x.is_finite()
-                                && y.is_finite()
-                                && (!p.log_x || *x > 0.0)
-                                && (!p.log_y || *y > 0.0)
-                        })
-                        .map(|(&q, l)| {
-                            EmptyElement::at(q)
-                                + Text::new(l.clone(), (6 * S as i32, -14 * S as i32), font.clone())
-                        }),
+                    placed.into_iter().map(|(q, l, offset)| {
+                        EmptyElement::at(q) + Text::new(l, offset, font.clone())
+                    }),
                 )
                 .map_err(err)?;
         }
@@ -1345,6 +1411,39 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Issue 29, item 13: the representation figure's point labels (`3d`, `5d`, `16`, `17d` of
+    /// points a few pixels apart) were drawn over each other. Labels are now placed where they
+    /// overlap no other label and no marker, or left out.
+    #[test]
+    fn bug_point_labels_were_drawn_over_each_other() {
+        // A tight cluster of 12 points (3 pixels apart) and a few apart from it.
+        let points: Vec<(i32, i32)> = (0..12)
+            .map(|k| (400 + 3 * (k % 4), 300 + 3 * (k / 4)))
+            .chain([(100, 100), (700, 500), (130, 100)])
+            .collect();
+        let r = 4 * S as i32;
+        let mut boxes: Vec<LabelBox> = points
+            .iter()
+            .map(|&(x, y)| LabelBox::new(x - r, y - r, 2 * r, 2 * r))
+            .collect();
+        let markers = boxes.len();
+        let mut placed = 0;
+        for (k, &at) in points.iter().enumerate() {
+            if place_label(at, &format!("{k}d"), &mut boxes).is_some() {
+                placed += 1;
+            }
+        }
+        // No two boxes (markers and labels) overlap but marker with marker.
+        for (i, a) in boxes.iter().enumerate() {
+            for b in &boxes[(i + 1).max(markers)..] {
+                assert!(!a.overlaps(b), "{a:?} and {b:?}");
+            }
+        }
+        // The lone points all get theirs; the cluster gets several (a place on each side).
+        assert!(placed >= 3 + 4, "{placed} placed");
+        assert_eq!(boxes.len(), markers + placed);
+    }
 
     /// Issue 29, item 5: the force colour bar's tick labels (`900000000`) ran into its title.
     /// Large values are written in exponent form, and the label area is as wide as the widest

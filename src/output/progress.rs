@@ -4,6 +4,8 @@
 //! the end of the duration: a run that comes to rest stops sooner) and the unbalanced-force
 //! ratio, PFC's and Yade's measure of how far the pile is from equilibrium.
 
+use crate::dynamics::World;
+use crate::run::{End, Observer, ObserverError, Plan, StepInfo};
 use std::io::{IsTerminal, Write};
 use std::time::{Duration, Instant};
 
@@ -65,6 +67,61 @@ impl Progress {
     }
 }
 
+/// Progress lines of a run (an observer): silent for its first two seconds, then a [`line`] when
+/// one is due, not on the step the run stops at.
+pub struct ProgressLines {
+    name: String,
+    enabled: bool,
+    shown: Option<(Progress, Instant)>,
+}
+
+impl ProgressLines {
+    /// Lines naming the run `name`; none unless `enabled`.
+    pub fn new(name: &str, enabled: bool) -> Self {
+        ProgressLines {
+            name: name.to_string(),
+            enabled,
+            shown: None,
+        }
+    }
+}
+
+impl Observer for ProgressLines {
+    fn start(&mut self, _: &mut World, _: &Plan) -> Result<(), ObserverError> {
+        self.shown = Some((
+            Progress::new(self.enabled, Duration::from_secs(2)),
+            Instant::now(),
+        ));
+        Ok(())
+    }
+
+    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+        if let Some((progress, start)) = &mut self.shown
+            && !info.stopping
+            && progress.due()
+        {
+            // The unbalanced ratio costs a pass over the contacts: only when a line is due.
+            progress.show(&line(&Fields {
+                name: &self.name,
+                step: info.step,
+                steps: info.last.unwrap_or(info.step),
+                time: world.time,
+                elapsed: start.elapsed().as_secs_f64(),
+                contacts: info.report.contacts,
+                unbalanced: world.unbalanced_ratios().0,
+            }));
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self, _: &mut World, _: &End) -> Result<(), ObserverError> {
+        if let Some((progress, _)) = &self.shown {
+            progress.finish();
+        }
+        Ok(())
+    }
+}
+
 /// What a progress line reports.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Fields<'a> {
@@ -107,6 +164,97 @@ pub fn line(f: &Fields) -> String {
         f.contacts,
         f.unbalanced
     )
+}
+
+/// Progress lines of the runs of a longer command — a study, `dem2d verify`, `dem2d-lab
+/// bench`'s settling — as `run` shows them ([`line`]), an observer of each run. The pace is the
+/// process's, not the run's (a study of many short runs is one long command): nothing for its
+/// first two seconds, then one line per second on a terminal, one per 30 s in a log, whichever
+/// run is going. One clock read per step; the unbalanced ratio (a pass over the contacts) only
+/// when a line is due.
+pub struct CommandProgress {
+    name: String,
+    /// The run's first step and its last, if it has one.
+    first: u64,
+    last: Option<u64>,
+    start: Instant,
+    tty: bool,
+    /// Whether this run showed a line (a terminal's in-place line then needs its newline).
+    shown: bool,
+}
+
+/// When the process's first [`CommandProgress`] was made, and its last line (nanoseconds after
+/// that; `u64::MAX`: none yet).
+static PROCESS_START: std::sync::OnceLock<Instant> = std::sync::OnceLock::new();
+static LAST_LINE: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(u64::MAX);
+
+impl CommandProgress {
+    /// Lines naming the run `name` (the study and its sample).
+    pub fn new(name: impl Into<String>) -> Self {
+        PROCESS_START.get_or_init(Instant::now);
+        CommandProgress {
+            name: name.into(),
+            first: 0,
+            last: None,
+            start: Instant::now(),
+            tty: std::io::stderr().is_terminal(),
+            shown: false,
+        }
+    }
+
+    /// Whether a line is due now (and, if so, it is counted as shown).
+    fn due(&self) -> bool {
+        use std::sync::atomic::Ordering;
+        let origin = *PROCESS_START.get_or_init(Instant::now);
+        let now = Instant::now().duration_since(origin).as_nanos() as u64;
+        let every = if self.tty {
+            1_000_000_000
+        } else {
+            30_000_000_000
+        };
+        let last = LAST_LINE.load(Ordering::Relaxed);
+        let due = now >= 2_000_000_000 && (last == u64::MAX || now >= last.saturating_add(every));
+        due && LAST_LINE
+            .compare_exchange(last, now, Ordering::Relaxed, Ordering::Relaxed)
+            .is_ok()
+    }
+}
+
+impl Observer for CommandProgress {
+    fn start(&mut self, world: &mut World, plan: &Plan) -> Result<(), ObserverError> {
+        (self.first, self.last, self.start) = (world.step, plan.last, Instant::now());
+        Ok(())
+    }
+
+    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+        if !info.stopping && self.due() {
+            let text = line(&Fields {
+                name: &self.name,
+                step: info.step - self.first,
+                steps: info.last.unwrap_or(info.step) - self.first,
+                time: world.time,
+                elapsed: self.start.elapsed().as_secs_f64(),
+                contacts: info.report.contacts,
+                unbalanced: world.unbalanced_ratios().0,
+            });
+            self.shown = true;
+            // A courtesy: a closed or full stderr must not stop the work.
+            let mut err = std::io::stderr().lock();
+            let _ = if self.tty {
+                write!(err, "\r{text}   ")
+            } else {
+                writeln!(err, "{text}")
+            };
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self, _: &mut World, _: &End) -> Result<(), ObserverError> {
+        if std::mem::take(&mut self.shown) && self.tty {
+            let _ = writeln!(std::io::stderr());
+        }
+        Ok(())
+    }
 }
 
 /// A wall-clock duration as `m:ss` or `h:mm:ss` (rounded to the second).

@@ -5,8 +5,9 @@
 //! current positions, angles and velocities — plus a `"state"` block holding the rest of the
 //! state ([`crate::dynamics::restart`]): the step and time, each body's last force and moment
 //! (and a circle's frame), each wall's current point, velocity and load, every pair of the
-//! neighbour list with its contact history and warm start, the energy account, the counters,
-//! and the run's progress. `scene::state` reads it back.
+//! neighbour list with its contact history and warm start, the energy account, the counters —
+//! and beside the world's state the run's progress ([`RunProgress`], `"run"`). `scene::state`
+//! reads it back.
 //!
 //! Every number is written in the shortest form that reads back as the same double (ryu, as
 //! serde_json writes floats; `-0.0` stays negative, subnormals keep their bits). A warm start is
@@ -14,10 +15,13 @@
 //! and `null` for its NaN. One body, one contact or one position per line. The file is written
 //! atomically (a temporary file renamed over it), like `summary.json`.
 
+use super::summary::Status;
+use super::trace::WriteError;
 use crate::contact_law::History;
-use crate::dynamics::restart::{RestartState, RunProgress, state_name};
+use crate::dynamics::restart::{RestartState, state_name};
 use crate::dynamics::{BodyInit, World};
 use crate::geometry::Vec2;
+use crate::run::{End, Observer, ObserverError, RunError, RunProgress, StepInfo};
 use serde_json::Value;
 use std::fmt::Write as _;
 use std::io::{self, Write};
@@ -55,13 +59,14 @@ fn compact(v: &Value) -> String {
 }
 
 /// The text of a state file: `case` the run's case as read (its JSON), `duration` the run's
-/// duration (the case's, or the one the command line gave), `state` the world's state with the
-/// run's progress, `bodies` the case's bodies (for which of them are circles: a circle's frame
-/// is written), `status` how the run ended.
+/// duration (the case's, or the one the command line gave), `state` the world's state, `run`
+/// the run's progress, `bodies` the case's bodies (for which of them are circles: a circle's
+/// frame is written), `status` how the run ended.
 pub fn state_text(
     case: &Value,
     duration: f64,
     state: &RestartState,
+    run: Option<&RunProgress>,
     bodies: &[BodyInit],
     status: &str,
 ) -> String {
@@ -112,12 +117,18 @@ pub fn state_text(
     }
     out.push_str("  ],\n");
     out.push_str("  \"state\": {\n");
-    write_state_block(&mut out, state, bodies, status);
+    write_state_block(&mut out, state, run, bodies, status);
     out.push_str("  }\n}\n");
     out
 }
 
-fn write_state_block(out: &mut String, s: &RestartState, bodies: &[BodyInit], status: &str) {
+fn write_state_block(
+    out: &mut String,
+    s: &RestartState,
+    run: Option<&RunProgress>,
+    bodies: &[BodyInit],
+    status: &str,
+) {
     let _ = writeln!(out, "    \"status\": {},", compact(&Value::from(status)));
     let _ = writeln!(out, "    \"step\": {},", s.step);
     let _ = writeln!(out, "    \"time\": {},", num(s.time));
@@ -148,7 +159,7 @@ fn write_state_block(out: &mut String, s: &RestartState, bodies: &[BodyInit], st
         num(b),
         num(c)
     );
-    if let Some(run) = &s.run {
+    if let Some(run) = run {
         write_run(out, run);
     }
     out.push_str("    \"walls\": [");
@@ -297,12 +308,17 @@ pub fn write_state(
     duration: f64,
     world: &World,
     bodies: &[BodyInit],
-    run: RunProgress,
+    run: &RunProgress,
     status: &str,
 ) -> io::Result<()> {
-    let mut state = world.restart_state();
-    state.run = Some(run);
-    let text = state_text(case, duration, &state, bodies, status);
+    let text = state_text(
+        case,
+        duration,
+        &world.restart_state(),
+        Some(run),
+        bodies,
+        status,
+    );
     let tmp = dir.join("state.json.tmp");
     let result = std::fs::File::create(&tmp).and_then(|mut f| {
         f.write_all(text.as_bytes())?;
@@ -313,4 +329,61 @@ pub fn write_state(
         return Err(e);
     }
     std::fs::rename(&tmp, dir.join("state.json"))
+}
+
+/// The writer of a run's `state.json` (an observer): when the run ends, however it ends but by a
+/// blow-up (a non-finite or unphysical state is nothing to continue from), with the status of
+/// its end.
+pub struct StateWriter<'c> {
+    dir: &'c Path,
+    case: &'c Value,
+    duration: f64,
+    bodies: &'c [BodyInit],
+}
+
+impl<'c> StateWriter<'c> {
+    /// Into `dir`, for the run of `case` (its JSON) of `duration` with the case's `bodies`.
+    pub fn new(dir: &'c Path, case: &'c Value, duration: f64, bodies: &'c [BodyInit]) -> Self {
+        StateWriter {
+            dir,
+            case,
+            duration,
+            bodies,
+        }
+    }
+
+    /// Writes the state now, with the run's progress `run` and the status `status`.
+    pub fn write(
+        &self,
+        world: &World,
+        run: &RunProgress,
+        status: Status,
+    ) -> Result<(), WriteError> {
+        write_state(
+            self.dir,
+            self.case,
+            self.duration,
+            world,
+            self.bodies,
+            run,
+            status.as_str(),
+        )
+        .map_err(|error| WriteError {
+            file: self.dir.join("state.json"),
+            error,
+        })
+    }
+}
+
+impl Observer for StateWriter<'_> {
+    fn after_step(&mut self, _: &mut World, _: &StepInfo) -> Result<(), ObserverError> {
+        Ok(())
+    }
+
+    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
+        if matches!(end.outcome, Err(RunError::Blowup(_))) {
+            return Ok(());
+        }
+        Ok(self.write(world, end.progress, Status::of(end.outcome))?)
+    }
 }

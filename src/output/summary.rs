@@ -1,6 +1,7 @@
 //! `summary.json`: what a run did, in one object. It is written (atomically: a temporary file
 //! renamed over it) with status `running` before the first step and once more at the end.
 
+use crate::run::{RunError, Stop};
 use serde::Serialize;
 use std::io::{self, Write};
 use std::path::Path;
@@ -24,6 +25,8 @@ pub enum Status {
     Interrupted,
     /// Stopped because an output could not be written (see `error`).
     IoError,
+    /// Stopped by its caller's condition (a run driven from the library, not `dem2d run`).
+    Stopped,
 }
 
 impl Status {
@@ -37,6 +40,20 @@ impl Status {
             Status::Blowup => "blowup",
             Status::Interrupted => "interrupted",
             Status::IoError => "io_error",
+            Status::Stopped => "stopped",
+        }
+    }
+
+    /// How a run through the driver ended.
+    pub fn of(outcome: &Result<Stop, RunError>) -> Status {
+        match outcome {
+            Ok(Stop::Completed) => Status::Completed,
+            Ok(Stop::AtRest { .. }) => Status::AtRest,
+            Ok(Stop::MaxSteps) => Status::MaxSteps,
+            Ok(Stop::Interrupted(_)) => Status::Interrupted,
+            Ok(Stop::Asked) => Status::Stopped,
+            Err(RunError::Blowup(_)) => Status::Blowup,
+            Err(RunError::Observer(_)) => Status::IoError,
         }
     }
 }

@@ -1,5 +1,6 @@
 //! CSV traces of a run: the trajectory (every `output_every` steps and the last step) and the
-//! per-step quiescence measures. Writers only read the world.
+//! per-step quiescence measures. Writers only read the world; as observers of a run
+//! ([`crate::run::Observer`]) they write at their cadences.
 //!
 //! Rows are buffered and written in whole lines: when a write fails (a full disk), the file is
 //! cut back to the last whole line written, so a trace never ends mid-line, and the error names
@@ -8,6 +9,8 @@
 
 use crate::dynamics::World;
 use crate::dynamics::step::StepReport;
+use crate::run::time::time_text;
+use crate::run::{End, Observer, ObserverError, Plan, StepInfo};
 use std::fmt;
 use std::fs::File;
 use std::io::{self, Seek, SeekFrom, Write};
@@ -27,50 +30,6 @@ impl fmt::Display for WriteError {
 }
 
 impl std::error::Error for WriteError {}
-
-/// The time `step × dt` as the exact decimal product of `step` and `dt`'s shortest decimal form
-/// (the double nearest to it, when read back). `dt = 1e-3`, step 9: `0.009`.
-pub fn time_text(step: u64, dt: f64) -> String {
-    let s = format!("{dt:e}");
-    let decimal = s.split_once('e').and_then(|(mantissa, exp)| {
-        let exp: i32 = exp.parse().ok()?;
-        let (int, frac) = mantissa.split_once('.').unwrap_or((mantissa, ""));
-        let digits: u128 = format!("{int}{frac}").parse().ok()?;
-        let product = digits.checked_mul(u128::from(step))?;
-        Some((product, exp - frac.len() as i32))
-    });
-    let Some((product, e10)) = decimal else {
-        return format!("{}", step as f64 * dt);
-    };
-    if product == 0 {
-        return "0".into();
-    }
-    let p = product.to_string();
-    let len = p.len() as i32;
-    let trim = |s: String| -> String {
-        if s.contains('.') {
-            s.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            s
-        }
-    };
-    if (0..=6).contains(&e10) {
-        format!("{p}{}", "0".repeat(e10 as usize))
-    } else if e10 < 0 && len + e10 > 0 {
-        let cut = (len + e10) as usize;
-        trim(format!("{}.{}", &p[..cut], &p[cut..]))
-    } else if e10 < 0 && len + e10 > -6 {
-        trim(format!("0.{}{p}", "0".repeat((-(len + e10)) as usize)))
-    } else {
-        let mantissa = trim(format!("{}.{}", &p[..1], &p[1..]));
-        format!("{mantissa}e{}", e10 + len - 1)
-    }
-}
-
-/// The time `step × dt` as a number (the double nearest to [`time_text`]).
-pub fn time_value(step: u64, dt: f64) -> f64 {
-    time_text(step, dt).parse().unwrap_or(step as f64 * dt)
-}
 
 /// A text file written in whole lines (see the module documentation).
 pub(crate) struct LineFile {
@@ -135,14 +94,18 @@ impl LineFile {
     }
 }
 
-/// `trajectory.csv`: `step,t,body,x,y,angle,vx,vy,omega`, full round-trip precision.
+/// `trajectory.csv`: `step,t,body,x,y,angle,vx,vy,omega`, full round-trip precision. As an
+/// observer: the first state (on disk at once, so that a run killed at any later moment leaves a
+/// whole frame), every `every` steps, and the state the run ended in.
 pub struct TrajectoryWriter {
     out: LineFile,
     last_step: Option<u64>,
+    every: u64,
 }
 
 impl TrajectoryWriter {
-    pub fn create(path: &Path) -> Result<Self, WriteError> {
+    /// Creates the file (with its header); as an observer it writes every `every` steps.
+    pub fn create(path: &Path, every: u64) -> Result<Self, WriteError> {
         let mut out = LineFile::create(path)?;
         out.line(format_args!("step,t,body,x,y,angle,vx,vy,omega"))?;
         // A run killed before its first full buffer still leaves a readable (empty) table.
@@ -150,6 +113,7 @@ impl TrajectoryWriter {
         Ok(TrajectoryWriter {
             out,
             last_step: None,
+            every: every.max(1),
         })
     }
 
@@ -191,23 +155,57 @@ impl TrajectoryWriter {
     }
 }
 
+impl Observer for TrajectoryWriter {
+    fn start(&mut self, world: &mut World, _: &Plan) -> Result<(), ObserverError> {
+        self.write(world)?;
+        Ok(self.flush()?)
+    }
+
+    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+        // A blown-up state is written once, as the last row.
+        if !info.blowup && info.step.is_multiple_of(self.every) {
+            self.write(world)?;
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
+        self.write_labelled(world, end.step)?;
+        Ok(self.flush()?)
+    }
+}
+
+/// Per-step increments are written for runs of up to this many steps, thinned beyond.
+pub const MAX_INCREMENT_ROWS: u64 = 200_000;
+
 /// `increments.csv`: `step,t,mean_dx,mean_dy,mean_dtheta,unbalanced_force_ratio,contacts` —
 /// P's quiescence measure (mean over bodies of the displacement increments of one step). The
 /// unbalanced-force ratio costs a pass over every contact and body, which only output needs:
-/// it is written on the rows the caller asks for (`dem2d run`: the output steps and the last
-/// row) and left empty on the others.
+/// it is written on the rows the caller asks for and left empty on the others. As an observer:
+/// every step of a run of up to [`MAX_INCREMENT_ROWS`] steps (thinned to about that many
+/// beyond), the run's last step and the step it stopped at, with the ratio on the rows of the
+/// output steps (every `ratio_every`) and the last.
 pub struct IncrementsWriter {
     out: LineFile,
+    ratio_every: u64,
+    /// Steps between rows (from the run's plan).
+    thin: u64,
 }
 
 impl IncrementsWriter {
-    pub fn create(path: &Path) -> Result<Self, WriteError> {
+    /// Creates the file (with its header); as an observer it gives the unbalanced-force ratio
+    /// every `ratio_every` steps.
+    pub fn create(path: &Path, ratio_every: u64) -> Result<Self, WriteError> {
         let mut out = LineFile::create(path)?;
         out.line(format_args!(
             "step,t,mean_dx,mean_dy,mean_dtheta,unbalanced_force_ratio,contacts"
         ))?;
         out.flush()?;
-        Ok(IncrementsWriter { out })
+        Ok(IncrementsWriter {
+            out,
+            ratio_every: ratio_every.max(1),
+            thin: 1,
+        })
     }
 
     /// One row; the unbalanced-force ratio when `with_ratio`, else an empty field.
@@ -235,6 +233,34 @@ impl IncrementsWriter {
     }
 }
 
+impl Observer for IncrementsWriter {
+    fn start(&mut self, _: &mut World, plan: &Plan) -> Result<(), ObserverError> {
+        self.thin = plan
+            .last
+            .map_or(1, |last| last.div_ceil(MAX_INCREMENT_ROWS).max(1));
+        Ok(())
+    }
+
+    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+        let s = info.step;
+        let last = info.last == Some(s);
+        if info.blowup {
+            self.write(world, &info.report, true)?;
+        } else if s.is_multiple_of(self.thin) || last {
+            // The unbalanced ratio (a pass over every contact) only on output steps.
+            let ratio = s.is_multiple_of(self.ratio_every) || last;
+            self.write(world, &info.report, ratio)?;
+        } else if info.stopping {
+            self.write(world, &info.report, true)?;
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self, _: &mut World, _: &End) -> Result<(), ObserverError> {
+        Ok(self.flush()?)
+    }
+}
+
 /// An optional number as a CSV field: `{:e}`, or empty.
 struct Ratio(Option<f64>);
 
@@ -243,38 +269,6 @@ impl std::fmt::Display for Ratio {
         match self.0 {
             Some(v) => write!(f, "{v:e}"),
             None => Ok(()),
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn times_are_the_decimal_products_of_step_and_dt() {
-        // Against the decimal text written by hand, and against the float product where that
-        // is exact.
-        assert_eq!(time_text(9, 1e-3), "0.009");
-        assert_eq!(9.0 * 1e-3, 0.009000000000000001); // what the float product gives
-        assert_eq!(time_value(9, 1e-3), 0.009);
-        assert_eq!(time_text(0, 1e-5), "0");
-        assert_eq!(time_text(7493, 1e-5), "0.07493");
-        assert_eq!(time_text(120000, 1e-5), "1.2");
-        assert_eq!(time_text(3, 2.5e-6), "0.0000075");
-        assert_eq!(time_text(4, 2.5), "10");
-        assert_eq!(time_text(3, 1e10), "3e10");
-        assert_eq!(time_text(12, 1e-30), "1.2e-29");
-        assert_eq!(time_text(1, 0.1), "0.1");
-        assert_eq!(time_text(3, 0.1), "0.3");
-        assert_eq!(time_text(1_000_000, 1e-6), "1");
-        // Against the exact rational product, for dt's with long decimal forms.
-        for (step, dt) in [(12345u64, 1.0 / 3.0), (987, std::f64::consts::PI * 1e-7)] {
-            let v = time_value(step, dt);
-            assert!(
-                (v - step as f64 * dt).abs() <= 2.0 * f64::EPSILON * v,
-                "{v}"
-            );
         }
     }
 }

@@ -35,9 +35,11 @@
 //! reader (`tests/vtk.rs`).
 
 use super::plot::clip_line;
-use super::trace::{WriteError, time_text, time_value};
+use super::trace::WriteError;
 use crate::dynamics::{Partner, World};
 use crate::geometry::{Shape, Vec2};
+use crate::run::time::{time_text, time_value};
+use crate::run::{End, Observer, ObserverError, Plan, StepInfo};
 use std::fmt::Write as _;
 use std::io;
 use std::path::{Path, PathBuf};
@@ -56,6 +58,8 @@ pub struct VtkWriter {
     outlines: Vec<Vec<(f64, f64)>>,
     /// Box that walls are clipped to: every body and wall point seen so far.
     bbox: Option<(f64, f64, f64, f64)>,
+    /// Steps between frames, as an observer of a run.
+    every: u64,
 }
 
 /// The files of an earlier run's VTK output in `run_dir`: `run.pvd` and `vtk/frame_*.vtu`.
@@ -91,8 +95,9 @@ fn io_err(file: &Path) -> impl FnOnce(io::Error) -> WriteError + '_ {
 }
 
 impl VtkWriter {
-    /// A writer for the run in `run_dir` (creates `run_dir/vtk`).
-    pub fn create(run_dir: &Path, world: &World) -> Result<VtkWriter, WriteError> {
+    /// A writer for the run in `run_dir` (creates `run_dir/vtk`); as an observer of a run it
+    /// writes the first state, every `every` steps and the last (finite) state.
+    pub fn create(run_dir: &Path, world: &World, every: u64) -> Result<VtkWriter, WriteError> {
         let dir = run_dir.join("vtk");
         std::fs::create_dir_all(&dir).map_err(io_err(&dir))?;
         Ok(VtkWriter {
@@ -106,6 +111,7 @@ impl VtkWriter {
                 .map(super::outline::body_frame_vertices)
                 .collect(),
             bbox: None,
+            every: every.max(1),
         })
     }
 
@@ -483,6 +489,27 @@ pub fn base64(bytes: &[u8], out: &mut String) {
                 out.push('=');
             }
         }
+    }
+}
+
+impl Observer for VtkWriter {
+    fn start(&mut self, world: &mut World, _: &Plan) -> Result<(), ObserverError> {
+        Ok(self.write(world)?)
+    }
+
+    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+        if !info.blowup && info.step.is_multiple_of(self.every) {
+            self.write(world)?;
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
+        // A non-finite state is not drawn (VTK readers choke on it); the trajectory has it.
+        if end.finite {
+            self.write_labelled(world, end.step)?;
+        }
+        Ok(())
     }
 }
 

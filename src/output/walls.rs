@@ -18,10 +18,12 @@
 //! Runs written before these columns have `step,t,wall,x,y,nx,ny` only; [`read_walls`] reads both.
 
 use super::run_data::ReadError;
-use super::trace::{LineFile, WriteError, time_text};
+use super::trace::{LineFile, WriteError};
 use crate::dynamics::World;
 use crate::dynamics::boundary::{Boundary, Motion, span_length};
 use crate::geometry::Vec2;
+use crate::run::time::time_text;
+use crate::run::{End, Observer, ObserverError, Plan, StepInfo};
 use std::path::Path;
 
 pub const WALLS_HEADER: &str = "step,t,wall,x,y,nx,ny,vx,vy,fn,ft,contacts,span,sn,st";
@@ -72,21 +74,24 @@ fn num(x: f64) -> String {
     }
 }
 
-/// The writer of `walls.csv`.
+/// The writer of `walls.csv`; as an observer of a run, at the trajectory's frames (the first,
+/// every `every` steps, the last).
 pub struct WallsWriter {
     out: LineFile,
     last_step: Option<u64>,
+    every: u64,
 }
 
 impl WallsWriter {
-    /// Creates `dir/walls.csv` with its header.
-    pub fn create(dir: &Path) -> Result<Self, WriteError> {
+    /// Creates `dir/walls.csv` with its header; as an observer it writes every `every` steps.
+    pub fn create(dir: &Path, every: u64) -> Result<Self, WriteError> {
         let mut out = LineFile::create(&dir.join("walls.csv"))?;
         out.line(format_args!("{WALLS_HEADER}"))?;
         out.flush()?;
         Ok(WallsWriter {
             out,
             last_step: None,
+            every: every.max(1),
         })
     }
 
@@ -123,6 +128,25 @@ impl WallsWriter {
 
     pub fn flush(&mut self) -> Result<(), WriteError> {
         self.out.flush()
+    }
+}
+
+impl Observer for WallsWriter {
+    fn start(&mut self, world: &mut World, _: &Plan) -> Result<(), ObserverError> {
+        self.write(world, world.step)?;
+        Ok(self.flush()?)
+    }
+
+    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+        if !info.blowup && info.step.is_multiple_of(self.every) {
+            self.write(world, info.step)?;
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
+        self.write(world, end.step)?;
+        Ok(self.flush()?)
     }
 }
 

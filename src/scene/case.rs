@@ -10,7 +10,12 @@
 //!   "bodies": [ { "shape": {"type": "ellipse", "a": 1.5, "b": 1.0}, "position": [0, 5],
 //!                 "angle": 0.5, "velocity": [20, 0], "omega": 0, "density": 1.0 } ] }
 //! ```
-//! Unknown fields are errors; a state file's `"state"` block is read by [`super::state`]. `contact.model` is `linear` (stiffness `kn` or `kn_over_rho_g`;
+//! Shapes (`bodies[].shape`, [`super::body`]): `{"type": "circle", "r"}`, `{"type": "ellipse",
+//! "a", "b"}`, `{"type": "rectangle", "w", "h"}`, `{"type": "polygon", "vertices": [[x, y], …]}`
+//! (convex, counter-clockwise, at most 1000) and `{"type": "clump", "disks": [{"center": [x, y],
+//! "r"}, …]}`. Unknown fields are errors (naming what was likely meant and the valid keys); a
+//! state file's `"state"` block is read by [`super::state`]. `contact.model` is `linear`
+//! (stiffness `kn` or `kn_over_rho_g`;
 //! `ks`/`ks_over_rho_g`, default equal to the normal one as in P; damping `eta_n`/
 //! `eta_n_over_rho_g` with `eta_s`/`eta_s_over_rho_g` defaulting to it (T: η_t = η_n), or
 //! `restitution` instead (T12); `friction`) or `hertz_mindlin` (`young`, `poisson`,
@@ -224,6 +229,33 @@ impl Case {
         })
     }
 
+    /// A scene made in code rather than read from a file (no name or description, its duration
+    /// one step, no quiescence criterion, the default outputs): its world is
+    /// [`Case::build_world`]'s. Nothing is checked, as a file's case is.
+    pub fn new(
+        bodies: Vec<BodyInit>,
+        walls: Vec<Boundary>,
+        gravity: Vec2,
+        contact: ContactSpec,
+        dt: f64,
+    ) -> Case {
+        Case {
+            name: String::new(),
+            description: String::new(),
+            units: String::new(),
+            gravity,
+            dt,
+            duration: dt,
+            quiescence: None,
+            quiescence_window: 1,
+            output_every: 100,
+            output: OutputSpec::default(),
+            contact,
+            walls,
+            bodies,
+        }
+    }
+
     /// The world this case describes, at t = 0 (the forces of the initial configuration
     /// evaluated).
     pub fn build_world(&self) -> crate::dynamics::World {
@@ -234,6 +266,29 @@ impl Case {
             self.contact,
             self.dt,
         )
+    }
+
+    /// The world of this case resumed from `state` (a state file's, taken of a world of this
+    /// case): it steps on to the same bits as the world the state was taken from. Refused when
+    /// the state does not fit the case.
+    pub fn resume_world(
+        &self,
+        state: &crate::dynamics::RestartState,
+    ) -> Result<crate::dynamics::World, crate::dynamics::RestartError> {
+        crate::dynamics::World::resume(
+            &self.bodies,
+            self.walls.clone(),
+            self.gravity,
+            self.contact,
+            self.dt,
+            state,
+        )
+    }
+
+    /// The same case stepped with `dt`.
+    pub fn with_dt(mut self, dt: f64) -> Case {
+        self.dt = dt;
+        self
     }
 
     /// The same case with every contact law (the scene's and each wall's) changed by `f`.
@@ -251,9 +306,9 @@ impl Case {
     }
 
     /// P's quiescence criterion as the case states it (None: no stop at rest).
-    pub fn quiescence_criterion(&self) -> Option<crate::dynamics::Quiescence> {
+    pub fn quiescence_criterion(&self) -> Option<crate::run::Quiescence> {
         self.quiescence
-            .map(|q| crate::dynamics::Quiescence::new(q, self.quiescence_window))
+            .map(|q| crate::run::Quiescence::new(q, self.quiescence_window))
     }
 
     /// Number of steps the duration takes (rounded to the nearest step).

@@ -17,19 +17,22 @@ use crate::dynamics::boundary::WallLoad;
 use crate::dynamics::contacts::{ContactData, Slot};
 use crate::dynamics::partner::{MAX_INDEX, Partner};
 use crate::dynamics::restart::{
-    BodyRestart, RestartState, RunProgress, SlotRestart, WallRestart, state_from_name,
+    BodyRestart, RestartState, SlotRestart, WallRestart, state_from_name,
 };
-use crate::dynamics::watch::BlowupWatch;
 use crate::geometry::Vec2;
 use crate::narrow_phase::PairCache;
+use crate::run::{BlowupWatch, RunProgress};
 use serde_json::Value;
 
 /// A case file, and the state it continues from when it is a state file.
 #[derive(Clone, Debug)]
 pub struct CaseFile {
     pub case: Case,
-    /// The state block (`None` for a case that starts at t = 0).
+    /// The state block's world state (`None` for a case that starts at t = 0).
     pub restart: Option<RestartState>,
+    /// The state block's run progress (`"run"`: the run that wrote the state), saved beside
+    /// the world's state.
+    pub run: Option<RunProgress>,
     /// The file as parsed (a state file written at the end of the run repeats its fields).
     pub value: Value,
     /// What the state's reader found worth telling (an edited state's new overlaps).
@@ -42,32 +45,29 @@ impl CaseFile {
         let value = parse_json(text, "")?;
         let mut case = Case::from_value(&value)?;
         let mut warnings = Vec::new();
-        let restart = match value.get("state") {
-            None => None,
+        let (restart, run) = match value.get("state") {
+            None => (None, None),
             Some(s) => {
-                let mut state = parse_state(s, &case)?;
+                let (mut state, mut run) = parse_state(s, &case)?;
                 continue_walls(&mut case, &mut state);
                 // The same check as the world's when it resumes, named in the file's terms.
-                let world = World::resume(
-                    &case.bodies,
-                    case.walls.clone(),
-                    case.gravity,
-                    case.contact,
-                    case.dt,
-                    &state,
-                )
-                .map_err(|e| FieldError::new(join("state", &e.path), e.message))?;
-                check_account(&world, &state)?;
+                let world = case
+                    .resume_world(&state)
+                    .map_err(|e| FieldError::new(join("state", &e.path), e.message))?;
+                check_account(&world, &state, run.as_ref())?;
                 if let Some((warning, fresh)) = check_contact_list(&case, &state)? {
                     warnings.push(warning);
-                    watch_from_here(&mut state, &fresh);
+                    if let Some(run) = &mut run {
+                        watch_from_here(run, &state.energies, &fresh);
+                    }
                 }
-                Some(state)
+                (Some(state), run)
             }
         };
         Ok(CaseFile {
             case,
             restart,
+            run,
             value,
             warnings,
         })
@@ -77,15 +77,7 @@ impl CaseFile {
     pub fn build_world(&self) -> World {
         match &self.restart {
             None => self.case.build_world(),
-            Some(state) => World::resume(
-                &self.case.bodies,
-                self.case.walls.clone(),
-                self.case.gravity,
-                self.case.contact,
-                self.case.dt,
-                state,
-            )
-            .expect("checked when read"),
+            Some(state) => self.case.resume_world(state).expect("checked when read"),
         }
     }
 }
@@ -113,7 +105,11 @@ fn continue_walls(case: &mut Case, state: &mut RestartState) {
 /// springs below zero, dissipation below zero (it only grows from 0), or an account the blow-up
 /// watch would stop at once (energy created far beyond what the start, gravity and the walls
 /// supply — `dissipated: 1e300`). Named at `state.energies`.
-fn check_account(world: &World, state: &RestartState) -> Result<(), FieldError> {
+fn check_account(
+    world: &World,
+    state: &RestartState,
+    run: Option<&RunProgress>,
+) -> Result<(), FieldError> {
     let e = &state.energies;
     let at = |k: &str| join("state.energies", k);
     for (k, v) in [("kinetic", e.kinetic), ("elastic", e.elastic)] {
@@ -135,9 +131,9 @@ fn check_account(world: &World, state: &RestartState) -> Result<(), FieldError> 
             ),
         ));
     }
-    if let Some(run) = &state.run {
+    if let Some(run) = run {
         let mut watch = run.watch.clone();
-        use crate::dynamics::watch::{ENERGY_GROWTH, Trigger};
+        use crate::run::watch::{ENERGY_GROWTH, Trigger};
         let why = match watch.check(world) {
             None => return Ok(()),
             Some(Trigger::Energy { created, available }) => format!(
@@ -187,7 +183,12 @@ fn check_contact_list(
     for (w, r) in walls.iter_mut().zip(&state.walls) {
         w.move_to(r.point);
     }
-    let mut fresh = World::new(&bodies, walls, case.gravity, case.contact, case.dt);
+    let mut fresh = Case {
+        bodies,
+        walls,
+        ..case.clone()
+    }
+    .build_world();
     fresh.refresh_contact_extras();
     let listed = |i: u32, j: u32| {
         state
@@ -248,18 +249,15 @@ fn check_contact_list(
 /// (or motion) is the state's own, not energy created by the step. `fresh` are the energies of
 /// the state's configuration evaluated afresh (no history springs); the dissipation and the
 /// walls' work so far are the state's.
-fn watch_from_here(state: &mut RestartState, fresh: &crate::dynamics::account::Energies) {
-    let e = state.energies;
-    if let Some(run) = &mut state.run {
-        let w = &mut run.watch;
-        w.kinetic0 = fresh.kinetic;
-        w.elastic0 = fresh.elastic.max(e.elastic);
-        w.potential0 = fresh.potential;
-        w.total0 = fresh.kinetic + fresh.potential + w.elastic0 + e.dissipated + e.boundary_work;
-        w.gravity_supplied = 0.0;
-        w.boundary_supplied = 0.0;
-        w.dissipated_max = e.dissipated;
-    }
+fn watch_from_here(run: &mut RunProgress, e: &Energies, fresh: &Energies) {
+    let w = &mut run.watch;
+    w.kinetic0 = fresh.kinetic;
+    w.elastic0 = fresh.elastic.max(e.elastic);
+    w.potential0 = fresh.potential;
+    w.total0 = fresh.kinetic + fresh.potential + w.elastic0 + e.dissipated + e.boundary_work;
+    w.gravity_supplied = 0.0;
+    w.boundary_supplied = 0.0;
+    w.dissipated_max = e.dissipated;
 }
 
 /// Any finite number (the state's numbers are what a run computed: no range applies).
@@ -364,8 +362,12 @@ fn warm(v: &Value, path: &str) -> Result<PairCache, FieldError> {
     Ok(PairCache::from_saved(w))
 }
 
-/// Reads the state block of a state file whose case part is `case`.
-pub fn parse_state(v: &Value, case: &Case) -> Result<RestartState, FieldError> {
+/// Reads the state block of a state file whose case part is `case`: the world's state, and the
+/// run's progress when the block has it.
+pub fn parse_state(
+    v: &Value,
+    case: &Case,
+) -> Result<(RestartState, Option<RunProgress>), FieldError> {
     let mut o = Obj::new(v, "state")?;
     o.opt_with("status", |v, p| {
         v.as_str()
@@ -500,7 +502,7 @@ pub fn parse_state(v: &Value, case: &Case) -> Result<RestartState, FieldError> {
         Ok((builds, wall_built_at, built_at))
     })?;
     o.finish()?;
-    Ok(RestartState {
+    let state = RestartState {
         step,
         time,
         bodies,
@@ -512,8 +514,8 @@ pub fn parse_state(v: &Value, case: &Case) -> Result<RestartState, FieldError> {
         energies,
         diagnostics,
         last_increments,
-        run,
-    })
+    };
+    Ok((state, run))
 }
 
 fn parse_contact(v: &Value, path: &str) -> Result<SlotRestart, FieldError> {

@@ -8,7 +8,7 @@
 use dem2d::analysis::{self, Frame, FrameBody, Window, wall_box};
 use dem2d::output::analysis::{ANALYSIS_HEADER, analysis_row, read_contact_frames};
 use dem2d::output::run_data::RunData;
-use dem2d::output::trace::time_text;
+use dem2d::run::time::time_text;
 use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::path::Path;

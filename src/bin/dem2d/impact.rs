@@ -23,12 +23,14 @@
 //!   `r ω' = −v_t'`. A code with a tangential spring departs from this limit (the spring's
 //!   elastic recoil), which is what the test shows; it is exact only in the sliding regime.
 //!
-//! The simulations run a single disk with the library's stepper (no gravity) and measure the
+//! The simulations run a single disk through the run driver (no gravity) and measure the
 //! contact from the exact disk–wall overlap `δ = r − y`: start and end of contact by linear
 //! interpolation of δ between steps, the peak as the largest δ sampled (its error is of order
 //! `(ω Δt)²`). The lever arm of the friction force is the distance from the centre to the
 //! chord midpoint, `r − δ`, not r: the spin differs from the rigid theory by at most δ_max/r.
 
+use dem2d::dynamics::World;
+use dem2d::run::{RunError, Simulation};
 use dem2d::scene::Case;
 
 /// What one impact gave.
@@ -55,7 +57,12 @@ pub fn mass() -> f64 {
 
 /// Runs a disk hitting the floor y = 0 at normal speed `vn` (> 0, downwards) and tangential speed
 /// `vt` under the contact law `contact` (a case's `"contact"` object), with step `dt`.
-pub fn disk_on_floor(contact: &serde_json::Value, vn: f64, vt: f64, dt: f64) -> Impact {
+pub fn disk_on_floor(
+    contact: &serde_json::Value,
+    vn: f64,
+    vt: f64,
+    dt: f64,
+) -> Result<Impact, RunError> {
     let text = serde_json::json!({
         "version": 1, "name": "impact", "gravity": [0.0, 0.0], "dt": dt, "duration": 1.0,
         "contact": contact,
@@ -66,37 +73,37 @@ pub fn disk_on_floor(contact: &serde_json::Value, vn: f64, vt: f64, dt: f64) -> 
     .to_string();
     let case = Case::from_json(&text).expect("the benchmark's case is valid");
     let mut w = case.build_world();
-    let depth = |w: &dem2d::dynamics::World| RADIUS - w.bodies.state[0].pose.position.y;
+    let depth = |w: &World| RADIUS - w.bodies.state[0].pose.position.y;
     let (mut t0, mut t1, mut peak) = (None, None, 0.0f64);
     let mut last = depth(&w);
     let mut steps = 0;
-    while t1.is_none() && steps < 10_000_000 {
-        w.step().expect("finite");
-        steps += 1;
-        let d = depth(&w);
-        let t = w.time;
-        if t0.is_none() && last <= 0.0 && d > 0.0 {
-            t0 = Some(t - dt * d / (d - last));
-        }
-        if t0.is_some() && last > 0.0 && d <= 0.0 {
-            t1 = Some(t - dt * d / (d - last));
-        }
-        peak = peak.max(d);
-        last = d;
-    }
+    Simulation::new(&mut w)
+        .for_steps(10_000_000)
+        .run_until(|w, _| {
+            steps += 1;
+            let d = depth(w);
+            let t = w.time;
+            if t0.is_none() && last <= 0.0 && d > 0.0 {
+                t0 = Some(t - dt * d / (d - last));
+            }
+            if t0.is_some() && last > 0.0 && d <= 0.0 {
+                t1 = Some(t - dt * d / (d - last));
+            }
+            peak = peak.max(d);
+            last = d;
+            t1.is_some()
+        })?;
     // Run on a little so that the contact has surely opened.
-    for _ in 0..10 {
-        w.step().expect("finite");
-    }
+    Simulation::new(&mut w).for_steps(10).run()?;
     let s = &w.bodies.state[0];
-    Impact {
+    Ok(Impact {
         contact_time: t1.unwrap_or(f64::NAN) - t0.unwrap_or(f64::NAN),
         peak_overlap: peak,
         vn: s.vel.y,
         vt: s.vel.x,
         omega: s.omega,
         steps,
-    }
+    })
 }
 
 /// The linear law of the normal benchmark: `k_n` (dyn/cm per cm), no damping, no friction.
@@ -167,7 +174,7 @@ mod tests {
     fn a_linear_spring_impact_lasts_half_a_period_and_peaks_at_v_over_omega() {
         let (kn, v) = (1e10, 10.0);
         let (tc, d) = linear_reference(kn, v);
-        let r = disk_on_floor(&linear_law(kn, 0.0), v, 0.0, tc / 2000.0);
+        let r = disk_on_floor(&linear_law(kn, 0.0), v, 0.0, tc / 2000.0).unwrap();
         assert!(rel(r.contact_time, tc) < 1e-4, "{r:?} vs {tc}");
         assert!(rel(r.peak_overlap, d) < 1e-4, "{r:?} vs {d}");
         assert!(rel(r.vn, v) < 1e-6, "{r:?}");
@@ -177,7 +184,7 @@ mod tests {
     fn a_hertz_impact_matches_hertz_theory_for_the_law_as_implemented() {
         let (e, nu, v) = (7e11, 0.3, 10.0);
         let (tc, d) = hertz_reference(e, nu, v);
-        let r = disk_on_floor(&hertz_law(e, nu), v, 0.0, tc / 2000.0);
+        let r = disk_on_floor(&hertz_law(e, nu), v, 0.0, tc / 2000.0).unwrap();
         assert!(rel(r.contact_time, tc) < 1e-4, "{r:?} vs {tc}");
         assert!(rel(r.peak_overlap, d) < 1e-4, "{r:?} vs {d}");
         assert!(rel(r.vn, v) < 1e-6, "{r:?}");
@@ -195,7 +202,7 @@ mod tests {
             let (vt1, w1, sliding) = oblique_reference(vn, vt, 1.0, mu);
             assert!(sliding);
             let (tc, _) = linear_reference(kn, vn);
-            let r = disk_on_floor(&linear_law(kn, mu), vn, vt, tc / 2000.0);
+            let r = disk_on_floor(&linear_law(kn, mu), vn, vt, tc / 2000.0).unwrap();
             assert!(rel(r.vt, vt1) < 1e-6, "{deg}°: {r:?} vs v_t' = {vt1}");
             assert!(rel(r.omega, w1) < 1e-3, "{deg}°: {r:?} vs ω' = {w1}");
             assert!(rel(r.vn, vn) < 1e-6, "{deg}°: {r:?}");

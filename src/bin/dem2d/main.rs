@@ -6,6 +6,7 @@ mod impact;
 mod runner;
 mod study;
 mod verify;
+mod verify_ellipses;
 
 use crate::runner::{RunError, RunOptions, default_out_dir, run_case, signal_name};
 use clap::{Parser, Subcommand};
@@ -27,7 +28,8 @@ static GLOBAL: dem2d::alloc::HugePageAllocator = dem2d::alloc::HugePageAllocator
 #[command(
     name = "dem2d",
     version,
-    about = "2D discrete element method with circles, ellipses and rectangles"
+    about = "2D discrete element method with circles, ellipses, rectangles, convex polygons and \
+             clumps of disks"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -36,8 +38,9 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Run one of the studies behind the user guide's tables (rolling-fig3, repose, biaxial) and
-    /// print its Markdown table; run from the repository (the studies read `cases/`).
+    /// Run one of the studies behind the user guide's tables (rolling-fig3, repose, biaxial,
+    /// impacts, biaxial-shape, packing, representation) and print its Markdown table; run from
+    /// the repository (the studies read `cases/`).
     Study {
         /// Which study.
         #[arg(value_enum)]
@@ -425,7 +428,8 @@ fn run(args: RunArgs) -> Result<(), Failure> {
     let text = read_input(&name)?;
     let file = dem2d::scene::CaseFile::from_json(&text)
         .map_err(|e| Failure::input(format!("{name}: {e}")))?;
-    let (mut case, restart, read_warnings) = (file.case, file.restart, file.warnings);
+    let (mut case, restart, run, read_warnings) =
+        (file.case, file.restart, file.run, file.warnings);
     if let Some(d) = args.duration {
         if !(d.is_finite() && d > 0.0) {
             return Err(Failure::input(format!(
@@ -443,7 +447,7 @@ fn run(args: RunArgs) -> Result<(), Failure> {
             "{name}: the state is at step {} (t = {} s), already at the end of the case's \
              duration ({} s, {} steps): give --duration to run further",
             state.step,
-            dem2d::output::trace::time_text(state.step, case.dt),
+            dem2d::run::time::time_text(state.step, case.dt),
             case.duration,
             case.steps()
         )));
@@ -479,6 +483,7 @@ fn run(args: RunArgs) -> Result<(), Failure> {
         contacts: args.contacts || case.output.contacts,
         analysis_window: case.output.analysis_window,
         restart,
+        run,
         input: Some(args.case.to_path_buf()),
         warnings: read_warnings,
     };
@@ -847,17 +852,21 @@ fn main() -> ExitCode {
                 (_, true) => verify::Level::Full,
                 _ => verify::Level::Default,
             };
-            let (passed, md) = verify::run(level);
-            let docs = match docs_mode(*docs, *check) {
-                Some(mode) => refresh_docs(level.table_name(), &md, mode),
-                None => Ok(()),
-            };
-            if passed {
-                docs
-            } else {
-                Err(Failure::failed(
-                    "dem2d verify: some comparisons failed".into(),
-                ))
+            match verify::run(level) {
+                Err(e) => Err(Failure::failed(format!("dem2d verify: {e}"))),
+                Ok((passed, md)) => {
+                    let docs = match docs_mode(*docs, *check) {
+                        Some(mode) => refresh_docs(level.table_name(), &md, mode),
+                        None => Ok(()),
+                    };
+                    if passed {
+                        docs
+                    } else {
+                        Err(Failure::failed(
+                            "dem2d verify: some comparisons failed".into(),
+                        ))
+                    }
+                }
             }
         }
         Command::Plot {

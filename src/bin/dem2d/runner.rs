@@ -31,25 +31,26 @@
 //!   to continue from: restart from an earlier state, with a smaller Δt). A continued run numbers
 //!   its steps on from the state's (the time is `step × Δt`), writes the rows of its outputs at
 //!   the same steps as the uninterrupted run, and ends at the case's duration (the whole run's).
-//! - A blow-up is detected before anything is non-finite where possible ([`BlowupWatch`]: energy
+//! - A blow-up is detected before anything is non-finite where possible ([`dem2d::run::watch`]: energy
 //!   created beyond what the initial state and gravity supply, or an overlap deeper than the
 //!   bodies); the report names the step, the body and the reason.
 
 use dem2d::dynamics::timestep::estimate_critical_dt;
-use dem2d::dynamics::watch::{self, BlowupWatch, Trigger};
-use dem2d::dynamics::{Blowup, RestartState, RunProgress, World};
+use dem2d::dynamics::{RestartState, World};
 use dem2d::output::analysis::AnalysisOutput;
-use dem2d::output::progress::{self, Progress};
+use dem2d::output::progress::ProgressLines;
+use dem2d::output::state::StateWriter;
 use dem2d::output::summary::{DeepCounts, EnergyReport, FinalBody, Status, Summary, write_summary};
-use dem2d::output::trace::{IncrementsWriter, TrajectoryWriter, WriteError, time_value};
+use dem2d::output::trace::{IncrementsWriter, TrajectoryWriter, WriteError};
 use dem2d::output::vtk::VtkWriter;
 use dem2d::output::walls::WallsWriter;
+use dem2d::run::time::time_value;
+use dem2d::run::{CriticalStepSampler, RunProgress, Simulation, Stop, watch};
 use dem2d::scene::Case;
 use std::fmt;
 use std::io;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicI32, Ordering};
-use std::time::{Duration, Instant};
+use std::sync::atomic::AtomicI32;
 
 /// Where and how to run.
 #[derive(Clone, Debug, Default)]
@@ -76,6 +77,8 @@ pub struct RunOptions {
     pub analysis_window: Option<[f64; 4]>,
     /// Continue from this state (a state file's), instead of starting at t = 0.
     pub restart: Option<RestartState>,
+    /// The progress of the run that wrote the state (a state file's `run`).
+    pub run: Option<RunProgress>,
     /// The file the case (or the state) was read from: never removed from the output directory
     /// before this run's own file replaces it.
     pub input: Option<PathBuf>,
@@ -102,32 +105,11 @@ pub const OUTPUT_FILES: [&str; 14] = [
     "walls.csv",
 ];
 
-/// A blow-up: where it was found and why.
-#[derive(Clone, Debug, PartialEq)]
-pub struct BlowupReport {
-    /// The step at which it was found (the state written last is that step's).
-    pub step: u64,
-    pub time: f64,
-    /// The body most concerned (the most energetic one, or one of the pair that overlaps).
-    pub body: usize,
-    pub reason: String,
-}
-
-impl fmt::Display for BlowupReport {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "blow-up at step {} (t = {}), body {}: {}",
-            self.step, self.time, self.body, self.reason
-        )
-    }
-}
-
 /// The result of a run that started (its directory was prepared and its first summary written).
 #[derive(Debug)]
 pub struct RunOutcome {
     pub summary: Summary,
-    pub blowup: Option<BlowupReport>,
+    pub blowup: Option<dem2d::run::BlowupReport>,
     /// The signal that stopped the run (status `interrupted`).
     pub signal: Option<i32>,
     /// The write that failed (status `io_error`), naming the file.
@@ -371,55 +353,67 @@ fn prepare_dir(dir: &Path, overwrite: bool, input: Option<&Path>) -> Result<(), 
     Ok(())
 }
 
-/// Per-step increments are written for runs of up to this many steps, thinned beyond.
-const MAX_INCREMENT_ROWS: u64 = 200_000;
-
-/// How the step loop ended.
-enum Stop {
-    Completed,
-    AtRest,
-    MaxSteps,
-    Blowup(BlowupReport),
-    Interrupted(i32),
-}
-
-/// What the loop counts, for the summary (and the state file).
-#[derive(Default)]
-struct Counters {
+/// What the summary counts of a run: its progress (the saved counters) and this run's own.
+struct Counts {
     quiescent_step: Option<u64>,
     first_contact_step: Option<u64>,
     contact_sum: u64,
     wall_seconds: f64,
-    /// Consecutive steps the quiescence criterion has held.
-    streak: u64,
-    /// The blow-up watch as the loop left it.
-    watch: Option<BlowupWatch>,
     /// The step this run started from (0, or a state file's).
     start_step: u64,
+}
+
+impl Counts {
+    fn of(sim: &Simulation) -> Counts {
+        let p = sim.progress();
+        Counts {
+            quiescent_step: sim.quiescent_step(),
+            first_contact_step: p.first_contact_step,
+            contact_sum: p.contact_sum,
+            wall_seconds: sim.wall_seconds(),
+            start_step: sim.start_step(),
+        }
+    }
+}
+
+/// The run of `case` with `opts` through the driver, continuing `resumed` (a state file's
+/// progress) if given.
+fn simulation<'a>(
+    world: &'a mut World,
+    case: &Case,
+    opts: &RunOptions,
+    resumed: Option<&RunProgress>,
+) -> Simulation<'a> {
+    let mut sim = Simulation::new(world)
+        .until_step(case.steps())
+        .quiescence(case.quiescence_criterion());
+    if let Some(m) = opts.max_steps {
+        sim = sim.for_steps(m);
+    }
+    if let Some(flag) = opts.stop {
+        sim = sim.stop_flag(flag);
+    }
+    if let Some(p) = resumed {
+        let mut p = p.clone();
+        // A run that stopped at rest asks for rest anew when continued (its window more steps);
+        // any other keeps its streak, as the uninterrupted run would.
+        if p.quiescence_streak >= case.quiescence_window {
+            p.quiescence_streak = 0;
+        }
+        sim = sim.resume(p);
+    }
+    sim
 }
 
 /// Runs `case` (whose JSON text is `case_text`, copied to the output) with `opts`.
 pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOutcome, RunError> {
     let dir = &opts.out_dir;
     let mut world = match &opts.restart {
-        None => World::new(
-            &case.bodies,
-            case.walls.clone(),
-            case.gravity,
-            case.contact,
-            case.dt,
-        ),
-        Some(state) => World::resume(
-            &case.bodies,
-            case.walls.clone(),
-            case.gravity,
-            case.contact,
-            case.dt,
-            state,
-        )
-        .map_err(|e| RunError::State(format!("field `state.{}`: {}", e.path, e.message)))?,
+        None => case.build_world(),
+        Some(state) => case
+            .resume_world(state)
+            .map_err(|e| RunError::State(format!("field `state.{}`: {}", e.path, e.message)))?,
     };
-    let progress = opts.restart.as_ref().and_then(|s| s.run.clone());
     std::fs::create_dir_all(dir).map_err(io_at(dir))?;
     // Held until the function returns, after the last file.
     let _lock = DirLock::acquire(dir, &case.name)?;
@@ -447,28 +441,16 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
             warnings.push(w);
         }
     }
-    let initial_total = progress
-        .as_ref()
-        .map_or(world.energies.total(), |p| p.initial_total);
-    let mut counters = Counters {
-        first_contact_step: progress.as_ref().and_then(|p| p.first_contact_step),
-        contact_sum: progress.as_ref().map_or(0, |p| p.contact_sum),
-        // A run that stopped at rest asks for rest anew when continued (its window more steps);
-        // any other keeps its streak, as the uninterrupted run would.
-        streak: progress
-            .as_ref()
-            .map(|p| p.quiescence_streak)
-            .filter(|&s| s < case.quiescence_window)
-            .unwrap_or(0),
-        start_step: world.step,
-        watch: progress.map(|p| p.watch),
-        ..Default::default()
+    let resumed = opts.run.as_ref();
+    let (initial_total, counts) = {
+        let sim = simulation(&mut world, case, opts, resumed);
+        (sim.progress().initial_total, Counts::of(&sim))
     };
     let summary = summarize(
         case,
         &world,
         Status::Running,
-        &counters,
+        &counts,
         (dt_critical, initial_total),
         &warnings,
         None,
@@ -476,99 +458,83 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
     let summary_file = dir.join("summary.json");
     write_summary(dir, &summary).map_err(io_at(&summary_file))?;
 
-    let mut last_label = None;
-    let traj_file = dir.join("trajectory.csv");
-    let incs_file = dir.join("increments.csv");
-    let result = match TrajectoryWriter::create(&traj_file)
-        .and_then(|t| Ok((t, IncrementsWriter::create(&incs_file)?)))
-        .and_then(|(t, i)| {
-            let walls = match world.walls.is_empty() {
-                true => None,
-                false => Some(WallsWriter::create(dir)?),
-            };
-            Ok((t, i, walls))
-        })
-        .and_then(|(t, i, walls)| {
-            let vtk = match opts.vtk_every {
-                Some(_) => Some(VtkWriter::create(dir, &world)?),
-                None => None,
-            };
-            let analysis = match opts.analysis || opts.contacts {
-                true => Some(AnalysisOutput::create(
-                    dir,
-                    opts.analysis,
-                    opts.contacts,
-                    opts.analysis_window
-                        .map(|[x0, x1, y0, y1]| dem2d::analysis::Window { x0, x1, y0, y1 }),
-                )?),
-                false => None,
-            };
-            Ok((t, i, walls, vtk, analysis))
-        }) {
-        Err(e) => Err(e),
-        Ok((mut traj, mut incs, mut walls, mut vtk, mut analysis)) => {
-            let stopped = step_loop(
-                case,
-                opts,
-                &mut world,
-                Writers {
-                    traj: &mut traj,
-                    incs: &mut incs,
-                    walls: walls.as_mut(),
-                    vtk: vtk.as_mut(),
-                    analysis: analysis.as_mut(),
-                },
-                &mut counters,
-                &mut last_label,
-            );
-            // The last rows — the state the loop left, labelled with the step it belongs to —
-            // and the buffers, also after a failed write (to the other file, it may succeed).
-            let label = last_label.unwrap_or(world.step);
-            let traj_done = traj
-                .write_labelled(&world, label)
-                .and_then(|()| traj.flush());
-            let incs_done = incs.flush();
-            let walls_done = match &mut walls {
-                Some(w) => w.write(&world, label).and_then(|()| w.flush()),
-                None => Ok(()),
-            };
-            let analysis_done = match &mut analysis {
-                Some(a) if last_label.is_none() => {
-                    a.write(&mut world, label).and_then(|()| a.flush())
-                }
-                Some(a) => a.flush(),
-                None => Ok(()),
-            };
-            let vtk_done = match &mut vtk {
-                // A non-finite state is not drawn (VTK readers choke on it); the trajectory
-                // has it.
-                Some(v) if last_label.is_none() => v.write_labelled(&mut world, label),
-                _ => Ok(()),
-            };
-            stopped.and_then(|stop| {
-                traj_done
-                    .and(incs_done)
-                    .and(walls_done)
-                    .and(vtk_done)
-                    .and(analysis_done)
-                    .map(|()| stop)
-            })
-        }
-    };
-    // The state before the end-of-run sample of the network's critical step below (the
-    // uninterrupted run takes none here).
-    let state_error = match &result {
-        Ok(Stop::Blowup(_)) => None,
-        _ => write_state_file(
-            dir,
-            case,
-            case_text,
-            &world,
-            &counters,
-            initial_total,
-            &result,
+    // The case as parsed, for the state file (`dem2d run` reads the text it was given).
+    let value = dem2d::scene::fields::parse_json(case_text, "");
+    let unparsed = |e: &dem2d::scene::fields::FieldError| {
+        dem2d::run::RunError::Observer(
+            WriteError {
+                file: PathBuf::from("state.json"),
+                error: io::Error::other(format!("the case text does not parse: {e}")),
+            }
+            .into(),
         )
-        .err(),
+    };
+    let state = value
+        .as_ref()
+        .ok()
+        .map(|v| StateWriter::new(dir, v, case.duration, &case.bodies));
+    let every = case.output_every;
+    let writers = TrajectoryWriter::create(&dir.join("trajectory.csv"), every).and_then(|t| {
+        let i = IncrementsWriter::create(&dir.join("increments.csv"), every)?;
+        let walls = match world.walls.is_empty() {
+            true => None,
+            false => Some(WallsWriter::create(dir, every)?),
+        };
+        let vtk = match opts.vtk_every {
+            Some(n) => Some(VtkWriter::create(dir, &world, n)?),
+            None => None,
+        };
+        let analysis = match opts.analysis || opts.contacts {
+            true => Some(AnalysisOutput::create(
+                dir,
+                opts.analysis,
+                opts.contacts,
+                opts.analysis_window
+                    .map(|[x0, x1, y0, y1]| dem2d::analysis::Window { x0, x1, y0, y1 }),
+                every,
+            )?),
+            false => None,
+        };
+        Ok((t, i, walls, vtk, analysis))
+    });
+    let (outcome, counts) = match writers {
+        Err(e) => {
+            // Nothing ran: the state saved is the one the run started from.
+            let sim = simulation(&mut world, case, opts, resumed);
+            let (progress, counts) = (sim.progress().clone(), Counts::of(&sim));
+            if let Some(s) = &state {
+                let _ = s.write(&world, &progress, Status::IoError);
+            }
+            (Err(dem2d::run::RunError::Observer(e.into())), counts)
+        }
+        Ok((mut traj, mut incs, mut walls, mut vtk, mut analysis)) => {
+            let mut sampler = CriticalStepSampler { every };
+            let mut lines = ProgressLines::new(&case.name, opts.progress);
+            let mut state = state;
+            let mut sim = simulation(&mut world, case, opts, resumed)
+                .observe(&mut incs)
+                .observe(&mut traj);
+            if let Some(w) = walls.as_mut() {
+                sim = sim.observe(w);
+            }
+            sim = sim.observe(&mut sampler);
+            if let Some(a) = analysis.as_mut() {
+                sim = sim.observe(a);
+            }
+            if let Some(v) = vtk.as_mut() {
+                sim = sim.observe(v);
+            }
+            sim = sim.observe(&mut lines);
+            if let Some(s) = state.as_mut() {
+                sim = sim.observe(s);
+            }
+            let mut outcome = sim.run();
+            // A case text that does not parse leaves no state: that is how the run ended.
+            if let (Err(e), Ok(_)) = (&value, &outcome) {
+                outcome = Err(unparsed(e));
+            }
+            (outcome, Counts::of(&sim))
+        }
     };
     world.network_critical_dt();
     let observed = world.diagnostics.dt_critical_observed;
@@ -580,14 +546,12 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
             case.dt
         ));
     }
-    let (status, blowup, signal, io_error) = match (result, state_error) {
-        (Ok(Stop::Completed), None) => (Status::Completed, None, None, None),
-        (Ok(Stop::AtRest), None) => (Status::AtRest, None, None, None),
-        (Ok(Stop::MaxSteps), None) => (Status::MaxSteps, None, None, None),
-        (Ok(Stop::Blowup(b)), _) => (Status::Blowup, Some(b), None, None),
-        (Ok(Stop::Interrupted(sig)), None) => (Status::Interrupted, None, Some(sig), None),
-        (Ok(_), Some(e)) => (Status::IoError, None, None, Some(e.to_string())),
-        (Err(e), _) => (Status::IoError, None, None, Some(e.to_string())),
+    let status = Status::of(&outcome);
+    let (blowup, signal, io_error) = match outcome {
+        Ok(Stop::Interrupted(sig)) => (None, Some(sig), None),
+        Ok(_) => (None, None, None),
+        Err(dem2d::run::RunError::Blowup(b)) => (Some(b), None, None),
+        Err(dem2d::run::RunError::Observer(e)) => (None, None, Some(e.to_string())),
     };
     let error = match (&blowup, signal, &io_error) {
         (Some(b), _, _) => Some(b.to_string()),
@@ -603,7 +567,7 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
         case,
         &world,
         status,
-        &counters,
+        &counts,
         (dt_critical, initial_total),
         &warnings,
         error,
@@ -620,258 +584,12 @@ pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOu
     })
 }
 
-/// Writes `state.json` for a run that ended as `result` says (not a blow-up).
-fn write_state_file(
-    dir: &Path,
-    case: &Case,
-    case_text: &str,
-    world: &World,
-    counters: &Counters,
-    initial_total: f64,
-    result: &Result<Stop, WriteError>,
-) -> Result<(), WriteError> {
-    let file = Path::new("state.json");
-    let status = match result {
-        Ok(Stop::Completed) => Status::Completed,
-        Ok(Stop::AtRest) => Status::AtRest,
-        Ok(Stop::MaxSteps) => Status::MaxSteps,
-        Ok(Stop::Interrupted(_)) => Status::Interrupted,
-        Ok(Stop::Blowup(_)) => Status::Blowup,
-        Err(_) => Status::IoError,
-    };
-    let value = dem2d::scene::fields::parse_json(case_text, "").map_err(|e| WriteError {
-        file: file.to_path_buf(),
-        error: io::Error::other(format!("the case text does not parse: {e}")),
-    })?;
-    let progress = RunProgress {
-        initial_total,
-        quiescence_streak: counters.streak,
-        first_contact_step: counters.first_contact_step,
-        contact_sum: counters.contact_sum,
-        watch: counters
-            .watch
-            .clone()
-            .unwrap_or_else(|| BlowupWatch::new(world)),
-    };
-    dem2d::output::state::write_state(
-        dir,
-        &value,
-        case.duration,
-        world,
-        &case.bodies,
-        progress,
-        status.as_str(),
-    )
-    .map_err(|error| WriteError {
-        file: dir.join(file),
-        error,
-    })
-}
-
 /// `SIGINT`, `SIGTERM` or the number.
 pub fn signal_name(sig: i32) -> String {
     match sig {
         2 => "SIGINT".into(),
         15 => "SIGTERM".into(),
         n => format!("signal {n}"),
-    }
-}
-
-/// The files the step loop writes into.
-struct Writers<'a> {
-    traj: &'a mut TrajectoryWriter,
-    incs: &'a mut IncrementsWriter,
-    walls: Option<&'a mut WallsWriter>,
-    vtk: Option<&'a mut VtkWriter>,
-    analysis: Option<&'a mut AnalysisOutput>,
-}
-
-/// The steps; returns how they ended. `last_label` is set when the world's state belongs to a
-/// step that failed part-way (a non-finite state found inside the step).
-fn step_loop(
-    case: &Case,
-    opts: &RunOptions,
-    world: &mut World,
-    Writers {
-        traj,
-        incs,
-        mut walls,
-        mut vtk,
-        mut analysis,
-    }: Writers,
-    counters: &mut Counters,
-    last_label: &mut Option<u64>,
-) -> Result<Stop, WriteError> {
-    // Steps are numbered from the start of the whole run (a continued run goes on from its
-    // state's), and every cadence counts them so: a continued run writes its rows at the steps
-    // the uninterrupted run writes them.
-    let case_steps = case.steps();
-    let first = world.step;
-    let steps = opts
-        .max_steps
-        .map_or(case_steps, |m| first.saturating_add(m).min(case_steps));
-    let thin = steps.div_ceil(MAX_INCREMENT_ROWS).max(1);
-    let vtk_every = opts.vtk_every.unwrap_or(u64::MAX).max(1);
-    // The first frame on disk at once: a run killed at any later moment leaves one whole frame.
-    traj.write(world).and_then(|()| traj.flush())?;
-    if let Some(w) = walls.as_deref_mut() {
-        w.write(world, world.step).and_then(|()| w.flush())?;
-    }
-    if let Some(v) = vtk.as_deref_mut() {
-        v.write(world)?;
-    }
-    if let Some(a) = analysis.as_deref_mut() {
-        a.write(world, world.step)?;
-    }
-    // Kept in the counters, so that the state file has them however the loop ends.
-    let watch = counters
-        .watch
-        .get_or_insert_with(|| BlowupWatch::new(world));
-    let start = Instant::now();
-    let mut progress = Progress::new(opts.progress, Duration::from_secs(2));
-    let mut stop = if steps < case_steps {
-        Stop::MaxSteps
-    } else {
-        Stop::Completed
-    };
-    for s in first + 1..=steps {
-        let report = match world.step() {
-            Ok(r) => r,
-            Err(b) => {
-                *last_label = Some(b.step);
-                stop = Stop::Blowup(from_step_failure(&b, world));
-                break;
-            }
-        };
-        counters.contact_sum += report.contacts as u64;
-        if counters.first_contact_step.is_none() && report.contacts > 0 {
-            counters.first_contact_step = Some(s);
-        }
-        if let Some(trigger) = watch.check(world) {
-            incs.write(world, &report, true)?;
-            stop = Stop::Blowup(describe(trigger, world));
-            break;
-        }
-        if s % thin == 0 || s == steps {
-            // The unbalanced ratio (a pass over every contact) only on output steps.
-            incs.write(world, &report, s % case.output_every == 0 || s == steps)?;
-        }
-        if s % case.output_every == 0 {
-            traj.write(world)?;
-            if let Some(w) = walls.as_deref_mut() {
-                w.write(world, world.step)?;
-            }
-            world.network_critical_dt();
-            if let Some(a) = analysis.as_deref_mut() {
-                a.write(world, world.step)?;
-            }
-        }
-        if s % vtk_every == 0
-            && let Some(v) = vtk.as_deref_mut()
-        {
-            v.write(world)?;
-        }
-        if let Some(q) = case.quiescence {
-            if report.increments.iter().all(|&d| d <= q) {
-                counters.streak += 1;
-            } else {
-                counters.streak = 0;
-            }
-            if counters.streak >= case.quiescence_window {
-                // At rest since the first step of the streak (P's count for a window of one).
-                counters.quiescent_step = Some(s + 1 - counters.streak);
-                if s % thin != 0 && s != steps {
-                    incs.write(world, &report, true)?;
-                }
-                stop = Stop::AtRest;
-                break;
-            }
-        }
-        if let Some(sig) = opts.stop.map(|f| f.load(Ordering::Relaxed))
-            && sig != 0
-        {
-            if s % thin != 0 && s != steps {
-                incs.write(world, &report, true)?;
-            }
-            stop = Stop::Interrupted(sig);
-            break;
-        }
-        if progress.due() {
-            // The unbalanced ratio costs a pass over the contacts: only when a line is due.
-            progress.show(&progress::line(&progress::Fields {
-                name: &case.name,
-                step: s,
-                steps,
-                time: world.time,
-                elapsed: start.elapsed().as_secs_f64(),
-                contacts: report.contacts,
-                unbalanced: world.unbalanced_ratios().0,
-            }));
-        }
-    }
-    counters.wall_seconds = start.elapsed().as_secs_f64();
-    progress.finish();
-    Ok(stop)
-}
-
-/// A non-finite state found inside a step.
-fn from_step_failure(b: &Blowup, world: &World) -> BlowupReport {
-    BlowupReport {
-        step: b.step,
-        time: time_value(b.step, world.dt),
-        body: b.body,
-        reason: format!(
-            "non-finite {} (the state written last is where the step stopped)",
-            b.what
-        ),
-    }
-}
-
-/// A trigger of the watch, with the body it concerns.
-fn describe(trigger: Trigger, world: &mut World) -> BlowupReport {
-    let (body, reason) = match trigger {
-        Trigger::NonFinite(what) => (
-            watch::most_energetic_body(world),
-            format!("non-finite {what}"),
-        ),
-        Trigger::Energy { created, available } => (
-            watch::most_energetic_body(world),
-            format!(
-                "the energy grew by {created:.3e} erg, more than {} × the {available:.3e} erg that \
-                 the initial state and gravity can supply (the step is unstable: is dt above the \
-                 critical step, or a stiffness far above what dt can follow?)",
-                watch::ENERGY_GROWTH
-            ),
-        ),
-        Trigger::Depth { ratio } => {
-            world.refresh_contact_extras();
-            match watch::overlaps(world).first() {
-                Some(o) => (
-                    o.i,
-                    format!(
-                        "{} overlap by δ = {:.3e}, {:.3} × the smaller inscribed radius: deeper \
-                         than the bodies themselves (the contact is too soft for the impact, or \
-                         dt too large)",
-                        o.names(),
-                        o.depth,
-                        o.ratio
-                    ),
-                ),
-                None => (
-                    watch::most_energetic_body(world),
-                    format!(
-                        "an overlap reached {ratio:.3} × the smaller inscribed radius: deeper than \
-                         the bodies themselves"
-                    ),
-                ),
-            }
-        }
-    };
-    BlowupReport {
-        step: world.step,
-        time: time_value(world.step, world.dt),
-        body,
-        reason,
     }
 }
 
@@ -917,7 +635,7 @@ fn summarize(
     case: &Case,
     world: &World,
     status: Status,
-    counters: &Counters,
+    counters: &Counts,
     (dt_critical, initial_total): (f64, f64),
     warnings: &[String],
     error: Option<String>,

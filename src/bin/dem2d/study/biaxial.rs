@@ -17,6 +17,8 @@
 
 use dem2d::dynamics::{BodyInit, World};
 use dem2d::geometry::{Shape, Vec2};
+use dem2d::output::progress::CommandProgress;
+use dem2d::run::{RunError, Simulation};
 use dem2d::scene::Case;
 use dem2d::scene::generate::case_text_from;
 use serde_json::{Value, json};
@@ -94,7 +96,7 @@ fn stresses(w: &World) -> (f64, f64, f64, f64) {
     (axial, lateral, width, height)
 }
 
-pub fn run(write: bool) -> String {
+pub fn run(write: bool) -> Result<String, RunError> {
     // A loose lattice, 2.6 cm apart, radii uniform in 0.8–1.2 (a fixed sequence).
     let mut seed = 7u64;
     let mut uniform = || {
@@ -129,11 +131,12 @@ pub fn run(write: bool) -> String {
     let case = Case::from_json(&compaction).unwrap();
     let mut w = case.build_world();
     let mut last = f64::INFINITY;
+    let mut lines = CommandProgress::new(case.name.clone());
+    let mut sim = Simulation::new(&mut w).observe(&mut lines).for_steps(5000);
     loop {
-        for _ in 0..5000 {
-            w.step().unwrap();
-        }
-        let (ax, lat, width, height) = stresses(&w);
+        sim.run()?;
+        let w = sim.world();
+        let (ax, lat, width, height) = stresses(w);
         eprintln!(
             "compaction t = {:.2}: {width:.3} × {height:.3} cm, σ_axial {ax:.0}, σ_lateral {lat:.0}",
             w.time
@@ -183,23 +186,26 @@ pub fn run(write: bool) -> String {
     );
     let steps_per_percent = (0.01 / STRAIN_RATE / case.dt).round() as u64;
     let (mut sum, mut count) = ([0.0; 2], 0.0);
-    for step in 1..=case.steps() {
-        w.step().unwrap();
-        let (ax, lat, width, height) = stresses(&w);
-        sum[0] += ax;
-        sum[1] += lat;
-        count += 1.0;
-        if step % steps_per_percent == 0 {
-            let (ax, lat) = (sum[0] / count, sum[1] / count);
-            let strain = 1.0 - height / height0;
-            md.row(format!(
-                "| {strain:.3} | {ax:.4e} | {lat:.4e} | {:+.2e} | {:.3} | {:.4} |",
-                lat / SIGMA_C - 1.0,
-                (ax - lat) / (ax + lat),
-                1.0 - width * height / area0
-            ));
-            (sum, count) = ([0.0; 2], 0.0);
-        }
-    }
-    md.text()
+    let mut lines = CommandProgress::new(case.name.clone());
+    Simulation::new(&mut w)
+        .observe(&mut lines)
+        .until_step(case.steps())
+        .run_each(|w, _| {
+            let (ax, lat, width, height) = stresses(w);
+            sum[0] += ax;
+            sum[1] += lat;
+            count += 1.0;
+            if w.step % steps_per_percent == 0 {
+                let (ax, lat) = (sum[0] / count, sum[1] / count);
+                let strain = 1.0 - height / height0;
+                md.row(format!(
+                    "| {strain:.3} | {ax:.4e} | {lat:.4e} | {:+.2e} | {:.3} | {:.4} |",
+                    lat / SIGMA_C - 1.0,
+                    (ax - lat) / (ax + lat),
+                    1.0 - width * height / area0
+                ));
+                (sum, count) = ([0.0; 2], 0.0);
+            }
+        })?;
+    Ok(md.text())
 }

@@ -25,6 +25,8 @@ use dem2d::dynamics::World;
 use dem2d::dynamics::boundary::span_length;
 use dem2d::dynamics::{BodyInit, Span};
 use dem2d::output::plot::{self, LinePanel, Series};
+use dem2d::output::progress::CommandProgress;
+use dem2d::run::{RunError, Simulation};
 use dem2d::scene::Case;
 use dem2d::scene::servo_box::ServoBox;
 use serde_json::json;
@@ -53,14 +55,15 @@ pub fn wall_state(w: &World) -> (f64, f64, f64, f64) {
 
 /// Steps a servo-compaction world until it is still (see the module documentation) or
 /// `max_time` passes; returns the steps taken.
-pub fn compact(w: &mut World, max_time: f64) -> u64 {
+pub fn compact(w: &mut World, max_time: f64) -> Result<u64, RunError> {
     let mut steps = 0;
     let mut last = f64::INFINITY;
-    while w.time < max_time {
-        for _ in 0..2000 {
-            w.step().expect("finite");
-        }
+    let mut lines = CommandProgress::new(format!("compaction of {} grains", w.bodies.len()));
+    let mut sim = Simulation::new(w).observe(&mut lines).for_steps(2000);
+    while sim.world().time < max_time {
+        sim.run()?;
         steps += 2000;
+        let w = sim.world();
         let (width, height, _, _) = wall_state(w);
         let a = width * height;
         if (a - last).abs() < 1e-5 * a && w.unbalanced_ratios().0 < 1e-2 {
@@ -68,7 +71,7 @@ pub fn compact(w: &mut World, max_time: f64) -> u64 {
         }
         last = a;
     }
-    steps
+    Ok(steps)
 }
 
 /// One biaxial test.
@@ -96,7 +99,12 @@ pub struct Outcome {
 
 /// Compacts and shears a sample of `n_side²` grains of aspect ratio `aspect` to axial strain
 /// `strain`.
-pub fn run_one(n_side: usize, aspect: f64, strain: f64, verbose: bool) -> Outcome {
+pub fn run_one(
+    n_side: usize,
+    aspect: f64,
+    strain: f64,
+    verbose: bool,
+) -> Result<Outcome, RunError> {
     let start = Instant::now();
     let prep = ServoBox {
         n_side,
@@ -107,7 +115,7 @@ pub fn run_one(n_side: usize, aspect: f64, strain: f64, verbose: bool) -> Outcom
     };
     let case = Case::from_json(&prep.compaction_case(5.0)).expect("valid case");
     let mut w = case.build_world();
-    let mut steps = compact(&mut w, 5.0);
+    let mut steps = compact(&mut w, 5.0)?;
     let n = w.bodies.len();
     if verbose {
         eprintln!(
@@ -169,27 +177,30 @@ pub fn run_one(n_side: usize, aspect: f64, strain: f64, verbose: bool) -> Outcom
     };
     let (mut sum, mut count) = ([0.0; 2], 0.0);
     let mut frames = Vec::new();
-    for step in 1..=case.steps() {
-        w.step().expect("finite");
-        let (_, _, ax, lat) = wall_state(&w);
-        sum[0] += ax;
-        sum[1] += lat;
-        count += 1.0;
-        if step % every == 0 {
-            let (ax, lat) = (sum[0] / count, sum[1] / count);
-            let (width, height, _, _) = wall_state(&w);
-            out.curve.push((
-                1.0 - height / height0,
-                (ax - lat) / (ax + lat),
-                1.0 - width * height / area0,
-            ));
-            w.refresh_contact_extras();
-            let frame = Frame::from_world(&w);
-            out.measures.push(analysis::measure(&frame, None));
-            frames.push(frame);
-            (sum, count) = ([0.0; 2], 0.0);
-        }
-    }
+    let mut lines = CommandProgress::new(case.name.clone());
+    Simulation::new(&mut w)
+        .observe(&mut lines)
+        .until_step(case.steps())
+        .run_each(|w, _| {
+            let (_, _, ax, lat) = wall_state(w);
+            sum[0] += ax;
+            sum[1] += lat;
+            count += 1.0;
+            if w.step % every == 0 {
+                let (ax, lat) = (sum[0] / count, sum[1] / count);
+                let (width, height, _, _) = wall_state(w);
+                out.curve.push((
+                    1.0 - height / height0,
+                    (ax - lat) / (ax + lat),
+                    1.0 - width * height / area0,
+                ));
+                w.refresh_contact_extras();
+                let frame = Frame::from_world(w);
+                out.measures.push(analysis::measure(&frame, None));
+                frames.push(frame);
+                (sum, count) = ([0.0; 2], 0.0);
+            }
+        })?;
     steps += case.steps();
     let (k, &(e1, q, _)) = out
         .curve
@@ -232,7 +243,7 @@ pub fn run_one(n_side: usize, aspect: f64, strain: f64, verbose: bool) -> Outcom
             out.peak_ratio, out.peak_strain, out.residual_ratio, out.wall_seconds
         );
     }
-    out
+    Ok(out)
 }
 
 /// An SVG of force chains: each body's outline in grey, each body–body contact a line between
@@ -324,13 +335,13 @@ fn force_chains(results: &[&Outcome]) -> String {
 
 /// Runs the study with samples of about `grains` grains (the nearest square number); `write`
 /// also writes each α's shear stage to `cases/biaxial_shape/shear_a{α}.json`.
-pub fn run(grains: usize, write: bool) -> String {
+pub fn run(grains: usize, write: bool) -> Result<String, RunError> {
     let aspects = [1.0, 1.5, 2.0, 2.5];
     let n_side = ((grains as f64).sqrt().round() as usize).max(2);
     let results: Vec<Outcome> = aspects
         .iter()
         .map(|&a| run_one(n_side, a, 0.1, true))
-        .collect();
+        .collect::<Result<_, _>>()?;
     if write {
         for r in &results {
             let path = format!("cases/biaxial_shape/shear_a{}.json", r.aspect);
@@ -432,5 +443,5 @@ pub fn run(grains: usize, write: bool) -> String {
     let png = plot::png_of_svg(&chains, 1.0).expect("force chains PNG");
     std::fs::write("target/figure-png/force_chains.png", png).expect("force_chains.png");
     print!("{md}");
-    md
+    Ok(md)
 }

@@ -8,6 +8,7 @@
 
 use crate::impact::{self, Impact};
 use dem2d::output::plot::{self, LinePanel, Series};
+use dem2d::run::RunError;
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -24,10 +25,10 @@ pub const MU: f64 = 0.1;
 pub type Row = (String, f64, f64, f64);
 
 /// The normal impacts: contact time and peak overlap for the linear and Hertz springs.
-pub fn normal_rows() -> Vec<Row> {
+pub fn normal_rows() -> Result<Vec<Row>, RunError> {
     let mut rows = Vec::new();
     let (tc, d) = impact::linear_reference(KN, V_NORMAL);
-    let r = impact::disk_on_floor(&impact::linear_law(KN, 0.0), V_NORMAL, 0.0, tc / 2000.0);
+    let r = impact::disk_on_floor(&impact::linear_law(KN, 0.0), V_NORMAL, 0.0, tc / 2000.0)?;
     rows.push(("linear: contact time (s)".into(), r.contact_time, tc, 1e-4));
     rows.push(("linear: peak overlap (cm)".into(), r.peak_overlap, d, 1e-4));
     rows.push((
@@ -42,7 +43,7 @@ pub fn normal_rows() -> Vec<Row> {
         V_NORMAL,
         0.0,
         tc / 2000.0,
-    );
+    )?;
     rows.push(("Hertz: contact time (s)".into(), r.contact_time, tc, 1e-4));
     rows.push(("Hertz: peak overlap (cm)".into(), r.peak_overlap, d, 1e-4));
     rows.push((
@@ -51,11 +52,11 @@ pub fn normal_rows() -> Vec<Row> {
         1.0,
         1e-6,
     ));
-    rows
+    Ok(rows)
 }
 
 /// The oblique impact at incidence `deg` (degrees from the normal).
-pub fn oblique(deg: f64) -> Impact {
+pub fn oblique(deg: f64) -> Result<Impact, RunError> {
     let th = deg.to_radians();
     let (vn, vt) = (V_OBLIQUE * th.cos(), V_OBLIQUE * th.sin());
     let (tc, _) = impact::linear_reference(KN, vn);
@@ -65,18 +66,18 @@ pub fn oblique(deg: f64) -> Impact {
 /// The oblique impacts in the sliding regime at the given angles: v_t' and ω' against the rigid
 /// theory. Tolerance: the friction's lever arm is r − δ, not r (≤ δ_max/r = 3e-4 here), and
 /// the time discretisation.
-pub fn oblique_rows(angles: &[f64]) -> Vec<Row> {
+pub fn oblique_rows(angles: &[f64]) -> Result<Vec<Row>, RunError> {
     let mut rows = Vec::new();
     for &deg in angles {
         let th = deg.to_radians();
         let (vn, vt) = (V_OBLIQUE * th.cos(), V_OBLIQUE * th.sin());
         let (vt1, w1, sliding) = impact::oblique_reference(vn, vt, 1.0, MU);
         assert!(sliding, "{deg}° is not in the sliding regime");
-        let r = oblique(deg);
+        let r = oblique(deg)?;
         rows.push((format!("oblique {deg}°: v_t' (cm/s)"), r.vt, vt1, 1e-3));
         rows.push((format!("oblique {deg}°: ω' (rad/s)"), r.omega, w1, 1e-3));
     }
-    rows
+    Ok(rows)
 }
 
 fn table(rows: &[Row]) -> String {
@@ -94,17 +95,17 @@ fn table(rows: &[Row]) -> String {
     s
 }
 
-pub fn run() -> String {
+pub fn run() -> Result<String, RunError> {
     let start = Instant::now();
-    let mut rows = normal_rows();
-    rows.extend(oblique_rows(&[40.0, 60.0, 80.0]));
+    let mut rows = normal_rows()?;
+    rows.extend(oblique_rows(&[40.0, 60.0, 80.0])?);
     // The sweep of the figure.
     let angles: Vec<f64> = (1..=17).map(|k| 5.0 * k as f64).collect();
     let theta_c = (3.0 * MU * 2.0f64).atan().to_degrees();
     let mut sim = [Vec::new(), Vec::new(), Vec::new()];
     let mut steps = 0;
     for &deg in &angles {
-        let r = oblique(deg);
+        let r = oblique(deg)?;
         steps += r.steps;
         let th = deg.to_radians();
         let (vn, vt) = (V_OBLIQUE * th.cos(), V_OBLIQUE * th.sin());
@@ -164,7 +165,7 @@ pub fn run() -> String {
     writeln!(
         md,
         "\nDisk r = {} cm, ρ = {} g/cm³ (m = {:.4} g per cm of thickness, I = m r²/2), wall y = 0; \
-         linear k_n = {KN:e} dyn/cm², Hertz E = {YOUNG:e} dyn/cm², ν = {POISSON} (the wall of the \
+         linear k_n = {KN:e} dyn/cm (of a 1 cm slice: dyn per cm of thickness per cm of overlap), Hertz E = {YOUNG:e} dyn/cm², ν = {POISSON} (the wall of the \
          same material), normal speed {V_NORMAL} cm/s; oblique at {V_OBLIQUE} cm/s, μ = {MU}, e = 1, \
          k_t = k_n; Δt = t_c/2000. Oblique sweep: {} impacts, {steps} steps.",
         impact::RADIUS,
@@ -180,5 +181,5 @@ pub fn run() -> String {
         "oblique sweep: wall time {wall:.2} s (one body: {:.2e} particle-steps/s)",
         steps as f64 / wall
     );
-    md
+    Ok(md)
 }

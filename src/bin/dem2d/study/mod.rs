@@ -132,7 +132,9 @@ pub fn run(
         Study::BiaxialShape => biaxial_shape::run(grains.unwrap_or(400), write),
         Study::Packing => packing::run(grains.unwrap_or(packing::N), write),
         Study::Representation => representation::run(grains.unwrap_or(packing::N)),
-    };
+    }
+    // A run that blows up ends the study with its report.
+    .map_err(|e| crate::Failure::failed(format!("dem2d study: {e}")))?;
     if let Some(mode) = docs {
         crate::refresh_docs(study.table_name(), &md, mode)?;
     }

@@ -21,6 +21,8 @@ use dem2d::contact_law::NormalForce;
 use dem2d::dynamics::BodyInit;
 use dem2d::geometry::{Shape, Vec2};
 use dem2d::output::plot::{self, LinePanel, Series};
+use dem2d::output::progress::CommandProgress;
+use dem2d::run::{RunError, Simulation, Stop};
 use dem2d::scene::Case;
 use dem2d::scene::generate::{DENSITY, PileShape, PileSizes, PileSpec, R_SMALL};
 use std::fmt::Write as _;
@@ -107,7 +109,7 @@ fn bodies(aspect: f64, seed: u64, spacing: f64, n: usize, width: f64) -> Vec<Bod
 
 /// Pours and measures one pile of `n` grains; with `write` its case file also goes to
 /// `cases/packing/`.
-pub fn pour(aspect: f64, friction: f64, n: usize, write: bool) -> Pile {
+pub fn pour(aspect: f64, friction: f64, n: usize, write: bool) -> Result<Pile, RunError> {
     pour_shaped(aspect, friction, n, write, &|s| s)
 }
 
@@ -120,7 +122,7 @@ pub fn pour_shaped(
     n: usize,
     write: bool,
     shape: &dyn Fn(Shape) -> Shape,
-) -> Pile {
+) -> Result<Pile, RunError> {
     let start = Instant::now();
     let width = width_for(n);
     let mut spec = PileSpec::new(
@@ -156,23 +158,14 @@ pub fn pour_shaped(
     }
     let case = Case::from_json(&text).expect("valid case");
     let mut w = case.build_world();
-    let q = case.quiescence.expect("a rest criterion");
-    let mut streak = 0;
-    let mut at_rest = false;
     let mut contacts = 0usize;
-    for _ in 0..case.steps() {
-        let r = w.step().expect("finite");
-        contacts += r.contacts;
-        if r.increments.iter().all(|&d| d <= q) {
-            streak += 1;
-        } else {
-            streak = 0;
-        }
-        if streak >= case.quiescence_window {
-            at_rest = true;
-            break;
-        }
-    }
+    let mut lines = CommandProgress::new(case.name.clone());
+    let stop = Simulation::new(&mut w)
+        .observe(&mut lines)
+        .until_step(case.steps())
+        .quiescence(Some(case.quiescence_criterion().expect("a rest criterion")))
+        .run_each(|_, r| contacts += r.contacts)?;
+    let at_rest = matches!(stop, Stop::AtRest { .. });
     w.refresh_contact_extras();
     let frame = Frame::from_world(&w);
     // The surface: the lowest of the bins' highest grain tops.
@@ -191,7 +184,7 @@ pub fn pour_shaped(
     };
     let m = analysis::measure(&frame, Some(window));
     let wall = start.elapsed().as_secs_f64();
-    Pile {
+    Ok(Pile {
         aspect,
         friction,
         packing: m.packing_fraction,
@@ -206,17 +199,17 @@ pub fn pour_shaped(
         particle_steps_per_second: n as f64 * w.step as f64 / wall,
         steps: w.step,
         contacts_per_step: contacts as f64 / w.step.max(1) as f64,
-    }
+    })
 }
 
 /// Runs the study with piles of `n` grains; `write` also writes their case files.
-pub fn run(n: usize, write: bool) -> String {
+pub fn run(n: usize, write: bool) -> Result<String, RunError> {
     let aspects = [1.0, 1.2, 1.5, 2.0, 3.0];
     let width = width_for(n);
     let mut piles = Vec::new();
     for mu in [0.0, 0.5] {
         for &a in &aspects {
-            let p = pour(a, mu, n, write);
+            let p = pour(a, mu, n, write)?;
             eprintln!(
                 "α = {a}, μ = {mu}: φ = {:.4}, {:.0} s",
                 p.packing, p.wall_seconds
@@ -308,5 +301,5 @@ pub fn run(n: usize, write: bool) -> String {
     }
     std::fs::write("figures/packing.md", &md).expect("figures/packing.md");
     print!("{md}");
-    md
+    Ok(md)
 }

@@ -17,8 +17,10 @@
 //! `dem2d run cases/repose/epsd_mu_r_0.1.json`.
 
 use dem2d::contact_law::{RollingModel, RollingPart};
-use dem2d::dynamics::BodyInit;
 use dem2d::dynamics::analysis::heap_surface;
+use dem2d::dynamics::{BodyInit, World};
+use dem2d::output::progress::CommandProgress;
+use dem2d::run::{RunError, Simulation, Stop};
 use dem2d::scene::Case;
 use dem2d::scene::generate::ColumnSpec;
 
@@ -26,16 +28,19 @@ const GATE_SPEED: f64 = 100.0;
 
 /// Runs a case until P's criterion holds or its duration ends; returns the world and the time
 /// at rest.
-fn run_to_rest(case: &Case) -> (dem2d::dynamics::World, Option<f64>) {
+fn run_to_rest(case: &Case) -> Result<(World, Option<f64>), RunError> {
     let mut w = case.build_world();
-    let mut q = case.quiescence_criterion().expect("quiescence");
-    for _ in 0..case.steps() {
-        let r = w.step().expect("step");
-        if let Some(s) = q.observe(w.step, &r.increments) {
-            return (w, Some(s as f64 * case.dt));
-        }
-    }
-    (w, None)
+    let mut lines = CommandProgress::new(case.name.clone());
+    let stop = Simulation::new(&mut w)
+        .observe(&mut lines)
+        .until_step(case.steps())
+        .quiescence(case.quiescence_criterion())
+        .run()?;
+    let rest = match stop {
+        Stop::AtRest { since } => Some(since as f64 * case.dt),
+        _ => None,
+    };
+    Ok((w, rest))
 }
 
 /// The sentence on rolling resistance in a column case's description.
@@ -46,7 +51,7 @@ fn resistance(rolling: Option<RollingPart>) -> String {
     )
 }
 
-pub fn run(write: bool) -> String {
+pub fn run(write: bool) -> Result<String, RunError> {
     let column = ColumnSpec {
         n: 300,
         width: 20.0,
@@ -58,8 +63,11 @@ pub fn run(write: bool) -> String {
     let settle =
         Case::from_json(&column.case_json("column", &lattice, 0.0, &[], &resistance(None)))
             .unwrap();
-    let (w, rest) = run_to_rest(&settle);
-    eprintln!("column settled at t = {rest:?}");
+    let (w, rest) = run_to_rest(&settle)?;
+    match rest {
+        Some(t) => eprintln!("column settled at t = {t} s"),
+        None => eprintln!("column not at rest within its duration: continuing from where it is"),
+    }
     let settled: Vec<BodyInit> = (0..w.bodies.len())
         .map(|k| BodyInit {
             position: w.bodies.state[k]
@@ -104,7 +112,7 @@ pub fn run(write: bool) -> String {
             super::put_case(&dir.join(format!("{name}.json")), &text);
         }
         let case = Case::from_json(&text).expect("case");
-        let (w, rest) = run_to_rest(&case);
+        let (w, rest) = run_to_rest(&case)?;
         let (angle, h, toe) = heap_surface(&w, 2.0);
         md.row(format!(
             "| {} | {mu_r} | {angle:.1} | {h:.1} | {toe:.1} | {} |",
@@ -112,5 +120,5 @@ pub fn run(write: bool) -> String {
             rest.map_or("not in 6 s".into(), |t| format!("{t:.2}"))
         ));
     }
-    md.text()
+    Ok(md.text())
 }

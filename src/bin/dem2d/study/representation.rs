@@ -48,6 +48,7 @@ use dem2d::geometry::clump::{Clump, ClumpData};
 use dem2d::geometry::polygon::{Polygon, PolygonData};
 use dem2d::geometry::{Shape, Vec2};
 use dem2d::output::plot::{self, LinePanel, Series};
+use dem2d::run::{RunError, Simulation, Stop};
 use dem2d::scene::Case;
 use serde_json::{Value, json};
 use std::f64::consts::PI;
@@ -152,7 +153,7 @@ struct Drop {
     ns_per_contact: f64,
 }
 
-fn drop_run(mu: &str, shape: Shape, dt_div: u32) -> Drop {
+fn drop_run(mu: &str, shape: Shape, dt_div: u32) -> Result<Drop, RunError> {
     let case = case_from(
         &format!("cases/drop_rebound_{mu}.json"),
         shape,
@@ -167,37 +168,40 @@ fn drop_run(mu: &str, shape: Shape, dt_div: u32) -> Drop {
     let (mut with, mut without) = (Vec::new(), Vec::new());
     // First rebound: the highest centroid between the end of the first contact and the next.
     let (mut phase, mut apex) = (0, f64::NAN);
-    for k in 0..case.steps() {
-        let t = Instant::now();
-        let r = w.step().expect("finite");
-        let ns = t.elapsed().as_nanos() as f64;
-        if r.contacts > 0 {
-            with.push(ns / r.contacts as f64);
-        } else {
-            without.push(ns);
-        }
-        let s = &w.bodies.state[0];
-        match (phase, r.contacts > 0) {
-            (0, true) => phase = 1,
-            (1, false) => {
-                phase = 2;
-                apex = s.pose.position.y;
+    // The time of each step (from the end of the last call to the end of the step).
+    let mut clock = Instant::now();
+    Simulation::new(&mut w)
+        .until_step(case.steps())
+        .run_each(|w, r| {
+            let ns = clock.elapsed().as_nanos() as f64;
+            if r.contacts > 0 {
+                with.push(ns / r.contacts as f64);
+            } else {
+                without.push(ns);
             }
-            (2, false) => apex = apex.max(s.pose.position.y),
-            (2, true) => phase = 3,
-            _ => {}
-        }
-        if (k + 1) % dt_div as u64 == 0 {
-            pos.push(s.pose.position);
-            angle.push(s.pose.angle());
-        }
-    }
-    Drop {
+            let s = &w.bodies.state[0];
+            match (phase, r.contacts > 0) {
+                (0, true) => phase = 1,
+                (1, false) => {
+                    phase = 2;
+                    apex = s.pose.position.y;
+                }
+                (2, false) => apex = apex.max(s.pose.position.y),
+                (2, true) => phase = 3,
+                _ => {}
+            }
+            if w.step.is_multiple_of(dt_div as u64) {
+                pos.push(s.pose.position);
+                angle.push(s.pose.angle());
+            }
+            clock = Instant::now();
+        })?;
+    Ok(Drop {
         pos,
         angle,
         apex,
         ns_per_contact: median(with) - median(without),
-    }
+    })
 }
 
 /// Errors of `d` against `r`: RMS distance, RMS angle, apex.
@@ -240,23 +244,23 @@ pub struct SettleRow {
     pub ns_per_contact: f64,
 }
 
-fn settle_run(shape: Shape, dt_div: u32) -> (Option<u64>, Vec<(Vec2, f64)>, f64) {
+type Settled = (Option<u64>, Vec<(Vec2, f64)>, f64);
+
+fn settle_run(shape: Shape, dt_div: u32) -> Result<Settled, RunError> {
     let case = case_from("cases/settle3_dt1e-5.json", shape, |v: &mut Value| {
         let dt = v["dt"].as_f64().expect("dt");
         v["dt"] = json!(dt / dt_div as f64);
     });
     let mut w = case.build_world();
-    let mut q = case.quiescence_criterion().expect("quiescence");
-    let mut rest = None;
     let (start, mut contacts) = (Instant::now(), 0usize);
-    for _ in 0..case.steps() {
-        let r = w.step().expect("finite");
-        contacts += r.contacts;
-        if let Some(s) = q.observe(w.step, &r.increments) {
-            rest = Some(s);
-            break;
-        }
-    }
+    let stop = Simulation::new(&mut w)
+        .until_step(case.steps())
+        .quiescence(Some(case.quiescence_criterion().expect("quiescence")))
+        .run_each(|_, r| contacts += r.contacts)?;
+    let rest = match stop {
+        Stop::AtRest { since } => Some(since),
+        _ => None,
+    };
     let ns = start.elapsed().as_nanos() as f64 / contacts.max(1) as f64;
     let state = w
         .bodies
@@ -264,7 +268,7 @@ fn settle_run(shape: Shape, dt_div: u32) -> (Option<u64>, Vec<(Vec2, f64)>, f64)
         .iter()
         .map(|s| (s.pose.position, s.pose.angle()))
         .collect();
-    (rest, state, ns)
+    Ok((rest, state, ns))
 }
 
 /// One row of the pile table.
@@ -293,7 +297,7 @@ fn e(v: f64) -> String {
 }
 
 /// Runs the study; the pile has `grains` grains.
-pub fn run(grains: usize) -> String {
+pub fn run(grains: usize) -> Result<String, RunError> {
     let reps: Vec<Rep> = std::iter::once(Rep::Ellipse)
         .chain(NS.iter().map(|&n| Rep::Polygon(n)))
         .chain(KS.iter().map(|&k| Rep::Clump(k)))
@@ -307,9 +311,9 @@ pub fn run(grains: usize) -> String {
         for &alpha in &ALPHAS {
             let (a, b) = ((1.5 * alpha).sqrt(), (1.5 / alpha).sqrt());
             let start = Instant::now();
-            let reference = drop_run(mu, Shape::Ellipse { a, b }, 1);
+            let reference = drop_run(mu, Shape::Ellipse { a, b }, 1)?;
             let wall = start.elapsed().as_secs_f64();
-            let fine = drop_run(mu, Shape::Ellipse { a, b }, 4);
+            let fine = drop_run(mu, Shape::Ellipse { a, b }, 4)?;
             let mut errors = drop_errors(&reference, &fine);
             errors[0] /= b;
             errors[2] /= b;
@@ -331,7 +335,7 @@ pub fn run(grains: usize) -> String {
                 let w = 1.0 / phases.len() as f64;
                 for &half in phases {
                     let start = Instant::now();
-                    let d = drop_run(mu, rep.shape(a, b, half), 1);
+                    let d = drop_run(mu, rep.shape(a, b, half), 1)?;
                     sps += w * d.pos.len() as f64 / start.elapsed().as_secs_f64();
                     let err = drop_errors(&d, &reference);
                     for k in 0..3 {
@@ -427,8 +431,8 @@ pub fn run(grains: usize) -> String {
 
     // --- The settling.
     let (a, b) = (1.5, 1.0);
-    let (ell_rest, ell_state, ell_ns) = settle_run(Shape::Ellipse { a, b }, 1);
-    let (_, fine_state, _) = settle_run(Shape::Ellipse { a, b }, 4);
+    let (ell_rest, ell_state, ell_ns) = settle_run(Shape::Ellipse { a, b }, 1)?;
+    let (_, fine_state, _) = settle_run(Shape::Ellipse { a, b }, 4)?;
     let rest_err = |s: &[(Vec2, f64)], r: &[(Vec2, f64)]| -> [f64; 2] {
         let mut m = [0.0f64; 2];
         for (p, q) in s.iter().zip(r) {
@@ -444,7 +448,7 @@ pub fn run(grains: usize) -> String {
         ns_per_contact: ell_ns,
     }];
     for &rep in &reps[1..] {
-        let (rest, state, ns) = settle_run(rep.shape(a, b, true), 1);
+        let (rest, state, ns) = settle_run(rep.shape(a, b, true), 1)?;
         settles.push(SettleRow {
             rep,
             rest_step: rest,
@@ -488,7 +492,7 @@ pub fn run(grains: usize) -> String {
         let pile = packing::pour_shaped(alpha, 0.5, grains, false, &|s| match s {
             Shape::Ellipse { a, b } => rep.shape(a, b, false),
             other => other,
-        });
+        })?;
         eprintln!(
             "pile {}: φ = {:.4}, Z = {:.2}, {:.0} s",
             rep.label(),
@@ -689,5 +693,5 @@ pub fn run(grains: usize) -> String {
     }
     std::fs::write("figures/representation.md", &md).expect("figures/representation.md");
     print!("{md}");
-    md
+    Ok(md)
 }

@@ -5,21 +5,25 @@
 //! criterion (the case's threshold, held for the case's window) first holds, in a run of up to
 //! 20 s.
 use dem2d::contact_law::{NormalForce, RollingModel, RollingPart};
+use dem2d::output::progress::CommandProgress;
+use dem2d::run::{RunError, Simulation, Stop};
 use dem2d::scene::Case;
 
-fn rest_time(case: &Case, limit: f64) -> Option<(f64, f64)> {
+/// When (and where: the body's x) P's criterion first holds, in a run of up to `limit` seconds.
+fn rest_time(case: &Case, limit: f64) -> Result<Option<(f64, f64)>, RunError> {
     let mut w = case.build_world();
-    let mut q = case.quiescence_criterion().expect("quiescence");
-    while w.time < limit {
-        let r = w.step().expect("step");
-        if let Some(s) = q.observe(w.step, &r.increments) {
-            return Some((s as f64 * w.dt, w.bodies.state[0].pose.position.x));
-        }
-    }
-    None
+    let mut lines = CommandProgress::new(case.name.clone());
+    let stop = Simulation::new(&mut w)
+        .observe(&mut lines)
+        .quiescence(case.quiescence_criterion())
+        .run_until(|w, _| w.time >= limit)?;
+    Ok(match stop {
+        Stop::AtRest { since } => Some((since as f64 * w.dt, w.bodies.state[0].pose.position.x)),
+        _ => None,
+    })
 }
 
-pub fn run() -> String {
+pub fn run() -> Result<String, RunError> {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases");
     let mut md = super::Table::new(
         "| shape | normal force | rolling model | μ_r | at rest at t (s) | x at rest (cm) |\n\
@@ -38,7 +42,7 @@ pub fn run() -> String {
                             damping: None,
                         }))
                     });
-                    let cell = match rest_time(&case, 20.0) {
+                    let cell = match rest_time(&case, 20.0)? {
                         Some((t, x)) => format!("{t:.3} | {x:.2}"),
                         None => "not in 20 s | —".into(),
                     };
@@ -52,5 +56,5 @@ pub fn run() -> String {
             }
         }
     }
-    md.text()
+    Ok(md.text())
 }

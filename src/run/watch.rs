@@ -1,6 +1,7 @@
 //! Watching a run for a blow-up before anything is non-finite, and for bodies that overlap at
-//! the start. Reads the world only (the contact extras it reports are refreshed by the caller,
-//! with [`World::refresh_contact_extras`]).
+//! the start; the report of a blow-up ([`BlowupReport`]: the step, the body, the reason). The
+//! checks read the world only (the contact extras they report are refreshed by the caller, with
+//! [`World::refresh_contact_extras`]).
 //!
 //! # The energy criterion
 //! With `D ≥ 0` the energy the contacts took out, `E = K + P + E_el + D` is constant in exact
@@ -25,8 +26,9 @@
 //! let a body pass into another. The limit is raised to the deepest overlap of the initial
 //! state, which the run reports as a warning and then pushes apart.
 
-use super::partner::Partner;
-use super::world::World;
+use super::time::time_value;
+use crate::dynamics::{Blowup, Partner, World};
+use std::fmt;
 
 /// How many times the energy that could be in motion may be created before the run counts as
 /// blown up.
@@ -46,8 +48,8 @@ pub enum Trigger {
     Depth { ratio: f64 },
 }
 
-/// The state a run is checked against (public: a restart carries it, so that a continued run
-/// is checked against the start of the whole run).
+/// The state a run is checked against (public: the run's saved progress carries it, so that a
+/// continued run is checked against the start of the whole run).
 #[derive(Clone, Debug, PartialEq)]
 pub struct BlowupWatch {
     /// Kinetic, elastic, potential and total energy at the start.
@@ -81,6 +83,12 @@ impl BlowupWatch {
         }
     }
 
+    /// The energy that could be in motion, as of the last check: the initial kinetic and
+    /// elastic energy, the most gravity and the walls have supplied.
+    pub fn available(&self) -> f64 {
+        self.kinetic0 + self.elastic0 + self.gravity_supplied + self.boundary_supplied
+    }
+
     /// Checks the world after a step; O(1).
     pub fn check(&mut self, world: &World) -> Option<Trigger> {
         let e = world.energies;
@@ -101,8 +109,7 @@ impl BlowupWatch {
         }
         self.boundary_supplied = self.boundary_supplied.max(e.boundary_work);
         self.gravity_supplied = self.gravity_supplied.max(self.potential0 - e.potential);
-        let available =
-            self.kinetic0 + self.elastic0 + self.gravity_supplied + self.boundary_supplied;
+        let available = self.available();
         self.dissipated_max = self.dissipated_max.max(e.dissipated);
         let created =
             e.total() - self.total0 - e.boundary_work + (self.dissipated_max - e.dissipated);
@@ -192,4 +199,94 @@ pub fn overlaps(world: &World) -> Vec<Overlap> {
         .collect();
     out.sort_by(|a, b| b.ratio.total_cmp(&a.ratio));
     out
+}
+
+/// A blow-up: where it was found and why.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BlowupReport {
+    /// The step at which it was found (the world's state is that step's: a step that stopped
+    /// part-way on a non-finite value leaves the state where it stopped).
+    pub step: u64,
+    pub time: f64,
+    /// The body most concerned (the most energetic one, or one of the pair that overlaps).
+    pub body: usize,
+    pub reason: String,
+    /// Found inside the step, on a non-finite value ([`Blowup`]): the world's state is partly
+    /// that step's, and not finite.
+    pub within_step: bool,
+}
+
+impl fmt::Display for BlowupReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "blow-up at step {} (t = {}), body {}: {}",
+            self.step, self.time, self.body, self.reason
+        )
+    }
+}
+
+impl std::error::Error for BlowupReport {}
+
+impl BlowupReport {
+    /// A non-finite state found inside a step.
+    pub fn within_step(b: &Blowup, world: &World) -> BlowupReport {
+        BlowupReport {
+            step: b.step,
+            time: time_value(b.step, world.dt),
+            body: b.body,
+            reason: format!(
+                "non-finite {} (the state written last is where the step stopped)",
+                b.what
+            ),
+            within_step: true,
+        }
+    }
+
+    /// A trigger of the watch after the world's last step, with the body it concerns (an
+    /// overlap's: the contact extras are refreshed to find it).
+    pub fn of_trigger(trigger: Trigger, world: &mut World) -> BlowupReport {
+        let (body, reason) = match trigger {
+            Trigger::NonFinite(what) => (most_energetic_body(world), format!("non-finite {what}")),
+            Trigger::Energy { created, available } => (
+                most_energetic_body(world),
+                format!(
+                    "the energy grew by {created:.3e} erg, more than {ENERGY_GROWTH} × the \
+                     {available:.3e} erg that the initial state and gravity can supply (the step \
+                     is unstable: is dt above the critical step, or a stiffness far above what dt \
+                     can follow?)"
+                ),
+            ),
+            Trigger::Depth { ratio } => {
+                world.refresh_contact_extras();
+                match overlaps(world).first() {
+                    Some(o) => (
+                        o.i,
+                        format!(
+                            "{} overlap by δ = {:.3e}, {:.3} × the smaller inscribed radius: \
+                             deeper than the bodies themselves (the contact is too soft for the \
+                             impact, or dt too large)",
+                            o.names(),
+                            o.depth,
+                            o.ratio
+                        ),
+                    ),
+                    None => (
+                        most_energetic_body(world),
+                        format!(
+                            "an overlap reached {ratio:.3} × the smaller inscribed radius: \
+                             deeper than the bodies themselves"
+                        ),
+                    ),
+                }
+            }
+        };
+        BlowupReport {
+            step: world.step,
+            time: time_value(world.step, world.dt),
+            body,
+            reason,
+            within_step: false,
+        }
+    }
 }

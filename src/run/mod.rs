@@ -1,0 +1,76 @@
+//! The run driver: a [`Simulation`] steps a [`World`](crate::dynamics::World) until a stop
+//! condition holds and feeds the run's observers after every step.
+//!
+//! # One step of a run, in order
+//! 1. The world's step ([`crate::dynamics::World::step`]); a non-finite state found inside it
+//!    ends the run with a [`BlowupReport`] (`within_step`: the state is where the step stopped).
+//! 2. The counters of the run's progress ([`RunProgress`]: contacts per step, the first step
+//!    with a contact).
+//! 3. The blow-up watch ([`watch`]: energy created beyond what the run can supply, an overlap
+//!    deeper than the bodies): a trigger ends the run with a [`BlowupReport`].
+//! 4. The stop conditions, in order of precedence: P's quiescence criterion held for its
+//!    window ([`Stop::AtRest`]), a stop flag such as a signal's ([`Stop::Interrupted`]), the
+//!    caller's predicate ([`Stop::Asked`]), the run's last step or end time
+//!    ([`Stop::Completed`] at the end of its duration, [`Stop::MaxSteps`] at the end of its
+//!    step budget).
+//! 5. The observers ([`Observer`], in the order added): the writers of the run's files are in
+//!    [`crate::output`] (trajectory, increments, walls, analysis and contacts, VTK, progress
+//!    lines, the saved state); [`CriticalStepSampler`] samples the contact network's critical
+//!    step.
+//!
+//! Before the first step the observers see the start ([`Observer::start`]: the first frame);
+//! when the run ends, however it ends, their last word ([`Observer::finish`]: the last frame,
+//! the saved state). A blow-up and an observer's failure are errors returned to the caller,
+//! never panics; the world is left as it was found.
+//!
+//! The driver reads the world only through its step's report and its energies: a run through
+//! it gives the same bits as the world stepped alone.
+
+mod observer;
+mod progress;
+pub mod quiescence;
+mod simulation;
+pub mod time;
+pub mod watch;
+
+pub use observer::{CriticalStepSampler, End, Observer, ObserverError, Plan, StepInfo};
+pub use progress::RunProgress;
+pub use quiescence::Quiescence;
+pub use simulation::Simulation;
+pub use watch::{BlowupReport, BlowupWatch};
+
+use std::fmt;
+
+/// Why a run stopped (a blow-up is a [`RunError`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stop {
+    /// The run's last step was reached: the end of its duration.
+    Completed,
+    /// The step budget ended the run before its duration.
+    MaxSteps,
+    /// P's quiescence criterion held for its window; rest began at step `since`.
+    AtRest { since: u64 },
+    /// The stop flag was raised (the signal's number).
+    Interrupted(i32),
+    /// The caller's predicate asked for the stop.
+    Asked,
+}
+
+/// What ended a run early.
+#[derive(Debug)]
+pub enum RunError {
+    Blowup(BlowupReport),
+    /// An observer failed (a write, naming its file).
+    Observer(ObserverError),
+}
+
+impl fmt::Display for RunError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RunError::Blowup(b) => b.fmt(f),
+            RunError::Observer(e) => e.fmt(f),
+        }
+    }
+}
+
+impl std::error::Error for RunError {}

@@ -1,0 +1,83 @@
+//! What a [`super::Simulation`] tells the observers of a run: its plan at the start, each step
+//! after it is taken, and how the run ended.
+
+use super::progress::RunProgress;
+use super::{RunError, Stop};
+use crate::dynamics::{StepReport, World};
+
+/// An observer's failure (a write that failed, naming its file): it ends the run.
+pub type ObserverError = Box<dyn std::error::Error + Send + Sync>;
+
+/// The steps a run is to take, as it starts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plan {
+    /// The world's step at the start (0, or a saved state's).
+    pub first: u64,
+    /// The last step, if the run has one (its duration or its step budget; it may stop
+    /// sooner).
+    pub last: Option<u64>,
+}
+
+/// One step taken.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepInfo {
+    /// The world's step count after the step.
+    pub step: u64,
+    pub report: StepReport,
+    /// The run's last step, if it has one ([`Plan::last`]).
+    pub last: Option<u64>,
+    /// The run stops after this step (a stop condition held, or a blow-up was found).
+    pub stopping: bool,
+    /// The blow-up watch found the state after this step unphysical: it is the run's last, and
+    /// what is written of it is only for the report.
+    pub blowup: bool,
+}
+
+/// How the run ended, for the observers' last word.
+#[derive(Debug)]
+pub struct End<'e> {
+    /// The step the world's state belongs to (a step that stopped part-way on a non-finite
+    /// value: that step, although the world's step count is the one before).
+    pub step: u64,
+    /// The world's state is finite (not one a step stopped part-way on).
+    pub finite: bool,
+    /// How the run ended (after the observers before this one: a write that failed in their
+    /// last word shows here).
+    pub outcome: &'e Result<Stop, RunError>,
+    /// The run's progress as it ended.
+    pub progress: &'e RunProgress,
+}
+
+/// An observer of a run (the writers of a run's files are in [`crate::output`]).
+pub trait Observer {
+    /// Before the first step (the world at its start: the first frame).
+    fn start(&mut self, world: &mut World, plan: &Plan) -> Result<(), ObserverError> {
+        let _ = (world, plan);
+        Ok(())
+    }
+
+    /// After every step taken (not after a step that stopped part-way).
+    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError>;
+
+    /// When the run has ended, however it ended (the last frame, flushing).
+    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
+        let _ = (world, end);
+        Ok(())
+    }
+}
+
+/// Samples the contact network's critical time step
+/// ([`World::network_critical_dt`], kept in the world's diagnostics) every `every` steps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CriticalStepSampler {
+    pub every: u64,
+}
+
+impl Observer for CriticalStepSampler {
+    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+        if !info.blowup && info.step.is_multiple_of(self.every.max(1)) {
+            world.network_critical_dt();
+        }
+        Ok(())
+    }
+}
