@@ -565,9 +565,12 @@ impl Disks {
         let circle_j = Shape::Circle { r: b.bound[recv] };
         let j = Side::Body(&circle_j, &b.state[recv].pose);
         match sides.giver {
-            Partner::Wall(w) => {
-                contact_with(cx.walls[w].side(), j, &mut PairCache::default(), Request::LEAN)
-            }
+            Partner::Wall(w) => contact_with(
+                cx.walls[w].side(),
+                j,
+                &mut PairCache::default(),
+                Request::LEAN,
+            ),
             Partner::Body(k) => {
                 let circle_i = Shape::Circle { r: b.bound[k] };
                 let i = Side::Body(&circle_i, &b.state[k].pose);

@@ -56,7 +56,11 @@ fn each_member_pair(
             let (mut si, mut sj) = (unused, unused);
             let mi = resolve(i, a, &mut si);
             let mj = resolve(j, b, &mut sj);
-            f(a, b, contact_with(mi, mj, &mut PairCache::default(), *request));
+            f(
+                a,
+                b,
+                contact_with(mi, mj, &mut PairCache::default(), *request),
+            );
         }
     }
 }

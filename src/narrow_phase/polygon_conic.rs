@@ -157,15 +157,7 @@ pub fn contact_polygon_conic(
             if dpt <= TOUCH_TOL {
                 // Crossings within rounding of each other and of tangency.
                 let mid = super::midpoint(p, qv);
-                return Some(frame.contact(
-                    ContactState::Touching,
-                    p,
-                    qv,
-                    mid,
-                    nrm,
-                    dpt,
-                    request,
-                ));
+                return Some(frame.contact(ContactState::Touching, p, qv, mid, nrm, dpt, request));
             }
             let mid = super::midpoint(p, qv);
             let mut g = frame.contact(ContactState::Overlap, p, qv, mid, nrm, dpt, request);

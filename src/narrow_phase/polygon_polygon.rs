@@ -155,15 +155,7 @@ pub fn contact_polygon_polygon(
     // is decided by it (an area test would scale with the square of a vertex's penetration).
     if poly.len() < 3 || sat.0 <= tol {
         let p = mean(&poly).unwrap_or([0.5 * c.x, 0.5 * c.y]);
-        return Some(frame.contact(
-            ContactState::Touching,
-            p,
-            p,
-            p,
-            sat.1,
-            sat.0,
-            request,
-        ));
+        return Some(frame.contact(ContactState::Touching, p, p, p, sat.1, sat.0, request));
     }
     // j's edge k lies on i's edge line m (same outward normal, same offset): asked only of the
     // overlap's edges.
@@ -282,7 +274,15 @@ pub fn contact_polygon_polygon(
             };
             let (n, dpt) = orient(nrm, depth);
             let mid = super::midpoint(a.point, b.point);
-            let mut g = frame.contact(ContactState::Overlap, a.point, b.point, mid, n, dpt, request);
+            let mut g = frame.contact(
+                ContactState::Overlap,
+                a.point,
+                b.point,
+                mid,
+                n,
+                dpt,
+                request,
+            );
             if area || flat {
                 let pts: List<[f64; 2]> = poly.iter().map(|p| p.0).collect();
                 if flat {
