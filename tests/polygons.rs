@@ -143,12 +143,17 @@ fn random_pair(rng: &mut Rng, kind: Kind, ratio: f64, offset: f64) -> (Object, O
 }
 
 /// The two chord ends against the reference's two crossings: the larger distance, in the best
-/// matching.
+/// matching, beyond the rounding of world coordinates. The record's ends are `point ∓
+/// half_chord · t` ([`Contact::chord`]), the contact point itself rounded to world coordinates:
+/// an end is rounded twice, to within an ulp of its coordinates (what the contact point's own
+/// comparisons allow too).
 fn chord_error(c: &Contact, crossings: &[[f64; 2]]) -> f64 {
     let (p, q) = c.chord();
     let d = |a: Vec2, b: [f64; 2]| (a.x - b[0]).hypot(a.y - b[1]);
     let (x, y) = (crossings[0], crossings[1]);
-    (d(p, x).max(d(q, y))).min(d(p, y).max(d(q, x)))
+    let ulp = |v: f64| f64::from_bits(v.abs().to_bits() + 1) - v.abs();
+    let round = 2.0 * [p.x, p.y, q.x, q.y].into_iter().map(ulp).fold(0.0, f64::max);
+    ((d(p, x).max(d(q, y))).min(d(p, y).max(d(q, x))) - round).max(0.0)
 }
 
 #[test]

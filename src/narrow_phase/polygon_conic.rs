@@ -175,7 +175,7 @@ pub fn contact_polygon_conic(
             }
             Some(g)
         }
-        n if n >= 3 => {
+        3.. => {
             let mut pts: List<[f64; 2]> = cross.iter().map(Crossing::point).collect();
             let (p, qv, nrm, dpt) = deep_fallback(&mut pts[..n], depth);
             let mid = super::midpoint(p, qv);
@@ -204,7 +204,7 @@ pub fn contact_polygon_conic(
             }
             Some(g)
         }
-        _ => {
+        0 | 1 => {
             if let Some((t, face)) = tangent {
                 // An edge within rounding of tangency: the half-chord cannot tell a tiny overlap
                 // from a tiny gap where the conic is sharply curved, the depth through that face
