@@ -56,5 +56,10 @@ fn small_polygon_contacts_do_not_allocate() {
     }
     let allocated = allocations() - before;
     assert!(touching > 100, "only {touching} contacts");
-    assert_eq!(allocated, 0, "{allocated} allocations for {} pairs", pairs.len());
+    assert_eq!(
+        allocated,
+        0,
+        "{allocated} allocations for {} pairs",
+        pairs.len()
+    );
 }

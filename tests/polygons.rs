@@ -152,7 +152,11 @@ fn chord_error(c: &Contact, crossings: &[[f64; 2]]) -> f64 {
     let d = |a: Vec2, b: [f64; 2]| (a.x - b[0]).hypot(a.y - b[1]);
     let (x, y) = (crossings[0], crossings[1]);
     let ulp = |v: f64| f64::from_bits(v.abs().to_bits() + 1) - v.abs();
-    let round = 2.0 * [p.x, p.y, q.x, q.y].into_iter().map(ulp).fold(0.0, f64::max);
+    let round = 2.0
+        * [p.x, p.y, q.x, q.y]
+            .into_iter()
+            .map(ulp)
+            .fold(0.0, f64::max);
     ((d(p, x).max(d(q, y))).min(d(p, y).max(d(q, x))) - round).max(0.0)
 }
 
