@@ -16,7 +16,7 @@
 //! their own double-double reference are in `tests/polygons.rs`.
 
 use dem2d::contact_law::{ContactSpec, EquivalentOverlap, LinearDamping, NormalForce, Scaled};
-use dem2d::dynamics::{BodyInit, Boundary, World};
+use dem2d::dynamics::{Boundary, World};
 use dem2d::geometry::overlap_area::DiskLens;
 use dem2d::geometry::{Polygon, Pose, Shape, Vec2, Wall};
 use dem2d::narrow_phase::{ContactState, Object, contact};
@@ -24,6 +24,9 @@ use dem2d::run::Simulation;
 use dem2d_validation::overlap_reference::{OverlapState, reference_overlap};
 use dem2d_validation::reference::{RObj, RShape};
 use dem2d_validation::rng::Rng;
+
+mod common;
+use common::{body, floor, worst_energy_error};
 
 /// k_n of the tests' linear law (undamped, frictionless).
 const KN: f64 = 1.0;
@@ -82,25 +85,14 @@ fn object(s: &Side) -> Object {
     }
 }
 
-fn init(shape: Shape, x: Vec2, angle: f64) -> BodyInit {
-    BodyInit {
-        shape,
-        position: x,
-        angle,
-        velocity: Vec2::zeros(),
-        omega: 0.0,
-        density: 1.0,
-    }
-}
-
 /// Force and moment (about its centroid) on body j from i, as the step computes them.
 fn force_on_j(i: &Side, j: &Side, nf: NormalForce) -> (Vec2, f64) {
     let Side::Body(sj, xj, tj) = *j else {
         panic!("j must be a body")
     };
     let (bodies, walls, k) = match *i {
-        Side::Body(si, xi, ti) => (vec![init(si, xi, ti), init(sj, xj, tj)], vec![], 1),
-        Side::Wall(w) => (vec![init(sj, xj, tj)], vec![Boundary::new(w, spec(nf))], 0),
+        Side::Body(si, xi, ti) => (vec![body(si, xi, ti), body(sj, xj, tj)], vec![], 1),
+        Side::Wall(w) => (vec![body(sj, xj, tj)], vec![Boundary::new(w, spec(nf))], 0),
     };
     let w = World::new(&bodies, walls, Vec2::zeros(), spec(nf), 1e-6);
     (w.bodies.force[k], w.bodies.torque[k])
@@ -684,23 +676,18 @@ fn energy_spec(nf: NormalForce, restitution: Option<f64>) -> ContactSpec {
     .with_normal_force(nf)
 }
 
-/// The largest |E − E₀|/E₀ over a run (E = kinetic + potential + elastic; nothing dissipates).
+/// The largest |E − E₀|/E₀ over `steps` steps (E = kinetic + potential + elastic; nothing
+/// dissipates).
 fn energy_drift(mut w: World, steps: u64) -> f64 {
-    let e0 = w.energies.total();
-    let mut worst = 0.0f64;
-    Simulation::new(&mut w)
-        .for_steps(steps)
-        .run_each(|w, _| worst = worst.max(((w.energies.total() - e0) / e0).abs()))
-        .unwrap();
-    worst
+    worst_energy_error(Simulation::new(&mut w).for_steps(steps))
 }
 
 /// An ellipse (1.5, 1) dropped tilted and spinning onto a floor: three bounces in 0.6 s;
 /// `phase` (0…1) shifts the release height so that impacts fall elsewhere within a step.
 fn ellipse_bouncing(nf: NormalForce, dt: f64, phase: f64) -> World {
     let spec = energy_spec(nf, None);
-    let floor = Boundary::new(Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(), spec);
-    let mut body = init(
+    let floor = floor(spec);
+    let mut body = body(
         Shape::Ellipse { a: 1.5, b: 1.0 },
         Vec2::new(0.0, 2.2 + 0.013 * phase),
         0.5,
@@ -713,8 +700,8 @@ fn ellipse_bouncing(nf: NormalForce, dt: f64, phase: f64) -> World {
 /// (0…1) shifts the first one's start.
 fn ellipses_colliding(nf: NormalForce, dt: f64, phase: f64) -> World {
     let e = Shape::Ellipse { a: 1.5, b: 1.0 };
-    let mut a = init(e, Vec2::new(-0.006 * phase, 0.0), 0.3);
-    let mut b = init(e, Vec2::new(4.0, 0.9), 1.2);
+    let mut a = body(e, Vec2::new(-0.006 * phase, 0.0), 0.3);
+    let mut b = body(e, Vec2::new(4.0, 0.9), 1.2);
     a.velocity = Vec2::new(60.0, 0.0);
     b.velocity = Vec2::new(-40.0, 5.0);
     b.omega = -2.0;
@@ -781,9 +768,9 @@ fn obtained_restitution(shape: Shape, angle: f64, nf: NormalForce, e: f64, hertz
     } else {
         energy_spec(nf, Some(e))
     };
-    let floor = Boundary::new(Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(), spec);
+    let floor = floor(spec);
     let h = support(&shape, angle, Vec2::new(0.0, -1.0));
-    let mut body = init(shape, Vec2::new(0.0, h + 0.05), angle);
+    let mut body = body(shape, Vec2::new(0.0, h + 0.05), angle);
     let v0 = 50.0;
     body.velocity = Vec2::new(0.0, -v0);
     let mut w = World::new(&[body], vec![floor], Vec2::zeros(), spec, 2e-7);

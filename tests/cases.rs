@@ -5,30 +5,12 @@
 
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
-fn dem2d(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_dem2d"))
-        .args(args)
-        .output()
-        .expect("run dem2d");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-    )
-}
+mod common;
+use common::{dem2d, scratch_path};
 
 fn cases_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("cases")
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("cases")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    d
 }
 
 fn summary(dir: &Path) -> Value {
@@ -60,7 +42,7 @@ fn every_case_runs() {
             assert_eq!(out.lines().count(), v.as_array().unwrap().len());
             continue;
         }
-        let dir = scratch(path.file_stem().unwrap().to_str().unwrap());
+        let dir = scratch_path(path.file_stem().unwrap().to_str().unwrap());
         // 3000 steps; 300 for the piles of more than a thousand bodies (they only start to
         // fall in either), 3000 for them too in the long form (`DEM2D_LONG_TESTS=1`).
         let bodies = v["bodies"].as_array().map_or(0, Vec::len);
@@ -122,7 +104,7 @@ fn every_bad_case_is_refused_with_its_error() {
             .unwrap_or_else(|| panic!("{name} has no expected error"))
             .as_str()
             .unwrap();
-        let dir = scratch(&format!("bad-{name}"));
+        let dir = scratch_path(&format!("bad-{name}"));
         let (code, out, err) = dem2d(&[
             "run",
             path.to_str().unwrap(),
@@ -158,7 +140,7 @@ fn a_blow_up_stops_with_step_and_body_and_keeps_its_output() {
       "walls": [{"point": [0, 0], "normal": [1, 0]}, {"point": [3.99, 0], "normal": [-1, 0]}],
       "bodies": [{"shape": {"type": "circle", "r": 1}, "position": [1, 0]},
                  {"shape": {"type": "circle", "r": 1}, "position": [3, 0]}]}"#;
-    let dir = scratch("blowup");
+    let dir = scratch_path("blowup");
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("blowup.json");
     std::fs::write(&file, case).unwrap();
@@ -214,7 +196,7 @@ fn a_blow_up_stops_with_step_and_body_and_keeps_its_output() {
 fn paper_settling_case_rests_at_1e_5_and_never_at_1e_4() {
     // P Fig. 4: rest at Δt = 1e-5 (P: 881 steps); at Δt = 1e-4 no rest within 0.5 s, |Δθ| keeps
     // fluctuating, and the Δt warning fires.
-    let fine = scratch("settle3_fine");
+    let fine = scratch_path("settle3_fine");
     let (code, _, err) = dem2d(&[
         "run",
         cases_dir().join("settle3_dt1e-5.json").to_str().unwrap(),
@@ -226,7 +208,7 @@ fn paper_settling_case_rests_at_1e_5_and_never_at_1e_4() {
     let s = summary(&fine);
     assert_eq!(s["quiescent"], true, "no rest at Δt = 1e-5");
     assert!(s["warnings"].as_array().unwrap().is_empty());
-    let coarse = scratch("settle3_coarse");
+    let coarse = scratch_path("settle3_coarse");
     let (code, _, err) = dem2d(&[
         "run",
         cases_dir().join("settle3_dt1e-4.json").to_str().unwrap(),
@@ -259,7 +241,7 @@ fn paper_drop_differs_visibly_with_floor_friction() {
     // P Fig. 2: the two frictions give visibly different motions (centimetres apart).
     let mut finals = Vec::new();
     for tag in ["mu01", "mu05"] {
-        let dir = scratch(&format!("drop_{tag}"));
+        let dir = scratch_path(&format!("drop_{tag}"));
         let case = cases_dir().join(format!("drop_rebound_{tag}.json"));
         let (code, _, err) = dem2d(&[
             "run",
@@ -291,7 +273,7 @@ fn the_dynamics_is_the_same_at_every_scale_of_the_accepted_ranges() {
         &std::fs::read_to_string(cases_dir().join("settle3_dt1e-5.json")).unwrap(),
     )
     .unwrap();
-    let dir = scratch("scales");
+    let dir = scratch_path("scales");
     std::fs::create_dir_all(&dir).unwrap();
     let run = |e: i32| -> Vec<[f64; 5]> {
         let s = 2f64.powi(e);

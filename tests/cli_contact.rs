@@ -2,35 +2,15 @@
 //! refused with exit code 2, a message naming the pair and the field, and no output on stdout.
 
 use serde_json::Value;
-use std::io::Write;
-use std::process::{Command, Stdio};
+use std::process::Command;
 
-fn dem2d(args: &[&str], stdin: &str) -> (i32, String, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_dem2d"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("run dem2d");
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(stdin.as_bytes())
-        .unwrap();
-    let out = child.wait_with_output().unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-    )
-}
+mod common;
+use common::{bin, dem2d_with_input};
 
 #[test]
 fn demo_file_covers_every_pair_kind() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cases/contacts_demo.json");
-    let (code, out, err) = dem2d(&["contact", path], "");
+    let (code, out, err) = dem2d_with_input(&["contact", path], "");
     assert_eq!(code, 0, "{err}");
     let input: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
     let lines: Vec<Value> = out
@@ -91,7 +71,7 @@ fn demo_file_covers_every_pair_kind() {
 fn numbers_round_trip() {
     let input = r#"[{"i": {"shape": {"type": "ellipse", "a": 1.5, "b": 1.0}, "position": [0, 0], "angle": 0.3},
                      "j": {"shape": {"type": "ellipse", "a": 1.5, "b": 1.0}, "position": [2.2, 1.1], "angle": -0.8}}]"#;
-    let (code, out, _) = dem2d(&["contact", "-"], input);
+    let (code, out, _) = dem2d_with_input(&["contact", "-"], input);
     assert_eq!(code, 0);
     // The printed depth reads back to the very double the library computed.
     let v: Value = serde_json::from_str(out.trim()).unwrap();
@@ -204,7 +184,7 @@ fn bad_input_is_refused_with_the_field_named() {
         ),
     ];
     for (input, expected) in cases {
-        let (code, out, err) = dem2d(&["contact", "-"], &input);
+        let (code, out, err) = dem2d_with_input(&["contact", "-"], &input);
         assert_eq!(code, 2, "input {input}: stderr {err}");
         assert!(out.is_empty(), "no partial output for {input}: {out}");
         assert!(
@@ -214,7 +194,7 @@ fn bad_input_is_refused_with_the_field_named() {
         assert!(err.contains("<stdin>"), "message names the input: {err}");
         assert!(!err.contains("panicked"), "{err}");
     }
-    let (code, out, err) = dem2d(&["contact", "/nonexistent/pairs.json"], "");
+    let (code, out, err) = dem2d_with_input(&["contact", "/nonexistent/pairs.json"], "");
     assert_eq!(code, 2);
     assert!(
         out.is_empty() && err.contains("/nonexistent/pairs.json"),
@@ -227,13 +207,13 @@ fn a_byte_order_mark_is_accepted_and_no_negative_zero_is_printed() {
     // The demo file printed a `-0.0` (a sign of zero carries no meaning in a contact record);
     // read with a UTF-8 byte-order mark in front, it must give the same records.
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cases/contacts_demo.json");
-    let (code, plain, err) = dem2d(&["contact", path], "");
+    let (code, plain, err) = dem2d_with_input(&["contact", path], "");
     assert_eq!(code, 0, "{err}");
     for zero in ["-0.0,", "-0.0]"] {
         assert!(!plain.contains(zero), "{plain}");
     }
     let text = std::fs::read_to_string(path).unwrap();
-    let (code, bom, err) = dem2d(&["contact", "-"], &format!("\u{feff}{text}"));
+    let (code, bom, err) = dem2d_with_input(&["contact", "-"], &format!("\u{feff}{text}"));
     assert_eq!(code, 0, "{err}");
     assert_eq!(bom, plain);
 }
@@ -243,7 +223,7 @@ fn a_tiny_non_zero_wall_normal_is_a_direction() {
     // [1e-200, 1e-200] has a squared length that underflows; it is still the direction (1, 1).
     let input = r#"[{"i": {"wall": {"point": [0, 0], "normal": [1e-200, 1e-200]}},
                      "j": {"shape": {"type": "circle", "r": 1}, "position": [0, 0]}}]"#;
-    let (code, out, err) = dem2d(&["contact", "-"], input);
+    let (code, out, err) = dem2d_with_input(&["contact", "-"], input);
     assert_eq!(code, 0, "{err}");
     let v: Value = serde_json::from_str(out.trim()).unwrap();
     let h = std::f64::consts::FRAC_1_SQRT_2;
@@ -261,7 +241,7 @@ fn a_full_standard_output_is_an_error_not_a_panic() {
         return;
     };
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cases/contacts_demo.json");
-    let out = Command::new(env!("CARGO_BIN_EXE_dem2d"))
+    let out = Command::new(bin())
         .args(["contact", path])
         .stdout(full)
         .output()
@@ -278,7 +258,7 @@ fn an_endless_input_is_refused_at_the_size_limit() {
         eprintln!("no /dev/zero here: skipped");
         return;
     }
-    let (code, out, err) = dem2d(&["contact", "/dev/zero"], "");
+    let (code, out, err) = dem2d_with_input(&["contact", "/dev/zero"], "");
     assert_eq!(code, 2, "{err}");
     assert!(out.is_empty());
     assert!(
@@ -294,7 +274,7 @@ fn a_clump_pair_prints_every_member_contact() {
     let input = r#"[{"i": {"wall": {"point": [0, 0], "normal": [0, 1]}},
                      "j": {"shape": {"type": "clump", "disks": [{"center": [-0.6, 0], "r": 0.5}, {"center": [0.6, 0], "r": 0.5}]},
                            "position": [2, 0.45]}}]"#;
-    let (code, out, err) = dem2d(&["contact", "-"], input);
+    let (code, out, err) = dem2d_with_input(&["contact", "-"], input);
     assert_eq!(code, 0, "{err}");
     let v: Value = serde_json::from_str(out.trim()).unwrap();
     let members = v["members"].as_array().unwrap();

@@ -12,42 +12,17 @@
 //! - a **dropped clump comes to rest** on a floor with the energy account closed;
 //! - the **equal-area ellipse fit** has the ellipse's area.
 
-use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
-use dem2d::dynamics::{BodyInit, Boundary, World};
-use dem2d::geometry::{Clump, Shape, Vec2, Wall};
+use dem2d::contact_law::ContactSpec;
+use dem2d::dynamics::{BodyInit, World};
+use dem2d::geometry::{Clump, Shape, Vec2};
 use dem2d::run::Simulation;
 use std::f64::consts::PI;
 
+mod common;
+use common::{body, floor, linear, worst_energy_error};
+
 fn clump(disks: &[([f64; 2], f64)]) -> Clump {
     Clump::new(disks).unwrap()
-}
-
-fn init(shape: Shape, x: Vec2, angle: f64) -> BodyInit {
-    BodyInit {
-        shape,
-        position: x,
-        angle,
-        velocity: Vec2::zeros(),
-        omega: 0.0,
-        density: 1.0,
-    }
-}
-
-fn linear(kn: f64, eta: f64, friction: f64) -> ContactSpec {
-    ContactSpec::linear(
-        Scaled::Absolute(kn),
-        Scaled::Absolute(kn),
-        LinearDamping::Dashpots {
-            eta_n: Scaled::Absolute(eta),
-            eta_s: Scaled::Absolute(eta),
-        },
-        friction,
-    )
-    .with_normal_force(NormalForce::Depth)
-}
-
-fn floor(spec: ContactSpec) -> Boundary {
-    Boundary::new(Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(), spec)
 }
 
 /// Area, centroid and polar moment about the centroid over area (`I/m`) of a union of disks by
@@ -185,7 +160,7 @@ fn a_clump_of_one_disk_steps_like_the_circle() {
     // Dropped tilted and spinning onto a rough floor with damping: the same run as a circle.
     let spec = linear(36400.0 * 980.0 * PI, 50.0, 0.4);
     let run = |shape: Shape| {
-        let mut b = init(shape, Vec2::new(0.2, 1.5), 0.3);
+        let mut b = body(shape, Vec2::new(0.2, 1.5), 0.3);
         b.velocity = Vec2::new(20.0, 0.0);
         b.omega = 5.0;
         let mut w = World::new(&[b], vec![floor(spec)], Vec2::new(0.0, -980.0), spec, 1e-5);
@@ -222,7 +197,7 @@ fn a_two_disk_clump_pressed_into_a_floor_has_the_hand_force_and_moment() {
     let c = Shape::Clump(clump(&[([-0.6, 0.0], 0.5), ([0.6, 0.0], 0.5)]));
     let (y, th) = (0.45f64, 0.05f64);
     let w = World::new(
-        &[init(c, Vec2::new(2.0, y), th)],
+        &[body(c, Vec2::new(2.0, y), th)],
         vec![floor(spec)],
         Vec2::zeros(),
         spec,
@@ -258,8 +233,8 @@ fn a_clump_pair_is_swap_symmetric() {
         Shape::Clump(three()),
         Shape::Clump(clump(&[([0.0, 0.0], 0.5), ([0.6, 0.0], 0.5)])),
     );
-    let a = init(p, Vec2::new(0.1, 0.05), 0.4);
-    let b = init(q, Vec2::new(1.25, 0.3), -0.7);
+    let a = body(p, Vec2::new(0.1, 0.05), 0.4);
+    let b = body(q, Vec2::new(1.25, 0.3), -0.7);
     let [(fa, ma), (fb, mb)] = pair_forces(a, b, spec);
     let [(gb, nb), (ga, na)] = pair_forces(b, a, spec);
     assert!(fa.norm() > 0.0, "the pair must touch");
@@ -281,7 +256,7 @@ fn a_clump_pair_is_swap_symmetric() {
         Shape::Polygon(dem2d::geometry::Polygon::regular(5, 0.6, 0.1).unwrap()),
         Shape::Rectangle { w: 1.0, h: 0.6 },
     ] {
-        let o = init(other, Vec2::new(1.0, 0.5), 0.3);
+        let o = body(other, Vec2::new(1.0, 0.5), 0.3);
         let [(f1, m1), (f2, _)] = pair_forces(a, o, spec);
         let [(g2, _), (g1, n1)] = pair_forces(o, a, spec);
         assert!(f1.norm() > 0.0, "{other:?} must touch");
@@ -304,7 +279,7 @@ fn a_frictionless_clump_pair_does_no_work_around_a_closed_loop() {
     let spec = linear(1e5, 0.0, 0.0);
     let ci = Shape::Clump(clump(&[([0.0, 0.0], 0.6), ([0.0, 1.2], 0.5)]));
     let cj = Shape::Clump(clump(&[([0.0, 0.0], 0.55), ([0.0, 1.2], 0.55)]));
-    let a = init(ci, Vec2::zeros(), 0.0);
+    let a = body(ci, Vec2::zeros(), 0.0);
     let path = |s: f64| {
         let t = 2.0 * PI * s;
         (
@@ -326,7 +301,7 @@ fn a_frictionless_clump_pair_does_no_work_around_a_closed_loop() {
         let s = k as f64 / n as f64;
         let (x, th) = path(s);
         let (dx, dth) = dpath(s);
-        let w = World::new(&[a, init(cj, x, th)], vec![], Vec2::zeros(), spec, 1e-6);
+        let w = World::new(&[a, body(cj, x, th)], vec![], Vec2::zeros(), spec, 1e-6);
         let c = w.contacts.len();
         if touching == usize::MAX {
             touching = c;
@@ -360,15 +335,10 @@ fn a_dropped_clump_comes_to_rest_and_its_energy_account_closes() {
         1.2 / 2.0f64.sqrt(),
     )));
     let run = |spec: ContactSpec, dt: f64, until: f64, c: Shape| {
-        let mut b = init(c, Vec2::new(0.0, 3.0), 0.6);
+        let mut b = body(c, Vec2::new(0.0, 3.0), 0.6);
         b.omega = 2.0;
         let mut w = World::new(&[b], vec![floor(spec)], Vec2::new(0.0, -980.0), spec, dt);
-        let e0 = w.energies.total();
-        let mut worst = 0.0f64;
-        Simulation::new(&mut w)
-            .until_time(until)
-            .run_each(|w, _| worst = worst.max(((w.energies.total() - e0) / e0).abs()))
-            .unwrap();
+        let worst = worst_energy_error(Simulation::new(&mut w).until_time(until));
         (worst, w)
     };
     let elastic = linear(36400.0 * 980.0, 0.0, 0.0);

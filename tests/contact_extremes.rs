@@ -21,102 +21,15 @@
 //! are products of up to eight lengths: at 2^-132 it loses ~1e-4 of the depth, at 2^132 it
 //! misjudges a deep pair).
 
-use dem2d::geometry::{Pose, Shape, Vec2, Wall};
+use dem2d::geometry::{Shape, Vec2};
 use dem2d::narrow_phase::{Contact, ContactState, Object, contact};
 use dem2d::scene::ranges::{MAX_EXTENT_RATIO, MAX_MAGNITUDE, MIN_SCALE, Placed, check_extent};
-use dem2d_validation::reference::{RContact, RObj, RShape, RState, depth_along, reference_contact};
+use dem2d_validation::pairs::{
+    ANGLE_BAR, CLASS_BAR, DEPTH_BAR, POINT_BAR, Spec, angle_between, same_state, support_point,
+    ulp, unit,
+};
+use dem2d_validation::reference::{RContact, RState, depth_along, reference_contact};
 use dem2d_validation::rng::Rng;
-
-const DEPTH_BAR: f64 = 1e-12;
-const ANGLE_BAR: f64 = 1e-8;
-const POINT_BAR: f64 = 1e-9;
-const CLASS_BAR: f64 = 1e-12;
-
-/// One side of a pair at sizes of order one.
-#[derive(Clone, Copy, Debug)]
-enum Spec {
-    Body(Shape, [f64; 2], f64),
-    Wall([f64; 2], [f64; 2]),
-}
-
-impl Spec {
-    /// Lengths multiplied by `k` (a power of two: exact).
-    fn scaled(&self, k: f64) -> Spec {
-        match *self {
-            Spec::Body(s, p, t) => Spec::Body(
-                match s {
-                    Shape::Circle { r } => Shape::Circle { r: r * k },
-                    Shape::Ellipse { a, b } => Shape::Ellipse { a: a * k, b: b * k },
-                    Shape::Rectangle { w, h } => Shape::Rectangle { w: w * k, h: h * k },
-                    Shape::Clump(_) => unreachable!("no clumps in these families"),
-                    Shape::Polygon(p) => Shape::Polygon(
-                        dem2d::geometry::Polygon::new(
-                            &p.vertices
-                                .iter()
-                                .map(|v| [v.x * k, v.y * k])
-                                .collect::<Vec<_>>(),
-                        )
-                        .unwrap(),
-                    ),
-                },
-                [p[0] * k, p[1] * k],
-                t,
-            ),
-            Spec::Wall(p, n) => Spec::Wall([p[0] * k, p[1] * k], n),
-        }
-    }
-    fn object(&self) -> Object {
-        match *self {
-            Spec::Body(shape, p, t) => Object::Body {
-                shape,
-                pose: Pose::new(Vec2::from(p), t),
-            },
-            Spec::Wall(p, n) => Object::Wall(Wall::new(Vec2::from(p), Vec2::from(n)).unwrap()),
-        }
-    }
-    fn reference(&self) -> RObj {
-        match *self {
-            Spec::Body(shape, pos, angle) => RObj::Body {
-                shape: match shape {
-                    Shape::Circle { r } => RShape::Circle { r },
-                    Shape::Ellipse { a, b } => RShape::Ellipse { a, b },
-                    Shape::Rectangle { w, h } => RShape::Rectangle { w, h },
-                    Shape::Polygon(_) | Shape::Clump(_) => {
-                        unreachable!("no polygons or clumps in these families")
-                    }
-                },
-                pos,
-                angle,
-            },
-            Spec::Wall(point, normal) => RObj::Wall { point, normal },
-        }
-    }
-    fn sizes(&self) -> Vec<f64> {
-        match *self {
-            Spec::Body(Shape::Circle { r }, ..) => vec![r],
-            Spec::Body(Shape::Ellipse { a, b }, ..) => vec![a, b],
-            Spec::Body(Shape::Rectangle { w, h }, ..) => vec![w, h],
-            Spec::Body(Shape::Polygon(p), ..) => {
-                vec![2.0 * p.inscribed_radius, 2.0 * p.bounding_radius]
-            }
-            Spec::Body(Shape::Clump(c), ..) => {
-                vec![2.0 * c.smallest_radius, 2.0 * c.bounding_radius]
-            }
-            Spec::Wall(..) => vec![],
-        }
-    }
-    fn coordinates(&self) -> [f64; 2] {
-        match *self {
-            Spec::Body(_, p, _) | Spec::Wall(p, _) => p,
-        }
-    }
-    fn bounding(&self) -> f64 {
-        match *self {
-            Spec::Body(s, ..) => s.bounding_radius(),
-            Spec::Wall(..) => 0.0,
-        }
-    }
-}
 
 /// A shape of `kind` (0 circle, 1 ellipse, 2 rectangle) with an aspect ratio up to 3 and its
 /// sizes within `lo … hi` (its larger size `hi` when it is the large body, its smaller `lo`
@@ -135,34 +48,6 @@ fn shape(kind: usize, large: bool, lo: f64, hi: f64, rng: &mut Rng) -> Shape {
         1 => Shape::Ellipse { a: big, b: small },
         _ => Shape::Rectangle { w: big, h: small },
     }
-}
-
-fn unit(t: f64) -> [f64; 2] {
-    [t.cos(), t.sin()]
-}
-
-/// The point of `shape` (centred at the origin, at `angle`) farthest along the unit `n`.
-fn support_point(shape: &Shape, angle: f64, n: [f64; 2]) -> [f64; 2] {
-    let (s, c) = angle.sin_cos();
-    let (ux, uy) = (c * n[0] + s * n[1], -s * n[0] + c * n[1]);
-    let (px, py) = match *shape {
-        Shape::Circle { r } => (r * ux, r * uy),
-        Shape::Ellipse { a, b } => {
-            let h = ((a * ux) * (a * ux) + (b * uy) * (b * uy)).sqrt();
-            (a * a * ux / h, b * b * uy / h)
-        }
-        Shape::Rectangle { w, h } => (0.5 * w * ux.signum(), 0.5 * h * uy.signum()),
-        Shape::Polygon(p) => {
-            let v = p
-                .vertices
-                .iter()
-                .max_by(|a, b| (a.x * ux + a.y * uy).total_cmp(&(b.x * ux + b.y * uy)))
-                .expect("vertices");
-            (v.x, v.y)
-        }
-        Shape::Clump(_) => unreachable!("no clumps in these families"),
-    };
-    [c * px - s * py, s * px + c * py]
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -274,28 +159,6 @@ fn unit_pair(
     (Spec::Body(si, pi, ti), Spec::Body(sj, pj, tj), dir)
 }
 
-fn angle_between(a: Vec2, b: [f64; 2]) -> f64 {
-    (a.x * b[1] - a.y * b[0])
-        .atan2(a.x * b[0] + a.y * b[1])
-        .abs()
-}
-
-fn ulp(x: f64) -> f64 {
-    let x = x.abs().max(f64::MIN_POSITIVE);
-    f64::from_bits(x.to_bits() + 1) - x
-}
-
-fn same_state(k: ContactState, r: RState) -> bool {
-    matches!(
-        (k, r),
-        (ContactState::Separated, RState::Separated)
-            | (ContactState::Touching, RState::Touching)
-            | (ContactState::Overlap, RState::Overlap)
-            | (ContactState::Deep, RState::Deep(_))
-            | (ContactState::Contained, RState::Contained)
-    )
-}
-
 /// Checks the scaled pair against the unit-size reference scaled by `k`; returns what failed.
 fn check(i: &Spec, j: &Spec, along: [f64; 2], k: f64) -> Result<ContactState, String> {
     let (ri, rj) = (i.reference(), j.reference());
@@ -361,7 +224,7 @@ fn check(i: &Spec, j: &Spec, along: [f64; 2], k: f64) -> Result<ContactState, St
     if !swapped_ok {
         return Err(format!("swap: {kc:?} vs {ks:?}"));
     }
-    let a_max = i.bounding().max(j.bounding()); // at unit size
+    let a_max = i.size().max(j.size()); // at unit size
     let along_depth = depth_along(&ri, &rj, along);
     let decisive = match r.state {
         RState::Overlap => r.depth.unwrap() >= CLASS_BAR * a_max,

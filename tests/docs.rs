@@ -16,6 +16,8 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+mod common;
+
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
@@ -329,6 +331,31 @@ fn the_case_file_reference_lists_exactly_the_keys_the_reader_accepts() {
         documented.remove("walls[].<contact key>"),
         "the reference should say that a wall takes every contact key"
     );
+    // `materials.<name>.<contact key>` every contact key but the scene's own (`model`,
+    // `normal_force`), `pairs[].<contact key>` those and not the moduli either.
+    for (row, prefix, refused) in [
+        (
+            "materials.<name>.<contact key>",
+            "materials.<name>",
+            &["model", "normal_force"][..],
+        ),
+        (
+            "pairs[].<contact key>",
+            "pairs[]",
+            &["model", "normal_force", "young", "poisson"][..],
+        ),
+    ] {
+        assert!(
+            documented.remove(row),
+            "the reference should say which contact keys `{prefix}` takes"
+        );
+        for k in contact_keys
+            .iter()
+            .filter(|k| !refused.contains(&k.as_str()))
+        {
+            documented.insert(format!("{prefix}.{k}"));
+        }
+    }
     for k in contact_keys {
         documented.insert(format!("walls[].{k}"));
     }
@@ -403,7 +430,7 @@ fn the_outputs_reference_lists_every_file_and_column_a_run_writes() {
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("case.json"), &case).unwrap();
     let out = dir.join("run");
-    let status = Command::new(env!("CARGO_BIN_EXE_dem2d"))
+    let status = Command::new(common::bin())
         .args(["run", "case.json", "--out", "run", "--quiet"])
         .current_dir(&dir)
         .status()
@@ -495,7 +522,7 @@ fn the_command_line_reference_names_every_option() {
     for command in [
         "run", "plot", "analyze", "contact", "generate", "verify", "study",
     ] {
-        let out = Command::new(env!("CARGO_BIN_EXE_dem2d"))
+        let out = Command::new(common::bin())
             .args(["help", command])
             .output()
             .unwrap();

@@ -7,38 +7,22 @@ use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::{Shape, Vec2, Wall};
 use dem2d::run::Simulation;
 
-fn body(shape: Shape, x: f64, y: f64, angle: f64, v: Vec2, omega: f64) -> BodyInit {
+mod common;
+use common::{body, floor, linear};
+
+/// A body of `shape` at `(x, y)` and `angle`, moving with `v` and `omega`.
+fn moving(shape: Shape, x: f64, y: f64, angle: f64, v: Vec2, omega: f64) -> BodyInit {
     BodyInit {
-        shape,
-        position: Vec2::new(x, y),
-        angle,
         velocity: v,
         omega,
-        density: 1.0,
+        ..body(shape, Vec2::new(x, y), angle)
     }
-}
-
-fn linear(kn: f64, ks: f64, eta: f64, friction: f64) -> ContactSpec {
-    ContactSpec::linear(
-        Scaled::Absolute(kn),
-        Scaled::Absolute(ks),
-        LinearDamping::Dashpots {
-            eta_n: Scaled::Absolute(eta),
-            eta_s: Scaled::Absolute(eta),
-        },
-        friction,
-    )
-    .with_normal_force(NormalForce::Depth)
-}
-
-fn floor(spec: ContactSpec) -> Boundary {
-    Boundary::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), spec)
 }
 
 /// One body at (0, y), angle 0, with velocity `v` and no spin, above the floor `y = 0`.
 fn on_floor(shape: Shape, y: f64, v: Vec2, gravity: Vec2, spec: ContactSpec, dt: f64) -> World {
     World::new(
-        &[body(shape, 0.0, y, 0.0, v, 0.0)],
+        &[moving(shape, 0.0, y, 0.0, v, 0.0)],
         vec![floor(spec)],
         gravity,
         spec,
@@ -70,9 +54,9 @@ fn free_fall_is_exact_to_round_off() {
     // Velocity Verlet integrates constant acceleration exactly: x = x0 + v0 t + ½ g t².
     let g = Vec2::new(0.0, -980.0);
     let v0 = Vec2::new(3.0, 20.0);
-    let spec = linear(1e6, 1e6, 0.0, 0.5);
+    let spec = linear(1e6, 0.0, 0.5);
     let mut w = World::new(
-        &[body(
+        &[moving(
             Shape::Ellipse { a: 1.5, b: 1.0 },
             0.0,
             100.0,
@@ -132,7 +116,7 @@ fn disk_impact_matches_the_exact_clamped_spring_dashpot() {
         // ~20 000 steps per contact: the contact's start and end fall between steps, so the
         // measured times carry O(Δt/t_c) = 5e-5.
         let dt = tc_exact / 20_000.0;
-        let spec = linear(k, k, eta, 0.0);
+        let spec = linear(k, eta, 0.0);
         let mut w = on_floor(
             Shape::Circle { r },
             r,
@@ -159,7 +143,7 @@ fn sliding_disk_ends_rolling_at_two_thirds_speed() {
     let m = std::f64::consts::PI;
     let kn: f64 = 1e8;
     let eta = 2.0 * 0.7 * (kn * m).sqrt();
-    let spec = linear(kn, kn, eta, 0.3);
+    let spec = linear(kn, eta, 0.3);
     let depth = m * g / kn;
     let mut w = on_floor(
         Shape::Circle { r },
@@ -189,7 +173,7 @@ fn sliding_square_decelerates_at_mu_g_and_stops_at_v0_squared_over_2_mu_g() {
     let m = side * side;
     let kn: f64 = 1e8;
     let eta = 2.0 * 0.7 * (kn * m).sqrt();
-    let spec = linear(kn, kn, eta, mu);
+    let spec = linear(kn, eta, mu);
     let y0 = 0.5 * side - m * g / kn;
     let mut w = on_floor(
         Shape::Rectangle { w: side, h: side },
@@ -259,7 +243,7 @@ fn ellipse_on_its_flat_side_sinks_mg_over_kn() {
 /// Maximum |E(t) − E(0)| / E(0) of an undamped frictionless disk bouncing on a floor (four
 /// bounces), E = kinetic + potential + elastic.
 fn bounce_energy_error(dt: f64) -> f64 {
-    let spec = linear(1e6, 1e6, 0.0, 0.0);
+    let spec = linear(1e6, 0.0, 0.0);
     let mut w = on_floor(
         Shape::Circle { r: 1.0 },
         3.0,
@@ -311,9 +295,9 @@ fn elastic_bounce_conserves_energy_to_second_order_in_dt() {
 fn free_collision_conserves_momentum_to_round_off() {
     // Two ellipses, friction and dashpots, no gravity: forces are equal and opposite at one point,
     // so linear and angular momentum are conserved to round-off while energy is dissipated.
-    let spec = linear(1e5, 1e5, 50.0, 0.5);
+    let spec = linear(1e5, 50.0, 0.5);
     let bodies = [
-        body(
+        moving(
             Shape::Ellipse { a: 1.5, b: 1.0 },
             0.0,
             0.0,
@@ -321,7 +305,7 @@ fn free_collision_conserves_momentum_to_round_off() {
             Vec2::new(5.0, 0.5),
             1.0,
         ),
-        body(
+        moving(
             Shape::Ellipse { a: 1.2, b: 0.5 },
             4.0,
             0.7,
@@ -379,11 +363,13 @@ fn rotating_the_whole_scene_rotates_the_trajectory() {
     let psi: f64 = 0.7391;
     let (s, c) = psi.sin_cos();
     let rot = |v: Vec2| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y);
-    let spec = linear(36400.0 * 980.0, 36400.0 * 980.0, 500.0, 0.3);
+    let spec = linear(36400.0 * 980.0, 500.0, 0.3);
     let make = |r: &dyn Fn(Vec2) -> Vec2, angle: f64| {
         let wall = Wall::new(r(Vec2::new(0.0, 0.0)), r(Vec2::y())).unwrap();
         World::new(
             &[BodyInit {
+                material: 0,
+                prescribed: false,
                 shape: Shape::Ellipse { a: 1.5, b: 1.0 },
                 position: r(Vec2::new(0.3, 3.0)),
                 angle: 0.4 + angle,
@@ -491,14 +477,14 @@ fn network_critical_step_matches_the_modes_of_closed_form_systems() {
     let k: f64 = 1e6;
     // Two disks squeezed between two walls, frictionless: a chain wall–m–m–wall of three equal
     // springs, eigenvalues (k/m)(2 ∓ 1): the stiffest ω² = 3k/m. Undamped: Δt = 2/ω.
-    let spec = linear(k, k, 0.0, 0.0);
+    let spec = linear(k, 0.0, 0.0);
     let walls = vec![
         Boundary::new(Wall::new(Vec2::new(0.0, 0.0), Vec2::x()).unwrap(), spec),
         Boundary::new(Wall::new(Vec2::new(3.97, 0.0), -Vec2::x()).unwrap(), spec),
     ];
     let disks = [
-        body(Shape::Circle { r: 1.0 }, 0.99, 0.0, 0.0, Vec2::zeros(), 0.0),
-        body(Shape::Circle { r: 1.0 }, 2.98, 0.0, 0.0, Vec2::zeros(), 0.0),
+        moving(Shape::Circle { r: 1.0 }, 0.99, 0.0, 0.0, Vec2::zeros(), 0.0),
+        moving(Shape::Circle { r: 1.0 }, 2.98, 0.0, 0.0, Vec2::zeros(), 0.0),
     ];
     let mut w = World::new(&disks, walls, Vec2::zeros(), spec, 1e-6);
     assert_eq!(w.contacts.len(), 3);
@@ -512,7 +498,7 @@ fn network_critical_step_matches_the_modes_of_closed_form_systems() {
     // height above the floor), w = 1/m + h²/I = (1 + 2h²)/m ≈ 3/m, ω² = k_s w, damping ratio
     // ζ = ηw/(2ω): Δt = 2(√(1+ζ²) − ζ)/ω of the stiffer of the two.
     let eta = 100.0;
-    let spec = linear(k, k, eta, 0.5);
+    let spec = linear(k, eta, 0.5);
     let mut w = on_floor(
         Shape::Circle { r: 1.0 },
         1.0 - 1e-4,

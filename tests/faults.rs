@@ -4,22 +4,12 @@
 //! code, the message, `summary.json` and the CSV files left behind.
 
 use serde_json::Value;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-fn bin() -> &'static str {
-    env!("CARGO_BIN_EXE_dem2d")
-}
-
-fn dem2d(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(bin()).args(args).output().expect("run dem2d");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-    )
-}
+mod common;
+use common::{bin, dem2d, scratch_path};
 
 fn case(name: &str) -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -28,14 +18,6 @@ fn case(name: &str) -> String {
         .to_str()
         .unwrap()
         .to_string()
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("faults")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    d
 }
 
 fn summary(dir: &Path) -> Value {
@@ -100,7 +82,7 @@ fn signal(child: &Child, sig: &str) {
 
 /// A long run (10⁴ disks settling, minutes) stopped by `sig`: exit code, status, whole lines.
 fn interrupted_by(sig: &str, name: &str, code: i32) {
-    let dir = scratch(&format!("signal_{name}"));
+    let dir = scratch_path(&format!("signal_{name}"));
     let mut child = Command::new(bin())
         .args([
             "run",
@@ -145,7 +127,7 @@ fn sigint_and_sigterm_stop_after_a_whole_step() {
 
 #[test]
 fn a_run_into_a_directory_of_an_earlier_run_is_refused_or_replaces_it_whole() {
-    let dir = scratch("rerun");
+    let dir = scratch_path("rerun");
     let d = dir.to_str().unwrap();
     let settle = case("settle3_dt1e-5.json");
     let (code, _, err) = dem2d(&["run", &settle, "--out", d, "--quiet", "--max-steps", "300"]);
@@ -218,7 +200,7 @@ fn a_full_disk_stops_the_run_with_the_file_named_and_whole_lines() {
     // EFBIG, as a full disk fails with ENOSPC; no privileges needed. A 1-body case writes about
     // 150 000 increment rows (10 MB); the limit is 400 blocks (200 or 400 KB), so that a few
     // buffers of rows are written before one fails part-way.
-    let dir = scratch("full_disk");
+    let dir = scratch_path("full_disk");
     let script = format!(
         "trap '' XFSZ; ulimit -f 400 && exec \"$0\" run {} --out {} --quiet",
         case("throw_circle.json"),
@@ -256,7 +238,7 @@ fn a_full_standard_output_is_an_error_for_every_command() {
         eprintln!("no /dev/full here: skipped");
         return;
     };
-    let dir = scratch("stdout_full");
+    let dir = scratch_path("stdout_full");
     let d = dir.to_str().unwrap();
     let settle = case("settle3_dt1e-5.json");
     let runs: [&[&str]; 3] = [
@@ -288,7 +270,7 @@ fn an_endless_case_file_is_refused_at_the_size_limit() {
         eprintln!("no /dev/zero here: skipped");
         return;
     }
-    let dir = scratch("dev_zero");
+    let dir = scratch_path("dev_zero");
     let (code, _, err) = dem2d(&["run", "/dev/zero", "--out", dir.to_str().unwrap()]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("/dev/zero: larger than 256 MiB"), "{err}");
@@ -299,7 +281,7 @@ fn an_endless_case_file_is_refused_at_the_size_limit() {
 fn a_case_name_is_only_a_file_name_under_runs() {
     // Without --out, the name `../../escape` must give runs/_._.._escape, inside the working
     // directory; an absolute name likewise.
-    let work = scratch("names");
+    let work = scratch_path("names");
     std::fs::create_dir_all(&work).unwrap();
     let text = std::fs::read_to_string(case("settle3_dt1e-5.json")).unwrap();
     let mut v: Value = serde_json::from_str(&text).unwrap();
@@ -345,7 +327,7 @@ fn bodies_overlapping_at_the_start_are_named_in_a_warning() {
                  {"shape": {"type": "ellipse", "a": 1.5, "b": 1.0}, "position": [0, 5]},
                  {"shape": {"type": "circle", "r": 1.0}, "position": [10, 0.5]},
                  {"shape": {"type": "circle", "r": 1.0}, "position": [20, 3]}]}"#;
-    let dir = scratch("overlap");
+    let dir = scratch_path("overlap");
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("case.json");
     std::fs::write(&file, text).unwrap();
@@ -394,7 +376,7 @@ fn bodies_overlapping_at_the_start_are_named_in_a_warning() {
 
 #[test]
 fn a_case_file_with_a_byte_order_mark_runs_as_without() {
-    let dir = scratch("bom");
+    let dir = scratch_path("bom");
     std::fs::create_dir_all(&dir).unwrap();
     let text = std::fs::read_to_string(case("settle3_dt1e-5.json")).unwrap();
     let file = dir.join("bom.json");
@@ -415,7 +397,7 @@ fn a_case_file_with_a_byte_order_mark_runs_as_without() {
 
 #[test]
 fn every_way_a_run_ends_has_its_status_and_exit_code() {
-    let dir = scratch("statuses");
+    let dir = scratch_path("statuses");
     let run = |case_file: &str, out: &str, extra: &[&str]| {
         let out = dir.join(out);
         let mut args = vec!["run", case_file, "--out", out.to_str().unwrap(), "--quiet"];

@@ -70,6 +70,8 @@ fn random_scene(seed: u64, n: usize, escapees: usize) -> World {
             rng.range(0.0, std::f64::consts::TAU)
         };
         bodies.push(BodyInit {
+            material: 0,
+            prescribed: false,
             shape,
             position: Vec2::new(1.1 * col as f64 + 1.0, 1.1 * row as f64 + 1.0),
             angle: rng.range(0.0, 6.3),

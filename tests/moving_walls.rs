@@ -35,6 +35,8 @@ fn spec(damping: LinearDamping, friction: f64, nf: NormalForce) -> ContactSpec {
 
 fn body(shape: Shape, x: f64, y: f64, v: Vec2) -> BodyInit {
     BodyInit {
+        material: 0,
+        prescribed: false,
         shape,
         position: Vec2::new(x, y),
         angle: 0.0,
@@ -215,6 +217,8 @@ fn servo_on_pile(n: usize, sigma: f64) -> (World, Vec<f64>, f64) {
     walls.push(Boundary::moving(wall, case.contact, Motion::Servo(servo)));
     let bodies: Vec<BodyInit> = (0..w.bodies.len())
         .map(|k| BodyInit {
+            material: 0,
+            prescribed: false,
             shape: w.bodies.shape[k],
             position: w.bodies.state[k].pose.position,
             angle: w.bodies.state[k].pose.angle(),

@@ -19,6 +19,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+mod common;
+
 /// Mutated cases run per test (`MUTATION_COUNT` overrides it, for a longer search).
 const MUTATIONS: usize = 300;
 /// Mutated cases of the long form (`DEM2D_LONG_TESTS=1`).
@@ -229,7 +231,7 @@ fn base_cases() -> Vec<(String, Value)> {
         }
     }
     // A small generated pile (walls on three sides, many contacts).
-    let pile = Command::new(env!("CARGO_BIN_EXE_dem2d"))
+    let pile = Command::new(common::bin())
         .args([
             "generate", "--shape", "ellipses", "--n", "24", "--seed", "3",
         ])
@@ -247,7 +249,7 @@ fn base_cases() -> Vec<(String, Value)> {
 
 /// Runs dem2d, killing it after [`TIMEOUT`]; `None` on a timeout.
 fn run_bounded(args: &[&str]) -> Option<(i32, String)> {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_dem2d"))
+    let mut child = Command::new(common::bin())
         .args(args)
         .stdout(Stdio::null())
         .stderr(Stdio::piped())

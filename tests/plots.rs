@@ -3,30 +3,10 @@
 //! the file named (`dem2d-lab figures` is tested in lab/tests/figures.rs).
 //! (Whether the pictures read well is checked by eye on PNGs: `bash .ci/figures`.)
 
-use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn dem2d(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_dem2d"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("run dem2d");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-    )
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("plots")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+mod common;
+use common::{dem2d, scratch};
 
 /// The SVG's texts, unescaped (`&lt;` etc. are not used in our labels).
 fn texts(svg: &str) -> Vec<String> {
@@ -454,7 +434,7 @@ fn plot_refuses_what_it_cannot_draw() {
     fields[3] = "1e155";
     lines.push(fields.join(","));
     std::fs::write(&traj, lines.join("\n") + "\n").unwrap();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_dem2d"))
+    let mut child = Command::new(common::bin())
         .args(["plot", run.to_str().unwrap()])
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::piped())

@@ -15,13 +15,16 @@
 //! `tests/swap_symmetry.rs` and `tests/area_law.rs`.
 
 use dem2d::contact_law::{ContactSpec, LinearDamping, Scaled};
-use dem2d::dynamics::{BodyInit, Boundary, World};
+use dem2d::dynamics::{Boundary, World};
 use dem2d::geometry::{Polygon, Pose, Shape, Vec2, Wall};
 use dem2d::narrow_phase::{Contact, ContactState, Object, contact};
 use dem2d::run::Simulation;
 use dem2d_validation::dd::DD;
 use dem2d_validation::polygon_reference::{PObj, polygon_overlap};
 use dem2d_validation::rng::Rng;
+
+mod common;
+use common::{body, floor, worst_energy_error};
 
 const EPS: f64 = f64::EPSILON;
 
@@ -84,7 +87,7 @@ fn r_obj(o: &Object) -> PObj {
     }
 }
 
-fn body(shape: Shape, p: Vec2, angle: f64) -> Object {
+fn object(shape: Shape, p: Vec2, angle: f64) -> Object {
     Object::Body {
         shape,
         pose: Pose::new(p, angle),
@@ -105,7 +108,7 @@ fn random_pair(rng: &mut Rng, kind: Kind, ratio: f64, offset: f64) -> (Object, O
         let u = Vec2::new(-c * n.x - s * n.y, s * n.x - c * n.y); // −n in the body frame
         let h = pi.support(u);
         let wall = Wall::new(o - n * (h - ratio * b), n).unwrap();
-        return (Object::Wall(wall), body(Shape::Polygon(pi), o, ti), b);
+        return (Object::Wall(wall), object(Shape::Polygon(pi), o, ti), b);
     }
     let sj = match kind {
         Kind::Polygon => Shape::Polygon(random_polygon(rng)),
@@ -128,8 +131,8 @@ fn random_pair(rng: &mut Rng, kind: Kind, ratio: f64, offset: f64) -> (Object, O
     let phi = rng.angle();
     let u = Vec2::new(phi.cos(), phi.sin());
     let b = pi.inscribed_radius.min(sj.inscribed_radius());
-    let i = body(Shape::Polygon(pi), o, ti);
-    let state = |d: f64| ContactState::of(contact(&i, &body(sj, o + u * d, tj)).as_ref());
+    let i = object(Shape::Polygon(pi), o, ti);
+    let state = |d: f64| ContactState::of(contact(&i, &object(sj, o + u * d, tj)).as_ref());
     let (mut lo, mut hi) = (0.0, pi.bounding_radius + sj.bounding_radius());
     for _ in 0..100 {
         let mid = 0.5 * (lo + hi);
@@ -139,7 +142,7 @@ fn random_pair(rng: &mut Rng, kind: Kind, ratio: f64, offset: f64) -> (Object, O
             lo = mid;
         }
     }
-    (i, body(sj, o + u * (lo - ratio * b), tj), b)
+    (i, object(sj, o + u * (lo - ratio * b), tj), b)
 }
 
 /// The two chord ends against the reference's two crossings: the larger distance, in the best
@@ -265,8 +268,8 @@ fn a_circle_cut_by_a_face_is_a_circular_segment() {
             let along = Vec2::new(f64::cos(theta), f64::sin(theta));
             let c = up * (2.0 + r - delta) + along * 0.3;
             let (i, j) = (
-                body(square, Vec2::zeros(), theta),
-                body(Shape::Circle { r }, c, 0.0),
+                object(square, Vec2::zeros(), theta),
+                object(Shape::Circle { r }, c, 0.0),
             );
             let g = contact(&i, &j).unwrap();
             assert_eq!(g.state, ContactState::Overlap, "δ = {delta}");
@@ -312,12 +315,12 @@ fn containment_either_way_is_contained() {
     let large = Shape::Circle { r: 3.0 };
     for (i, j) in [
         (
-            body(hex, Vec2::zeros(), 0.2),
-            body(small, Vec2::new(0.1, 0.2), 0.0),
+            object(hex, Vec2::zeros(), 0.2),
+            object(small, Vec2::new(0.1, 0.2), 0.0),
         ),
         (
-            body(large, Vec2::zeros(), 0.0),
-            body(hex, Vec2::new(0.4, -0.5), 1.0),
+            object(large, Vec2::zeros(), 0.0),
+            object(hex, Vec2::new(0.4, -0.5), 1.0),
         ),
     ] {
         for (a, b) in [(i, j), (j, i)] {
@@ -340,17 +343,6 @@ fn area_spec() -> ContactSpec {
     )
 }
 
-fn init(shape: Shape, x: Vec2, angle: f64) -> BodyInit {
-    BodyInit {
-        shape,
-        position: x,
-        angle,
-        velocity: Vec2::zeros(),
-        omega: 0.0,
-        density: 1.0,
-    }
-}
-
 /// Depth (the narrow phase's) and force on the body (the dynamics') of `shape` at `(x, angle)`
 /// against a floor `y = 0` (`partner` None) or against a partner body fixed at the origin.
 fn depth_and_force(
@@ -359,13 +351,13 @@ fn depth_and_force(
     angle: f64,
     partner: Option<(Shape, f64)>,
 ) -> (f64, Vec2) {
-    let j = body(shape, x, angle);
+    let j = object(shape, x, angle);
     match partner {
         None => {
             let floor = Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap();
             let c = contact(&Object::Wall(floor), &j);
             let w = World::new(
-                &[init(shape, x, angle)],
+                &[body(shape, x, angle)],
                 vec![Boundary::new(floor, area_spec())],
                 Vec2::zeros(),
                 area_spec(),
@@ -374,10 +366,10 @@ fn depth_and_force(
             (c.map_or(0.0, |g| g.depth), w.bodies.force[0])
         }
         Some((ps, pa)) => {
-            let i = body(ps, Vec2::zeros(), pa);
+            let i = object(ps, Vec2::zeros(), pa);
             let c = contact(&i, &j);
             let w = World::new(
-                &[init(ps, Vec2::zeros(), pa), init(shape, x, angle)],
+                &[body(ps, Vec2::zeros(), pa), body(shape, x, angle)],
                 vec![],
                 Vec2::zeros(),
                 area_spec(),
@@ -434,7 +426,8 @@ fn equal_area_polygons_converge_to_the_ellipse() {
                         };
                         // Bisection on the ellipse pair's depth (the chord normal is not u).
                         let depth_at = |d: f64| {
-                            let c = contact(&body(ps, Vec2::zeros(), pa), &body(ell, u * d, angle));
+                            let c =
+                                contact(&object(ps, Vec2::zeros(), pa), &object(ell, u * d, angle));
                             c.map_or(-1.0, |g| g.depth)
                         };
                         let (mut lo, mut hi) = (0.0, s(&ps, pa, u) + s(&ell, angle, -u));
@@ -503,13 +496,13 @@ fn force_on(i: &Object, j: &Object) -> (Vec2, f64) {
     let Object::Body { shape, pose } = *j else {
         panic!("j must be a body")
     };
-    let ij = init(shape, pose.position, pose.angle());
+    let ij = body(shape, pose.position, pose.angle());
     let w = match *i {
         Object::Body {
             shape: si,
             pose: pi,
         } => World::new(
-            &[init(si, pi.position, pi.angle()), ij],
+            &[body(si, pi.position, pi.angle()), ij],
             vec![],
             Vec2::zeros(),
             area_spec(),
@@ -551,7 +544,7 @@ fn force_and_moment_are_minus_the_gradient_of_the_reference_area_potential() {
     };
     let moved = |o: &Object, dx: f64, dy: f64, dt: f64| match *o {
         Object::Body { shape, pose } => {
-            body(shape, pose.position + Vec2::new(dx, dy), pose.angle() + dt)
+            object(shape, pose.position + Vec2::new(dx, dy), pose.angle() + dt)
         }
         w => w,
     };
@@ -581,9 +574,9 @@ fn force_and_moment_are_minus_the_gradient_of_the_reference_area_potential() {
         Shape::Polygon(Polygon::new(&v).unwrap())
     };
     for k in 0..16 {
-        let i = body(thin(6, 2.0, 0.3), Vec2::zeros(), rng.range(-0.2, 0.2));
+        let i = object(thin(6, 2.0, 0.3), Vec2::zeros(), rng.range(-0.2, 0.2));
         let x = Vec2::new(rng.range(-0.3, 0.3), rng.range(-0.3, 0.3));
-        let j = body(
+        let j = object(
             thin(5 + k % 3, 1.8, 0.25),
             x,
             std::f64::consts::FRAC_PI_2 + rng.range(-0.5, 0.5),
@@ -661,17 +654,10 @@ fn force_and_moment_are_minus_the_gradient_of_the_reference_area_potential() {
     assert!(checked >= 200 && deep >= 8, "{checked} {deep}");
 }
 
-/// The largest |E − E₀|/E₀ over a run (E = kinetic + potential + elastic; nothing dissipates).
-fn energy_drift(mut w: World, steps: usize) -> f64 {
-    let e0 = w.energies.total();
-    let mut worst = 0.0f64;
-    Simulation::new(&mut w)
-        .for_steps(steps as u64)
-        .run_each(|w, _| {
-            worst = worst.max(((w.energies.total() - e0) / e0).abs());
-        })
-        .unwrap();
-    worst
+/// The largest |E − E₀|/E₀ over `steps` steps (E = kinetic + potential + elastic; nothing
+/// dissipates).
+fn energy_drift(mut w: World, steps: u64) -> f64 {
+    worst_energy_error(Simulation::new(&mut w).for_steps(steps))
 }
 
 #[test]
@@ -692,14 +678,14 @@ fn undamped_frictionless_polygons_conserve_energy_to_second_order() {
     let p16 = Shape::Polygon(Polygon::equal_area_ellipse(16, 1.5, 1.0, 0.0).unwrap());
     let hex = Shape::Polygon(Polygon::regular(6, 1.2, 0.0).unwrap());
     let dropped = |dt: f64, phase: f64| {
-        let floor = Boundary::new(Wall::new(Vec2::zeros(), Vec2::new(0.0, 1.0)).unwrap(), spec);
-        let mut b = init(p16, Vec2::new(0.0, 2.2 + 0.013 * phase), 0.5);
+        let floor = floor(spec);
+        let mut b = body(p16, Vec2::new(0.0, 2.2 + 0.013 * phase), 0.5);
         b.omega = 3.0;
         World::new(&[b], vec![floor], Vec2::new(0.0, -980.0), spec, dt)
     };
     let colliding = |dt: f64, phase: f64| {
-        let mut a = init(p16, Vec2::new(-0.006 * phase, 0.0), 0.3);
-        let mut b = init(hex, Vec2::new(4.0, 0.9), 1.2);
+        let mut a = body(p16, Vec2::new(-0.006 * phase, 0.0), 0.3);
+        let mut b = body(hex, Vec2::new(4.0, 0.9), 1.2);
         a.velocity = Vec2::new(60.0, 0.0);
         b.velocity = Vec2::new(-40.0, 5.0);
         b.omega = -2.0;
@@ -717,7 +703,7 @@ fn undamped_frictionless_polygons_conserve_energy_to_second_order() {
             .map(|&dt| {
                 (0..4)
                     .map(|k| {
-                        energy_drift(scene(dt, k as f64 / 4.0), (duration / dt).round() as usize)
+                        energy_drift(scene(dt, k as f64 / 4.0), (duration / dt).round() as u64)
                     })
                     .sum::<f64>()
                     / 4.0

@@ -4,23 +4,12 @@
 //! not come from the code under test: a closed form, a force balance, the bytes of a file.
 
 use serde_json::Value;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-fn bin() -> &'static str {
-    env!("CARGO_BIN_EXE_dem2d")
-}
-
-/// Runs dem2d: (exit code, stdout, stderr).
-fn dem2d(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(bin()).args(args).output().expect("run dem2d");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-    )
-}
+mod common;
+use common::{bin, dem2d, scratch};
 
 fn case(name: &str) -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -29,16 +18,6 @@ fn case(name: &str) -> String {
         .to_str()
         .unwrap()
         .to_string()
-}
-
-/// An empty scratch directory of this test.
-fn scratch(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("regressions")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
 }
 
 /// Writes `json` as `dir/name` and returns its path.
@@ -809,7 +788,7 @@ mod bug_messages_did_not_say_what_was_meant {
         let err = run_case("velocty", &c);
         assert!(
             err.contains("did you mean `velocity`?")
-                && err.contains("the valid keys here: `angle`, `density`, `omega`, `position`, `shape`, `velocity`"),
+                && err.contains("the valid keys here: `angle`, `density`, `material`, `omega`, `position`, `shape`, `velocity`"),
             "{err}"
         );
         // Nothing like any key: the valid keys only.

@@ -9,31 +9,12 @@ use dem2d::dynamics::World;
 use dem2d::run::{BlowupWatch, RunProgress, Simulation};
 use dem2d::scene::CaseFile;
 use serde_json::Value;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-fn bin() -> &'static str {
-    env!("CARGO_BIN_EXE_dem2d")
-}
-
-fn dem2d(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(bin()).args(args).output().expect("run dem2d");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-    )
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("restart")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+mod common;
+use common::{bin, dem2d, scratch};
 
 /// A pile in a box: 24 bodies — circles, ellipses, a rectangle and a hexagon — dropped onto a floor
 /// between two walls, frictional (μ = 0.5) with EPSD rolling springs, so that by step 9000 it
@@ -654,4 +635,71 @@ fn a_blow_up_writes_no_state_file() {
     assert_eq!(json(&out.join("summary.json"))["status"], "blowup");
     assert!(!out.join("state.json").exists());
     assert!(!out.join("state.json.tmp").exists());
+}
+
+/// A scene of three materials (two of bodies, one of the floor) with a pair given its own law.
+fn materials_case() -> String {
+    let mut bodies = Vec::new();
+    for k in 0..12 {
+        let (x, y) = (-3.0 + (k % 4) as f64 * 2.02, 0.72 + (k / 4) as f64 * 1.45);
+        let material = if k % 3 == 0 { "glass" } else { "rubber" };
+        bodies.push(format!(
+            r#"{{ "shape": {{"type": "ellipse", "a": 1, "b": 0.7}}, "position": [{x}, {y}],
+                 "angle": {}, "material": "{material}" }}"#,
+            0.02 * k as f64
+        ));
+    }
+    format!(
+        r#"{{ "version": 1, "name": "materials", "gravity": [0, -980], "dt": 2e-5, "duration": 0.1,
+        "contact": {{ "model": "linear", "kn_over_rho_g": 36400, "restitution": 0.5,
+                      "friction": 0.5 }},
+        "materials": {{ "glass": {{ "density": 2.5, "friction": 0.2, "restitution": 0.9 }},
+                        "rubber": {{ "density": 1.1, "kn_over_rho_g": 20000, "friction": 0.9,
+                                     "rolling_model": "epsd", "rolling_friction": 0.1 }},
+                        "steel": {{ "friction": 0.4, "rolling_model": "epsd",
+                                    "rolling_friction": 0.05 }} }},
+        "pairs": [ {{ "materials": ["glass", "rubber"], "friction": 0.6 }} ],
+        "walls": [ {{ "point": [0, 0], "normal": [0, 1], "material": "steel" }},
+                   {{ "point": [-5, 0], "normal": [1, 0] }},
+                   {{ "point": [5, 0], "normal": [-1, 0], "friction": 0.1 }} ],
+        "bodies": [ {} ] }}"#,
+        bodies.join(",\n")
+    )
+}
+
+#[test]
+fn a_scene_of_several_materials_continues_exactly() {
+    let dir = scratch("materials");
+    let case = dir.join("materials.json");
+    std::fs::write(&case, materials_case()).unwrap();
+    let case = case.to_str().unwrap();
+    let (ac, ab, bc) = (dir.join("ac"), dir.join("ab"), dir.join("bc"));
+    let run = |from: &str, out: &Path, steps: &str| {
+        run_ok(&[
+            "run",
+            from,
+            "--out",
+            out.to_str().unwrap(),
+            "--max-steps",
+            steps,
+            "--quiet",
+        ])
+    };
+    run(case, &ac, "3000");
+    run(case, &ab, "1700");
+    let state = json(&ab.join("state.json"));
+    assert!(
+        state["materials"]["glass"].is_object(),
+        "the state keeps the materials"
+    );
+    assert_eq!(state["bodies"][0]["material"], "glass");
+    let open = state["state"]["contacts"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|c| c["active"] == true)
+        .count();
+    assert!(open >= 8, "open contacts at B: {open}");
+    run(ab.join("state.json").to_str().unwrap(), &bc, "1300");
+    check_continuation(&ac, &ab, &bc, (1700, 3000), true);
 }

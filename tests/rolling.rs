@@ -15,10 +15,13 @@
 use dem2d::contact_law::{
     ContactSpec, LinearDamping, NormalForce, RollingModel, RollingPart, Scaled,
 };
-use dem2d::dynamics::{BodyInit, Boundary, World};
-use dem2d::geometry::{Shape, Vec2, Wall};
+use dem2d::dynamics::{BodyInit, World};
+use dem2d::geometry::{Shape, Vec2};
 use dem2d::run::{Simulation, Stop};
 use std::f64::consts::PI;
+
+mod common;
+use common::floor;
 
 const G: f64 = 980.0;
 const KN: f64 = 36400.0 * G; // P's stiffness, ρ = 1
@@ -49,6 +52,8 @@ fn disk_on_floor(r: f64, v: f64, gravity: Vec2, spec: ContactSpec, dt: f64) -> W
     let m = PI * r * r;
     let delta = m * gravity.y.abs() / KN;
     let body = BodyInit {
+        material: 0,
+        prescribed: false,
         shape: Shape::Circle { r },
         position: Vec2::new(0.0, r - delta),
         angle: 0.0,
@@ -56,7 +61,7 @@ fn disk_on_floor(r: f64, v: f64, gravity: Vec2, spec: ContactSpec, dt: f64) -> W
         omega: -v / (r - delta),
         density: 1.0,
     };
-    let floor = Boundary::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), spec);
+    let floor = floor(spec);
     World::new(&[body], vec![floor], gravity, spec, dt)
 }
 
@@ -440,6 +445,8 @@ fn an_ellipse_rests_on_slopes_up_to_mu_r_plus_its_shapes_own_limit() {
             LinearDamping::Restitution(0.5),
         );
         let body = BodyInit {
+            material: 0,
+            prescribed: false,
             shape: Shape::Ellipse { a, b },
             position: Vec2::new(0.0, h),
             angle: th,
@@ -447,7 +454,7 @@ fn an_ellipse_rests_on_slopes_up_to_mu_r_plus_its_shapes_own_limit() {
             omega: 0.0,
             density: 1.0,
         };
-        let floor = Boundary::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), law);
+        let floor = floor(law);
         let gravity = Vec2::new(G * beta.sin(), -G * beta.cos());
         let mut w = World::new(&[body], vec![floor], gravity, law, 1e-5);
         Simulation::new(&mut w).for_steps(50_000).run().unwrap();

@@ -22,6 +22,7 @@ use dem2d::narrow_phase::ellipse_ellipse::Warm;
 use dem2d::narrow_phase::{
     Contact, ContactState, Object, PairCache, Request, contact, contact_with,
 };
+use dem2d_validation::pairs::{support, support_point, unit};
 use dem2d_validation::rng::Rng;
 
 /// The kinds of object, in the order of the generator.
@@ -65,46 +66,6 @@ fn shape(kind: usize, s: f64, max_aspect: f64, rng: &mut Rng) -> Shape {
         },
         _ => polygon(s, aspect, rng),
     }
-}
-
-fn support(shape: &Shape, angle: f64, n: [f64; 2]) -> f64 {
-    let (s, c) = angle.sin_cos();
-    let (ux, uy) = (c * n[0] + s * n[1], -s * n[0] + c * n[1]);
-    match *shape {
-        Shape::Circle { r } => r,
-        Shape::Ellipse { a, b } => ((a * ux) * (a * ux) + (b * uy) * (b * uy)).sqrt(),
-        Shape::Rectangle { w, h } => 0.5 * (w * ux.abs() + h * uy.abs()),
-        Shape::Polygon(p) => p.support(Vec2::new(ux, uy)),
-        Shape::Clump(c) => c.support(Vec2::new(ux, uy)),
-    }
-}
-
-/// The point of `shape` (centred at the origin, at `angle`) farthest along the unit `n`.
-fn support_point(shape: &Shape, angle: f64, n: [f64; 2]) -> [f64; 2] {
-    let (s, c) = angle.sin_cos();
-    let (ux, uy) = (c * n[0] + s * n[1], -s * n[0] + c * n[1]);
-    let (px, py) = match *shape {
-        Shape::Circle { r } => (r * ux, r * uy),
-        Shape::Ellipse { a, b } => {
-            let h = ((a * ux) * (a * ux) + (b * uy) * (b * uy)).sqrt();
-            (a * a * ux / h, b * b * uy / h)
-        }
-        Shape::Rectangle { w, h } => (0.5 * w * ux.signum(), 0.5 * h * uy.signum()),
-        Shape::Polygon(p) => {
-            let v = p
-                .vertices
-                .iter()
-                .max_by(|a, b| (a.x * ux + a.y * uy).total_cmp(&(b.x * ux + b.y * uy)))
-                .expect("vertices");
-            (v.x, v.y)
-        }
-        Shape::Clump(_) => unreachable!("clumps: tests/clumps.rs"),
-    };
-    [c * px - s * py, s * px + c * py]
-}
-
-fn unit(t: f64) -> [f64; 2] {
-    [t.cos(), t.sin()]
 }
 
 /// How the pair is placed.

@@ -7,30 +7,11 @@
 //! says so and passes, unless `DEM2D_REQUIRE_VTK` is set — as `.ci/run` does after installing
 //! the package, so that CI never skips it.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
-fn dem2d(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_dem2d"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("run dem2d");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-    )
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("vtk")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+mod common;
+use common::{dem2d, scratch};
 
 /// Every shape, an ellipse of a/b = 10 among them, on a floor between two walls, stacked so
 /// that bodies touch bodies and walls within 0.1 s.

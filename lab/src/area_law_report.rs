@@ -29,6 +29,8 @@ fn linear(kn: f64, e: Option<f64>, nf: NormalForce) -> ContactSpec {
 
 fn body(shape: Shape, x: Vec2, angle: f64, v: Vec2, omega: f64) -> BodyInit {
     BodyInit {
+        material: 0,
+        prescribed: false,
         shape,
         position: x,
         angle,

@@ -101,6 +101,8 @@ fn bodies_of(w: &World) -> Vec<BodyInit> {
     let b = &w.bodies;
     (0..b.len())
         .map(|k| BodyInit {
+            material: 0,
+            prescribed: false,
             shape: b.shape[k],
             position: b.state[k].pose.position,
             angle: b.state[k].pose.angle(),

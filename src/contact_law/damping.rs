@@ -2,7 +2,8 @@
 //! coefficient of restitution (T12, T14). As a case gives it ([`DampingSpec`]: `eta_n`, `eta_s`
 //! absolute or per ρg, or `restitution`), and resolved for a pair ([`DampingPart`]).
 
-use super::keys::{Check, Keys, ParamError};
+use super::keys::{Check, Given, Keys, ParamError};
+use super::mixing::{MixError, harmonic, harmonic_scaled};
 use super::normal::{NormalSpec, NormalSpring, SpringSpec};
 use super::params::Scaled;
 
@@ -97,6 +98,51 @@ impl DampingSpec {
                     restitution: restitution(true)?.expect("required"),
                 })
             }
+        }
+    }
+
+    /// The damping of contacts between the materials `self` and `other` ([`super::mixing`]):
+    /// the harmonic mean of the dashpots, or of the restitutions; dashpots and a restitution
+    /// have no common rule.
+    pub fn mix(&self, other: &DampingSpec) -> Result<DampingSpec, MixError> {
+        use LinearDamping::{Dashpots, Restitution};
+        Ok(match (*self, *other) {
+            (
+                DampingSpec::Linear(Dashpots { eta_n, eta_s }),
+                DampingSpec::Linear(Dashpots {
+                    eta_n: n2,
+                    eta_s: s2,
+                }),
+            ) => DampingSpec::Linear(Dashpots {
+                eta_n: harmonic_scaled(eta_n, n2, "eta_n")?,
+                eta_s: harmonic_scaled(eta_s, s2, "eta_s")?,
+            }),
+            (DampingSpec::Linear(Restitution(a)), DampingSpec::Linear(Restitution(b))) => {
+                DampingSpec::Linear(Restitution(harmonic(a, b)))
+            }
+            (DampingSpec::Hertz { restitution: a }, DampingSpec::Hertz { restitution: b }) => {
+                DampingSpec::Hertz {
+                    restitution: harmonic(a, b),
+                }
+            }
+            _ => {
+                return Err(MixError::new(
+                    "restitution",
+                    "one material gives dashpots and the other a restitution",
+                ));
+            }
+        })
+    }
+
+    /// Its keys as a case file gives them (what [`DampingSpec::parse`] reads back).
+    pub fn given(&self) -> Vec<(&'static str, Given)> {
+        match *self {
+            DampingSpec::Linear(LinearDamping::Dashpots { eta_n, eta_s }) => vec![
+                eta_n.given("eta_n", "eta_n_over_rho_g"),
+                eta_s.given("eta_s", "eta_s_over_rho_g"),
+            ],
+            DampingSpec::Linear(LinearDamping::Restitution(e))
+            | DampingSpec::Hertz { restitution: e } => vec![("restitution", Given::Number(e))],
         }
     }
 

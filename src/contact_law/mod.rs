@@ -51,6 +51,7 @@
 
 pub mod damping;
 pub mod keys;
+pub mod mixing;
 pub mod normal;
 pub mod overlap;
 pub mod params;
@@ -61,6 +62,7 @@ pub use damping::{
     DampingPart, DampingSpec, LinearDamping, damping_factor_hertz, damping_ratio_linear,
 };
 pub use keys::{Check, Given, Keys, ParamError};
+pub use mixing::{MixError, PairSpec};
 pub use normal::{NormalForce, NormalPart, NormalSpec, NormalSpring, SpringSpec};
 pub use overlap::{PairFacts, SpringOn};
 pub use params::Scaled;

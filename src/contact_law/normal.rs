@@ -58,7 +58,8 @@ impl NormalPart {
     }
 }
 
-use super::keys::{Check, Keys, ParamError};
+use super::keys::{Check, Given, Keys, ParamError};
+use super::mixing::{MixError, harmonic_scaled};
 use super::params::Scaled;
 
 /// What the normal spring acts on (a case's `contact.normal_force`); see the module
@@ -196,6 +197,39 @@ impl NormalSpec {
                 }
             }
         }
+    }
+
+    /// The normal part of contacts between the materials `self` and `other`
+    /// ([`super::mixing`]): the harmonic mean of the linear stiffnesses; a Hertz material keeps
+    /// its moduli (E* is formed from both at [`NormalSpec::resolve`], T11).
+    pub fn mix(&self, other: &NormalSpec) -> Result<NormalSpec, MixError> {
+        let spring = match (self.spring, other.spring) {
+            (SpringSpec::Linear { kn: a }, SpringSpec::Linear { kn: b }) => SpringSpec::Linear {
+                kn: harmonic_scaled(a, b, "kn")?,
+            },
+            (SpringSpec::Hertz { .. }, SpringSpec::Hertz { .. }) => self.spring,
+            _ => return Err(MixError::new("model", "the two materials' models differ")),
+        };
+        Ok(NormalSpec {
+            spring,
+            normal_force: self.normal_force,
+        })
+    }
+
+    /// Its keys as a case file gives them (what [`NormalSpec::parse`] reads back).
+    pub fn given(&self) -> Vec<(&'static str, Given)> {
+        let mut keys = vec![
+            ("model", Given::Text(self.model())),
+            ("normal_force", Given::Text(self.normal_force.as_str())),
+        ];
+        match self.spring {
+            SpringSpec::Linear { kn } => keys.push(kn.given("kn", "kn_over_rho_g")),
+            SpringSpec::Hertz { young, poisson } => {
+                keys.push(("young", Given::Number(young)));
+                keys.push(("poisson", Given::Number(poisson)));
+            }
+        }
+        keys
     }
 
     /// Young's modulus and Poisson's ratio of a Hertz material.

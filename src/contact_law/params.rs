@@ -31,3 +31,13 @@ impl Scaled {
         }
     }
 }
+
+impl Scaled {
+    /// The key and value as a case file gives it: `abs` for an absolute value, `rel` per ρg.
+    pub fn given(&self, abs: &'static str, rel: &'static str) -> (&'static str, super::Given) {
+        match *self {
+            Scaled::Absolute(v) => (abs, super::Given::Number(v)),
+            Scaled::OverRhoG(v) => (rel, super::Given::Number(v)),
+        }
+    }
+}

@@ -38,6 +38,7 @@
 
 use super::ContactForce;
 use super::keys::{Check, Given, Keys, ParamError};
+use super::mixing::{MixError, harmonic};
 
 /// Which rolling-resistance model (a case's `rolling_model`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -166,6 +167,40 @@ impl RollingPart {
             keys.push(("rolling_damping", Given::Number(d)));
         }
         keys
+    }
+
+    /// The rolling part of contacts between two materials ([`super::mixing`]): none if either
+    /// has none (μ_r = 0), else the smaller μ_r and the harmonic mean of the rolling damping;
+    /// two models, or a damping given for one material only, have no common rule.
+    pub fn mix(a: Option<Self>, b: Option<Self>) -> Result<Option<Self>, MixError> {
+        let (Some(a), Some(b)) = (a, b) else {
+            return Ok(None);
+        };
+        if a.model != b.model {
+            return Err(MixError::new(
+                "rolling_model",
+                format!(
+                    "one material rolls by `{}` and the other by `{}`",
+                    a.model.as_str(),
+                    b.model.as_str()
+                ),
+            ));
+        }
+        let damping = match (a.damping, b.damping) {
+            (None, None) => None,
+            (Some(x), Some(y)) => Some(harmonic(x, y)),
+            _ => {
+                return Err(MixError::new(
+                    "rolling_damping",
+                    "one material gives it and the other does not",
+                ));
+            }
+        };
+        Ok(Some(RollingPart {
+            model: a.model,
+            friction: a.friction.min(b.friction),
+            damping,
+        }))
     }
 
     /// A line for a case's description: the model and μ_r.

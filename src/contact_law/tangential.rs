@@ -5,7 +5,8 @@
 //! spring's elongation (one value).
 
 use super::ContactForce;
-use super::keys::{Check, Keys, ParamError};
+use super::keys::{Check, Given, Keys, ParamError};
+use super::mixing::{MixError, harmonic_scaled};
 use super::normal::{NormalSpec, NormalSpring, SpringSpec};
 use super::params::Scaled;
 
@@ -57,6 +58,32 @@ impl TangentialSpec {
             stiffness,
             friction,
         })
+    }
+
+    /// The tangential part of contacts between the materials `self` and `other`
+    /// ([`super::mixing`]): the smaller friction (Yade), the harmonic mean of the shear
+    /// stiffnesses (Mindlin's is formed from both materials' moduli at resolution, T19).
+    pub fn mix(&self, other: &TangentialSpec) -> Result<TangentialSpec, MixError> {
+        let stiffness = match (self.stiffness, other.stiffness) {
+            (ShearSpec::Constant(a), ShearSpec::Constant(b)) => {
+                ShearSpec::Constant(harmonic_scaled(a, b, "ks")?)
+            }
+            (ShearSpec::Mindlin, ShearSpec::Mindlin) => ShearSpec::Mindlin,
+            _ => return Err(MixError::new("model", "the two materials' models differ")),
+        };
+        Ok(TangentialSpec {
+            stiffness,
+            friction: self.friction.min(other.friction),
+        })
+    }
+
+    /// Its keys as a case file gives them (what [`TangentialSpec::parse`] reads back).
+    pub fn given(&self) -> Vec<(&'static str, Given)> {
+        let mut keys = vec![("friction", Given::Number(self.friction))];
+        if let ShearSpec::Constant(ks) = self.stiffness {
+            keys.push(ks.given("ks", "ks_over_rho_g"));
+        }
+        keys
     }
 
     /// The part for a pair: `normal` this side's normal spec, `other` the other side's (Mindlin

@@ -13,6 +13,12 @@ pub struct BodyInit {
     pub velocity: Vec2,
     pub omega: f64,
     pub density: f64,
+    /// Its material (0: the scene's contact law; see [`super::materials`]).
+    pub material: u16,
+    /// Its motion is prescribed: it moves at `velocity` and spins at `omega` throughout (at
+    /// rest when both are zero: a fixed body), pushed by its contacts but never moved by them
+    /// (see [`Bodies`]).
+    pub prescribed: bool,
 }
 
 /// What changes every step of one body, in one cache line: the contact pass reads it for the
@@ -28,10 +34,20 @@ pub struct BodyState {
 }
 
 /// All bodies. Index `k` of every vector is body `k`.
+///
+/// # Bodies whose motion is prescribed
+/// A prescribed body ([`BodyInit::prescribed`]) is held in the same vectors with infinite mass
+/// and inertia against its contacts (`inv_mass = inv_inertia = 0`: the kicks leave its velocity
+/// and spin as they are, the drift moves it, a pair's m* is the other body's) and no mass of its
+/// own (`mass = inertia = 0`: gravity does not act on it, and its energy of motion and position
+/// is not the scene's). Its force and moment are then its contacts' alone: the reaction the
+/// scene exerts on it. The work it does on the scene is a boundary's (see `super::step`).
 #[derive(Clone, Debug, Default)]
 pub struct Bodies {
     pub shape: Vec<Shape>,
     pub density: Vec<f64>,
+    /// Material (see [`super::materials`]).
+    pub material: Vec<u16>,
     /// Mass per unit thickness, `m = ρ·area`.
     pub mass: Vec<f64>,
     pub inv_mass: Vec<f64>,
@@ -53,6 +69,8 @@ pub struct Bodies {
     /// Force and moment of the last evaluation (contacts and gravity).
     pub force: Vec<Vec2>,
     pub torque: Vec<f64>,
+    /// The prescribed bodies, in order.
+    pub prescribed: Vec<usize>,
 }
 
 impl Bodies {
@@ -62,6 +80,7 @@ impl Bodies {
         let mut b = Bodies {
             shape: Vec::with_capacity(n),
             density: Vec::with_capacity(n),
+            material: Vec::with_capacity(n),
             mass: Vec::with_capacity(n),
             inv_mass: Vec::with_capacity(n),
             inertia: Vec::with_capacity(n),
@@ -73,16 +92,26 @@ impl Bodies {
             is_circle: Vec::with_capacity(n),
             force: Vec::with_capacity(n),
             torque: Vec::with_capacity(n),
+            prescribed: Vec::new(),
         };
-        for init in inits {
+        for (k, init) in inits.iter().enumerate() {
             let m = init.density * area(&init.shape);
             let i = m * inertia_per_mass(&init.shape);
             b.shape.push(init.shape);
             b.density.push(init.density);
-            b.mass.push(m);
-            b.inv_mass.push(1.0 / m);
-            b.inertia.push(i);
-            b.inv_inertia.push(1.0 / i);
+            b.material.push(init.material);
+            if init.prescribed {
+                b.prescribed.push(k);
+                b.mass.push(0.0);
+                b.inv_mass.push(0.0);
+                b.inertia.push(0.0);
+                b.inv_inertia.push(0.0);
+            } else {
+                b.mass.push(m);
+                b.inv_mass.push(1.0 / m);
+                b.inertia.push(i);
+                b.inv_inertia.push(1.0 / i);
+            }
             b.bound.push(init.shape.bounding_radius());
             let area_radius = (area(&init.shape) / std::f64::consts::PI).sqrt();
             b.area_radius.push(area_radius);

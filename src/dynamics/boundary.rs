@@ -126,7 +126,11 @@ pub struct Boundary {
     /// When it was at `start`: 0, or the time of a state file from which a wall given a new
     /// velocity continues from where it is (see `scene::state`).
     pub start_time: f64,
+    /// Its contact law when it has its own (`material` None), else its material's.
     pub spec: ContactSpec,
+    /// Its material (`None`: its own law, `spec`, governs its contacts with every body; see
+    /// [`super::materials`]).
+    pub material: Option<u16>,
     pub motion: Motion,
     /// Velocity of the current step's drift (zero for a fixed boundary).
     pub velocity: Vec2,
@@ -152,6 +156,7 @@ impl Boundary {
             start: wall.point,
             start_time: 0.0,
             spec,
+            material: None,
             motion,
             velocity,
             load: WallLoad::default(),
@@ -208,6 +213,13 @@ impl Boundary {
             Motion::Velocity(v) => self.move_to(self.start + v * (time - self.start_time)),
             Motion::Servo(_) => self.move_to(self.point() + self.velocity * dt),
         }
+    }
+
+    /// The same boundary of material `m` (whose law is `spec`).
+    pub fn of_material(mut self, m: u16, spec: ContactSpec) -> Self {
+        self.material = Some(m);
+        self.spec = spec;
+        self
     }
 
     /// True unless the boundary is fixed.

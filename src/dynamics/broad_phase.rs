@@ -175,6 +175,8 @@ mod tests {
         let inits: Vec<BodyInit> = at
             .iter()
             .map(|&(x, y, r)| BodyInit {
+                material: 0,
+                prescribed: false,
                 shape: Shape::Circle { r },
                 position: Vec2::new(x, y),
                 angle: 0.0,

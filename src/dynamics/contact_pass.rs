@@ -28,9 +28,10 @@ use super::body::Bodies;
 use super::boundary::{Boundary, WallLoad};
 use super::contacts::{ContactData, ContactExtra, ContactList, Slot};
 use super::kinematics::{self, Contact};
+use super::materials::PairTable;
 use super::members;
 use super::partner::{Partner, Sides};
-use crate::contact_law::{ContactSpec, History, Law, LinearDashpots, NormalForce};
+use crate::contact_law::{ContactSpec, History, Law, LinearDashpots, NormalForce, PairSpec};
 use crate::contact_law::{HISTORY_LEN, Needs, PairFacts, SpringOn};
 use crate::geometry::overlap_area::DiskLens;
 use crate::geometry::{Shape, Vec2};
@@ -109,8 +110,8 @@ pub(crate) struct ContactPass {
     partials: Vec<SlotPartial>,
     /// Per chunk of slots, per wall: the wall's contacts' sums.
     wall_partials: Vec<WallLoad>,
-    /// Laws resolved once per step when every pair of a kind has the same (`[0]` body pairs,
-    /// `[1 + w]` wall w).
+    /// Laws resolved once per step when every pair of a kind has the same: one material,
+    /// `[0]` body pairs, `[1 + w]` wall w; M materials, as [`PairTable::all`] lists them.
     laws: Vec<Law>,
     /// The same laws' numbers when every one is linear with constant dashpots and nothing more
     /// ([`LinearDashpots`]; empty otherwise): the slots then take the copies compiled for
@@ -118,12 +119,14 @@ pub(crate) struct ContactPass {
     linear: Vec<LinearDashpots>,
 }
 
-/// What a step's pass reads: the bodies, the walls, the scene's law, |g|, the step Δt, and the
-/// neighbour list's per-body slot ranges (a body's number of slots: the CDT limiter's share).
+/// What a step's pass reads: the bodies, the walls, the scene's law and every pair's, |g|, the
+/// step Δt, and the neighbour list's per-body slot ranges (a body's number of slots: the CDT
+/// limiter's share).
 pub(crate) struct PassInput<'a> {
     pub bodies: &'a Bodies,
     pub walls: &'a mut [Boundary],
     pub spec: &'a ContactSpec,
+    pub pairs: &'a PairTable,
     pub g: f64,
     pub dt: f64,
     pub facts: SceneFacts,
@@ -156,19 +159,25 @@ impl ContactPass {
 
     /// When every pair of a kind has the same law — one density for all bodies, and no law that
     /// depends on the pair's mass (restitution-tuned dashpots) — resolves the body–body law and
-    /// each wall's once instead of at every contact.
-    fn resolve(&mut self, spec: &ContactSpec, walls: &[Boundary], facts: &SceneFacts, g: f64) {
+    /// each wall's once instead of at every contact: with one material, the body pairs' and
+    /// each wall's; with several, every pair of the table's. Only a scene of one material takes
+    /// the copies compiled for linear laws.
+    fn resolve(&mut self, pairs: &PairTable, walls: &[Boundary], facts: &SceneFacts, g: f64) {
         self.laws.clear();
         self.linear.clear();
         let Some(rho) = facts.uniform_density else {
             return;
         };
-        if spec.depends_on_mass() || walls.iter().any(|w| w.spec.depends_on_mass()) {
+        if pairs.all().any(|p| p.spec.depends_on_mass()) {
             return;
         }
-        self.laws.push(spec.resolve(spec, rho, g));
-        for w in walls {
-            self.laws.push(w.spec.resolve(spec, rho, g));
+        if pairs.count() > 1 {
+            self.laws.extend(pairs.all().map(|p| p.resolve(rho, g)));
+            return;
+        }
+        self.laws.push(pairs.body_pair(0, 0).resolve(rho, g));
+        for w in 0..walls.len() {
+            self.laws.push(pairs.wall(w, 0).resolve(rho, g));
         }
         for law in &self.laws {
             match LinearDashpots::of(law) {
@@ -189,11 +198,12 @@ impl ContactPass {
             bodies,
             walls,
             spec,
+            pairs,
             g,
             dt,
             facts,
         } = input;
-        self.resolve(spec, walls, &facts, g);
+        self.resolve(pairs, walls, &facts, g);
         self.size(list.slots.len(), walls.len());
         let ContactList {
             slots,
@@ -209,6 +219,7 @@ impl ContactPass {
             bodies,
             walls,
             spec,
+            pairs,
             g,
             dt,
             adjacency_start,
@@ -218,7 +229,7 @@ impl ContactPass {
         let chunk = Chunk {
             cx: &cx,
             linear: Linear(linear),
-            resolved: Resolved((!laws.is_empty()).then_some(laws)),
+            resolved: Resolved::new(laws, pairs),
             circles: facts.circles,
             disks: facts.disks && !linear.is_empty(),
         };
@@ -271,11 +282,12 @@ impl ContactPass {
             bodies,
             walls,
             spec,
+            pairs,
             g,
             facts,
             ..
         } = input;
-        self.resolve(spec, walls, &facts, g);
+        self.resolve(pairs, walls, &facts, g);
         let ContactList {
             slots,
             extra,
@@ -290,11 +302,12 @@ impl ContactPass {
             bodies,
             walls,
             spec,
+            pairs,
             g,
             dt: 0.0,
             adjacency_start,
         };
-        let laws = Resolved((!self.laws.is_empty()).then_some(&self.laws[..]));
+        let laws = Resolved::new(&self.laws, pairs);
         let (cache, history) = (&cache[..], &history[..]);
         slots
             .par_chunks(SLOT_CHUNK)
@@ -348,13 +361,14 @@ impl ContactPass {
     }
 }
 
-/// What every slot's contact is computed from: the bodies, the walls, the scene's law, |g|, the
-/// step Δt and the neighbour list's per-body slot ranges.
+/// What every slot's contact is computed from: the bodies, the walls, the scene's law and every
+/// pair's, |g|, the step Δt and the neighbour list's per-body slot ranges.
 #[derive(Clone, Copy)]
 pub(crate) struct PassContext<'a> {
     pub bodies: &'a Bodies,
     pub walls: &'a [Boundary],
     pub spec: &'a ContactSpec,
+    pub pairs: &'a PairTable,
     pub g: f64,
     pub dt: f64,
     pub adjacency_start: &'a [u32],
@@ -374,12 +388,35 @@ impl PassContext<'_> {
         (i, Side::Body(&b.shape[recv], &b.state[recv].pose))
     }
 
-    /// The contact parameters that govern a pair: a wall's own, or the scene's.
+    /// What the normal spring of a pair acts on: a wall's own law's choice, or the scene's
+    /// (a material cannot change it).
     #[inline(always)]
-    fn governing(&self, sides: Sides) -> &ContactSpec {
+    fn normal_force(&self, sides: Sides) -> NormalForce {
         match sides.wall() {
-            Some(w) => &self.walls[w].spec,
-            None => self.spec,
+            Some(w) => self.walls[w].spec.normal_force(),
+            None => self.spec.normal_force(),
+        }
+    }
+
+    /// The contact law of a pair: its materials', or a wall's with the body's material.
+    #[inline(always)]
+    fn pair(&self, sides: Sides) -> &PairSpec {
+        let m = &self.bodies.material;
+        let recv = m[sides.receiver];
+        match sides.giver {
+            Partner::Wall(w) => self.pairs.wall(w, recv),
+            Partner::Body(k) => self.pairs.body_pair(m[k], recv),
+        }
+    }
+
+    /// The index of a pair's law in [`PairTable::all`]'s order.
+    #[inline(always)]
+    fn pair_index(&self, sides: Sides) -> usize {
+        let (m, count) = (&self.bodies.material, self.pairs.count());
+        let recv = m[sides.receiver] as usize;
+        match sides.giver {
+            Partner::Wall(w) => count * count + w * count + recv,
+            Partner::Body(k) => m[k] as usize * count + recv,
         }
     }
 }
@@ -614,7 +651,7 @@ impl Geometry for Dispatch<'_> {
     #[inline(always)]
     fn find<const PAIR: bool>(self, slot: &Slot, cx: &PassContext) -> Option<Found> {
         let sides = sides_of_slot::<PAIR>(slot);
-        let area_law = cx.governing(sides).normal_force() == NormalForce::Area;
+        let area_law = cx.normal_force(sides) == NormalForce::Area;
         let facts = Facts {
             bodies: cx.bodies,
             sides,
@@ -699,26 +736,45 @@ impl LawSource for Linear<'_> {
     }
 }
 
-/// Laws resolved once for the step (`Some`, indexed as [`Linear`]) or at every contact (`None`:
-/// several densities, or a law that depends on the pair's mass).
+/// Laws resolved once for the step (`laws` not empty: indexed as [`Linear`] in a scene of one
+/// material, else as [`PairTable::all`]) or at every contact (`laws` empty: several densities,
+/// or a law that depends on the pair's mass).
 #[derive(Clone, Copy)]
-struct Resolved<'a>(Option<&'a [Law]>);
+struct Resolved<'a> {
+    laws: Option<&'a [Law]>,
+    /// Several materials.
+    materials: bool,
+}
+
+impl<'a> Resolved<'a> {
+    fn new(laws: &'a [Law], pairs: &PairTable) -> Self {
+        Resolved {
+            laws: (!laws.is_empty()).then_some(laws),
+            materials: pairs.count() > 1,
+        }
+    }
+}
 
 impl LawSource for Resolved<'_> {
     const LINEAR: bool = false;
     #[inline(always)]
     fn law(self, sides: Sides, cx: &PassContext) -> (Law, f64) {
         let m_eff = || 1.0 / kinematics::inv_mass(cx.bodies, sides); // T(13)
-        match self.0 {
+        match self.laws {
             Some(laws) => {
-                let law = laws[sides.wall().map_or(0, |w| 1 + w)];
+                let at = if self.materials {
+                    cx.pair_index(sides)
+                } else {
+                    sides.wall().map_or(0, |w| 1 + w)
+                };
+                let law = laws[at];
                 let m = if law.needs().m_eff { m_eff() } else { f64::NAN };
                 (law, m)
             }
             None => {
                 let m = m_eff();
                 let rho = kinematics::density(cx.bodies, sides);
-                (cx.governing(sides).resolve(cx.spec, rho, cx.g), m)
+                (cx.pair(sides).resolve(rho, cx.g), m)
             }
         }
     }

@@ -38,7 +38,7 @@
 //!
 //! The rolling inertia is the pair's equivalent moment of inertia for a rotation about the
 //! contact point (Ai et al.; LIGGGHTS): `1/I_r = 1/(I_i + m_i d_i²) + 1/(I_j + m_j d_j²)` with
-//! `d` the distance from each centroid to the contact point (parallel axes; a wall: ∞);
+//! `d` the distance from each centroid to the contact point (parallel axes; a wall or a prescribed body: ∞);
 //! for a disk on a wall `1.5 m r²` (LIGGGHTS' 2D value).
 
 use super::body::Bodies;
@@ -188,7 +188,13 @@ pub fn rolling(
         let lever = b.support_distance(k, outward);
         let d2 = (point - b.state[k].pose.position).norm_squared();
         let share = slots(k).max(1) as f64 * b.inv_inertia[k];
-        (lever, b.inertia[k] + b.mass[k] * d2, share)
+        // A prescribed body turns about no point but as prescribed: infinite inertia.
+        let pivot = if b.inv_inertia[k] == 0.0 {
+            f64::INFINITY
+        } else {
+            b.inertia[k] + b.mass[k] * d2
+        };
+        (lever, pivot, share)
     };
     let (l_r, i_r, s_r) = side(sides.receiver, -n);
     match sides.giving_body() {

@@ -11,6 +11,7 @@ pub mod broad_phase;
 pub mod contact_pass;
 pub mod contacts;
 pub mod kinematics;
+pub mod materials;
 pub mod members;
 pub mod neighbour_list;
 pub mod partner;
@@ -21,6 +22,7 @@ pub mod world;
 
 pub use body::{Bodies, BodyInit, BodyState};
 pub use boundary::{Boundary, Motion, Servo, Span};
+pub use materials::{Materials, PairTable};
 pub use partner::{Partner, Sides};
 pub use restart::{RestartError, RestartState};
 pub use step::{Blowup, StepReport};

@@ -6,10 +6,10 @@ use super::body::Bodies;
 use super::boundary::Boundary;
 use super::broad_phase::Grid;
 use super::contacts::{ContactList, reserve_for};
+use super::materials::PairTable;
 use super::members;
 use super::partner::Partner;
 use super::restart::{Kept, RestartState};
-use crate::contact_law::ContactSpec;
 use crate::narrow_phase::PairCache;
 
 /// The skin of the neighbour list as a fraction of the largest bounding radius: larger means
@@ -38,7 +38,7 @@ impl Builder {
         &mut self,
         bodies: &Bodies,
         walls: &[Boundary],
-        spec: &ContactSpec,
+        pairs: &PairTable,
         clumps: bool,
         list: &mut ContactList,
     ) -> f64 {
@@ -73,7 +73,7 @@ impl Builder {
                 }
             }
         }
-        let Kept { cached, history } = kept(&bodies.shape, spec, walls);
+        let Kept { cached, history } = kept(&bodies.shape, pairs);
         let lost = list.rebuild_from_keys(n, cached, history - 1);
         list.built_at.clear();
         reserve_for(&mut list.built_at, n);
@@ -97,13 +97,12 @@ fn skin(bodies: &Bodies) -> f64 {
 /// [`RestartState::check`]).
 pub(crate) fn restore(
     bodies: &Bodies,
-    walls: &[Boundary],
-    spec: &ContactSpec,
+    pairs: &PairTable,
     saved: &RestartState,
     list: &mut ContactList,
 ) {
     let n = bodies.len();
-    let Kept { cached, history } = kept(&bodies.shape, spec, walls);
+    let Kept { cached, history } = kept(&bodies.shape, pairs);
     *list = ContactList::default();
     list.skin = skin(bodies);
     list.keys.extend(saved.slots.iter().map(|s| s.slot.key()));
@@ -124,16 +123,12 @@ pub(crate) fn restore(
 
 /// What a scene keeps beside its slots: pair caches where some pair keeps something in them
 /// (conic pairs: warm starts), and as many history values as its most demanding law keeps.
-pub(crate) fn kept(
-    shapes: &[crate::geometry::Shape],
-    spec: &ContactSpec,
-    walls: &[Boundary],
-) -> Kept {
+pub(crate) fn kept(shapes: &[crate::geometry::Shape], pairs: &PairTable) -> Kept {
     Kept {
         cached: shapes.iter().any(PairCache::kept_with),
-        history: walls
-            .iter()
-            .map(|w| w.spec.history_kept())
-            .fold(spec.history_kept(), usize::max),
+        history: pairs
+            .all()
+            .map(|p| p.spec.history_kept())
+            .fold(1, usize::max),
     }
 }

@@ -16,8 +16,12 @@
 //!    the contact point, so the normal force has a moment on non-circular bodies), plus gravity
 //!    (T3); each wall's load is summed.
 //! 4. **Kick**: `v_{n+1} = v_{n+½} + ½Δt F_{n+1}/m`, `ω_{n+1} = ω_{n+½} + ½Δt M_{n+1}/I` (T1).
-//! 5. **Account**: the dissipated energy and the walls' work over the step; the servo walls'
-//!    velocities for the next drift, from their loads.
+//! 5. **Account**: the dissipated energy and the work of the walls and of the prescribed bodies
+//!    over the step; the servo walls' velocities for the next drift, from their loads.
+//!
+//! A body whose motion is prescribed takes part in every stage with infinite mass and inertia
+//! (see [`super::body::Bodies`]): the kicks leave its velocity as prescribed and the drift moves
+//! it.
 //!
 //! For an undamped linear oscillator this scheme is stable for `ωΔt < 2`; with a dashpot of
 //! damping ratio ζ evaluated at the half step, for `ωΔt < 2(√(1+ζ²) − ζ)`
@@ -39,6 +43,7 @@ use super::body::Bodies;
 use super::boundary::{Boundary, Motion, servo_velocity};
 use super::contact_pass::{ContactPass, PassInput, SceneFacts, SlotPartial};
 use super::contacts::{Adjacent, ContactData, ContactList};
+use super::materials::PairTable;
 use super::neighbour_list::{self, Builder};
 use super::restart::RestartState;
 use crate::contact_law::ContactSpec;
@@ -107,6 +112,7 @@ pub(crate) struct Parts<'a> {
     pub diagnostics: &'a mut Diagnostics,
     pub gravity: Vec2,
     pub spec: &'a ContactSpec,
+    pub pairs: &'a PairTable,
     pub dt: f64,
     pub step: &'a mut u64,
     pub time: &'a mut f64,
@@ -231,9 +237,12 @@ impl Stepper {
             top_two(&mut disp, p.disp[0].sqrt());
             top_two(&mut disp, p.disp[1].sqrt());
         }
-        if n > 0 {
+        // The mean over the bodies that move by themselves (a prescribed body's motion is its
+        // own: a fixed one adds nothing to the sums, a moving one keeps the scene from rest).
+        let free = n - wd.bodies.prescribed.len();
+        if free > 0 {
             for v in &mut inc {
-                *v /= n as f64;
+                *v /= free as f64;
             }
         }
         *wd.last_increments = inc;
@@ -279,6 +288,19 @@ impl Stepper {
             wd.energies.dissipated -=
                 bodies_sum.non_elastic_power * dt + slots.history_energy_change;
         }
+        // A prescribed body does work on the scene, as a moving wall: the power of its contacts'
+        // forces on the others, `−(F·v + M ω)` with F, M its contacts' force and moment on it
+        // (it has no weight) and v, ω its prescribed motion. Its own contacts' dissipation is in
+        // the bodies' sum, which holds its velocity.
+        if !wd.bodies.prescribed.is_empty() {
+            let b = &*wd.bodies;
+            let power: f64 = b
+                .prescribed
+                .iter()
+                .map(|&k| -(b.force[k].dot(&b.state[k].vel) + b.torque[k] * b.state[k].omega))
+                .sum();
+            wd.energies.boundary_work += power * dt;
+        }
         *wd.step = next_step;
         *wd.time = next_time;
         wd.energies.kinetic = bodies_sum.kinetic;
@@ -321,9 +343,13 @@ impl Stepper {
     /// dissipated.
     pub(crate) fn rebuild_neighbours(&mut self, wd: &mut Parts) {
         self.facts = SceneFacts::of(wd.bodies);
-        let lost =
-            self.builder
-                .rebuild(wd.bodies, wd.walls, wd.spec, self.facts.clumps, wd.contacts);
+        let lost = self.builder.rebuild(
+            wd.bodies,
+            wd.walls,
+            wd.pairs,
+            self.facts.clumps,
+            wd.contacts,
+        );
         wd.energies.dissipated += lost;
         self.size_partials(wd);
     }
@@ -331,7 +357,7 @@ impl Stepper {
     /// Restores the neighbour list of a restart (see [`neighbour_list::restore`]).
     pub(crate) fn restore_neighbours(&mut self, wd: &mut Parts, saved: &RestartState) {
         self.facts = SceneFacts::of(wd.bodies);
-        neighbour_list::restore(wd.bodies, wd.walls, wd.spec, saved, wd.contacts);
+        neighbour_list::restore(wd.bodies, wd.pairs, saved, wd.contacts);
         self.size_partials(wd);
     }
 
@@ -343,6 +369,7 @@ impl Stepper {
                 bodies: &*wd.bodies,
                 walls: &mut *wd.walls,
                 spec: wd.spec,
+                pairs: wd.pairs,
                 g,
                 dt,
                 facts: self.facts,

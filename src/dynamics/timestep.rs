@@ -11,9 +11,10 @@
 
 use super::body::Bodies;
 use super::contacts::Contact;
+use super::materials::{Materials, PairTable};
 use super::world::{Boundary, World};
 use crate::contact_law::params::pair_density;
-use crate::contact_law::{ContactSpec, NormalForce, RollingKinematics};
+use crate::contact_law::{ContactSpec, NormalForce, PairSpec, RollingKinematics};
 use crate::geometry::Shape;
 use crate::geometry::overlap_area::DiskLens;
 
@@ -117,6 +118,19 @@ pub fn estimate_critical_dt(
     walls: &[Boundary],
     g: f64,
 ) -> f64 {
+    let pairs = PairTable::new(spec, &Materials::default(), walls);
+    estimate_critical_dt_of(bodies, &pairs, walls, g)
+}
+
+/// [`estimate_critical_dt`] for a scene of several materials: every law of `pairs` (each
+/// material pair's for the two bodies of the largest inverse masses, each wall's with each
+/// material for the lightest body).
+pub fn estimate_critical_dt_of(
+    bodies: &Bodies,
+    pairs: &PairTable,
+    walls: &[Boundary],
+    g: f64,
+) -> f64 {
     let n = bodies.len();
     if n == 0 {
         return f64::INFINITY;
@@ -144,12 +158,20 @@ pub fn estimate_critical_dt(
             .fold(f64::INFINITY, f64::min);
     let mut dt = f64::INFINITY;
     // A pair of bodies under the scene's law, and each wall's law against the lightest body.
-    let mut cases: Vec<(&ContactSpec, f64, f64, usize, Option<usize>)> = Vec::new();
+    let m = pairs.count() as u16;
+    let mut cases: Vec<(&PairSpec, f64, f64, usize, Option<usize>)> = Vec::new();
     if let (Some(n2), Some(t2)) = (n2, t2) {
-        cases.push((spec, n1.0 + n2.0, t1.0 + t2.0, n1.1, Some(n2.1)));
+        for a in 0..m {
+            for b in a..m {
+                let p = pairs.body_pair(a, b);
+                cases.push((p, n1.0 + n2.0, t1.0 + t2.0, n1.1, Some(n2.1)));
+            }
+        }
     }
-    for w in walls {
-        cases.push((&w.spec, n1.0, t1.0, n1.1, None));
+    for w in 0..walls.len() {
+        for b in 0..m {
+            cases.push((pairs.wall(w, b), n1.0, t1.0, n1.1, None));
+        }
     }
     for (s, w_n, w_t, a, b) in cases {
         let m_eff = match b {
@@ -169,7 +191,7 @@ pub fn estimate_critical_dt(
         };
         // Each part's stiffness and dashpot (Hertz's at an overlap of 1 % of the smallest
         // inscribed radius).
-        let modes = s.resolve(spec, rho, g).modes(delta, r_eff, m_eff, &rk);
+        let modes = s.resolve(rho, g).modes(delta, r_eff, m_eff, &rk);
         let (kn, eta_n) = modes.normal;
         let (kt, eta_t) = modes.tangential;
         // The rolling spring turns the bodies about their centroids: inverse inertia Σ 1/I.
@@ -177,7 +199,7 @@ pub fn estimate_critical_dt(
         dt = dt.min(critical_dt(modes.rolling.0, modes.rolling.1, w_r));
         // A normal spring stiffer by the factor f: stiffness f k_n and dashpot √f η (the area
         // law's ρ η; more damping only lowers the limit).
-        let f = stiffness_factor(bodies, s.normal_force(), b.is_none());
+        let f = stiffness_factor(bodies, s.spec.normal_force(), b.is_none());
         dt = dt
             .min(critical_dt(f * kn, f.sqrt() * eta_n, w_n))
             .min(critical_dt(kt, eta_t, w_t));

@@ -4,6 +4,7 @@ pub use super::account::{Diagnostics, Energies};
 use super::body::{Bodies, BodyInit};
 pub use super::boundary::Boundary;
 use super::contacts::ContactList;
+use super::materials::{Materials, PairTable};
 use super::neighbour_list::kept;
 use super::restart::{BodyRestart, RestartError, RestartState, SlotRestart, WallRestart};
 use super::step::{Blowup, Parts, StepReport, Stepper};
@@ -17,8 +18,12 @@ pub struct World {
     pub bodies: Bodies,
     pub walls: Vec<Boundary>,
     pub gravity: Vec2,
-    /// The contact law between bodies (and with walls that do not override it).
+    /// The scene's contact law: material 0's (see [`super::materials`]).
     pub spec: ContactSpec,
+    /// The scene's further materials and the pairs given their own law.
+    pub materials: Materials,
+    /// The contact law of every pair of materials, and of each wall with each material.
+    pub pairs: PairTable,
     pub dt: f64,
     pub time: f64,
     pub step: u64,
@@ -41,11 +46,46 @@ impl World {
         spec: ContactSpec,
         dt: f64,
     ) -> Self {
-        let mut w = World {
+        Self::of_materials(bodies, walls, gravity, spec, Materials::default(), dt)
+    }
+
+    /// A world at t = 0 whose bodies and walls are of `materials` besides the scene's law
+    /// `spec` (material 0; see [`super::materials`]).
+    ///
+    /// # Panics
+    /// If a pair of materials has no law ([`PairTable::new`]).
+    pub fn of_materials(
+        bodies: &[BodyInit],
+        walls: Vec<Boundary>,
+        gravity: Vec2,
+        spec: ContactSpec,
+        materials: Materials,
+        dt: f64,
+    ) -> Self {
+        let mut w = World::unevaluated(bodies, walls, gravity, spec, materials, dt);
+        w.evaluate_forces();
+        Stepper::update_servos(&mut w.parts().1);
+        w.energies.kinetic = w.kinetic_energy();
+        w.energies.potential = w.potential_energy();
+        w
+    }
+
+    /// The scene at t = 0 with nothing evaluated: no contacts, no forces, no energies.
+    fn unevaluated(
+        bodies: &[BodyInit],
+        walls: Vec<Boundary>,
+        gravity: Vec2,
+        spec: ContactSpec,
+        materials: Materials,
+        dt: f64,
+    ) -> Self {
+        World {
             bodies: Bodies::new(bodies),
+            pairs: PairTable::new(&spec, &materials, &walls),
             walls,
             gravity,
             spec,
+            materials,
             dt,
             time: 0.0,
             step: 0,
@@ -57,41 +97,32 @@ impl World {
             },
             last_increments: [0.0; 3],
             stepper: Stepper::default(),
-        };
-        w.evaluate_forces();
-        Stepper::update_servos(&mut w.parts().1);
-        w.energies.kinetic = w.kinetic_energy();
-        w.energies.potential = w.potential_energy();
-        w
+        }
     }
 
     /// A world resumed from a restart taken of a world of the same scene (`bodies`, `walls`,
-    /// `gravity`, `spec`, `dt` as the case gives them; the bodies' poses and velocities are the
-    /// restart's): it steps to the same bits as the world the restart was taken from
-    /// ([`World::restart_state`]). Refused when the restart does not fit the scene.
+    /// `gravity`, `spec`, `materials`, `dt` as the case gives them; the bodies' poses and
+    /// velocities are the restart's): it steps to the same bits as the world the restart was
+    /// taken from ([`World::restart_state`]). Refused when the restart does not fit the scene.
     pub fn resume(
         bodies: &[BodyInit],
         walls: Vec<Boundary>,
         gravity: Vec2,
         spec: ContactSpec,
+        materials: Materials,
         dt: f64,
         saved: &RestartState,
     ) -> Result<Self, RestartError> {
         let shapes: Vec<_> = bodies.iter().map(|b| b.shape).collect();
-        saved.check(bodies, &walls, dt, kept(&shapes, &spec, &walls))?;
+        let pairs = PairTable::new(&spec, &materials, &walls);
+        saved.check(bodies, &walls, dt, kept(&shapes, &pairs))?;
         let mut w = World {
-            bodies: Bodies::new(bodies),
-            walls,
-            gravity,
-            spec,
-            dt,
             time: saved.time,
             step: saved.step,
-            contacts: ContactList::default(),
             energies: saved.energies,
             diagnostics: saved.diagnostics,
             last_increments: saved.last_increments,
-            stepper: Stepper::default(),
+            ..World::unevaluated(bodies, walls, gravity, spec, materials, dt)
         };
         for (k, r) in saved.bodies.iter().enumerate() {
             let b = &mut w.bodies;
@@ -176,6 +207,7 @@ impl World {
                 diagnostics: &mut self.diagnostics,
                 gravity: self.gravity,
                 spec: &self.spec,
+                pairs: &self.pairs,
                 dt: self.dt,
                 step: &mut self.step,
                 time: &mut self.time,

@@ -95,20 +95,16 @@ impl AnalysisOutput {
         window: Option<Window>,
         every: u64,
     ) -> Result<Self, WriteError> {
-        let a = if analysis {
-            let mut f = LineFile::create(&dir.join("analysis.csv"))?;
-            f.line(format_args!("{ANALYSIS_HEADER}"))?;
-            Some(f)
-        } else {
-            None
+        let open = |on: bool, name: &str, header: &str| -> Result<Option<LineFile>, WriteError> {
+            if !on {
+                return Ok(None);
+            }
+            let mut f = LineFile::create(&dir.join(name))?;
+            f.line(format_args!("{header}"))?;
+            Ok(Some(f))
         };
-        let c = if contacts {
-            let mut c = LineFile::create(&dir.join("contacts.csv"))?;
-            c.line(format_args!("{CONTACTS_HEADER}"))?;
-            Some(c)
-        } else {
-            None
-        };
+        let a = open(analysis, "analysis.csv", ANALYSIS_HEADER)?;
+        let c = open(contacts, "contacts.csv", CONTACTS_HEADER)?;
         Ok(AnalysisOutput {
             analysis: a,
             contacts: c,

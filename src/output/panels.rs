@@ -2,7 +2,7 @@
 //! and P's quiescence measures against the step. Used by `dem2d plot` and `dem2d figures`.
 
 use crate::output::plot::{LinePanel, Series};
-use crate::output::run_data::{Increments, RunData};
+use crate::output::run_data::{BodyState, Increments, RunData};
 
 /// `axis (units)`, or `axis` when the case gives no units.
 fn with_units(axis: &str, units: &str) -> String {
@@ -45,24 +45,14 @@ pub fn time_series(runs: &[(&RunData, &str)], title: &str) -> Vec<LinePanel> {
                 (true, true) => format!("body {k}"),
                 (true, false) => String::new(),
             };
-            height.series.push(Series {
-                label: name.clone(),
-                points: run.frames.iter().map(|f| (f.t, f.bodies[k].y)).collect(),
-                color: c,
-                line: true,
-                ..Default::default()
-            });
-            angle.series.push(Series {
-                label: name,
-                points: run
-                    .frames
-                    .iter()
-                    .map(|f| (f.t, f.bodies[k].angle))
-                    .collect(),
-                color: c,
-                line: true,
-                ..Default::default()
-            });
+            let trace =
+                |of: fn(&BodyState) -> f64| run.frames.iter().map(move |f| (f.t, of(&f.bodies[k])));
+            height
+                .series
+                .push(Series::line(name.clone(), trace(|b| b.y).collect(), c));
+            angle
+                .series
+                .push(Series::line(name, trace(|b| b.angle).collect(), c));
             c += 1;
         }
     }
@@ -105,13 +95,7 @@ fn summarise_bodies(
         pts.iter_mut().for_each(|p| p.1 /= n as f64);
         pts
     };
-    let line = |label: String, points: Vec<(f64, f64)>, color: usize| Series {
-        label,
-        points,
-        color,
-        line: true,
-        ..Default::default()
-    };
+    let line = Series::line;
     height
         .series
         .push(line(format!("{prefix}mean of {n} bodies"), mean(&y), *c));
@@ -173,13 +157,7 @@ pub fn quiescence(run: &RunData, title: &str, y_range: Option<(f64, f64)>) -> Li
     ]
     .into_iter()
     .enumerate()
-    .map(|(c, (label, points))| Series {
-        label: label.into(),
-        points,
-        color: c,
-        line: true,
-        ..Default::default()
-    })
+    .map(|(c, (label, points))| Series::line(label, points, c))
     .collect();
     LinePanel {
         title: title.into(),
@@ -237,29 +215,18 @@ pub fn rotation_against_dt(runs: &[(&RunData, &str)], note: &str) -> Vec<LinePan
             .map_or(", never at rest".to_string(), |s| {
                 format!(", at rest at t = {:.3} s", s as f64 * dt)
             });
-        rate.series.push(Series {
-            label: format!("{label}{at_rest}"),
-            points: run
-                .increments
-                .iter()
-                .map(|i| (i.t, i.mean_dtheta / dt))
-                .filter(|p| p.1 > 0.0)
-                .collect(),
-            color: c,
-            line: true,
-            ..Default::default()
-        });
-        angle.series.push(Series {
-            label: label.to_string(),
-            points: run
-                .frames
-                .iter()
-                .map(|f| (f.t, f.bodies[k].angle))
-                .collect(),
-            color: c,
-            line: true,
-            ..Default::default()
-        });
+        let rates = run
+            .increments
+            .iter()
+            .map(|i| (i.t, i.mean_dtheta / dt))
+            .filter(|p| p.1 > 0.0);
+        rate.series.push(Series::line(
+            format!("{label}{at_rest}"),
+            rates.collect(),
+            c,
+        ));
+        let angles = run.frames.iter().map(|f| (f.t, f.bodies[k].angle));
+        angle.series.push(Series::line(*label, angles.collect(), c));
     }
     vec![rate, angle]
 }

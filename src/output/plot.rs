@@ -997,6 +997,19 @@ pub struct Series {
     pub point_labels: Vec<String>,
 }
 
+impl Series {
+    /// A line of `points` in colour `color` (no markers).
+    pub fn line(label: impl Into<String>, points: Vec<(f64, f64)>, color: usize) -> Series {
+        Series {
+            label: label.into(),
+            points,
+            color,
+            line: true,
+            ..Default::default()
+        }
+    }
+}
+
 /// A panel of line series.
 #[derive(Clone, Debug, Default)]
 pub struct LinePanel {

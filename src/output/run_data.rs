@@ -9,8 +9,8 @@ use crate::scene::Case;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-/// State of one body in one frame.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// State of one body in one frame (a row of `trajectory.csv`; the summary's `final_state`).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct BodyState {
     pub x: f64,
     pub y: f64,

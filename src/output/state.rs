@@ -24,12 +24,12 @@ use crate::geometry::Vec2;
 use crate::run::{End, Observer, ObserverError, RunError, RunProgress, StepInfo};
 use serde_json::Value;
 use std::fmt::Write as _;
-use std::io::{self, Write};
-use std::path::Path;
+use std::io;
+use std::path::{Path, PathBuf};
 
 /// The case's top-level fields in the order a state file lists them (the bodies and the state
 /// come last).
-const CASE_ORDER: [&str; 13] = [
+const CASE_ORDER: [&str; 15] = [
     "version",
     "name",
     "description",
@@ -42,6 +42,8 @@ const CASE_ORDER: [&str; 13] = [
     "output_every",
     "output",
     "contact",
+    "materials",
+    "pairs",
     "walls",
 ];
 
@@ -319,36 +321,27 @@ pub fn write_state(
         bodies,
         status,
     );
-    let tmp = dir.join("state.json.tmp");
-    let result = std::fs::File::create(&tmp).and_then(|mut f| {
-        f.write_all(text.as_bytes())?;
-        f.sync_all()
-    });
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(e);
-    }
-    std::fs::rename(&tmp, dir.join("state.json"))
+    super::write_atomically(dir, "state.json", &text)
 }
 
 /// The writer of a run's `state.json` (an observer): when the run ends, however it ends but by a
 /// blow-up (a non-finite or unphysical state is nothing to continue from), with the status of
 /// its end.
-pub struct StateWriter<'c> {
-    dir: &'c Path,
-    case: &'c Value,
+pub struct StateWriter {
+    dir: PathBuf,
+    case: Value,
     duration: f64,
-    bodies: &'c [BodyInit],
+    bodies: Vec<BodyInit>,
 }
 
-impl<'c> StateWriter<'c> {
+impl StateWriter {
     /// Into `dir`, for the run of `case` (its JSON) of `duration` with the case's `bodies`.
-    pub fn new(dir: &'c Path, case: &'c Value, duration: f64, bodies: &'c [BodyInit]) -> Self {
+    pub fn new(dir: &Path, case: &Value, duration: f64, bodies: &[BodyInit]) -> Self {
         StateWriter {
-            dir,
-            case,
+            dir: dir.to_path_buf(),
+            case: case.clone(),
             duration,
-            bodies,
+            bodies: bodies.to_vec(),
         }
     }
 
@@ -360,11 +353,11 @@ impl<'c> StateWriter<'c> {
         status: Status,
     ) -> Result<(), WriteError> {
         write_state(
-            self.dir,
-            self.case,
+            &self.dir,
+            &self.case,
             self.duration,
             world,
-            self.bodies,
+            &self.bodies,
             run,
             status.as_str(),
         )
@@ -375,7 +368,7 @@ impl<'c> StateWriter<'c> {
     }
 }
 
-impl Observer for StateWriter<'_> {
+impl Observer for StateWriter {
     fn after_step(&mut self, _: &mut World, _: &StepInfo) -> Result<(), ObserverError> {
         Ok(())
     }

@@ -1,9 +1,10 @@
 //! `summary.json`: what a run did, in one object. It is written (atomically: a temporary file
 //! renamed over it) with status `running` before the first step and once more at the end.
 
+use super::run_data::BodyState;
 use crate::run::{RunError, Stop};
 use serde::Serialize;
-use std::io::{self, Write};
+use std::io;
 use std::path::Path;
 
 /// How a run stands, or how it ended.
@@ -58,17 +59,6 @@ impl Status {
     }
 }
 
-/// Final state of one body.
-#[derive(Clone, Debug, Serialize)]
-pub struct FinalBody {
-    pub x: f64,
-    pub y: f64,
-    pub angle: f64,
-    pub vx: f64,
-    pub vy: f64,
-    pub omega: f64,
-}
-
 /// Energies per unit thickness.
 #[derive(Clone, Debug, Serialize)]
 pub struct EnergyReport {
@@ -107,7 +97,7 @@ pub struct Summary {
     /// First step after which any contact existed (null if none ever did).
     pub first_contact_step: Option<u64>,
     #[serde(rename = "final")]
-    pub final_state: Vec<FinalBody>,
+    pub final_state: Vec<BodyState>,
     pub max_depth_ratio: f64,
     pub deep_contacts: DeepCounts,
     pub energies: EnergyReport,
@@ -134,14 +124,5 @@ pub struct Summary {
 pub fn write_summary(dir: &Path, summary: &Summary) -> io::Result<()> {
     let mut text = serde_json::to_string_pretty(summary).map_err(io::Error::other)?;
     text.push('\n');
-    let tmp = dir.join("summary.json.tmp");
-    let result = std::fs::File::create(&tmp).and_then(|mut f| {
-        f.write_all(text.as_bytes())?;
-        f.sync_all()
-    });
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(e);
-    }
-    std::fs::rename(&tmp, dir.join("summary.json"))
+    super::write_atomically(dir, "summary.json", &text)
 }

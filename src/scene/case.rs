@@ -26,9 +26,10 @@ use super::fields::{
     FieldError, Obj, index, join, non_negative, number, positive, scale, type_of, unknown_field,
     vec2,
 };
+use super::materials::{Named, body_density, check_mixing, meeting, read_materials, read_pairs};
 use super::ranges::{Placed, SpecContext, check_extent, check_spec, check_steps};
 use crate::contact_law::{Check, ContactSpec, Keys, NormalForce, ParamError};
-use crate::dynamics::{BodyInit, Boundary, Motion, Servo, Span};
+use crate::dynamics::{BodyInit, Boundary, Materials, Motion, Servo, Span};
 use crate::geometry::Vec2;
 use serde_json::{Map, Value};
 
@@ -54,6 +55,10 @@ pub struct Case {
     /// "contacts": true, "analysis_window": [x0, x1, y0, y1]}`).
     pub output: OutputSpec,
     pub contact: ContactSpec,
+    /// The case's named materials (`materials`, material k + 1 named `material_names[k]`) and
+    /// the pairs given their own law (`pairs`); material 0 is `contact`.
+    pub materials: Materials,
+    pub material_names: Vec<String>,
     pub walls: Vec<Boundary>,
     pub bodies: Vec<BodyInit>,
 }
@@ -144,7 +149,9 @@ impl Case {
                 )
             })?
             .clone();
-        let contact = parse_contact(&contact_map, "contact", "contact")?;
+        let contact = parse_contact(&contact_map, "contact", "contact", true)?;
+        let mut named = read_materials(o.get("materials"), &contact_map)?;
+        read_pairs(o.get("pairs"), &mut named, (&contact, &contact_map))?;
         let mut walls = Vec::new();
         if let Some(list) = o.get("walls") {
             let items = list.as_array().ok_or_else(|| {
@@ -153,13 +160,29 @@ impl Case {
             let mut spans = Vec::new();
             for (k, item) in items.iter().enumerate() {
                 let path = index("walls", k);
-                let (wall, (spec, motion)) = parse_wall_with(item, &path, |w| {
-                    Ok((wall_overrides(w, &contact_map)?, wall_motion(w)?))
+                let (wall, (spec, motion, material)) = parse_wall_with(item, &path, |w| {
+                    let material = w.opt_with("material", |v, p| named.index_of(v, p))?;
+                    let spec = wall_overrides(w, &contact_map)?;
+                    if material.is_some() && spec.is_some() {
+                        return Err(FieldError::new(
+                            w.field_path("material"),
+                            "give the wall a `material` or contact keys of its own, not both",
+                        ));
+                    }
+                    Ok((spec, wall_motion(w)?, material))
                 })?;
                 if let Motion::Servo(s) = motion {
                     spans.push((k, s.span));
                 }
-                walls.push(Boundary::moving(wall, spec.unwrap_or(contact), motion));
+                let boundary = Boundary::moving(wall, spec.unwrap_or(contact), motion);
+                walls.push(match (spec, material) {
+                    // A wall of its own law.
+                    (Some(_), _) => boundary,
+                    (None, m) => {
+                        let m = m.unwrap_or(0);
+                        boundary.of_material(m, *named.materials.spec(&contact, m))
+                    }
+                });
             }
             for (k, span) in spans {
                 check_span(&walls, k, &span)?;
@@ -176,14 +199,21 @@ impl Case {
         for (k, item) in items.iter().enumerate() {
             let path = index("bodies", k);
             let mut b = Obj::new(item, &path)?;
-            let (shape, pose, (velocity, omega, density)) = parse_body_with(&mut b, |b| {
-                let velocity = b.opt_with("velocity", vec2)?.unwrap_or([0.0, 0.0]);
-                let omega = b.opt_with("omega", number)?.unwrap_or(0.0);
-                let density = b.opt_with("density", scale)?.unwrap_or(1.0);
-                Ok((velocity, omega, density))
-            })?;
+            let (shape, pose, (velocity, omega, density, material)) =
+                parse_body_with(&mut b, |b| {
+                    let velocity = b.opt_with("velocity", vec2)?.unwrap_or([0.0, 0.0]);
+                    let omega = b.opt_with("omega", number)?.unwrap_or(0.0);
+                    let density = b.opt_with("density", scale)?;
+                    let material = b
+                        .opt_with("material", |v, p| named.index_of(v, p))?
+                        .unwrap_or(0);
+                    Ok((velocity, omega, density, material))
+                })?;
             b.finish()?;
+            let density = body_density(&named, material, density, &path)?;
             bodies.push(BodyInit {
+                material,
+                prescribed: false,
                 shape,
                 position: pose.position,
                 angle: pose.angle(),
@@ -211,7 +241,9 @@ impl Case {
         }));
         check_extent(&placed)?;
         check_walls(&walls, &bodies)?;
-        check_contact_ranges(&contact, &walls, &bodies, gravity)?;
+        let meets = meeting(&bodies, &walls);
+        check_mixing(&named, (&contact, &contact_map), &meets)?;
+        check_contact_ranges(&contact, &named, &meets, &walls, &bodies, gravity)?;
         Ok(Case {
             name,
             description,
@@ -224,6 +256,8 @@ impl Case {
             output_every,
             output,
             contact,
+            materials: named.materials,
+            material_names: named.names,
             walls,
             bodies,
         })
@@ -251,6 +285,8 @@ impl Case {
             output_every: 100,
             output: OutputSpec::default(),
             contact,
+            materials: Materials::default(),
+            material_names: Vec::new(),
             walls,
             bodies,
         }
@@ -259,11 +295,12 @@ impl Case {
     /// The world this case describes, at t = 0 (the forces of the initial configuration
     /// evaluated).
     pub fn build_world(&self) -> crate::dynamics::World {
-        crate::dynamics::World::new(
+        crate::dynamics::World::of_materials(
             &self.bodies,
             self.walls.clone(),
             self.gravity,
             self.contact,
+            self.materials.clone(),
             self.dt,
         )
     }
@@ -280,6 +317,7 @@ impl Case {
             self.walls.clone(),
             self.gravity,
             self.contact,
+            self.materials.clone(),
             self.dt,
             state,
         )
@@ -291,9 +329,16 @@ impl Case {
         self
     }
 
-    /// The same case with every contact law (the scene's and each wall's) changed by `f`.
+    /// The same case with every contact law (the scene's, each material's, each pair's and
+    /// each wall's) changed by `f`.
     pub fn map_contacts(mut self, f: impl Fn(ContactSpec) -> ContactSpec) -> Case {
         self.contact = f(self.contact);
+        for s in &mut self.materials.specs {
+            *s = f(*s);
+        }
+        for p in &mut self.materials.pairs {
+            p.2 = f(p.2);
+        }
         for w in &mut self.walls {
             w.spec = f(w.spec);
         }
@@ -376,10 +421,14 @@ fn check_walls(walls: &[Boundary], bodies: &[BodyInit]) -> Result<(), FieldError
     Ok(())
 }
 
-/// Checks every contact law a pair that can meet will use: the scene's (between bodies, and with
-/// walls that do not override it) and each wall's own, for every density of the scene.
+/// Checks every contact law a pair that can meet will use: each two materials' that meet
+/// (`meets`; the scene's at `contact`, a pair given its own at `pairs[k]`, else at the later
+/// material's `materials.<name>`), and each wall's own law against every material of a body,
+/// for every density of the scene.
 fn check_contact_ranges(
     contact: &ContactSpec,
+    named: &Named,
+    meets: &[(u16, u16)],
     walls: &[Boundary],
     bodies: &[BodyInit],
     gravity: Vec2,
@@ -394,24 +443,42 @@ fn check_contact_ranges(
     };
     let rho = [by_density(|a, b| a < b), by_density(|a, b| a > b)];
     let g = gravity.norm();
-    let scene_used = bodies.len() >= 2 || walls.iter().any(|w| w.spec == *contact);
-    if scene_used {
+    let m = &named.materials;
+    // Two bodies of material 0 meet, or one meets a wall of material 0.
+    let scene_used = bodies.len() >= 2 && meets.contains(&(0, 0))
+        || walls.iter().any(|w| w.material == Some(0)) && bodies.iter().any(|b| b.material == 0);
+    for &(a, b) in meets {
+        if (a, b) == (0, 0) && !scene_used {
+            continue;
+        }
+        let pair = m.pair(contact, a, b).expect("checked: the pair mixes");
+        let at = match m.pairs.iter().position(|p| (p.0, p.1) == (a, b)) {
+            Some(k) => index("pairs", k),
+            None if b == 0 => "contact".to_string(),
+            None => join("materials", &named.names[b as usize - 1]),
+        };
         let ctx = SpecContext {
-            at: "contact",
+            at: &at,
             rho: rho.clone(),
             g,
         };
-        check_spec(contact, contact, &ctx)?;
+        check_spec(&pair.spec, &pair.other, &ctx)?;
     }
+    let mut used: Vec<u16> = bodies.iter().map(|b| b.material).collect();
+    used.sort_unstable();
+    used.dedup();
     for (w, ws) in walls.iter().enumerate() {
-        if ws.spec != *contact {
-            let at = index("walls", w);
-            let ctx = SpecContext {
-                at: &at,
-                rho: rho.clone(),
-                g,
-            };
-            check_spec(&ws.spec, contact, &ctx)?;
+        if ws.material.is_some() {
+            continue;
+        }
+        let at = index("walls", w);
+        let ctx = SpecContext {
+            at: &at,
+            rho: rho.clone(),
+            g,
+        };
+        for &b in &used {
+            check_spec(&ws.spec, m.spec(contact, b), &ctx)?;
         }
     }
     Ok(())
@@ -451,7 +518,15 @@ fn wall_overrides(
     if given.is_empty() {
         return Ok(None);
     }
-    let mut merged = defaults.clone();
+    let merged = layered(defaults, given);
+    let path = w.path().to_string();
+    parse_contact(&merged, &path, &path, true).map(Some)
+}
+
+/// The contact object `base` with the keys `given` in place of its own: each given key
+/// replaces the keys of `base` it replaces ([`ContactSpec::replaced_by`]).
+pub(crate) fn layered(base: &Map<String, Value>, given: Vec<(&str, Value)>) -> Map<String, Value> {
+    let mut merged = base.clone();
     for (key, _) in &given {
         for k in ContactSpec::replaced_by(key) {
             merged.remove(k);
@@ -460,20 +535,24 @@ fn wall_overrides(
     for (key, v) in given {
         merged.insert(key.to_string(), v);
     }
-    let path = w.path().to_string();
-    parse_contact(&merged, &path, &path).map(Some)
+    merged
 }
 
 /// The contact object, each part reading its keys ([`ContactSpec::parse`]). `path` prefixes
-/// field paths; `missing_at` is where a missing field is reported.
-fn parse_contact(
+/// field paths; `missing_at` is where a missing field is reported; `note`: record every
+/// contact key as one this object takes (see `fields::keys_asked_during`; a material's and a
+/// pair's reader records the keys they take).
+pub(crate) fn parse_contact(
     map: &Map<String, Value>,
     path: &str,
     missing_at: &str,
+    note: bool,
 ) -> Result<ContactSpec, FieldError> {
     let keys: Vec<&str> = ContactSpec::keys().collect();
-    for k in &keys {
-        super::fields::note_key(path, k);
+    if note {
+        for k in &keys {
+            super::fields::note_key(path, k);
+        }
     }
     for k in map.keys() {
         if !keys.contains(&k.as_str()) {

@@ -202,6 +202,8 @@ impl PileSpec {
                     ),
                 };
                 BodyInit {
+                    material: 0,
+                    prescribed: false,
                     shape,
                     position: Vec2::new(x, y),
                     angle,
@@ -440,6 +442,8 @@ impl ColumnSpec {
                 let r = round6(rng.range(R_MIN, R_MAX));
                 let x = round6(x0 + spacing * (col as f64 + 0.5) + rng.range(-0.1, 0.1));
                 BodyInit {
+                    material: 0,
+                    prescribed: false,
                     shape: Shape::Circle { r },
                     position: Vec2::new(x, round6(spacing * (row as f64 + 0.5))),
                     angle: 0.0,

@@ -5,6 +5,7 @@ pub mod body;
 pub mod case;
 pub mod fields;
 pub mod generate;
+pub mod materials;
 pub mod ranges;
 pub mod servo_box;
 pub mod state;

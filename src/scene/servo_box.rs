@@ -23,6 +23,26 @@ pub const KN: f64 = 36400.0 * DENSITY * 980.0;
 /// Time step (s).
 pub const DT: f64 = 1e-5;
 
+/// The four walls of the box `[x0, x1, y0, y1]` as case JSON — bottom, top, left, right, their
+/// normals into the box — each given the extra fields of `motions` (`{"servo": …}`,
+/// `{"velocity": …}`, or `null`).
+pub fn box_walls([x0, x1, y0, y1]: [f64; 4], motions: [Value; 4]) -> Vec<Value> {
+    let mut walls = vec![
+        json!({"point": [0.0, y0], "normal": [0.0, 1.0]}),
+        json!({"point": [0.0, y1], "normal": [0.0, -1.0]}),
+        json!({"point": [x0, 0.0], "normal": [1.0, 0.0]}),
+        json!({"point": [x1, 0.0], "normal": [-1.0, 0.0]}),
+    ];
+    for (w, m) in walls.iter_mut().zip(motions) {
+        if let Value::Object(m) = m {
+            for (k, v) in m {
+                w[k] = v;
+            }
+        }
+    }
+    walls
+}
+
 fn round6(x: f64) -> f64 {
     (x * 1e6).round() / 1e6
 }
@@ -69,6 +89,8 @@ impl ServoBox {
                     )
                 };
                 BodyInit {
+                    material: 0,
+                    prescribed: false,
                     shape,
                     position: Vec2::new(
                         round6(s * ((k % n) as f64 + 0.5)),
@@ -110,18 +132,9 @@ impl ServoBox {
         motions: [Value; 4],
         duration: f64,
     ) -> String {
-        let mut walls = vec![
-            json!({"point": [0.0, y0], "normal": [0.0, 1.0], "friction": 0.0}),
-            json!({"point": [0.0, y1], "normal": [0.0, -1.0], "friction": 0.0}),
-            json!({"point": [x0, 0.0], "normal": [1.0, 0.0], "friction": 0.0}),
-            json!({"point": [x1, 0.0], "normal": [-1.0, 0.0], "friction": 0.0}),
-        ];
-        for (w, m) in walls.iter_mut().zip(motions) {
-            if let Value::Object(m) = m {
-                for (k, v) in m {
-                    w[k] = v;
-                }
-            }
+        let mut walls = box_walls([x0, x1, y0, y1], motions);
+        for w in walls.iter_mut().filter_map(Value::as_object_mut) {
+            w.entry("friction").or_insert(json!(0.0));
         }
         let head: [(&str, Value); 10] = [
             ("version", json!(1)),

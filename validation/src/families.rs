@@ -8,76 +8,17 @@
 //! after a rigid motion of the pair and after swapping i and j. `tests/geometry_hard_cases.rs`
 //! asserts them; `dem2d figures` tabulates the worst errors with the kernel's time per pair.
 
-use super::reference::{RContact, RObj, RShape, RState, depth_along, reference_contact};
+use super::pairs::{
+    ANGLE_BAR, CLASS_BAR, DEPTH_BAR, POINT_BAR, Spec, angle_between, same_state, support,
+    support_point, ulp, unit,
+};
+use super::reference::{RContact, RState, depth_along, reference_contact};
 use crate::rng::Rng;
-use dem2d::geometry::support::support_local;
-use dem2d::geometry::{Pose, Shape, Vec2, Wall};
+use dem2d::geometry::{Shape, Vec2};
 use dem2d::narrow_phase::ellipse_ellipse::Warm;
 use dem2d::narrow_phase::{
     Contact, ContactState, Object, PairCache, Request, contact, contact_with,
 };
-
-const DEPTH_BAR: f64 = 1e-12;
-const ANGLE_BAR: f64 = 1e-8;
-const POINT_BAR: f64 = 1e-9;
-const CLASS_BAR: f64 = 1e-12;
-
-/// One side of a test pair, convertible to both the kernel's and the reference's types.
-#[derive(Clone, Copy, Debug)]
-enum Spec {
-    Body(Shape, [f64; 2], f64),
-    Wall([f64; 2], [f64; 2]),
-}
-
-impl Spec {
-    fn object(&self) -> Object {
-        match *self {
-            Spec::Body(shape, p, th) => Object::Body {
-                shape,
-                pose: Pose::new(Vec2::from(p), th),
-            },
-            Spec::Wall(p, n) => Object::Wall(Wall::new(Vec2::from(p), Vec2::from(n)).unwrap()),
-        }
-    }
-    fn reference(&self) -> RObj {
-        match *self {
-            Spec::Body(shape, pos, angle) => RObj::Body {
-                shape: match shape {
-                    Shape::Circle { r } => RShape::Circle { r },
-                    Shape::Ellipse { a, b } => RShape::Ellipse { a, b },
-                    Shape::Rectangle { w, h } => RShape::Rectangle { w, h },
-                    Shape::Polygon(_) | Shape::Clump(_) => unreachable!(
-                        "no polygon or clump family here (a clump's contacts are circles')"
-                    ),
-                },
-                pos,
-                angle,
-            },
-            Spec::Wall(point, normal) => RObj::Wall { point, normal },
-        }
-    }
-    fn size(&self) -> f64 {
-        match self {
-            Spec::Body(s, ..) => s.bounding_radius(),
-            Spec::Wall(..) => 0.0,
-        }
-    }
-    /// The same object after rotating the plane by ψ about the origin and translating by t.
-    fn moved(&self, psi: f64, t: [f64; 2]) -> Spec {
-        let (s, c) = psi.sin_cos();
-        let rot = |p: [f64; 2]| [c * p[0] - s * p[1], s * p[0] + c * p[1]];
-        match *self {
-            Spec::Body(shape, p, th) => {
-                let q = rot(p);
-                Spec::Body(shape, [q[0] + t[0], q[1] + t[1]], th + psi)
-            }
-            Spec::Wall(p, n) => {
-                let q = rot(p);
-                Spec::Wall([q[0] + t[0], q[1] + t[1]], rot(n))
-            }
-        }
-    }
-}
 
 /// A pair with the direction it was built along (for the true gap along it).
 struct Case {
@@ -100,45 +41,6 @@ impl Case {
 /// +1 for even `k`, −1 for odd: families alternate overlap and separation.
 fn alternate(k: usize) -> f64 {
     if k.is_multiple_of(2) { 1.0 } else { -1.0 }
-}
-
-fn support(shape: &Shape, angle: f64, n: [f64; 2]) -> f64 {
-    let (s, c) = angle.sin_cos();
-    support_local(shape, c * n[0] + s * n[1], -s * n[0] + c * n[1])
-}
-
-/// The point of `shape` (centred at the origin, at `angle`) farthest along the unit direction `n`.
-fn support_point(shape: &Shape, angle: f64, n: [f64; 2]) -> [f64; 2] {
-    let (s, c) = angle.sin_cos();
-    let (ux, uy) = (c * n[0] + s * n[1], -s * n[0] + c * n[1]);
-    let (px, py) = match *shape {
-        Shape::Circle { r } => (r * ux, r * uy),
-        Shape::Ellipse { a, b } => {
-            let h = ((a * ux) * (a * ux) + (b * uy) * (b * uy)).sqrt();
-            (a * a * ux / h, b * b * uy / h)
-        }
-        Shape::Rectangle { w, h } => (0.5 * w * ux.signum(), 0.5 * h * uy.signum()),
-        Shape::Polygon(p) => {
-            let v = p
-                .vertices
-                .iter()
-                .max_by(|a, b| (a.x * ux + a.y * uy).total_cmp(&(b.x * ux + b.y * uy)))
-                .expect("a polygon has vertices");
-            (v.x, v.y)
-        }
-        Shape::Clump(cl) => {
-            let n = ux.hypot(uy);
-            let (m, r) = (0..cl.len())
-                .map(|k| cl.member(k))
-                .max_by(|a, b| {
-                    (a.0.x * ux + a.0.y * uy + a.1 * n)
-                        .total_cmp(&(b.0.x * ux + b.0.y * uy + b.1 * n))
-                })
-                .expect("a clump has members");
-            (m.x + r * ux / n, m.y + r * uy / n)
-        }
-    };
-    [c * px - s * py, s * px + c * py]
 }
 
 /// Body j of `sj` at angle `tj` placed against body i so that j's extreme point along −n sits on
@@ -217,28 +119,6 @@ pub struct FamilyReport {
     pub warm: f64,
     pub failures: Vec<String>,
     pub pairs: Vec<(Object, Object)>,
-}
-
-fn ulp(x: f64) -> f64 {
-    let x = x.abs().max(f64::MIN_POSITIVE);
-    f64::from_bits(x.to_bits() + 1) - x
-}
-
-fn angle_between(a: Vec2, b: [f64; 2]) -> f64 {
-    (a.x * b[1] - a.y * b[0])
-        .atan2(a.x * b[0] + a.y * b[1])
-        .abs()
-}
-
-fn same_state(k: ContactState, r: RState) -> bool {
-    matches!(
-        (k, r),
-        (ContactState::Separated, RState::Separated)
-            | (ContactState::Touching, RState::Touching)
-            | (ContactState::Overlap, RState::Overlap)
-            | (ContactState::Deep, RState::Deep(_))
-            | (ContactState::Contained, RState::Contained)
-    )
 }
 
 /// The state of a query's result (`None`: apart).
@@ -592,10 +472,6 @@ pub fn markdown_table(reports: &[FamilyReport], ns_per_pair: Option<&[f64]>) -> 
 
 const DEPTHS: [f64; 9] = [1e-12, 1e-11, 1e-10, 1e-8, 1e-6, 1e-4, 1e-2, 0.1, 0.3];
 const ASPECTS: [f64; 5] = [1.0, 1.0 + 1e-9, 1.5, 10.0, 100.0];
-
-fn unit(t: f64) -> [f64; 2] {
-    [t.cos(), t.sin()]
-}
 
 /// Every family of hard cases, each checked against the reference.
 pub fn run_families() -> Vec<FamilyReport> {

@@ -14,6 +14,7 @@
 pub mod dd;
 pub mod families;
 pub mod overlap_reference;
+pub mod pairs;
 pub mod polygon_reference;
 pub mod reference;
 pub mod rng;

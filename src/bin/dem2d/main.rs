@@ -3,15 +3,14 @@
 
 mod analyze;
 mod impact;
-mod runner;
 mod study;
 mod verify;
 mod verify_ellipses;
 
-use crate::runner::{RunError, RunOptions, default_out_dir, run_case, signal_name};
 use clap::{Parser, Subcommand};
 use dem2d::narrow_phase::contact;
 use dem2d::output::contacts::contact_json;
+use dem2d::output::run_dir::{RunError, RunOptions, default_out_dir, run_case, signal_name};
 use dem2d::output::summary::Status;
 use dem2d::scene::fields::parse_json;
 use dem2d::scene::parse_pairs;

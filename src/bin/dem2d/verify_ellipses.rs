@@ -28,6 +28,7 @@ use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
 use dem2d::dynamics::{BodyInit, Boundary, World};
 use dem2d::geometry::{Shape, Vec2, Wall};
 use dem2d::run::{RunError, Simulation};
+use dem2d::scene::Case;
 
 /// One comparison: quantity, dem2d's value, the reference (text), the tolerance (text), pass.
 pub type Row = (String, f64, String, String, bool);
@@ -53,6 +54,8 @@ fn undamped() -> LinearDamping {
 
 fn ellipse(a: f64, b: f64, x: Vec2, angle: f64, v: Vec2) -> BodyInit {
     BodyInit {
+        material: 0,
+        prescribed: false,
         shape: Shape::Ellipse { a, b },
         position: x,
         angle,
@@ -84,13 +87,14 @@ fn rocking() -> Result<Vec<Row>, RunError> {
     );
     let (h, _) = lowest(a, b, theta0);
     let floor = Boundary::new(Wall::new(Vec2::zeros(), Vec2::y()).expect("wall"), s);
-    let mut w = World::new(
-        &[ellipse(a, b, Vec2::new(0.0, h), theta0, Vec2::zeros())],
+    let mut w = Case::new(
+        vec![ellipse(a, b, Vec2::new(0.0, h), theta0, Vec2::zeros())],
         vec![floor],
         Vec2::new(0.0, -G),
         s,
         1e-5,
-    );
+    )
+    .build_world();
     let angle = |w: &World| w.bodies.state[0].pose.angle();
     // Zero crossings of the angle, interpolated within the step.
     let mut crossings = Vec::new();
@@ -132,8 +136,8 @@ fn tilted_drop() -> Result<Vec<Row>, RunError> {
     let s = spec(kn, undamped(), 0.0, NormalForce::Area);
     let (h, r) = lowest(a, b, theta);
     let floor = Boundary::new(Wall::new(Vec2::zeros(), Vec2::y()).expect("wall"), s);
-    let mut w = World::new(
-        &[ellipse(
+    let mut w = Case::new(
+        vec![ellipse(
             a,
             b,
             Vec2::new(0.0, h + 1e-3),
@@ -144,7 +148,8 @@ fn tilted_drop() -> Result<Vec<Row>, RunError> {
         Vec2::zeros(),
         s,
         2e-8,
-    );
+    )
+    .build_world();
     // Until the first step after the contact.
     let mut touched = false;
     Simulation::new(&mut w)
@@ -217,13 +222,14 @@ fn incline() -> Result<Vec<Row>, RunError> {
         );
         let incline = Boundary::new(Wall::new(Vec2::zeros(), n).expect("wall"), s);
         let (phi, x) = pose_on_incline(a, b, n, t);
-        let mut w = World::new(
-            &[ellipse(a, b, x, phi, Vec2::zeros())],
+        let mut w = Case::new(
+            vec![ellipse(a, b, x, phi, Vec2::zeros())],
             vec![incline],
             Vec2::new(0.0, -G),
             s,
             1e-5,
-        );
+        )
+        .build_world();
         let mut most = 0.0f64;
         Simulation::new(&mut w)
             .until_time(1.0)
@@ -301,7 +307,7 @@ fn force_on_j(i: Option<BodyInit>, j: BodyInit, nf: NormalForce) -> (Vec2, f64) 
             0,
         ),
     };
-    let w = World::new(&bodies, walls, Vec2::zeros(), s, 1e-6);
+    let w = Case::new(bodies, walls, Vec2::zeros(), s, 1e-6).build_world();
     (w.bodies.force[k], w.bodies.torque[k])
 }
 

@@ -21,6 +21,7 @@ use dem2d::output::progress::CommandProgress;
 use dem2d::run::{RunError, Simulation};
 use dem2d::scene::Case;
 use dem2d::scene::generate::case_text_from;
+use dem2d::scene::servo_box::box_walls;
 use serde_json::{Value, json};
 
 const SIGMA_C: f64 = 1e5;
@@ -33,24 +34,11 @@ fn round6(x: f64) -> f64 {
 
 /// The case: bodies, four walls (bottom, top, left, right) with their motions.
 fn case_json(name: &str, bodies: &[BodyInit], box_: [f64; 4], motions: [Value; 4]) -> String {
-    let [x0, x1, y0, y1] = box_;
     let kn = 36400.0 * 2.65 * 980.0;
     let eta = 2.0
         * dem2d::contact_law::damping_ratio_linear(0.5)
         * (2.65 * std::f64::consts::PI * kn).sqrt();
-    let mut walls = vec![
-        json!({"point": [0.0, y0], "normal": [0.0, 1.0]}),
-        json!({"point": [0.0, y1], "normal": [0.0, -1.0]}),
-        json!({"point": [x0, 0.0], "normal": [1.0, 0.0]}),
-        json!({"point": [x1, 0.0], "normal": [-1.0, 0.0]}),
-    ];
-    for (w, m) in walls.iter_mut().zip(motions) {
-        if let Value::Object(m) = m {
-            for (k, v) in m {
-                w[k] = v;
-            }
-        }
-    }
+    let walls = box_walls(box_, motions);
     let head: [(&str, Value); 10] = [
         ("version", json!(1)),
         ("name", json!(name)),
@@ -108,6 +96,8 @@ pub fn run(write: bool) -> Result<String, RunError> {
     let s = 2.6;
     let bodies: Vec<BodyInit> = (0..N_SIDE * N_SIDE)
         .map(|k| BodyInit {
+            material: 0,
+            prescribed: false,
             shape: Shape::Circle {
                 r: round6(0.8 + 0.4 * uniform()),
             },

@@ -126,6 +126,8 @@ pub fn run_one(
     }
     let bodies: Vec<BodyInit> = (0..n)
         .map(|k| BodyInit {
+            material: 0,
+            prescribed: false,
             shape: w.bodies.shape[k],
             position: w.bodies.state[k].pose.position,
             angle: w.bodies.state[k].pose.angle(),
@@ -393,16 +395,15 @@ pub fn run(grains: usize, write: bool) -> Result<String, RunError> {
         results
             .iter()
             .enumerate()
-            .map(|(c, r)| Series {
-                label: format!("α = {}", r.aspect),
-                points: r
-                    .curve
-                    .iter()
-                    .map(|p| (100.0 * p.0, if k == 0 { p.1 } else { 100.0 * p.2 }))
-                    .collect(),
-                color: c,
-                line: true,
-                ..Default::default()
+            .map(|(c, r)| {
+                Series::line(
+                    format!("α = {}", r.aspect),
+                    r.curve
+                        .iter()
+                        .map(|p| (100.0 * p.0, if k == 0 { p.1 } else { 100.0 * p.2 }))
+                        .collect(),
+                    c,
+                )
             })
             .collect()
     };

@@ -27,31 +27,38 @@ pub type Row = (String, f64, f64, f64);
 /// The normal impacts: contact time and peak overlap for the linear and Hertz springs.
 pub fn normal_rows() -> Result<Vec<Row>, RunError> {
     let mut rows = Vec::new();
-    let (tc, d) = impact::linear_reference(KN, V_NORMAL);
-    let r = impact::disk_on_floor(&impact::linear_law(KN, 0.0), V_NORMAL, 0.0, tc / 2000.0)?;
-    rows.push(("linear: contact time (s)".into(), r.contact_time, tc, 1e-4));
-    rows.push(("linear: peak overlap (cm)".into(), r.peak_overlap, d, 1e-4));
-    rows.push((
-        "linear: rebound speed / impact speed".into(),
-        r.vn / V_NORMAL,
-        1.0,
-        1e-6,
-    ));
-    let (tc, d) = impact::hertz_reference(YOUNG, POISSON, V_NORMAL);
-    let r = impact::disk_on_floor(
-        &impact::hertz_law(YOUNG, POISSON),
-        V_NORMAL,
-        0.0,
-        tc / 2000.0,
-    )?;
-    rows.push(("Hertz: contact time (s)".into(), r.contact_time, tc, 1e-4));
-    rows.push(("Hertz: peak overlap (cm)".into(), r.peak_overlap, d, 1e-4));
-    rows.push((
-        "Hertz: rebound speed / impact speed".into(),
-        r.vn / V_NORMAL,
-        1.0,
-        1e-6,
-    ));
+    for (name, law, (tc, d)) in [
+        (
+            "linear",
+            impact::linear_law(KN, 0.0),
+            impact::linear_reference(KN, V_NORMAL),
+        ),
+        (
+            "Hertz",
+            impact::hertz_law(YOUNG, POISSON),
+            impact::hertz_reference(YOUNG, POISSON, V_NORMAL),
+        ),
+    ] {
+        let r = impact::disk_on_floor(&law, V_NORMAL, 0.0, tc / 2000.0)?;
+        rows.push((
+            format!("{name}: contact time (s)"),
+            r.contact_time,
+            tc,
+            1e-4,
+        ));
+        rows.push((
+            format!("{name}: peak overlap (cm)"),
+            r.peak_overlap,
+            d,
+            1e-4,
+        ));
+        rows.push((
+            format!("{name}: rebound speed / impact speed"),
+            r.vn / V_NORMAL,
+            1.0,
+            1e-6,
+        ));
+    }
     Ok(rows)
 }
 
@@ -135,13 +142,7 @@ pub fn run() -> Result<String, RunError> {
             x_label: "incidence angle θ from the normal (degrees)".into(),
             y_label: titles[k].1.into(),
             series: vec![
-                Series {
-                    label: "rigid-body Coulomb theory".into(),
-                    points: theory[k].clone(),
-                    color: 0,
-                    line: true,
-                    ..Default::default()
-                },
+                Series::line("rigid-body Coulomb theory", theory[k].clone(), 0),
                 Series {
                     label: "dem2d (linear spring, k_t = k_n)".into(),
                     points: sim[k].clone(),

@@ -93,6 +93,8 @@ fn bodies(aspect: f64, seed: u64, spacing: f64, n: usize, width: f64) -> Vec<Bod
                 }
             };
             BodyInit {
+                material: 0,
+                prescribed: false,
                 shape,
                 position: Vec2::new(
                     r6(x0 + spacing * ((k % cols) as f64 + 0.5)),

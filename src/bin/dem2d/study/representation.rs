@@ -551,65 +551,51 @@ pub fn run(grains: usize) -> Result<String, RunError> {
     .expect("string");
 
     // --- The figure: error against cost, one curve per α (and the ellipse's own Δt error).
+    // The drop rows of `mu` and α whose representation `rep` picks (and whose cost is drawable),
+    // as a series of error against cost, each point labelled by `tag` of its representation.
+    let drop_series = |mu: &str, alpha: f64, pick: fn(Rep) -> Option<String>, label: String| {
+        let rows: Vec<&DropRow> = drops
+            .iter()
+            .filter(|d| d.mu == mu && d.alpha == alpha && pick(d.rep).is_some())
+            .filter(|d| !matches!(d.rep, Rep::Clump(_)) || d.ns_per_contact > 0.0)
+            .collect();
+        Series {
+            label,
+            points: rows
+                .iter()
+                .map(|d| (d.ns_per_contact, d.errors[0]))
+                .collect(),
+            point_labels: rows.iter().filter_map(|d| pick(d.rep)).collect(),
+            markers: true,
+            ..Default::default()
+        }
+    };
     let drop_panel = |mu: &str, title: &str| -> LinePanel {
+        let polygon = |r: Rep| match r {
+            Rep::Polygon(n) => Some(format!("{n}")),
+            Rep::Ellipse | Rep::Clump(_) => None,
+        };
+        let clump = |r: Rep| match r {
+            Rep::Clump(k) => Some(format!("{k}d")),
+            Rep::Ellipse | Rep::Polygon(_) => None,
+        };
         let mut series: Vec<Series> = ALPHAS
             .iter()
             .enumerate()
-            .map(|(c, &alpha)| {
-                let rows: Vec<&DropRow> = drops
-                    .iter()
-                    .filter(|d| d.mu == mu && d.alpha == alpha && matches!(d.rep, Rep::Polygon(_)))
-                    .collect();
-                Series {
-                    label: format!("n-gon, α = {alpha}"),
-                    points: rows
-                        .iter()
-                        .map(|d| (d.ns_per_contact, d.errors[0]))
-                        .collect(),
-                    point_labels: rows
-                        .iter()
-                        .map(|d| match d.rep {
-                            Rep::Polygon(n) => format!("{n}"),
-                            Rep::Ellipse | Rep::Clump(_) => String::new(),
-                        })
-                        .collect(),
-                    color: c,
-                    line: true,
-                    markers: true,
-                    ..Default::default()
-                }
+            .map(|(c, &alpha)| Series {
+                color: c,
+                line: true,
+                ..drop_series(mu, alpha, polygon, format!("n-gon, α = {alpha}"))
             })
             .collect();
         // Clumps: the same colour per α, hollow markers without lines (their cost is not
         // monotone in k), labelled "k d"; a non-positive cost (timing noise: a contact step
         // measured faster than a free-flight one) cannot be drawn on the log axis.
         for (c, &alpha) in ALPHAS.iter().enumerate() {
-            let rows: Vec<&DropRow> = drops
-                .iter()
-                .filter(|d| {
-                    d.mu == mu
-                        && d.alpha == alpha
-                        && matches!(d.rep, Rep::Clump(_))
-                        && d.ns_per_contact > 0.0
-                })
-                .collect();
             series.push(Series {
-                label: format!("k-disk clump, α = {alpha}"),
-                points: rows
-                    .iter()
-                    .map(|d| (d.ns_per_contact, d.errors[0]))
-                    .collect(),
-                point_labels: rows
-                    .iter()
-                    .map(|d| match d.rep {
-                        Rep::Clump(k) => format!("{k}d"),
-                        Rep::Ellipse | Rep::Polygon(_) => String::new(),
-                    })
-                    .collect(),
                 color: c,
-                line: false,
-                markers: true,
                 hollow: true,
+                ..drop_series(mu, alpha, clump, format!("k-disk clump, α = {alpha}"))
             });
         }
         let ell: Vec<&DropRow> = drops

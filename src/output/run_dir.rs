@@ -20,33 +20,36 @@
 //!   `io_error` (see [`Status`]). A summary that still says `running` belongs to a run that was
 //!   killed.
 //! - The CSV files always end with a whole line; after a blow-up they hold everything up to it.
-//!   `walls.csv` ([`dem2d::output::walls`]: each wall's position, velocity, load and stress) is
+//!   `walls.csv` ([`crate::output::walls`]: each wall's position, velocity, load and stress) is
 //!   written at the trajectory's frames by every run whose case has walls.
 //! - The summary's energies include the work the moving walls did on the bodies (`walls_work`):
 //!   `final_total − initial_total − walls_work` is the energy the integration created
 //!   (`unaccounted`, zero in exact arithmetic).
 //! - `state.json` (atomically, before the final summary) holds the state the run ended in, from
-//!   which `dem2d run OUT/state.json` continues exactly (see [`dem2d::output::state`]). It is
+//!   which `dem2d run OUT/state.json` continues exactly (see [`crate::output::state`]). It is
 //!   written whatever the status, but for `blowup` (a non-finite or unphysical state is nothing
 //!   to continue from: restart from an earlier state, with a smaller Δt). A continued run numbers
 //!   its steps on from the state's (the time is `step × Δt`), writes the rows of its outputs at
 //!   the same steps as the uninterrupted run, and ends at the case's duration (the whole run's).
-//! - A blow-up is detected before anything is non-finite where possible ([`dem2d::run::watch`]: energy
+//! - A blow-up is detected before anything is non-finite where possible ([`crate::run::watch`]: energy
 //!   created beyond what the initial state and gravity supply, or an overlap deeper than the
 //!   bodies); the report names the step, the body and the reason.
 
-use dem2d::dynamics::timestep::estimate_critical_dt;
-use dem2d::dynamics::{RestartState, World};
-use dem2d::output::analysis::AnalysisOutput;
-use dem2d::output::progress::ProgressLines;
-use dem2d::output::state::StateWriter;
-use dem2d::output::summary::{DeepCounts, EnergyReport, FinalBody, Status, Summary, write_summary};
-use dem2d::output::trace::{IncrementsWriter, TrajectoryWriter, WriteError};
-use dem2d::output::vtk::VtkWriter;
-use dem2d::output::walls::WallsWriter;
-use dem2d::run::time::time_value;
-use dem2d::run::{CriticalStepSampler, RunProgress, Simulation, Stop, watch};
-use dem2d::scene::Case;
+use crate::dynamics::timestep::estimate_critical_dt_of;
+use crate::dynamics::{RestartState, World};
+use crate::output::analysis::AnalysisOutput;
+use crate::output::progress::ProgressLines;
+use crate::output::run_data::BodyState;
+use crate::output::state::StateWriter;
+use crate::output::summary::{DeepCounts, EnergyReport, Status, Summary, write_summary};
+use crate::output::trace::{IncrementsWriter, TrajectoryWriter, WriteError};
+use crate::output::vtk::VtkWriter;
+use crate::output::walls::WallsWriter;
+use crate::output::write_atomically;
+use crate::run::time::time_value;
+use crate::run::{CriticalStepSampler, RunProgress, Simulation, Stop, watch};
+use crate::run::{ObserverError, RunError as RunFailure};
+use crate::scene::Case;
 use std::fmt;
 use std::io;
 use std::path::{Path, PathBuf};
@@ -67,9 +70,9 @@ pub struct RunOptions {
     /// `interrupted` (the command line's SIGINT and SIGTERM handlers set it).
     pub stop: Option<&'static AtomicI32>,
     /// Write VTK frames (`vtk/frame_NNNNN.vtu`) every this many steps, at the start and at the
-    /// end, and `run.pvd` (see [`dem2d::output::vtk`]); `None`: no VTK output.
+    /// end, and `run.pvd` (see [`crate::output::vtk`]); `None`: no VTK output.
     pub vtk_every: Option<u64>,
-    /// Write `analysis.csv` at the output frames ([`dem2d::output::analysis`]).
+    /// Write `analysis.csv` at the output frames ([`crate::output::analysis`]).
     pub analysis: bool,
     /// Write `contacts.csv` and `walls.csv` at the output frames.
     pub contacts: bool,
@@ -109,7 +112,7 @@ pub const OUTPUT_FILES: [&str; 14] = [
 #[derive(Debug)]
 pub struct RunOutcome {
     pub summary: Summary,
-    pub blowup: Option<dem2d::run::BlowupReport>,
+    pub blowup: Option<crate::run::BlowupReport>,
     /// The signal that stopped the run (status `interrupted`).
     pub signal: Option<i32>,
     /// The write that failed (status `io_error`), naming the file.
@@ -298,21 +301,6 @@ fn same_file(a: &Path, b: &Path) -> bool {
     }
 }
 
-/// Writes `text` to `dir/name` atomically: into `name.tmp`, synced, renamed over it.
-fn write_atomically(dir: &Path, name: &str, text: &str) -> io::Result<()> {
-    use std::io::Write;
-    let tmp = dir.join(format!("{name}.tmp"));
-    let result = std::fs::File::create(&tmp).and_then(|mut f| {
-        f.write_all(text.as_bytes())?;
-        f.sync_all()
-    });
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(e);
-    }
-    std::fs::rename(&tmp, dir.join(name))
-}
-
 /// Refuses a directory holding an earlier run's outputs, or (with `overwrite`) removes them,
 /// the summary first — all but `input`, the file this run reads, which its own output replaces.
 fn prepare_dir(dir: &Path, overwrite: bool, input: Option<&Path>) -> Result<(), RunError> {
@@ -322,7 +310,7 @@ fn prepare_dir(dir: &Path, overwrite: bool, input: Option<&Path>) -> Result<(), 
         .filter(|p| p.symlink_metadata().is_ok())
         .collect();
     // An earlier run's VTK output: `run.pvd` and `vtk/frame_*.vtu` (nothing else in `vtk/`).
-    present.extend(dem2d::output::vtk::existing_outputs(dir));
+    present.extend(super::vtk::existing_outputs(dir));
     if present.is_empty() {
         return Ok(());
     }
@@ -354,17 +342,20 @@ fn prepare_dir(dir: &Path, overwrite: bool, input: Option<&Path>) -> Result<(), 
 }
 
 /// What the summary counts of a run: its progress (the saved counters) and this run's own.
-struct Counts {
-    quiescent_step: Option<u64>,
-    first_contact_step: Option<u64>,
-    contact_sum: u64,
-    wall_seconds: f64,
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Counts {
+    pub quiescent_step: Option<u64>,
+    pub first_contact_step: Option<u64>,
+    pub contact_sum: u64,
+    /// Wall time of the steps (s).
+    pub wall_seconds: f64,
     /// The step this run started from (0, or a state file's).
-    start_step: u64,
+    pub start_step: u64,
 }
 
 impl Counts {
-    fn of(sim: &Simulation) -> Counts {
+    /// The counts of a simulation as it stands.
+    pub fn of(sim: &Simulation) -> Counts {
         let p = sim.progress();
         Counts {
             quiescent_step: sim.quiescent_step(),
@@ -376,9 +367,29 @@ impl Counts {
     }
 }
 
-/// The run of `case` with `opts` through the driver, continuing `resumed` (a state file's
-/// progress) if given.
-fn simulation<'a>(
+/// How a run through [`RunDir::run`] ended.
+#[derive(Debug)]
+pub struct Ended {
+    pub outcome: Result<Stop, RunFailure>,
+    pub counts: Counts,
+    /// The run's progress as it ended (to continue it with [`Simulation::resume`]).
+    pub progress: RunProgress,
+}
+
+impl Ended {
+    fn of(outcome: Result<Stop, RunFailure>, sim: &Simulation) -> Ended {
+        Ended {
+            outcome,
+            counts: Counts::of(sim),
+            progress: sim.progress().clone(),
+        }
+    }
+}
+
+/// The run of `case` with `opts` through the driver (to the case's duration, stopping at rest
+/// when the case says so, after `opts.max_steps`, when `opts.stop` is raised), continuing
+/// `resumed` (a state file's progress) if given.
+pub fn simulation<'a>(
     world: &'a mut World,
     case: &Case,
     opts: &RunOptions,
@@ -394,194 +405,292 @@ fn simulation<'a>(
         sim = sim.stop_flag(flag);
     }
     if let Some(p) = resumed {
-        let mut p = p.clone();
-        // A run that stopped at rest asks for rest anew when continued (its window more steps);
-        // any other keeps its streak, as the uninterrupted run would.
-        if p.quiescence_streak >= case.quiescence_window {
-            p.quiescence_streak = 0;
-        }
-        sim = sim.resume(p);
+        sim = sim.resume(continued(p, case));
     }
     sim
 }
 
-/// Runs `case` (whose JSON text is `case_text`, copied to the output) with `opts`.
+/// The progress a continued run starts from: a state file's `p`. A run that stopped at rest asks
+/// for rest anew when continued (its window more steps); any other keeps its streak, as the
+/// uninterrupted run would.
+pub fn continued(p: &RunProgress, case: &Case) -> RunProgress {
+    let mut p = p.clone();
+    if p.quiescence_streak >= case.quiescence_window {
+        p.quiescence_streak = 0;
+    }
+    p
+}
+
+/// The writers of a run's files (observers, in the order the run feeds them).
+struct Writers {
+    incs: IncrementsWriter,
+    traj: TrajectoryWriter,
+    walls: Option<WallsWriter>,
+    sampler: CriticalStepSampler,
+    analysis: Option<AnalysisOutput>,
+    vtk: Option<VtkWriter>,
+    lines: ProgressLines,
+}
+
+/// A run's output directory while runs write into it (see the module documentation): locked,
+/// cleared of an earlier run's outputs, holding `case.json` and a `summary.json` that says
+/// `running`, and the writers of the run's files. [`run_case`] (what `dem2d run` does) is
+/// [`RunDir::open`], [`RunDir::run`] and [`RunDir::finish`]; the Python module drives a world
+/// through the same three in several calls.
+pub struct RunDir {
+    dir: PathBuf,
+    /// Held while this value lives (until the last file is written).
+    _lock: DirLock,
+    warnings: Vec<String>,
+    dt_critical: f64,
+    initial_total: f64,
+    /// The writers, or why they could not be created (`None` once reported).
+    writers: Result<Writers, Option<WriteError>>,
+    /// The writer of `state.json` (none when the case text does not parse).
+    state: Option<StateWriter>,
+    /// The case text does not parse (only a caller's text can fail: `dem2d run` reads it).
+    unparsed: Option<crate::scene::FieldError>,
+}
+
+impl RunDir {
+    /// Prepares `opts.out_dir` for the run of `case` (written as `case_text`) from `world`'s
+    /// state (`opts.restart`'s, continuing `opts.run`): takes the directory's lock, removes an
+    /// earlier run's outputs (with `opts.overwrite`; refused without), writes `case.json` and a
+    /// summary saying `running`, and creates the writers (a writer that cannot be created ends
+    /// the first [`RunDir::run`] with status `io_error`).
+    pub fn open(
+        case: &Case,
+        case_text: &str,
+        world: &mut World,
+        opts: &RunOptions,
+    ) -> Result<RunDir, RunError> {
+        let dir = &opts.out_dir;
+        std::fs::create_dir_all(dir).map_err(io_at(dir))?;
+        let lock = DirLock::acquire(dir, &case.name)?;
+        prepare_dir(dir, opts.overwrite, opts.input.as_deref())?;
+        let case_file = dir.join("case.json");
+        write_atomically(dir, "case.json", case_text).map_err(io_at(&case_file))?;
+        let dt_critical = estimate_critical_dt_of(
+            &world.bodies,
+            &world.pairs,
+            &world.walls,
+            case.gravity.norm(),
+        );
+        let mut warnings = opts.warnings.clone();
+        if case.dt > dt_critical {
+            warnings.push(format!(
+                "dt = {:e} exceeds the critical time step estimated from the stiffest possible contact, {:.3e} \
+                 (damping, rotational inertia and lever arms included): the explicit scheme may oscillate or blow up",
+                case.dt, dt_critical
+            ));
+        }
+        // A continued run's contacts are the run's, not bodies placed overlapping.
+        if opts.restart.is_none() {
+            world.refresh_contact_extras();
+            if let Some(w) = initial_overlap_warning(&watch::overlaps(world)) {
+                warnings.push(w);
+            }
+        }
+        let resumed = opts.run.as_ref();
+        let (initial_total, counts) = {
+            let sim = simulation(world, case, opts, resumed);
+            (sim.progress().initial_total, Counts::of(&sim))
+        };
+        let summary = summarize(
+            case,
+            world,
+            Status::Running,
+            &counts,
+            (dt_critical, initial_total),
+            &warnings,
+            None,
+        );
+        let summary_file = dir.join("summary.json");
+        write_summary(dir, &summary).map_err(io_at(&summary_file))?;
+
+        // The case as parsed, for the state file (`dem2d run` reads the text it was given).
+        let value = crate::scene::fields::parse_json(case_text, "");
+        let state = value
+            .as_ref()
+            .ok()
+            .map(|v| StateWriter::new(dir, v, case.duration, &case.bodies));
+        let every = case.output_every;
+        let writers =
+            TrajectoryWriter::create(&dir.join("trajectory.csv"), every).and_then(|traj| {
+                let incs = IncrementsWriter::create(&dir.join("increments.csv"), every)?;
+                let walls = match world.walls.is_empty() {
+                    true => None,
+                    false => Some(WallsWriter::create(dir, every)?),
+                };
+                let vtk = match opts.vtk_every {
+                    Some(n) => Some(VtkWriter::create(dir, world, n)?),
+                    None => None,
+                };
+                let analysis = match opts.analysis || opts.contacts {
+                    true => Some(AnalysisOutput::create(
+                        dir,
+                        opts.analysis,
+                        opts.contacts,
+                        opts.analysis_window
+                            .map(|[x0, x1, y0, y1]| crate::analysis::Window { x0, x1, y0, y1 }),
+                        every,
+                    )?),
+                    false => None,
+                };
+                Ok(Writers {
+                    incs,
+                    traj,
+                    walls,
+                    sampler: CriticalStepSampler { every },
+                    analysis,
+                    vtk,
+                    lines: ProgressLines::new(&case.name, opts.progress),
+                })
+            });
+        Ok(RunDir {
+            dir: dir.clone(),
+            _lock: lock,
+            warnings,
+            dt_critical,
+            initial_total,
+            writers: writers.map_err(Some),
+            state,
+            unparsed: value.err(),
+        })
+    }
+
+    /// The directory.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// Runs `sim` (a simulation of the world [`RunDir::open`] was given, as it stands) with the
+    /// run's writers as its observers, after any of its own: returns how it ended, its counts
+    /// and its progress. A writer that could not be created ends the run before its first step
+    /// (the state saved is the one it started from).
+    pub fn run<'a>(&'a mut self, mut sim: Simulation<'a>) -> Ended {
+        let w = match &mut self.writers {
+            Ok(w) => w,
+            Err(e) => {
+                let error: ObserverError = match e.take() {
+                    Some(e) => e.into(),
+                    None => format!(
+                        "{}: the run's files could not be created (reported before)",
+                        self.dir.display()
+                    )
+                    .into(),
+                };
+                // Nothing ran: the state saved is the one the run started from.
+                if let Some(s) = &self.state {
+                    let _ = s.write(sim.world(), sim.progress(), Status::IoError);
+                }
+                return Ended::of(Err(RunFailure::Observer(error)), &sim);
+            }
+        };
+        sim = sim.observe(&mut w.incs).observe(&mut w.traj);
+        if let Some(x) = w.walls.as_mut() {
+            sim = sim.observe(x);
+        }
+        sim = sim.observe(&mut w.sampler);
+        if let Some(a) = w.analysis.as_mut() {
+            sim = sim.observe(a);
+        }
+        if let Some(v) = w.vtk.as_mut() {
+            sim = sim.observe(v);
+        }
+        sim = sim.observe(&mut w.lines);
+        if let Some(s) = self.state.as_mut() {
+            sim = sim.observe(s);
+        }
+        let mut outcome = sim.run();
+        // A case text that does not parse leaves no state: that is how the run ended.
+        if let (Some(e), Ok(_)) = (&self.unparsed, &outcome) {
+            outcome = Err(RunFailure::Observer(
+                WriteError {
+                    file: PathBuf::from("state.json"),
+                    error: io::Error::other(format!("the case text does not parse: {e}")),
+                }
+                .into(),
+            ));
+        }
+        Ended::of(outcome, &sim)
+    }
+
+    /// Writes the final `summary.json` of the world as a run left it, with how the run ended
+    /// (`outcome`, `counts`), and returns what the caller reports.
+    pub fn finish(
+        &mut self,
+        case: &Case,
+        world: &mut World,
+        outcome: Result<Stop, RunFailure>,
+        counts: &Counts,
+    ) -> RunOutcome {
+        world.network_critical_dt();
+        let observed = world.diagnostics.dt_critical_observed;
+        let mut warnings = self.warnings.clone();
+        if case.dt > observed && observed.is_finite() {
+            warnings.push(format!(
+                "dt = {:e} exceeds the critical time step of the contact network observed during the run, \
+                 {observed:.3e} (its stiffest mode, sampled every output interval): the explicit scheme may \
+                 oscillate or blow up",
+                case.dt
+            ));
+        }
+        let status = Status::of(&outcome);
+        let (blowup, signal, io_error) = match outcome {
+            Ok(Stop::Interrupted(sig)) => (None, Some(sig), None),
+            Ok(_) => (None, None, None),
+            Err(RunFailure::Blowup(b)) => (Some(b), None, None),
+            Err(RunFailure::Observer(e)) => (None, None, Some(e.to_string())),
+        };
+        let error = match (&blowup, signal, &io_error) {
+            (Some(b), _, _) => Some(b.to_string()),
+            (_, Some(sig), _) => Some(format!(
+                "interrupted by signal {sig} ({}) after step {}",
+                signal_name(sig),
+                world.step
+            )),
+            (_, _, Some(e)) => Some(e.clone()),
+            _ => None,
+        };
+        let summary = summarize(
+            case,
+            world,
+            status,
+            counts,
+            (self.dt_critical, self.initial_total),
+            &warnings,
+            error,
+        );
+        let summary_error = write_summary(&self.dir, &summary).err().map(|e| {
+            format!(
+                "{}: cannot write: {e}",
+                self.dir.join("summary.json").display()
+            )
+        });
+        RunOutcome {
+            summary,
+            blowup,
+            signal,
+            io_error,
+            summary_error,
+        }
+    }
+}
+
+/// Runs `case` (whose JSON text is `case_text`, copied to the output) with `opts`: what `dem2d
+/// run` does.
 pub fn run_case(case: &Case, case_text: &str, opts: &RunOptions) -> Result<RunOutcome, RunError> {
-    let dir = &opts.out_dir;
     let mut world = match &opts.restart {
         None => case.build_world(),
         Some(state) => case
             .resume_world(state)
             .map_err(|e| RunError::State(format!("field `state.{}`: {}", e.path, e.message)))?,
     };
-    std::fs::create_dir_all(dir).map_err(io_at(dir))?;
-    // Held until the function returns, after the last file.
-    let _lock = DirLock::acquire(dir, &case.name)?;
-    prepare_dir(dir, opts.overwrite, opts.input.as_deref())?;
-    let case_file = dir.join("case.json");
-    write_atomically(dir, "case.json", case_text).map_err(io_at(&case_file))?;
-    let dt_critical = estimate_critical_dt(
-        &world.bodies,
-        &world.spec,
-        &world.walls,
-        case.gravity.norm(),
-    );
-    let mut warnings = opts.warnings.clone();
-    if case.dt > dt_critical {
-        warnings.push(format!(
-            "dt = {:e} exceeds the critical time step estimated from the stiffest possible contact, {:.3e} \
-             (damping, rotational inertia and lever arms included): the explicit scheme may oscillate or blow up",
-            case.dt, dt_critical
-        ));
-    }
-    // A continued run's contacts are the run's, not bodies placed overlapping.
-    if opts.restart.is_none() {
-        world.refresh_contact_extras();
-        if let Some(w) = initial_overlap_warning(&watch::overlaps(&world)) {
-            warnings.push(w);
-        }
-    }
-    let resumed = opts.run.as_ref();
-    let (initial_total, counts) = {
-        let sim = simulation(&mut world, case, opts, resumed);
-        (sim.progress().initial_total, Counts::of(&sim))
-    };
-    let summary = summarize(
-        case,
-        &world,
-        Status::Running,
-        &counts,
-        (dt_critical, initial_total),
-        &warnings,
-        None,
-    );
-    let summary_file = dir.join("summary.json");
-    write_summary(dir, &summary).map_err(io_at(&summary_file))?;
-
-    // The case as parsed, for the state file (`dem2d run` reads the text it was given).
-    let value = dem2d::scene::fields::parse_json(case_text, "");
-    let unparsed = |e: &dem2d::scene::fields::FieldError| {
-        dem2d::run::RunError::Observer(
-            WriteError {
-                file: PathBuf::from("state.json"),
-                error: io::Error::other(format!("the case text does not parse: {e}")),
-            }
-            .into(),
-        )
-    };
-    let state = value
-        .as_ref()
-        .ok()
-        .map(|v| StateWriter::new(dir, v, case.duration, &case.bodies));
-    let every = case.output_every;
-    let writers = TrajectoryWriter::create(&dir.join("trajectory.csv"), every).and_then(|t| {
-        let i = IncrementsWriter::create(&dir.join("increments.csv"), every)?;
-        let walls = match world.walls.is_empty() {
-            true => None,
-            false => Some(WallsWriter::create(dir, every)?),
-        };
-        let vtk = match opts.vtk_every {
-            Some(n) => Some(VtkWriter::create(dir, &world, n)?),
-            None => None,
-        };
-        let analysis = match opts.analysis || opts.contacts {
-            true => Some(AnalysisOutput::create(
-                dir,
-                opts.analysis,
-                opts.contacts,
-                opts.analysis_window
-                    .map(|[x0, x1, y0, y1]| dem2d::analysis::Window { x0, x1, y0, y1 }),
-                every,
-            )?),
-            false => None,
-        };
-        Ok((t, i, walls, vtk, analysis))
-    });
-    let (outcome, counts) = match writers {
-        Err(e) => {
-            // Nothing ran: the state saved is the one the run started from.
-            let sim = simulation(&mut world, case, opts, resumed);
-            let (progress, counts) = (sim.progress().clone(), Counts::of(&sim));
-            if let Some(s) = &state {
-                let _ = s.write(&world, &progress, Status::IoError);
-            }
-            (Err(dem2d::run::RunError::Observer(e.into())), counts)
-        }
-        Ok((mut traj, mut incs, mut walls, mut vtk, mut analysis)) => {
-            let mut sampler = CriticalStepSampler { every };
-            let mut lines = ProgressLines::new(&case.name, opts.progress);
-            let mut state = state;
-            let mut sim = simulation(&mut world, case, opts, resumed)
-                .observe(&mut incs)
-                .observe(&mut traj);
-            if let Some(w) = walls.as_mut() {
-                sim = sim.observe(w);
-            }
-            sim = sim.observe(&mut sampler);
-            if let Some(a) = analysis.as_mut() {
-                sim = sim.observe(a);
-            }
-            if let Some(v) = vtk.as_mut() {
-                sim = sim.observe(v);
-            }
-            sim = sim.observe(&mut lines);
-            if let Some(s) = state.as_mut() {
-                sim = sim.observe(s);
-            }
-            let mut outcome = sim.run();
-            // A case text that does not parse leaves no state: that is how the run ended.
-            if let (Err(e), Ok(_)) = (&value, &outcome) {
-                outcome = Err(unparsed(e));
-            }
-            (outcome, Counts::of(&sim))
-        }
-    };
-    world.network_critical_dt();
-    let observed = world.diagnostics.dt_critical_observed;
-    if case.dt > observed && observed.is_finite() {
-        warnings.push(format!(
-            "dt = {:e} exceeds the critical time step of the contact network observed during the run, \
-             {observed:.3e} (its stiffest mode, sampled every output interval): the explicit scheme may \
-             oscillate or blow up",
-            case.dt
-        ));
-    }
-    let status = Status::of(&outcome);
-    let (blowup, signal, io_error) = match outcome {
-        Ok(Stop::Interrupted(sig)) => (None, Some(sig), None),
-        Ok(_) => (None, None, None),
-        Err(dem2d::run::RunError::Blowup(b)) => (Some(b), None, None),
-        Err(dem2d::run::RunError::Observer(e)) => (None, None, Some(e.to_string())),
-    };
-    let error = match (&blowup, signal, &io_error) {
-        (Some(b), _, _) => Some(b.to_string()),
-        (_, Some(sig), _) => Some(format!(
-            "interrupted by signal {sig} ({}) after step {}",
-            signal_name(sig),
-            world.step
-        )),
-        (_, _, Some(e)) => Some(e.clone()),
-        _ => None,
-    };
-    let summary = summarize(
-        case,
-        &world,
-        status,
-        &counts,
-        (dt_critical, initial_total),
-        &warnings,
-        error,
-    );
-    let summary_error = write_summary(dir, &summary)
-        .err()
-        .map(|e| format!("{}: cannot write: {e}", summary_file.display()));
-    Ok(RunOutcome {
-        summary,
-        blowup,
-        signal,
-        io_error,
-        summary_error,
-    })
+    let mut files = RunDir::open(case, case_text, &mut world, opts)?;
+    let sim = simulation(&mut world, case, opts, opts.run.as_ref());
+    let ended = files.run(sim);
+    Ok(files.finish(case, &mut world, ended.outcome, &ended.counts))
 }
 
 /// `SIGINT`, `SIGTERM` or the number.
@@ -642,7 +751,7 @@ fn summarize(
 ) -> Summary {
     let b = &world.bodies;
     let final_state = (0..b.len())
-        .map(|k| FinalBody {
+        .map(|k| BodyState {
             x: b.state[k].pose.position.x,
             y: b.state[k].pose.position.y,
             angle: b.state[k].pose.angle(),
@@ -709,7 +818,7 @@ mod tests {
                 "bodies": [{"shape": {"type": "circle", "r": 1}, "position": [0, 0]}]}"#,
         )
         .unwrap();
-        case.bodies[0].velocity = dem2d::geometry::Vec2::new(1e300, 0.0);
+        case.bodies[0].velocity = crate::geometry::Vec2::new(1e300, 0.0);
         case.dt = 1e10;
         case.duration = 1e11;
         let dir = std::env::temp_dir().join(format!("dem2d-runner-{}", std::process::id()));

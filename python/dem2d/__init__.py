@@ -1,0 +1,167 @@
+"""dem2d from Python: build a scene, run it, and read its state as numpy arrays.
+
+Units are cgs (cm, g, s; forces in dyn and energies in erg per cm of thickness), angles in
+radians, counter-clockwise. A case is the case file's JSON (docs: reference/case-file.md) as a
+dict; the run is the library's run driver, writing the same files as `dem2d run` when given an
+output directory.
+
+    import dem2d
+    case = dem2d.Case.load("cases/settle3_dt1e-5.json")
+    sim = dem2d.Simulation(case, threads=2, out="runs/settle3")
+    sim.run()                      # to the case's duration, as `dem2d run`
+    print(sim.positions[:3], sim.analysis()["packing_fraction"])
+    run = dem2d.load_run("runs/settle3")
+    print(run.positions.shape)     # (frames, bodies, 2)
+"""
+
+import json
+import math
+from pathlib import Path
+
+from ._core import Case, Simulation, __version__
+from ._core import load_run as _load_run
+from ._errors import BlowupError, Error, InputError, OutputError, RunError
+
+__all__ = [
+    "Case",
+    "Simulation",
+    "Run",
+    "load_run",
+    "Error",
+    "InputError",
+    "RunError",
+    "BlowupError",
+    "OutputError",
+    "circle",
+    "ellipse",
+    "rectangle",
+    "polygon",
+    "clump",
+    "body",
+    "wall",
+    "__version__",
+]
+
+
+# Shapes and bodies as the case file writes them (dicts; numpy values allowed).
+
+
+def circle(r):
+    """A disk of radius `r` (cm)."""
+    return {"type": "circle", "r": r}
+
+
+def ellipse(a, b):
+    """An ellipse with semi-axes `a` (along the body's x axis) and `b` (cm)."""
+    return {"type": "ellipse", "a": a, "b": b}
+
+
+def rectangle(w, h):
+    """A rectangle of full width `w` and height `h` (cm)."""
+    return {"type": "rectangle", "w": w, "h": h}
+
+
+def polygon(vertices):
+    """A convex polygon, vertices counter-clockwise (cm; any origin: the body's position is its
+    centroid)."""
+    return {"type": "polygon", "vertices": [[x, y] for x, y in vertices]}
+
+
+def clump(disks):
+    """A rigid clump of disks given as (x, y, r) rows (cm)."""
+    return {"type": "clump", "disks": [{"center": [x, y], "r": r} for x, y, r in disks]}
+
+
+def body(shape, position, angle=None, velocity=None, omega=None, density=None):
+    """A body of `shape` at `position` (its centroid); the keys left None take the case file's
+    defaults (angle 0, at rest, density 1 g/cm²)."""
+    b = {"shape": shape, "position": [position[0], position[1]]}
+    for key, value in (
+        ("angle", angle),
+        ("velocity", None if velocity is None else [velocity[0], velocity[1]]),
+        ("omega", omega),
+        ("density", density),
+    ):
+        if value is not None:
+            b[key] = value
+    return b
+
+
+def wall(point, normal, **keys):
+    """A wall through `point` with unit `normal` pointing into the free side; `keys` are the
+    case file's other wall keys (friction, velocity, servo, contact overrides)."""
+    return {"point": [point[0], point[1]], "normal": [normal[0], normal[1]], **keys}
+
+
+# Reading a run directory.
+
+
+def _read_csv(path):
+    """A CSV table with a header as a dict of columns: numpy arrays where every field is a
+    number (an empty field is NaN), lists of strings otherwise. A last line without its newline
+    (a run stopped while writing) is left out."""
+    import numpy as np
+
+    text = Path(path).read_text(encoding="utf-8")
+    lines = text.split("\n")
+    # The last element is "" for a file ending in a newline, or a line cut short.
+    header, rows = lines[0].split(","), [line.split(",") for line in lines[1:-1]]
+    table = {}
+    for k, name in enumerate(header):
+        column = [row[k] if k < len(row) else "" for row in rows]
+        try:
+            table[name] = np.array([float(v) if v else math.nan for v in column])
+        except ValueError:
+            table[name] = column
+    return table
+
+
+class Run:
+    """A run directory read back without running it again (`dem2d::output::run_data`).
+
+    Frames of `trajectory.csv`: `step` (F,), `t` (F,), `positions` (F, N, 2), `angles` (F, N),
+    `velocities` (F, N, 2), `spins` (F, N). `increments`: `increments.csv`'s columns.
+    `contacts`: `contacts.csv`'s rows as arrays (`step`, `i` (-1 for a wall), `wall`, `j`,
+    `point`, `normal`, `depth`, `force`, `fn`, `ft`, `couple`, `state`), None without the file.
+    `analysis` and `walls`: the columns of `analysis.csv` and `walls.csv`, None without them.
+    `summary`: `summary.json` as a dict. `case`: `case.json`; `state`: `state.json` as a Case
+    (give it to `Simulation` to continue the run), None without it. `incomplete`: what was
+    left out of files that end part-way through a line or a frame.
+    """
+
+    def __init__(self, path):
+        self.path = Path(path)
+        d = _load_run(self.path)
+        self.step = d["step"]
+        self.t = d["t"]
+        self.positions = d["positions"]
+        self.angles = d["angles"]
+        self.velocities = d["velocities"]
+        self.spins = d["spins"]
+        self.increments = d["increments"]
+        self.summary = json.loads(d["summary"])
+        self.incomplete = d["incomplete"]
+        self.contacts = d.get("contacts")
+        self.case = Case.load(self.path / "case.json")
+        analysis = self.path / "analysis.csv"
+        self.analysis = _read_csv(analysis) if analysis.exists() else None
+        walls = self.path / "walls.csv"
+        self.walls = _read_csv(walls) if walls.exists() else None
+        state = self.path / "state.json"
+        self.state = Case.load(state) if state.exists() else None
+
+    @property
+    def status(self):
+        """The summary's status (`completed`, `at_rest`, `max_steps`, `interrupted`, ...)."""
+        return self.summary.get("status")
+
+    def __repr__(self):
+        return (
+            f"dem2d.Run({str(self.path)!r}, status={self.status!r}, frames={len(self.step)}, "
+            f"bodies={self.positions.shape[1] if len(self.step) else 0})"
+        )
+
+
+def load_run(path):
+    """Reads the run directory `path` (written by `dem2d run` or by a Simulation with `out=`)."""
+    return Run(path)

@@ -1,0 +1,158 @@
+//! Contacts between two materials: the pair's parameters from each material's, by one rule per
+//! parameter ([`ContactSpec::mix`]), unless the case gives the pair its own (a case's `pairs`,
+//! as LIGGGHTS's per-type-pair matrices).
+//!
+//! # The rules
+//! - **Friction** μ and **rolling friction** μ_r: the smaller of the two (Yade's
+//!   `Ip2_FrictMat_FrictMat_FrictPhys`: the contact's friction angle is the smaller material's,
+//!   and μ = tan φ grows with φ). A material without rolling resistance has μ_r = 0: the pair
+//!   has none.
+//! - **Stiffnesses and dashpots** (`kn`, `ks`, `eta_n`, `eta_s`, and their per-ρg forms), the
+//!   **restitution** and the **rolling damping** ratio: the harmonic mean `2ab/(a + b)`
+//!   (MercuryDPM's default mixed species, `BaseSpecies::average`; Yade's
+//!   `Ip2_ViscElMat_ViscElMat_ViscElPhys` for `kn`, `ks`, `en`, `et`): two springs of k in
+//!   series are k/2, so the harmonic mean — twice the series stiffness — keeps a material's own
+//!   value for contacts with itself, and the softer material dominates.
+//! - **Young's modulus and Poisson's ratio** (Hertz–Mindlin): not averaged; the contact moduli
+//!   E* and G* are formed from both materials' (T11, T19), as for a wall of another material.
+//! - The **model** and **normal force** are the scene's (`contact`): a material cannot change
+//!   them.
+//!
+//! Two values given in different forms (`kn` and `kn_over_rho_g`; dashpots and a
+//! restitution; two rolling models; one rolling damping given and one not) have no rule: the
+//! pair must then be given ([`MixError`] names the key). A material paired with itself keeps its
+//! own parameters exactly (`a == b` gives `a`, bit for bit).
+
+use super::ContactSpec;
+use super::params::Scaled;
+
+/// Two materials' values of a key that no rule combines: the key.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MixError {
+    /// The key whose two values have no common rule.
+    pub key: &'static str,
+    /// Why.
+    pub message: String,
+}
+
+impl MixError {
+    pub(crate) fn new(key: &'static str, message: impl Into<String>) -> Self {
+        MixError {
+            key,
+            message: message.into(),
+        }
+    }
+}
+
+/// The harmonic mean `2ab/(a + b)` (MercuryDPM's `BaseSpecies::average`; 0 if either is 0);
+/// exactly `a` when `a == b`.
+#[inline]
+pub fn harmonic(a: f64, b: f64) -> f64 {
+    if a == b {
+        a
+    } else if a == 0.0 || b == 0.0 {
+        0.0
+    } else {
+        2.0 / (1.0 / a + 1.0 / b)
+    }
+}
+
+/// The harmonic mean of two values given the same way (absolute, or per ρg); `key` the
+/// absolute form's name, for the error when they are given differently.
+pub(crate) fn harmonic_scaled(a: Scaled, b: Scaled, key: &'static str) -> Result<Scaled, MixError> {
+    match (a, b) {
+        (Scaled::Absolute(x), Scaled::Absolute(y)) => Ok(Scaled::Absolute(harmonic(x, y))),
+        (Scaled::OverRhoG(x), Scaled::OverRhoG(y)) => Ok(Scaled::OverRhoG(harmonic(x, y))),
+        _ => Err(MixError::new(
+            key,
+            format!("one material gives `{key}` and the other `{key}_over_rho_g`"),
+        )),
+    }
+}
+
+/// The parameters of contacts between two materials: the law that governs them (`spec`) and
+/// the other side's material (`other`: Hertz–Mindlin forms E* and G* from both, T11, T19).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PairSpec {
+    pub spec: ContactSpec,
+    pub other: ContactSpec,
+}
+
+impl PairSpec {
+    /// A material with itself, or a law that governs every contact of a wall (`other` the
+    /// body's material).
+    pub fn new(spec: ContactSpec, other: ContactSpec) -> Self {
+        PairSpec { spec, other }
+    }
+
+    /// The law for a pair of density `rho` under |g| `g`.
+    #[inline]
+    pub fn resolve(&self, rho: f64, g: f64) -> super::Law {
+        self.spec.resolve(&self.other, rho, g)
+    }
+}
+
+impl ContactSpec {
+    /// The parameters of contacts between the materials `self` and `other` by the rules of the
+    /// module documentation (the model and the normal force are `self`'s: a case's materials
+    /// share the scene's).
+    pub fn mix(&self, other: &ContactSpec) -> Result<ContactSpec, MixError> {
+        if self == other {
+            return Ok(*self);
+        }
+        Ok(ContactSpec {
+            normal: self.normal.mix(&other.normal)?,
+            damping: self.damping.mix(&other.damping)?,
+            tangential: self.tangential.mix(&other.tangential)?,
+            rolling: super::RollingPart::mix(self.rolling, other.rolling)?,
+        })
+    }
+
+    /// The keys of contacts between the materials `self` and `other`, part by part: each
+    /// part's mixed keys, or where a part's two values have no rule, `self`'s with the error
+    /// (a pair given in a case must then give that key itself).
+    pub fn mixed_keys(
+        &self,
+        other: &ContactSpec,
+    ) -> (Vec<(&'static str, super::Given)>, Vec<MixError>) {
+        let mut errors = Vec::new();
+        let mut keep = |r: Result<Vec<(&'static str, super::Given)>, MixError>, own| match r {
+            Ok(k) => k,
+            Err(e) => {
+                errors.push(e);
+                own
+            }
+        };
+        let mut keys = keep(
+            self.normal.mix(&other.normal).map(|p| p.given()),
+            self.normal.given(),
+        );
+        keys.extend(keep(
+            self.damping.mix(&other.damping).map(|p| p.given()),
+            self.damping.given(),
+        ));
+        keys.extend(keep(
+            self.tangential.mix(&other.tangential).map(|p| p.given()),
+            self.tangential.given(),
+        ));
+        let own_rolling = self.rolling.map_or(vec![], |r| r.given());
+        keys.extend(keep(
+            super::RollingPart::mix(self.rolling, other.rolling)
+                .map(|r| r.map_or(vec![], |r| r.given())),
+            own_rolling,
+        ));
+        (keys, errors)
+    }
+
+    /// Every key of the spec as a case file gives it (what [`ContactSpec::parse`] reads back
+    /// to the same spec), each part's.
+    pub fn given(&self) -> Vec<(&'static str, super::Given)> {
+        let mut keys = self.normal.given();
+        keys.extend(self.damping.given());
+        keys.extend(self.tangential.given());
+        if let Some(r) = &self.rolling {
+            keys.extend(r.given());
+        }
+        keys
+    }
+}

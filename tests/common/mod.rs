@@ -1,0 +1,124 @@
+//! What the integration tests share: running the `dem2d` binary, scratch directories, and the
+//! small scenes the dynamics tests build (a body at rest, a floor, P's linear law, the energy
+//! error of a run). Each test file includes it (`mod common;`) and uses part of it.
+#![allow(dead_code)]
+
+use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
+use dem2d::dynamics::{BodyInit, Boundary};
+use dem2d::geometry::{Shape, Vec2, Wall};
+use dem2d::run::Simulation;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+
+/// The `dem2d` binary under test.
+pub fn bin() -> &'static str {
+    env!("CARGO_BIN_EXE_dem2d")
+}
+
+fn exit(out: Output) -> (i32, String, String) {
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8(out.stdout).unwrap(),
+        String::from_utf8(out.stderr).unwrap(),
+    )
+}
+
+/// Runs `dem2d ARGS` in the repository's root; its exit code (−1 when killed by a signal),
+/// standard output and standard error.
+pub fn dem2d(args: &[&str]) -> (i32, String, String) {
+    exit(
+        Command::new(bin())
+            .args(args)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .expect("run dem2d"),
+    )
+}
+
+/// [`dem2d`] with `stdin` as its standard input.
+pub fn dem2d_with_input(args: &[&str], stdin: &str) -> (i32, String, String) {
+    let mut child = Command::new(bin())
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run dem2d");
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(stdin.as_bytes())
+        .unwrap();
+    exit(child.wait_with_output().unwrap())
+}
+
+/// A path of this test file's scratch space (`TARGET_TMPDIR/<test file>/<name>`), emptied:
+/// whatever an earlier run left there is removed, and nothing is created.
+pub fn scratch_path(name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(env!("CARGO_CRATE_NAME"))
+        .join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+/// [`scratch_path`], created as an empty directory.
+pub fn scratch(name: &str) -> PathBuf {
+    let d = scratch_path(name);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// A shipped case file's path (`cases/NAME`).
+pub fn case_path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("cases")
+        .join(name)
+}
+
+/// A body of `shape` at `position` and `angle`, at rest, of density 1.
+pub fn body(shape: Shape, position: Vec2, angle: f64) -> BodyInit {
+    BodyInit {
+        material: 0,
+        prescribed: false,
+        shape,
+        position,
+        angle,
+        velocity: Vec2::zeros(),
+        omega: 0.0,
+        density: 1.0,
+    }
+}
+
+/// The floor `y = 0` (free side up) under the law `spec`.
+pub fn floor(spec: ContactSpec) -> Boundary {
+    Boundary::new(Wall::new(Vec2::zeros(), Vec2::y()).unwrap(), spec)
+}
+
+/// The linear law with normal and tangential stiffness `kn`, both dashpots `eta`, Coulomb
+/// friction `friction`, on the depth (absolute values: no ρg scaling).
+pub fn linear(kn: f64, eta: f64, friction: f64) -> ContactSpec {
+    ContactSpec::linear(
+        Scaled::Absolute(kn),
+        Scaled::Absolute(kn),
+        LinearDamping::Dashpots {
+            eta_n: Scaled::Absolute(eta),
+            eta_s: Scaled::Absolute(eta),
+        },
+        friction,
+    )
+    .with_normal_force(NormalForce::Depth)
+}
+
+/// The largest `|E − E₀|/E₀` over the steps of `sim`'s run (`E = K + P + E_el + D`, `E₀` the
+/// world's at the start): what an undamped, frictionless scene must keep small.
+pub fn worst_energy_error(mut sim: Simulation) -> f64 {
+    let e0 = sim.world().energies.total();
+    let mut worst = 0.0f64;
+    sim.run_each(|w, _| worst = worst.max(((w.energies.total() - e0) / e0).abs()))
+        .unwrap();
+    worst
+}
