@@ -60,7 +60,10 @@ impl SpringOn {
         match c.area {
             Some(a) if area_law => SpringOn::Area(
                 a,
-                if pair.flat_pair() {
+                // Two flat-sided bodies' overlap in two crossings carries its flat overlap
+                // (`Contact::flat`, asked for above only against a wall or under the depth
+                // law): the pair's facts are asked only for the other states.
+                if c.flat.is_some() || (c.state != ContactState::Overlap && pair.flat_pair()) {
                     EquivalentOverlap::Flat(pair.face_length())
                 } else {
                     EquivalentOverlap::Lens(pair.lens())
