@@ -469,6 +469,7 @@ fn the_outputs_reference_lists_every_file_and_column_a_run_writes() {
         "analysis.csv",
         "contacts.csv",
         "walls.csv",
+        "reactions.csv",
     ] {
         let text = read(&out.join(file));
         let header: Vec<String> = text

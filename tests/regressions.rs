@@ -788,7 +788,7 @@ mod bug_messages_did_not_say_what_was_meant {
         let err = run_case("velocty", &c);
         assert!(
             err.contains("did you mean `velocity`?")
-                && err.contains("the valid keys here: `angle`, `density`, `material`, `omega`, `position`, `shape`, `velocity`"),
+                && err.contains("the valid keys here: `angle`, `density`, `fixed`, `material`, `omega`, `position`, `prescribed`, `shape`, `velocity`"),
             "{err}"
         );
         // Nothing like any key: the valid keys only.

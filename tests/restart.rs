@@ -637,7 +637,8 @@ fn a_blow_up_writes_no_state_file() {
     assert!(!out.join("state.json.tmp").exists());
 }
 
-/// A scene of three materials (two of bodies, one of the floor) with a pair given its own law.
+/// A scene of three materials (two of bodies, one of the floor) with a pair given its own law, a
+/// fixed disk and a spinning roller pressed down into the pile at a prescribed velocity.
 fn materials_case() -> String {
     let mut bodies = Vec::new();
     for k in 0..12 {
@@ -649,6 +650,15 @@ fn materials_case() -> String {
             0.02 * k as f64
         ));
     }
+    bodies.push(
+        r#"{ "shape": {"type": "circle", "r": 0.5}, "position": [0, 4.6], "velocity": [0, -10],
+             "omega": 3, "prescribed": true }"#
+            .to_string(),
+    );
+    bodies.push(
+        r#"{ "shape": {"type": "circle", "r": 0.3}, "position": [4.6, 0.3], "fixed": true }"#
+            .to_string(),
+    );
     format!(
         r#"{{ "version": 1, "name": "materials", "gravity": [0, -980], "dt": 2e-5, "duration": 0.1,
         "contact": {{ "model": "linear", "kn_over_rho_g": 36400, "restitution": 0.5,
@@ -668,7 +678,7 @@ fn materials_case() -> String {
 }
 
 #[test]
-fn a_scene_of_several_materials_continues_exactly() {
+fn a_scene_of_several_materials_and_prescribed_bodies_continues_exactly() {
     let dir = scratch("materials");
     let case = dir.join("materials.json");
     std::fs::write(&case, materials_case()).unwrap();
@@ -699,7 +709,20 @@ fn a_scene_of_several_materials_continues_exactly() {
         .iter()
         .filter(|c| c["active"] == true)
         .count();
-    assert!(open >= 8, "open contacts at B: {open}");
+    assert!(open >= 5, "open contacts at B: {open}");
     run(ab.join("state.json").to_str().unwrap(), &bc, "1300");
     check_continuation(&ac, &ab, &bc, (1700, 3000), true);
+    let want = rows_between(&ac.join("reactions.csv"), 1700, 3000);
+    assert!(want.len() >= 20, "reactions after B");
+    assert_eq!(
+        rows_between(&bc.join("reactions.csv"), 1700, u64::MAX),
+        want
+    );
+    // The roller pushed on the pile and did work on it.
+    assert!(
+        json(&ac.join("summary.json"))["energies"]["walls_work"]
+            .as_f64()
+            .unwrap()
+            > 0.0
+    );
 }

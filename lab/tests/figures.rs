@@ -101,8 +101,9 @@ fn figures_quick_writes_every_figure_and_table_of_the_guide() {
                 continue;
             };
             // The ParaView picture is pvpython's (figures/scripts/paraview_render.py), the
-            // tutorial's pile `dem2d plot`'s; the research workflows' figures are `dem2d study
-            // impacts|biaxial-shape|packing|representation`'s (minutes of runs).
+            // tutorial's pile `dem2d plot`'s, the Python tutorial's profile its script's
+            // (docs/python/pour.py, with matplotlib); the research workflows' figures are `dem2d
+            // study impacts|biaxial-shape|packing|representation`'s (minutes of runs).
             let others = [
                 "impacts.svg",
                 "biaxial_shape.svg",
@@ -110,6 +111,7 @@ fn figures_quick_writes_every_figure_and_table_of_the_guide() {
                 "packing.svg",
                 "representation_pareto.svg",
                 "tutorial_pile.png",
+                "python_pour.png",
             ];
             if !name.starts_with("paraview_") && !others.contains(&name) {
                 wanted.push(name.to_string());

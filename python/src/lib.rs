@@ -67,8 +67,13 @@ fn input_error(py: Python<'_>, message: String) -> PyErr {
     error(py, "InputError", message, &[("field", py.None())])
 }
 
-/// A case, or a state file (a case and the state its run continues from).
-#[pyclass(frozen, module = "dem2d._core")]
+/// A scene: the case file's keys (docs/src/reference/case-file.md), read by dem2d's own reader.
+///
+/// `Case(d)` from a dict (numpy values allowed), `Case.load(path)` from a case file or a run's
+/// `state.json` (a Simulation of it continues that run), `Case.from_json(text)`. Bad input raises
+/// `dem2d.InputError` with the command line's message; its `field` names the field.
+/// `to_json()`, `save(path)` and `to_dict()` give the case back exactly.
+#[pyclass(frozen, module = "dem2d")]
 struct Case {
     file: CaseFile,
     /// The JSON text (a file's, or the one made from a dict): what `case.json` and
@@ -248,8 +253,18 @@ struct Inner {
     closed: bool,
 }
 
-/// A world stepping through `dem2d::run::Simulation`, optionally writing a run directory.
-#[pyclass(frozen, module = "dem2d._core")]
+/// A run of a case: `Simulation(case, *, threads=None, out=None, overwrite=False, vtk=None,
+/// analysis=False, contacts=False, progress=False)`.
+///
+/// `case`: a `dem2d.Case`, a dict of the case file's keys or a file's path. `threads`: the
+/// simulation's worker threads (default: one per core; the same bits for any number). `out`:
+/// a directory to write the files of `dem2d run --out` into (refused when it holds an earlier
+/// run's, unless `overwrite`); `analysis`, `contacts`, `vtk` (True, or the steps between frames)
+/// as `dem2d run --analysis`, `--contacts`, `--vtk-every`; `progress`: its progress line on
+/// stderr. Step it with `run()`; read its state as numpy arrays (`positions`, `angles`,
+/// `velocities`, `spins`, `forces`, `torques`, `masses`, `shapes()`, `contacts()`,
+/// `analysis()`, `energies()`).
+#[pyclass(frozen, module = "dem2d")]
 struct Simulation {
     inner: Mutex<Inner>,
     /// Raised (to a signal number) to stop the run after its current step.

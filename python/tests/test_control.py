@@ -65,11 +65,12 @@ def test_the_gil_is_released_while_stepping():
     stop.set()
     counter.join()
     during = [t for t in ticks if start < t < end]
-    # Python ran all along: no gap between ticks longer than the checks' period and then some
-    # (a held GIL would leave one gap as long as the run).
+    # Python ran all along: a held GIL would leave one gap as long as the run; the margin is
+    # for a loaded machine's scheduling.
     assert end - start > 0.2, "the run was too short to tell"
     gaps = np.diff([start, *during, end])
-    assert gaps.max() < 0.1 * (end - start) + 0.05, (gaps.max(), end - start)
+    assert gaps.max() < 0.3 * (end - start), (gaps.max(), end - start)
+    assert len(during) > 10
 
 
 CTRL_C = textwrap.dedent(

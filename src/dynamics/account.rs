@@ -13,7 +13,8 @@ pub struct Energies {
     /// Energy taken out by dashpots and sliding so far (including springs' energy lost when a
     /// contact opens).
     pub dissipated: f64,
-    /// Work done on the bodies by moving walls so far (see [`super::boundary`]).
+    /// Work done on the bodies by moving walls (see [`super::boundary`]) and by bodies whose
+    /// motion is prescribed (see [`super::body::Bodies`]) so far.
     pub boundary_work: f64,
 }
 

@@ -138,6 +138,12 @@ impl Bodies {
         self.shape.is_empty()
     }
 
+    /// Whether body `k`'s motion is prescribed.
+    #[inline]
+    pub fn is_prescribed(&self, k: usize) -> bool {
+        self.inv_mass[k] == 0.0
+    }
+
     /// Velocity of body `k`'s material point at offset `r` from its centroid: `v + ω × r`.
     #[inline]
     pub fn point_velocity(&self, k: usize, r: Vec2) -> Vec2 {

@@ -32,8 +32,10 @@ impl Builder {
 
     /// Rebuilds `list` from the current positions (body pairs from the grid, then each body's
     /// walls after its body partners: key order), carrying histories over; `clumps`: some body
-    /// is a clump (its pairs get a slot per member pair). Returns the history springs' energy of
-    /// the contacts that dropped out of the list.
+    /// is a clump (its pairs get a slot per member pair). Two prescribed bodies, or a prescribed
+    /// body and a wall, get no slot: neither side can move the other (and their m* is
+    /// infinite). Returns the history springs' energy of the contacts that dropped out of the
+    /// list.
     pub fn rebuild(
         &mut self,
         bodies: &Bodies,
@@ -49,10 +51,14 @@ impl Builder {
         list.keys.clear();
         reserve_for(&mut list.keys, self.pairs.len() + n);
         let mut next = 0;
+        let held = !bodies.prescribed.is_empty();
         for i in 0..n {
+            let held_i = held && bodies.is_prescribed(i);
             while next < self.pairs.len() && self.pairs[next].0 as usize == i {
                 let (a, b) = self.pairs[next];
-                if clumps {
+                if held_i && bodies.is_prescribed(b as usize) {
+                    // (Neither moves.)
+                } else if clumps {
                     members::pair_keys(bodies, a, b, skin, &mut list.keys);
                 } else {
                     list.keys.push((a, b, 0));
@@ -60,6 +66,7 @@ impl Builder {
                 next += 1;
             }
             let (x, r) = (bodies.state[i].pose.position, bodies.bound[i]);
+            let walls = if held_i { &[][..] } else { walls };
             for (w, ws) in walls.iter().enumerate() {
                 let wj = Partner::Wall(w).key();
                 let d = ws.signed_distance(x);

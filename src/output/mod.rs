@@ -8,6 +8,7 @@ pub mod outline;
 pub mod panels;
 pub mod plot;
 pub mod progress;
+pub mod reactions;
 pub mod run_data;
 pub mod run_dir;
 pub mod state;

@@ -1,7 +1,12 @@
-//! Runs a case: builds the world (or resumes it from a state file's state), steps it until the
-//! duration ends, P's quiescence criterion holds, `--max-steps` is reached, a blow-up is
-//! detected or a stop is asked for (SIGINT, SIGTERM), and writes `trajectory.csv`,
-//! `increments.csv`, `case.json`, `state.json` and `summary.json` into the output directory.
+//! A run's output directory: what `dem2d run` does ([`run_case`]: builds the world, or resumes
+//! it from a state file's state, steps it until the duration ends, P's quiescence criterion
+//! holds, `--max-steps` is reached, a blow-up is detected or a stop is asked for — SIGINT,
+//! SIGTERM — and writes `trajectory.csv`, `increments.csv`, `case.json`, `state.json` and
+//! `summary.json` into the output directory), in three parts that the Python module drives in
+//! several calls: [`RunDir::open`] (the lock, an earlier run's outputs, `case.json`, the first
+//! summary, the writers), [`RunDir::run`] (a [`Simulation`] with the writers as its observers),
+//! [`RunDir::finish`] (the summary of how it ended). The command line and Python share this code
+//! path, so a case run from either writes the same files.
 //!
 //! # What a run leaves behind
 //! - One run at a time writes into a directory: the run holds a lock on `DIR/.dem2d.lock`
@@ -21,8 +26,11 @@
 //!   killed.
 //! - The CSV files always end with a whole line; after a blow-up they hold everything up to it.
 //!   `walls.csv` ([`crate::output::walls`]: each wall's position, velocity, load and stress) is
-//!   written at the trajectory's frames by every run whose case has walls.
-//! - The summary's energies include the work the moving walls did on the bodies (`walls_work`):
+//!   written at the trajectory's frames by every run whose case has walls, `reactions.csv`
+//!   ([`crate::output::reactions`]: each prescribed body's reaction and power) by every run
+//!   whose case has prescribed bodies.
+//! - The summary's energies include the work the moving walls and the prescribed bodies did on
+//!   the bodies (`walls_work`):
 //!   `final_total − initial_total − walls_work` is the energy the integration created
 //!   (`unaccounted`, zero in exact arithmetic).
 //! - `state.json` (atomically, before the final summary) holds the state the run ended in, from
@@ -39,6 +47,7 @@ use crate::dynamics::timestep::estimate_critical_dt_of;
 use crate::dynamics::{RestartState, World};
 use crate::output::analysis::AnalysisOutput;
 use crate::output::progress::ProgressLines;
+use crate::output::reactions::ReactionsWriter;
 use crate::output::run_data::BodyState;
 use crate::output::state::StateWriter;
 use crate::output::summary::{DeepCounts, EnergyReport, Status, Summary, write_summary};
@@ -91,7 +100,7 @@ pub struct RunOptions {
 
 /// The files a run writes (and `dem2d plot`'s default outputs, drawn from them): what is
 /// removed from a directory before a run replaces an earlier one. The summary comes first.
-pub const OUTPUT_FILES: [&str; 14] = [
+pub const OUTPUT_FILES: [&str; 15] = [
     "summary.json",
     "summary.json.tmp",
     "case.json",
@@ -106,6 +115,7 @@ pub const OUTPUT_FILES: [&str; 14] = [
     "analysis.csv",
     "contacts.csv",
     "walls.csv",
+    "reactions.csv",
 ];
 
 /// The result of a run that started (its directory was prepared and its first summary written).
@@ -426,6 +436,7 @@ struct Writers {
     incs: IncrementsWriter,
     traj: TrajectoryWriter,
     walls: Option<WallsWriter>,
+    reactions: Option<ReactionsWriter>,
     sampler: CriticalStepSampler,
     analysis: Option<AnalysisOutput>,
     vtk: Option<VtkWriter>,
@@ -522,6 +533,10 @@ impl RunDir {
                     true => None,
                     false => Some(WallsWriter::create(dir, every)?),
                 };
+                let reactions = match world.bodies.prescribed.is_empty() {
+                    true => None,
+                    false => Some(ReactionsWriter::create(dir, every)?),
+                };
                 let vtk = match opts.vtk_every {
                     Some(n) => Some(VtkWriter::create(dir, world, n)?),
                     None => None,
@@ -541,6 +556,7 @@ impl RunDir {
                     incs,
                     traj,
                     walls,
+                    reactions,
                     sampler: CriticalStepSampler { every },
                     analysis,
                     vtk,
@@ -589,6 +605,9 @@ impl RunDir {
         };
         sim = sim.observe(&mut w.incs).observe(&mut w.traj);
         if let Some(x) = w.walls.as_mut() {
+            sim = sim.observe(x);
+        }
+        if let Some(x) = w.reactions.as_mut() {
             sim = sim.observe(x);
         }
         sim = sim.observe(&mut w.sampler);

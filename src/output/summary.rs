@@ -66,8 +66,8 @@ pub struct EnergyReport {
     pub potential: f64,
     pub elastic: f64,
     pub dissipated: f64,
-    /// Work done on the bodies by moving walls since the start of the run (zero when the walls
-    /// are fixed).
+    /// Work done on the bodies by moving walls and prescribed bodies since the start of the run
+    /// (zero when nothing is prescribed to move).
     pub walls_work: f64,
     /// kinetic + potential + elastic + dissipated at the start and at the end: the second is the
     /// first plus the walls' work, up to the integration's error.

@@ -199,7 +199,7 @@ impl Case {
         for (k, item) in items.iter().enumerate() {
             let path = index("bodies", k);
             let mut b = Obj::new(item, &path)?;
-            let (shape, pose, (velocity, omega, density, material)) =
+            let (shape, pose, (velocity, omega, density, material, prescribed)) =
                 parse_body_with(&mut b, |b| {
                     let velocity = b.opt_with("velocity", vec2)?.unwrap_or([0.0, 0.0]);
                     let omega = b.opt_with("omega", number)?.unwrap_or(0.0);
@@ -207,13 +207,14 @@ impl Case {
                     let material = b
                         .opt_with("material", |v, p| named.index_of(v, p))?
                         .unwrap_or(0);
-                    Ok((velocity, omega, density, material))
+                    let prescribed = prescribed_motion(b, velocity, omega)?;
+                    Ok((velocity, omega, density, material, prescribed))
                 })?;
             b.finish()?;
             let density = body_density(&named, material, density, &path)?;
             bodies.push(BodyInit {
                 material,
-                prescribed: false,
+                prescribed,
                 shape,
                 position: pose.position,
                 angle: pose.angle(),
@@ -702,6 +703,28 @@ fn check_span(walls: &[Boundary], k: usize, span: &Span) -> Result<(), FieldErro
         }
     }
     Ok(())
+}
+
+/// Whether a body's motion is prescribed: `"fixed": true` (at rest: a velocity or spin given
+/// with it must be zero) or `"prescribed": true` (at its `velocity` and `omega`), not both.
+fn prescribed_motion(b: &mut Obj, velocity: [f64; 2], omega: f64) -> Result<bool, FieldError> {
+    let fixed = b.opt_with("fixed", boolean)?.unwrap_or(false);
+    let prescribed = b.opt_with("prescribed", boolean)?.unwrap_or(false);
+    if fixed && prescribed {
+        return Err(FieldError::new(
+            b.field_path("prescribed"),
+            "give `fixed` (at rest) or `prescribed` (at its `velocity` and `omega`), not both",
+        ));
+    }
+    if fixed && (velocity != [0.0, 0.0] || omega != 0.0) {
+        let key = if omega != 0.0 { "omega" } else { "velocity" };
+        return Err(FieldError::new(
+            b.field_path(key),
+            "a fixed body does not move: give `\"prescribed\": true` instead of `fixed` to move \
+             it at its `velocity` and `omega`",
+        ));
+    }
+    Ok(fixed || prescribed)
 }
 
 /// `output.analysis_window`: four finite numbers `[x0, x1, y0, y1]` with `x0 < x1`, `y0 < y1`.

@@ -67,8 +67,8 @@ enum Command {
         file: String,
     },
     /// Run a case file: writes trajectory.csv, increments.csv, walls.csv (a case with walls),
-    /// case.json, state.json and summary.json. Given a state file (a run's state.json),
-    /// continues that run.
+    /// reactions.csv (a case with fixed or prescribed bodies), case.json, state.json and
+    /// summary.json. Given a state file (a run's state.json), continues that run.
     Run {
         /// The case file (JSON, "version": 1), or a run's state.json to continue from.
         case: PathBuf,
