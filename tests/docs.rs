@@ -382,6 +382,9 @@ fn documented_outputs(page: &str) -> BTreeMap<String, Vec<String>> {
         if let Some(h) = line.strip_prefix("## ") {
             // The heading's last code span names the file (`vtk/frame_NNNNN.vtu`).
             current = h.split('`').skip(1).step_by(2).last().map(str::to_string);
+        } else if line == "### In a periodic cell" {
+            // The columns a file gains in a periodic cell, after its own.
+            current = current.map(|f| format!("{f} (cell)"));
         } else if line.starts_with('|')
             && let Some(file) = &current
             && let Some(key) = keys_of_tables(line).pop()
@@ -458,8 +461,11 @@ fn the_outputs_reference_lists_every_file_and_column_a_run_writes() {
             written.insert(name);
         }
     }
+    // (`cell.csv` is a periodic cell's: checked with the cell's run below.)
+    let mut without_cell = listed.clone();
+    without_cell.remove("cell.csv");
     assert_eq!(
-        written, listed,
+        written, without_cell,
         "files written (left) against documented (right)"
     );
     // The CSV files' columns, in order.
@@ -514,6 +520,39 @@ fn the_outputs_reference_lists_every_file_and_column_a_run_writes() {
         doc, arrays,
         "VTK arrays: documented (left) against written (right)"
     );
+    // A periodic cell's run: its own file, and the columns two files gain (after their own).
+    let cell_case = json_blocks(&cases)
+        .into_iter()
+        .find(|t| t.contains("\"shear_rate\"") && t.contains("\"analysis\": true"))
+        .expect("an example of a sheared cell with the analysis");
+    std::fs::write(dir.join("cell.json"), &cell_case).unwrap();
+    let status = Command::new(env!("CARGO_BIN_EXE_dem2d"))
+        .args(["run", "cell.json", "--out", "cell_run", "--quiet"])
+        .current_dir(&dir)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let out = dir.join("cell_run");
+    let header = |file: &str| -> Vec<String> {
+        read(&out.join(file))
+            .lines()
+            .next()
+            .unwrap()
+            .split(',')
+            .map(str::to_string)
+            .collect()
+    };
+    assert!(listed.contains("cell.csv"));
+    assert_eq!(documented.get("cell.csv"), Some(&header("cell.csv")));
+    for file in ["trajectory.csv", "analysis.csv"] {
+        let mut columns = documented[file].clone();
+        columns.extend(documented[&format!("{file} (cell)")].iter().cloned());
+        assert_eq!(
+            columns,
+            header(file),
+            "{file} in a periodic cell: documented (left) against written (right)"
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 

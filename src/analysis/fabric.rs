@@ -224,12 +224,14 @@ mod tests {
             shape: Shape::Circle { r: 1.0 },
             position: Vec2::zeros(),
             angle: 0.0,
+            density: 1.0,
         };
         let frame = Frame {
             time: 0.0,
             bodies: vec![body; 2],
             contacts,
             wall_box: None,
+            cell: None,
         };
         let a = anisotropy(&frame, &[true, true]);
         assert_abs_diff_eq!(a.a_c, a_c, epsilon = 1e-4);
@@ -250,6 +252,7 @@ mod tests {
                     shape: Shape::Ellipse { a: 1.0, b: 2.0 },
                     position: Vec2::zeros(),
                     angle: a,
+                    density: 1.0,
                 })
                 .collect(),
             ..Default::default()

@@ -21,6 +21,7 @@ pub mod fabric;
 pub mod packing;
 pub mod stress;
 
+use crate::dynamics::cell::Cell;
 use crate::dynamics::{Partner, World};
 use crate::geometry::{Shape, Vec2};
 
@@ -66,6 +67,8 @@ pub struct FrameBody {
     pub shape: Shape,
     pub position: Vec2,
     pub angle: f64,
+    /// g/cm³ (read by the inertial number of a periodic cell).
+    pub density: f64,
 }
 
 /// A contact as the analysis sees it (see the module conventions).
@@ -123,6 +126,10 @@ pub struct Frame {
     pub contacts: Vec<FrameContact>,
     /// The box of four axis-aligned walls, if the scene has one.
     pub wall_box: Option<Window>,
+    /// The periodic cell the bodies repeat in, as it was at this instant (its size, shift and
+    /// stress), if the scene has one: the region is then the cell, a lever arm across a seam
+    /// is taken to the contact point's nearest image, and the cell's own measures are added.
+    pub cell: Option<Cell>,
 }
 
 impl Frame {
@@ -135,6 +142,7 @@ impl Frame {
                 shape: b.shape[k],
                 position: b.state[k].pose.position,
                 angle: b.state[k].pose.angle(),
+                density: b.density[k],
             })
             .collect();
         let contacts = world
@@ -164,6 +172,7 @@ impl Frame {
             bodies,
             contacts,
             wall_box: wall_box(&walls),
+            cell: world.cell,
         }
     }
 }
@@ -219,12 +228,60 @@ pub struct Measures {
     pub orientation_order: f64,
     pub bodies: usize,
     pub contacts: usize,
+    /// In a periodic cell, the cell's measures.
+    pub cell: Option<CellMeasures>,
+}
+
+/// A periodic cell's measures (see `dynamics::cell`): its normal stress σ_yy (the pressure a
+/// shear cell holds), its shear stress `(σ_xy + σ_yx)/2`, the effective friction
+/// `μ = −τ/σ_yy` (positive when the cell resists a positive shear rate), the inertial number
+/// `I = γ̇ d/√(P/ρ)` (GDR MiDi 2004; d the mean equal-area diameter, ρ the bodies' mean
+/// density, P = σ_yy) and the cell's height.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CellMeasures {
+    pub pressure: f64,
+    pub shear_stress: f64,
+    pub mu_eff: f64,
+    pub inertial_number: f64,
+    pub ly: f64,
+}
+
+impl CellMeasures {
+    /// The measures of `cell` holding `bodies`.
+    pub fn of(cell: &Cell, bodies: &[FrameBody]) -> Self {
+        let n = bodies.len().max(1) as f64;
+        let d = bodies
+            .iter()
+            .map(|b| 2.0 * b.shape.equal_area_radius())
+            .sum::<f64>()
+            / n;
+        let rho = bodies.iter().map(|b| b.density).sum::<f64>() / n;
+        let (p, tau) = (cell.normal_stress(), cell.shear_stress());
+        CellMeasures {
+            pressure: p,
+            shear_stress: tau,
+            mu_eff: if p > 0.0 { -tau / p } else { f64::NAN },
+            inertial_number: if p > 0.0 {
+                cell.shear_rate.abs() * d / (p / rho).sqrt()
+            } else {
+                f64::NAN
+            },
+            ly: cell.size.y,
+        }
+    }
 }
 
 /// The measures of `frame` over `region` (the wall box when `None`; without a wall box, the
 /// bounding box of the bodies' outlines).
 pub fn measure(frame: &Frame, region: Option<Window>) -> Measures {
+    let cell_box = frame.cell.map(|c| Window {
+        x0: 0.0,
+        x1: c.size.x,
+        y0: 0.0,
+        y1: c.size.y,
+    });
     let region = region
+        .or(cell_box)
         .or(frame.wall_box)
         .unwrap_or_else(|| packing::bounding_window(&frame.bodies));
     let inside: Vec<bool> = frame
@@ -244,7 +301,11 @@ pub fn measure(frame: &Frame, region: Option<Window>) -> Measures {
         area: region.area(),
         stress: stress.symmetric(),
         boundary_stress,
-        packing_fraction: packing::packing_fraction(&frame.bodies, region),
+        // A cell holds each body once (a body across a seam is there in two pieces).
+        packing_fraction: match frame.cell {
+            Some(c) => frame.bodies.iter().map(|b| b.shape.area()).sum::<f64>() / c.area(),
+            None => packing::packing_fraction(&frame.bodies, region),
+        },
         coordination: coord.with_rattlers,
         coordination_no_rattlers: coord.without_rattlers,
         rattler_fraction: coord.rattler_fraction,
@@ -252,5 +313,6 @@ pub fn measure(frame: &Frame, region: Option<Window>) -> Measures {
         orientation_order: fabric::orientation_order(frame, &inside).0,
         bodies: inside.iter().filter(|&&b| b).count(),
         contacts: frame.contacts.len(),
+        cell: frame.cell.map(|c| CellMeasures::of(&c, &frame.bodies)),
     }
 }

@@ -292,6 +292,7 @@ mod tests {
             shape,
             position: Vec2::new(x, y),
             angle,
+            density: 1.0,
         }
     }
 
@@ -428,6 +429,7 @@ mod tests {
             bodies,
             contacts: vec![c(0, 1), c(0, 2), c(1, 2), c(2, 3), c(3, 4)],
             wall_box: None,
+            cell: None,
         };
         let z = coordination(&frame, &[true; 5]);
         // Contacts per body: 2, 2, 3, 2, 1 → 10/5; without rattlers (3, then 4): 2, 2, 2.

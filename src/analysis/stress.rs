@@ -77,14 +77,20 @@ pub fn love_weber(frame: &Frame, inside: &[bool], area: f64) -> Stress {
         let p = c.action_point();
         // A couple no force carries: its moment in the antisymmetric part (yx − xy = M).
         let bare = if p == c.point { c.couple } else { 0.0 };
+        // In a periodic cell, the lever to the contact point's nearest image (a contact of a
+        // body's image lies across a seam).
+        let lever = |k: usize| {
+            let r = p - frame.bodies[k].position;
+            frame.cell.map_or(r, |cell| cell.shortest(r))
+        };
         if inside[j] {
-            s.add_outer(c.force, p - frame.bodies[j].position, w);
+            s.add_outer(c.force, lever(j), w);
             s.add_couple(bare, w);
         }
         if let Some(i) = c.giver_body()
             && inside[i]
         {
-            s.add_outer(-c.force, p - frame.bodies[i].position, w);
+            s.add_outer(-c.force, lever(i), w);
             s.add_couple(-bare, w);
         }
     }
@@ -114,6 +120,7 @@ mod tests {
             shape: Shape::Circle { r: 1.0 },
             position: Vec2::new(x, y),
             angle: 0.0,
+            density: 1.0,
         }
     }
 
@@ -165,6 +172,7 @@ mod tests {
                 ),
             ],
             wall_box: None,
+            cell: None,
         };
         let bx = Window {
             x0: 0.0,
@@ -194,6 +202,7 @@ mod tests {
                 contact(Partner::Body(0), 2, -n, -n, f),
             ],
             wall_box: None,
+            cell: None,
         };
         let s = love_weber(&frame, &[true, false, false], 10.0);
         let (s1, s3, a) = s.principal();

@@ -69,6 +69,9 @@ pub struct Bodies {
     /// Force and moment of the last evaluation (contacts and gravity).
     pub force: Vec<Vec2>,
     pub torque: Vec<f64>,
+    /// In a periodic cell, how often each body crossed its seams (`i_x`, `i_y`: see
+    /// [`super::cell::Cell::unwrapped`]); empty otherwise.
+    pub image: Vec<[i32; 2]>,
     /// The prescribed bodies, in order.
     pub prescribed: Vec<usize>,
 }
@@ -92,6 +95,7 @@ impl Bodies {
             is_circle: Vec::with_capacity(n),
             force: Vec::with_capacity(n),
             torque: Vec::with_capacity(n),
+            image: Vec::new(),
             prescribed: Vec::new(),
         };
         for (k, init) in inits.iter().enumerate() {

@@ -15,6 +15,8 @@
 //! cells, which costs time in proportion to the spread but misses nothing.
 
 use super::body::Bodies;
+use super::cell::Cell;
+use crate::geometry::Vec2;
 
 /// Reusable buffers of the grid (no allocation once warmed up).
 #[derive(Clone, Debug, Default)]
@@ -150,6 +152,137 @@ impl Grid {
         }
         // Saturated cells (coordinates beyond ±9e18 cells) can list a pair twice.
         out.dedup();
+    }
+}
+
+impl Grid {
+    /// [`Grid::pairs`] in a periodic cell: the pairs whose bounding circles come within
+    /// `margin` through the giver's nearest image (every body inside the cell). The cell is
+    /// tiled by `n_x × n_y` cells at least as large as the reach, and a body's neighbours are in
+    /// the 3 × 3 cells around it with the indices taken modulo the tiling; across the y seam of
+    /// a Lees–Edwards cell, the row beyond is shifted by the image's offset, so the search there
+    /// covers the four cells around the shifted column. Each pair once, `i < j`, sorted.
+    pub fn pairs_periodic(
+        &mut self,
+        bodies: &Bodies,
+        margin: f64,
+        cell: &Cell,
+        out: &mut Vec<(u32, u32)>,
+    ) {
+        out.clear();
+        let n = bodies.len();
+        if n < 2 {
+            return;
+        }
+        let size = 2.0 * bodies.bound.iter().copied().fold(0.0f64, f64::max) + margin;
+        let (lx, ly) = (cell.size.x, cell.size.y);
+        let nx = ((lx / size).floor() as i64).max(1);
+        // Not periodic in y: the bodies' extent in y, tiled from its bottom.
+        let (y0, ny) = if cell.periodic_y() {
+            (0.0, ((ly / size).floor() as i64).max(1))
+        } else {
+            let (lo, hi) = bodies
+                .state
+                .iter()
+                .map(|s| s.pose.position.y)
+                .fold((f64::MAX, f64::MIN), |(l, h), y| (l.min(y), h.max(y)));
+            (lo, (((hi - lo) / size).floor() as i64 + 1).max(1))
+        };
+        let (wx, wy) = (
+            lx / nx as f64,
+            if cell.periodic_y() {
+                ly / ny as f64
+            } else {
+                size
+            },
+        );
+        let cells = (nx * ny) as usize;
+        self.cell.clear();
+        self.start.clear();
+        self.start.resize(cells + 1, 0);
+        let index = |ix: i64, iy: i64| (iy * nx + ix) as usize;
+        for s in &bodies.state {
+            let p = s.pose.position;
+            let ix = ((p.x / wx).floor() as i64).clamp(0, nx - 1);
+            let iy = (((p.y - y0) / wy).floor() as i64).clamp(0, ny - 1);
+            self.cell.push((ix, iy));
+            self.start[index(ix, iy) + 1] += 1;
+        }
+        for k in 0..cells {
+            self.start[k + 1] += self.start[k];
+        }
+        self.order.clear();
+        self.order.resize(n, 0);
+        self.fill.clear();
+        self.fill.extend_from_slice(&self.start[..cells]);
+        for (k, &(ix, iy)) in self.cell.iter().enumerate() {
+            let b = index(ix, iy);
+            self.order[self.fill[b] as usize] = k as u32;
+            self.fill[b] += 1;
+        }
+        let wrap = |i: i64, m: i64| i.rem_euclid(m);
+        let mut seen: Vec<(i64, i64)> = Vec::with_capacity(12);
+        for i in 0..n {
+            let (cx, cy) = self.cell[i];
+            let pi = bodies.state[i].pose.position;
+            let ri = bodies.bound[i] + margin;
+            let first = out.len();
+            seen.clear();
+            for dy in -1..=1i64 {
+                let mut ty = cy + dy;
+                // The columns to scan in the row `ty`: around cx, or (across a Lees–Edwards
+                // seam) around the column of the shifted position.
+                let mut columns = [cx - 1, cx, cx + 1, cx + 1];
+                let mut count = 3;
+                if cell.periodic_y() && (ty < 0 || ty >= ny) {
+                    // The row beyond the top is the bottom row of the image above, shifted by
+                    // +offset: its bodies at x are seen at x + offset, so this body at x looks
+                    // at x − offset there (and + offset across the bottom).
+                    let shift = if ty >= ny { -cell.offset } else { cell.offset };
+                    let x = pi.x + shift;
+                    let c = (x / wx).floor() as i64;
+                    columns = [c - 1, c, c + 1, c + 2];
+                    count = 4;
+                    ty = wrap(ty, ny);
+                } else if ty < 0 || ty >= ny {
+                    continue;
+                }
+                for &tx in &columns[..count] {
+                    let key = (wrap(tx, nx), ty);
+                    if seen.contains(&key) {
+                        continue;
+                    }
+                    seen.push(key);
+                    let b = index(key.0, key.1);
+                    for &j in &self.order[self.start[b] as usize..self.start[b + 1] as usize] {
+                        let j = j as usize;
+                        if j <= i {
+                            continue;
+                        }
+                        let pj = bodies.state[j].pose.position;
+                        let at = pj
+                            + cell
+                                .nearest_image(pj, pi)
+                                .map_or(Vec2::zeros(), |m| m.offset);
+                        let r = ri + bodies.bound[j];
+                        if (at - pi).norm_squared() <= r * r {
+                            out.push((i as u32, j as u32));
+                        }
+                    }
+                }
+            }
+            out[first..].sort_unstable();
+            // (A tiling of two rows reaches the other row from both sides, shifted apart
+            // across a Lees–Edwards seam: a body there may be found twice.)
+            let mut kept = first;
+            for r in first..out.len() {
+                if r == first || out[r] != out[kept - 1] {
+                    out[kept] = out[r];
+                    kept += 1;
+                }
+            }
+            out.truncate(kept);
+        }
     }
 }
 

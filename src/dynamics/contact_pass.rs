@@ -26,6 +26,7 @@
 
 use super::body::Bodies;
 use super::boundary::{Boundary, WallLoad};
+use super::cell::Cell;
 use super::contacts::{ContactData, ContactExtra, ContactList, Slot};
 use super::kinematics::{self, Contact};
 use super::materials::PairTable;
@@ -34,7 +35,7 @@ use super::partner::{Partner, Sides};
 use crate::contact_law::{ContactSpec, History, Law, LinearDashpots, NormalForce, PairSpec};
 use crate::contact_law::{HISTORY_LEN, Needs, PairFacts, SpringOn};
 use crate::geometry::overlap_area::DiskLens;
-use crate::geometry::{Shape, Vec2};
+use crate::geometry::{Pose, Shape, Vec2};
 use crate::narrow_phase::{self, ContactState, PairCache, Request, Side, contact_with};
 use rayon::prelude::*;
 
@@ -58,6 +59,19 @@ pub(crate) struct SlotPartial {
     pub max_depth_ratio: f64,
     /// Σ of the change of the history springs' energy.
     pub history_energy_change: f64,
+    /// In a periodic cell, over the pairs of bodies: `Σ f ⊗ l` (xx, xy, yx, yy; f the force on
+    /// the receiver, l the branch vector from the giver's image to the receiver: Love–Weber),
+    /// and the contacts' affine stiffness against a vertical stretch `Σ k_n (n_y l_y)²`.
+    pub stress: [f64; 4],
+    pub stiffness_yy: f64,
+    /// `Σ F_s n_y l_y`, F_s the elastic part of the normal force: minus the rate at which the
+    /// contacts' stored energy changes under a vertical affine stretch.
+    pub elastic_yy: f64,
+    /// In a Lees–Edwards cell, the power of the contacts across its y seam on the image's
+    /// extra velocity u, `Σ f·u`, and of their non-elastic parts (the boundary's work: see
+    /// `dynamics::cell`).
+    pub image_power: f64,
+    pub image_power_ne: f64,
 }
 
 impl SlotPartial {
@@ -70,6 +84,13 @@ impl SlotPartial {
         self.contained += p.contained;
         self.max_depth_ratio = self.max_depth_ratio.max(p.max_depth_ratio);
         self.history_energy_change += p.history_energy_change;
+        for (a, b) in self.stress.iter_mut().zip(p.stress) {
+            *a += b;
+        }
+        self.stiffness_yy += p.stiffness_yy;
+        self.elastic_yy += p.elastic_yy;
+        self.image_power += p.image_power;
+        self.image_power_ne += p.image_power_ne;
     }
 }
 
@@ -119,9 +140,8 @@ pub(crate) struct ContactPass {
     linear: Vec<LinearDashpots>,
 }
 
-/// What a step's pass reads: the bodies, the walls, the scene's law and every pair's, |g|, the
-/// step Δt, and the neighbour list's per-body slot ranges (a body's number of slots: the CDT
-/// limiter's share).
+/// What a step's pass reads: the bodies, the walls, the scene's law, |g|, the step Δt, and the
+/// neighbour list's per-body slot ranges (a body's number of slots: the CDT limiter's share).
 pub(crate) struct PassInput<'a> {
     pub bodies: &'a Bodies,
     pub walls: &'a mut [Boundary],
@@ -130,6 +150,7 @@ pub(crate) struct PassInput<'a> {
     pub g: f64,
     pub dt: f64,
     pub facts: SceneFacts,
+    pub cell: Option<&'a Cell>,
 }
 
 impl ContactPass {
@@ -159,9 +180,7 @@ impl ContactPass {
 
     /// When every pair of a kind has the same law — one density for all bodies, and no law that
     /// depends on the pair's mass (restitution-tuned dashpots) — resolves the body–body law and
-    /// each wall's once instead of at every contact: with one material, the body pairs' and
-    /// each wall's; with several, every pair of the table's. Only a scene of one material takes
-    /// the copies compiled for linear laws.
+    /// each wall's once instead of at every contact.
     fn resolve(&mut self, pairs: &PairTable, walls: &[Boundary], facts: &SceneFacts, g: f64) {
         self.laws.clear();
         self.linear.clear();
@@ -202,6 +221,7 @@ impl ContactPass {
             g,
             dt,
             facts,
+            cell,
         } = input;
         self.resolve(pairs, walls, &facts, g);
         self.size(list.slots.len(), walls.len());
@@ -212,6 +232,7 @@ impl ContactPass {
             history,
             stride,
             adjacency_start,
+            near_seam,
             ..
         } = list;
         let stride = *stride;
@@ -223,6 +244,8 @@ impl ContactPass {
             g,
             dt,
             adjacency_start,
+            cell,
+            near_seam,
         };
         let nw = walls.len().max(1);
         let (linear, laws) = (&self.linear[..], &self.laws[..]);
@@ -238,25 +261,69 @@ impl ContactPass {
             .zip(data.par_chunks_mut(SLOT_CHUNK))
             .zip(self.partials.par_iter_mut())
             .zip(self.wall_partials.par_chunks_mut(nw));
+        // A periodic cell's copy of the pass shifts each giver to its nearest image and sums
+        // the cell's stress: taken by every slot where the cell measures its stress, else by
+        // the runs of slots with a body near a seam. The others meet no image: the
+        // wall-bounded copy, the same bits (the sums run through the chunk in order either way).
+        let measures = cell.is_some_and(Cell::measures_stress);
+        let near_seam = cx.near_seam;
+        let near = |s: &Slot| match s.partner() {
+            Partner::Body(k) => near_seam[k] || near_seam[s.i as usize],
+            Partner::Wall(_) => false,
+        };
+        let run = |slots: &mut [Slot],
+                   data: &mut [ContactData],
+                   loads: &mut [WallLoad],
+                   mut cache: Option<&mut [PairCache]>,
+                   mut more: Option<(&mut [f64], usize)>| {
+            let mut p = SlotPartial::default();
+            loads.fill(WallLoad::default());
+            if cell.is_none() {
+                chunk.run::<false>(slots, data, loads, cache, more, &mut p);
+            } else if measures {
+                chunk.run::<true>(slots, data, loads, cache, more, &mut p);
+            } else {
+                let mut a = 0;
+                while a < slots.len() {
+                    let here = near(&slots[a]);
+                    let b = slots[a..]
+                        .iter()
+                        .position(|s| near(s) != here)
+                        .map_or(slots.len(), |k| a + k);
+                    let cache = cache.as_deref_mut().map(|c| &mut c[a..b]);
+                    let more = more
+                        .as_mut()
+                        .map(|(h, stride)| (&mut h[a * *stride..b * *stride], *stride));
+                    let (s, d) = (&mut slots[a..b], &mut data[a..b]);
+                    if here {
+                        chunk.run::<true>(s, d, loads, cache, more, &mut p);
+                    } else {
+                        chunk.run::<false>(s, d, loads, cache, more, &mut p);
+                    }
+                    a = b;
+                }
+            }
+            p
+        };
         match (cache.is_empty(), history.is_empty()) {
             (true, true) => chunks.for_each(|(((slots, data), part), loads)| {
-                *part = chunk.run(slots, data, loads, None, None)
+                *part = run(slots, data, loads, None, None)
             }),
             (false, true) => chunks.zip(cache.par_chunks_mut(SLOT_CHUNK)).for_each(
                 |((((slots, data), part), loads), cache)| {
-                    *part = chunk.run(slots, data, loads, Some(cache), None)
+                    *part = run(slots, data, loads, Some(cache), None)
                 },
             ),
             (true, false) => chunks
                 .zip(history.par_chunks_mut(SLOT_CHUNK * stride))
                 .for_each(|((((slots, data), part), loads), more)| {
-                    *part = chunk.run(slots, data, loads, None, Some((more, stride)))
+                    *part = run(slots, data, loads, None, Some((more, stride)))
                 }),
             (false, false) => chunks
                 .zip(cache.par_chunks_mut(SLOT_CHUNK))
                 .zip(history.par_chunks_mut(SLOT_CHUNK * stride))
                 .for_each(|(((((slots, data), part), loads), cache), more)| {
-                    *part = chunk.run(slots, data, loads, Some(cache), Some((more, stride)))
+                    *part = run(slots, data, loads, Some(cache), Some((more, stride)))
                 }),
         }
         let mut sum = SlotPartial::default();
@@ -285,6 +352,7 @@ impl ContactPass {
             pairs,
             g,
             facts,
+            cell,
             ..
         } = input;
         self.resolve(pairs, walls, &facts, g);
@@ -295,6 +363,7 @@ impl ContactPass {
             history,
             stride,
             adjacency_start,
+            near_seam,
             ..
         } = list;
         let stride = *stride;
@@ -306,6 +375,8 @@ impl ContactPass {
             g,
             dt: 0.0,
             adjacency_start,
+            cell,
+            near_seam,
         };
         let laws = Resolved::new(&self.laws, pairs);
         let (cache, history) = (&cache[..], &history[..]);
@@ -336,8 +407,9 @@ impl ContactPass {
                         extra: Some(extra),
                         history: more,
                     };
-                    match lean_of(&slot, &cx) {
-                        Some(l) => contact_slot::<_, _, false>(
+                    // (Reports only: the periodic copy serves every scene.)
+                    match lean_of::<true>(&slot, &cx) {
+                        Some(l) => contact_slot::<_, _, false, true>(
                             &mut slot,
                             to,
                             Lean(l),
@@ -346,7 +418,7 @@ impl ContactPass {
                             &mut p,
                             &mut [],
                         ),
-                        None => contact_slot::<_, _, false>(
+                        None => contact_slot::<_, _, false, true>(
                             &mut slot,
                             to,
                             Dispatch(cache.as_mut()),
@@ -361,8 +433,8 @@ impl ContactPass {
     }
 }
 
-/// What every slot's contact is computed from: the bodies, the walls, the scene's law and every
-/// pair's, |g|, the step Δt and the neighbour list's per-body slot ranges.
+/// What every slot's contact is computed from: the bodies, the walls, the scene's law, |g|, the
+/// step Δt and the neighbour list's per-body slot ranges.
 #[derive(Clone, Copy)]
 pub(crate) struct PassContext<'a> {
     pub bodies: &'a Bodies,
@@ -372,20 +444,53 @@ pub(crate) struct PassContext<'a> {
     pub g: f64,
     pub dt: f64,
     pub adjacency_start: &'a [u32],
+    /// The periodic cell, if the scene has one.
+    pub cell: Option<&'a Cell>,
+    /// In a periodic cell, the bodies near a seam (the only ones whose pairs may meet through
+    /// an image: [`ContactList::mark_near_seams`]).
+    pub near_seam: &'a [bool],
 }
 
 impl PassContext<'_> {
     /// The sides of a slot's pair as the narrow phase takes them: the giver as i, the receiver
-    /// as j.
+    /// as j; a giver seen through a periodic image is placed at the image, in `store`.
     #[inline(always)]
-    fn sides(&self, sides: Sides) -> (Side<'_>, Side<'_>) {
+    fn sides<'s>(&'s self, sides: Sides, store: &'s mut Pose) -> (Side<'s>, Side<'s>) {
         let b = self.bodies;
         let i = match sides.giver {
             Partner::Wall(w) => self.walls[w].side(),
-            Partner::Body(k) => Side::Body(&b.shape[k], &b.state[k].pose),
+            Partner::Body(k) => Side::Body(&b.shape[k], self.giver_pose(k, sides, store)),
         };
         let recv = sides.receiver;
         (i, Side::Body(&b.shape[recv], &b.state[recv].pose))
+    }
+
+    /// Body `k`'s pose as the giver of `sides`: its own, or its periodic image's (in `store`).
+    #[inline(always)]
+    fn giver_pose<'s>(&'s self, k: usize, sides: Sides, store: &'s mut Pose) -> &'s Pose {
+        match sides.image {
+            None => &self.bodies.state[k].pose,
+            Some(image) => {
+                *store = self.bodies.state[k].pose;
+                store.position += image.offset;
+                store
+            }
+        }
+    }
+
+    /// `slot`'s sides (see [`sides_of_slot`]), with the giver's nearest periodic image in a
+    /// periodic cell (`PERIODIC`).
+    #[inline(always)]
+    fn slot_sides<const PAIR: bool, const PERIODIC: bool>(&self, slot: &Slot) -> Sides {
+        let mut sides = sides_of_slot::<PAIR>(slot);
+        if PERIODIC
+            && let (Some(cell), Partner::Body(k)) = (self.cell, sides.giver)
+            && (self.near_seam[k] || self.near_seam[sides.receiver])
+        {
+            let b = &self.bodies.state;
+            sides.image = cell.nearest_image(b[k].pose.position, b[sides.receiver].pose.position);
+        }
+        sides
     }
 
     /// What the normal spring of a pair acts on: a wall's own law's choice, or the scene's
@@ -435,18 +540,18 @@ struct Chunk<'a> {
 
 impl Chunk<'_> {
     /// The chunk's slots (with their pair caches, and their further history values with their
-    /// number per slot, when the scene keeps them); returns its sums.
-    fn run(
+    /// number per slot, when the scene keeps them), their sums added to `p` and their walls'
+    /// loads to `loads`.
+    fn run<const PERIODIC: bool>(
         &self,
         slots: &mut [Slot],
         data: &mut [ContactData],
         loads: &mut [WallLoad],
         mut cache: Option<&mut [PairCache]>,
         mut history: Option<(&mut [f64], usize)>,
-    ) -> SlotPartial {
+        p: &mut SlotPartial,
+    ) {
         let cx = self.cx;
-        let mut p = SlotPartial::default();
-        loads.fill(WallLoad::default());
         let linear = self.linear;
         let is_linear = !linear.0.is_empty();
         if self.disks {
@@ -462,20 +567,22 @@ impl Chunk<'_> {
                 // Body pairs in a copy compiled for them; wall slots (few) out of line, so that
                 // the pair loop stays short.
                 if !slot.is_wall() {
-                    contact_slot::<_, _, true>(
+                    contact_slot::<_, _, true, PERIODIC>(
                         slot,
                         to,
                         Disks,
                         Linear(&pair_law),
                         cx,
-                        &mut p,
+                        p,
                         loads,
                     );
                 } else {
-                    contact_slot_apart::<_, _, false>(slot, to, Disks, linear, cx, &mut p, loads);
+                    contact_slot_apart::<_, _, false, PERIODIC>(
+                        slot, to, Disks, linear, cx, p, loads,
+                    );
                 }
             }
-            return p;
+            return;
         }
         // With circles in the scene, the circle pairs' geometry first, for the whole chunk: a
         // short loop whose square roots and divisions overlap from slot to slot (inside the
@@ -488,7 +595,7 @@ impl Chunk<'_> {
                 if let Some(ahead) = slots.get(k + PREFETCH_AHEAD) {
                     prefetch_partner(cx.bodies, ahead, &cx.bodies.shape);
                 }
-                *l = lean_of(slot, cx);
+                *l = lean_of::<PERIODIC>(slot, cx);
             }
         }
         for (k, (slot, data)) in slots.iter_mut().zip(data).enumerate() {
@@ -499,49 +606,54 @@ impl Chunk<'_> {
             let cache = cache.as_deref_mut().map(|c| &mut c[k]);
             let (resolved, to) = (self.resolved, SlotOut::data(data));
             match lean[k] {
-                Some(l) if is_linear => {
-                    contact_slot_apart::<_, _, false>(slot, to, Lean(l), linear, cx, &mut p, loads)
-                }
-                Some(l) => contact_slot_apart::<_, _, false>(
+                Some(l) if is_linear => contact_slot_apart::<_, _, false, PERIODIC>(
+                    slot,
+                    to,
+                    Lean(l),
+                    linear,
+                    cx,
+                    p,
+                    loads,
+                ),
+                Some(l) => contact_slot_apart::<_, _, false, PERIODIC>(
                     slot,
                     to.with_history(r),
                     Lean(l),
                     resolved,
                     cx,
-                    &mut p,
+                    p,
                     loads,
                 ),
-                None if !is_linear => contact_slot_apart::<_, _, false>(
+                None if !is_linear => contact_slot_apart::<_, _, false, PERIODIC>(
                     slot,
                     to.with_history(r),
                     Dispatch(cache),
                     resolved,
                     cx,
-                    &mut p,
+                    p,
                     loads,
                 ),
                 // Body pairs in a copy compiled for them (no wall branch left).
-                None if !slot.is_wall() => contact_slot_apart::<_, _, true>(
+                None if !slot.is_wall() => contact_slot_apart::<_, _, true, PERIODIC>(
                     slot,
                     to,
                     Dispatch(cache),
                     linear,
                     cx,
-                    &mut p,
+                    p,
                     loads,
                 ),
-                None => contact_slot_apart::<_, _, false>(
+                None => contact_slot_apart::<_, _, false, PERIODIC>(
                     slot,
                     to,
                     Dispatch(cache),
                     linear,
                     cx,
-                    &mut p,
+                    p,
                     loads,
                 ),
             }
         }
-        p
     }
 }
 
@@ -578,7 +690,7 @@ pub(crate) trait Geometry {
     /// Every body is a circle: a body's inscribed radius is its bounding radius.
     const DISKS: bool;
     /// The slot's contact (`None`, or a depth ≤ 0: apart).
-    fn find<const PAIR: bool>(self, slot: &Slot, cx: &PassContext) -> Option<Found>;
+    fn find(self, sides: Sides, cx: &PassContext) -> Option<Found>;
 }
 
 /// A scene of disks: the dispatcher on circles of the bodies' bounding radii (their radii),
@@ -591,13 +703,8 @@ struct Disks;
 impl Disks {
     /// The slot's contact, from an empty pair cache (a circle pair keeps nothing).
     #[inline(always)]
-    fn contact<const PAIR: bool>(
-        self,
-        slot: &Slot,
-        cx: &PassContext,
-    ) -> Option<narrow_phase::Contact> {
+    fn contact(self, sides: Sides, cx: &PassContext) -> Option<narrow_phase::Contact> {
         let b = cx.bodies;
-        let sides = sides_of_slot::<PAIR>(slot);
         let recv = sides.receiver;
         let circle_j = Shape::Circle { r: b.bound[recv] };
         let j = Side::Body(&circle_j, &b.state[recv].pose);
@@ -610,7 +717,8 @@ impl Disks {
             ),
             Partner::Body(k) => {
                 let circle_i = Shape::Circle { r: b.bound[k] };
-                let i = Side::Body(&circle_i, &b.state[k].pose);
+                let mut store = Pose::IDENTITY;
+                let i = Side::Body(&circle_i, cx.giver_pose(k, sides, &mut store));
                 contact_with(i, j, &mut PairCache::default(), Request::LEAN)
             }
         }
@@ -620,8 +728,8 @@ impl Disks {
 impl Geometry for Disks {
     const DISKS: bool = true;
     #[inline(always)]
-    fn find<const PAIR: bool>(self, slot: &Slot, cx: &PassContext) -> Option<Found> {
-        self.contact::<PAIR>(slot, cx)
+    fn find(self, sides: Sides, cx: &PassContext) -> Option<Found> {
+        self.contact(sides, cx)
             .map(|c| (c.state, c.point, c.normal, c.depth, SpringOn::Depth))
     }
 }
@@ -635,7 +743,7 @@ struct Lean(Option<narrow_phase::Contact>);
 impl Geometry for Lean {
     const DISKS: bool = false;
     #[inline(always)]
-    fn find<const PAIR: bool>(self, _: &Slot, _: &PassContext) -> Option<Found> {
+    fn find(self, _: Sides, _: &PassContext) -> Option<Found> {
         self.0
             .map(|c| (c.state, c.point, c.normal, c.depth, SpringOn::Depth))
     }
@@ -649,8 +757,7 @@ struct Dispatch<'a>(Option<&'a mut PairCache>);
 impl Geometry for Dispatch<'_> {
     const DISKS: bool = false;
     #[inline(always)]
-    fn find<const PAIR: bool>(self, slot: &Slot, cx: &PassContext) -> Option<Found> {
-        let sides = sides_of_slot::<PAIR>(slot);
+    fn find(self, sides: Sides, cx: &PassContext) -> Option<Found> {
         let area_law = cx.normal_force(sides) == NormalForce::Area;
         let facts = Facts {
             bodies: cx.bodies,
@@ -661,7 +768,8 @@ impl Geometry for Dispatch<'_> {
             Some(c) => c,
             None => &mut scratch,
         };
-        let (i, j) = cx.sides(sides);
+        let mut store = Pose::IDENTITY;
+        let (i, j) = cx.sides(sides, &mut store);
         let request = Request {
             area: area_law,
             chord: false,
@@ -802,7 +910,7 @@ fn sides_of_slot<const PAIR: bool>(slot: &Slot) -> Sides {
 /// [`contact_slot`] out of line (its own copy for each geometry, law source and `PAIR`).
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
-fn contact_slot_apart<G: Geometry, L: LawSource, const PAIR: bool>(
+fn contact_slot_apart<G: Geometry, L: LawSource, const PAIR: bool, const PERIODIC: bool>(
     slot: &mut Slot,
     to: SlotOut,
     geometry: G,
@@ -811,7 +919,7 @@ fn contact_slot_apart<G: Geometry, L: LawSource, const PAIR: bool>(
     p: &mut SlotPartial,
     loads: &mut [WallLoad],
 ) {
-    contact_slot::<G, L, PAIR>(slot, to, geometry, laws, cx, p, loads);
+    contact_slot::<G, L, PAIR, PERIODIC>(slot, to, geometry, laws, cx, p, loads);
 }
 
 /// One slot's contact (see the module documentation): geometry, kinematics at the contact
@@ -820,7 +928,7 @@ fn contact_slot_apart<G: Geometry, L: LawSource, const PAIR: bool>(
 /// sums of each wall's contacts.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool>(
+fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool, const PERIODIC: bool>(
     slot: &mut Slot,
     to: SlotOut,
     geometry: G,
@@ -844,10 +952,10 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool>(
         to
     };
     let b = cx.bodies;
-    let sides = sides_of_slot::<PAIR>(slot);
+    let sides = cx.slot_sides::<PAIR, PERIODIC>(slot);
     let recv = sides.receiver;
     let (wall, giver) = (sides.wall(), sides.giving_body());
-    let (state, geo_point, geo_normal, depth, spring) = match geometry.find::<PAIR>(slot, cx) {
+    let (state, geo_point, geo_normal, depth, spring) = match geometry.find(sides, cx) {
         Some(l) if l.3 > 0.0 => l,
         // Separated, or touching without overlap: no force, no history.
         _ => {
@@ -923,6 +1031,27 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool>(
     if depth > p.max_depth_ratio * scale {
         p.max_depth_ratio = depth / scale; // divide only when the maximum grows
     }
+    if PERIODIC
+        && let Some(k) = giver
+        && cx.cell.is_some_and(Cell::measures_stress)
+    {
+        // The cell's stress (Love–Weber) and its stiffness against a vertical stretch (only
+        // an `"xy"` cell shears, so only there does an image move).
+        let at = b.state[k].pose.position + sides.image.map_or(Vec2::zeros(), |i| i.offset);
+        let l = b.state[recv].pose.position - at;
+        p.stress[0] += f.x * l.x;
+        p.stress[1] += f.x * l.y;
+        p.stress[2] += f.y * l.x;
+        p.stress[3] += f.y * l.y;
+        p.stiffness_yy += cf.kn * (n_.y * l.y) * (n_.y * l.y);
+        p.elastic_yy += (cf.normal - cf.normal_non_elastic) * n_.y * l.y;
+        if let Some(image) = sides.image {
+            // The relative velocity the law saw is the receiver's less the image's, which moves
+            // at the giver's plus u: the bodies' power exceeds the contact's by f·u.
+            p.image_power += f.dot(&image.velocity);
+            p.image_power_ne += f_ne.dot(&image.velocity);
+        }
+    }
     if let Some(load) = wall.and_then(|w| loads.get_mut(w)) {
         load.force += f;
         load.force_non_elastic += f_ne;
@@ -966,14 +1095,17 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool>(
 /// ([`Disks`]' geometry: the bodies' radii are their bounding radii) and for a clump's member
 /// pair ([`members::lean_contact`]); `None` for the other pair kinds.
 #[inline(always)]
-fn lean_of(slot: &Slot, cx: &PassContext) -> Option<Option<narrow_phase::Contact>> {
+fn lean_of<const PERIODIC: bool>(
+    slot: &Slot,
+    cx: &PassContext,
+) -> Option<Option<narrow_phase::Contact>> {
+    let sides = cx.slot_sides::<false, PERIODIC>(slot);
     if slot.sub != 0 {
-        return Some(members::lean_contact(cx.bodies, cx.walls, slot));
+        return Some(members::lean_contact(cx.bodies, cx.walls, slot, sides));
     }
     let b = cx.bodies;
-    let sides = slot.sides();
     let circles = b.is_circle[sides.receiver] && sides.giving_body().is_none_or(|k| b.is_circle[k]);
-    circles.then(|| Disks.contact::<false>(slot, cx))
+    circles.then(|| Disks.contact(sides, cx))
 }
 
 /// Asks the processor to fetch the state of slot `s`'s second body (`j`, not a wall) and its

@@ -240,6 +240,9 @@ pub struct ContactList {
     pub(crate) built_at: Vec<Vec2>,
     /// Wall points when the list was built (moving walls count towards the rebuild).
     pub(crate) wall_built_at: Vec<Vec2>,
+    /// In a periodic cell, whether each body lay near a seam when the list was built
+    /// ([`ContactList::mark_near_seams`]); empty until marked.
+    pub(crate) near_seam: Vec<bool>,
     /// Margin added to the bounding circles at the build.
     pub skin: f64,
     /// Number of builds so far.
@@ -262,6 +265,19 @@ pub struct ContactList {
 }
 
 impl ContactList {
+    /// Marks the bodies that lay near a seam of `cell` at the build (within `margin`, twice the
+    /// largest bounding radius and the skin): only a pair with such a body can meet through a
+    /// periodic image before the next build. A body moves less than the skin between builds,
+    /// so two bodies further from every seam stay in the cell and meet directly; their images
+    /// lie at least `2 margin` less what they moved apart, beyond any contact. The contact
+    /// pass and the gather look for images only at marked bodies; the others give the same
+    /// bits without the search.
+    pub(crate) fn mark_near_seams(&mut self, cell: &crate::dynamics::cell::Cell, margin: f64) {
+        self.near_seam.clear();
+        self.near_seam
+            .extend(self.built_at.iter().map(|&p| cell.near_seam(p, margin)));
+    }
+
     /// The contacts of this step (the active slots), in key order.
     pub fn active(&self) -> impl Iterator<Item = Contact> + '_ {
         self.slots
@@ -302,6 +318,7 @@ impl ContactList {
     /// opens).
     pub(crate) fn rebuild_from_keys(&mut self, n: usize, cached: bool, stride: usize) -> f64 {
         let (old_len, new_len) = (self.slots.len(), self.keys.len());
+        self.near_seam.clear();
         let carry_cache = cached && self.cache.len() == old_len;
         let carry_history =
             stride > 0 && self.stride == stride && self.history.len() == old_len * stride;

@@ -122,7 +122,7 @@ pub fn relative(b: &Bodies, walls: &[Boundary], sides: Sides, point: Vec2) -> Re
     let mut spin = b.state[recv].omega;
     match sides.giver {
         Partner::Body(k) => {
-            velocity -= b.point_velocity(k, point - b.state[k].pose.position);
+            velocity -= b.point_velocity(k, point - centroid(b, k, sides));
             spin -= b.state[k].omega;
         }
         Partner::Wall(w) => velocity -= walls[w].velocity,
@@ -132,6 +132,16 @@ pub fn relative(b: &Bodies, walls: &[Boundary], sides: Sides, point: Vec2) -> Re
         velocity -= image.velocity;
     }
     Relative { velocity, spin }
+}
+
+/// Body `k`'s centroid as a side of `sides`: its own, or (the giver seen through a periodic
+/// seam) its image's.
+#[inline(always)]
+fn centroid(b: &Bodies, k: usize, sides: Sides) -> Vec2 {
+    match sides.image {
+        Some(image) if sides.giving_body() == Some(k) => b.state[k].pose.position + image.offset,
+        Some(_) | None => b.state[k].pose.position,
+    }
 }
 
 /// The pair's `1/m* = Σ 1/m` (T13; a wall adds nothing).
@@ -186,7 +196,7 @@ pub fn rolling(
 ) -> RollingKinematics {
     let side = |k: usize, outward: Vec2| {
         let lever = b.support_distance(k, outward);
-        let d2 = (point - b.state[k].pose.position).norm_squared();
+        let d2 = (point - centroid(b, k, sides)).norm_squared();
         let share = slots(k).max(1) as f64 * b.inv_inertia[k];
         // A prescribed body turns about no point but as prescribed: infinite inertia.
         let pivot = if b.inv_inertia[k] == 0.0 {

@@ -6,7 +6,7 @@
 use super::body::Bodies;
 use super::boundary::Boundary;
 use super::contacts::Slot;
-use super::partner::Partner;
+use super::partner::{Partner, Sides};
 use crate::geometry::{Clump, Pose, Shape};
 use crate::narrow_phase::{Contact, PairCache, Request, Side, clump, contact_with};
 
@@ -18,47 +18,68 @@ use crate::narrow_phase::{Contact, PairCache, Request, Side, clump, contact_with
 /// limitation).
 #[cold]
 #[inline(never)]
-pub(crate) fn lean_contact(b: &Bodies, walls: &[Boundary], slot: &Slot) -> Option<Contact> {
-    let store = placed(b, slot);
-    let (i, j) = sides(b, walls, slot, &store);
+pub(crate) fn lean_contact(
+    b: &Bodies,
+    walls: &[Boundary],
+    slot: &Slot,
+    sides: Sides,
+) -> Option<Contact> {
+    let store = placed(b, slot, sides);
+    let (i, j) = sides_of(b, walls, sides, &store);
     contact_with(i, j, &mut PairCache::default(), Request::LEAN)
 }
 
 /// The member circles of a clump slot's two sides, `[giver, receiver]`, each placed at its
-/// world centre (a side that is not a clump: unused).
+/// world centre (a side that is not a clump: its pose, its image's for a giver seen through a
+/// periodic seam).
 type Placed = [(Shape, Pose); 2];
 
 /// [`Placed`] for a clump slot.
 #[inline(never)]
-fn placed(b: &Bodies, slot: &Slot) -> Placed {
-    let sides = slot.sides();
+fn placed(b: &Bodies, slot: &Slot, sides: Sides) -> Placed {
     let (of_i, of_j) = slot.members();
     let unused = || (Shape::Circle { r: 0.0 }, Pose::IDENTITY);
-    let place = |k: usize, m: usize| match b.shape[k].clump() {
-        Some(c) => clump::member(&c, m, &b.state[k].pose),
-        None => unused(),
+    // A side that is not a clump keeps its own shape (read from the bodies) at this pose.
+    let place = |k: usize, m: usize, pose: &Pose| match b.shape[k].clump() {
+        Some(c) => clump::member(&c, m, pose),
+        None => (Shape::Circle { r: 0.0 }, *pose),
     };
     match sides.giver {
         // The receiver is body i against a wall (its member `of_i`).
-        Partner::Wall(_) => [unused(), place(sides.receiver, of_i)],
-        Partner::Body(k) => [place(k, of_i), place(sides.receiver, of_j)],
+        Partner::Wall(_) => [
+            unused(),
+            place(sides.receiver, of_i, &b.state[sides.receiver].pose),
+        ],
+        Partner::Body(k) => [
+            place(k, of_i, &giver_pose(b, k, sides)),
+            place(sides.receiver, of_j, &b.state[sides.receiver].pose),
+        ],
     }
 }
 
+/// Body `k`'s pose as the giver of `sides`: its own, or its periodic image's.
+fn giver_pose(b: &Bodies, k: usize, sides: Sides) -> Pose {
+    let mut pose = b.state[k].pose;
+    if let Some(image) = sides.image {
+        pose.position += image.offset;
+    }
+    pose
+}
+
 /// The sides of a clump slot as the narrow phase takes them (giver as i, receiver as j), each
-/// clump replaced by the slot's member from `store` ([`placed`]): a circle at its world centre.
-fn sides<'a>(
+/// clump replaced by the slot's member from `store` ([`placed`]): a circle at its world centre
+/// (a giver that is not a clump: in `store` too when seen through a periodic image).
+fn sides_of<'a>(
     b: &'a Bodies,
     walls: &'a [Boundary],
-    slot: &Slot,
+    sides: Sides,
     store: &'a Placed,
 ) -> (Side<'a>, Side<'a>) {
-    let sides = slot.sides();
     let side = |k: usize, s: &'a (Shape, Pose)| {
         if b.shape[k].clump().is_some() {
             Side::Body(&s.0, &s.1)
         } else {
-            Side::Body(&b.shape[k], &b.state[k].pose)
+            Side::Body(&b.shape[k], &s.1)
         }
     };
     let i = match sides.giver {

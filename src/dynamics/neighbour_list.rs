@@ -5,6 +5,7 @@
 use super::body::Bodies;
 use super::boundary::Boundary;
 use super::broad_phase::Grid;
+use super::cell::Cell;
 use super::contacts::{ContactList, reserve_for};
 use super::materials::PairTable;
 use super::members;
@@ -32,9 +33,10 @@ impl Builder {
 
     /// Rebuilds `list` from the current positions (body pairs from the grid, then each body's
     /// walls after its body partners: key order), carrying histories over; `clumps`: some body
-    /// is a clump (its pairs get a slot per member pair). Two prescribed bodies, or a prescribed
-    /// body and a wall, get no slot: neither side can move the other (and their m* is
-    /// infinite). Returns the history springs' energy of the contacts that dropped out of the
+    /// is a clump (its pairs get a slot per member pair); `cell`: the periodic cell, whose
+    /// pairs across its seams are found through their nearest images. Two prescribed bodies, or
+    /// a prescribed body and a wall, get no slot: neither side can move the other (and their m*
+    /// is infinite). Returns the history springs' energy of the contacts that dropped out of the
     /// list.
     pub fn rebuild(
         &mut self,
@@ -42,12 +44,18 @@ impl Builder {
         walls: &[Boundary],
         pairs: &PairTable,
         clumps: bool,
+        cell: Option<&Cell>,
         list: &mut ContactList,
     ) -> f64 {
         let n = bodies.len();
         let skin = skin(bodies);
         list.skin = skin;
-        self.grid.pairs(bodies, skin, &mut self.pairs);
+        match cell {
+            Some(cell) => self
+                .grid
+                .pairs_periodic(bodies, skin, cell, &mut self.pairs),
+            None => self.grid.pairs(bodies, skin, &mut self.pairs),
+        }
         list.keys.clear();
         reserve_for(&mut list.keys, self.pairs.len() + n);
         let mut next = 0;
@@ -94,7 +102,7 @@ impl Builder {
 }
 
 /// The skin for these bodies ([`SKIN_FRACTION`] of the largest bounding radius).
-fn skin(bodies: &Bodies) -> f64 {
+pub fn skin(bodies: &Bodies) -> f64 {
     let max_bound = bodies.bound.iter().copied().fold(0.0f64, f64::max);
     SKIN_FRACTION * max_bound
 }

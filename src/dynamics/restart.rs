@@ -26,6 +26,7 @@
 use super::account::{Diagnostics, Energies};
 use super::body::BodyInit;
 use super::boundary::{Boundary, WallLoad};
+use super::cell::Cell;
 use super::contacts::{ContactData, Slot};
 use super::partner::Partner;
 use crate::contact_law::{HISTORY_LEN, History};
@@ -45,6 +46,8 @@ pub struct BodyRestart {
     /// Force and moment of the last evaluation.
     pub force: Vec2,
     pub torque: f64,
+    /// In a periodic cell, its image counts (zero otherwise).
+    pub image: [i32; 2],
 }
 
 /// One wall's part of a restart.
@@ -86,6 +89,9 @@ pub struct RestartState {
     pub energies: Energies,
     pub diagnostics: Diagnostics,
     pub last_increments: [f64; 3],
+    /// The periodic cell as it is now (its height, Lees–Edwards shift and last stress), if the
+    /// scene has one.
+    pub cell: Option<Cell>,
 }
 
 /// A restart that does not fit the scene it is resumed with: where (a path below the state,

@@ -41,6 +41,7 @@
 use super::account::{Diagnostics, Energies};
 use super::body::Bodies;
 use super::boundary::{Boundary, Motion, servo_velocity};
+use super::cell::Cell;
 use super::contact_pass::{ContactPass, PassInput, SceneFacts, SlotPartial};
 use super::contacts::{Adjacent, ContactData, ContactList};
 use super::materials::PairTable;
@@ -100,6 +101,9 @@ struct BodyPartial {
     non_elastic_power: f64,
     kinetic: f64,
     potential: f64,
+    /// In a periodic cell: `Σ m v′v′` (xx, xy, yy) with v′ the velocity about the shear's
+    /// mean flow (second kick).
+    kinetic_stress: [f64; 3],
 }
 
 /// What a step reads and writes of the world, borrowed from it by [`World::step`]: the stepper
@@ -117,6 +121,8 @@ pub(crate) struct Parts<'a> {
     pub step: &'a mut u64,
     pub time: &'a mut f64,
     pub last_increments: &'a mut [f64; 3],
+    /// The periodic cell, if any.
+    pub cell: Option<&'a mut Cell>,
 }
 
 /// The stepper: the scratch the step reuses from step to step (the neighbour list's builder, the
@@ -129,6 +135,9 @@ pub struct Stepper {
     pass: ContactPass,
     /// Per-chunk partial results of the body passes.
     body_partials: Vec<BodyPartial>,
+    /// Per chunk of bodies, the bodies that re-entered a periodic cell in the drift, with the
+    /// image counts to add and the kinetic energy per unit mass they gained.
+    crossings: Vec<Vec<(u32, [i32; 2], f64)>>,
     /// The scene's facts, noted whenever the neighbour list is made.
     facts: SceneFacts,
 }
@@ -161,63 +170,21 @@ impl Stepper {
         let next_step = *wd.step + 1;
         let next_time = next_step as f64 * dt;
         self.size_partials(wd);
-        // 1.–2. Kick to the half step and drift, chunk by chunk.
-        {
-            let Bodies {
-                is_circle,
-                state,
-                force,
-                torque,
-                inv_mass,
-                inv_inertia,
-                ..
-            } = &mut *wd.bodies;
-            let built_at = &wd.contacts.built_at;
-            let fresh = built_at.len() == n;
-            state
-                .par_chunks_mut(BODY_CHUNK)
-                .zip(self.body_partials.par_iter_mut())
-                .enumerate()
-                .for_each(|(c, (state, part))| {
-                    let base = c * BODY_CHUNK;
-                    // The chunk's rows of the other arrays, cut to its length: indexed by `k`
-                    // below with no bounds check left.
-                    let rows = base..base + state.len();
-                    let (force, torque) = (&force[rows.clone()], &torque[rows.clone()]);
-                    let (inv_mass, inv_inertia) =
-                        (&inv_mass[rows.clone()], &inv_inertia[rows.clone()]);
-                    let is_circle = &is_circle[rows.clone()];
-                    let built_at = if fresh { &built_at[rows] } else { &[][..] };
-                    let mut p = BodyPartial::default();
-                    for (k, s) in state.iter_mut().enumerate() {
-                        let g = base + k;
-                        s.vel += force[k] * (h * inv_mass[k]);
-                        s.omega += torque[k] * h * inv_inertia[k];
-                        let d = s.vel * dt;
-                        let dth = s.omega * dt;
-                        let pos = s.pose.position + d;
-                        let angle = s.pose.angle() + dth;
-                        if !(pos.x.is_finite() && pos.y.is_finite() && angle.is_finite()) {
-                            p.bad.get_or_insert(g);
-                            continue;
-                        }
-                        s.pose = if is_circle[k] {
-                            // A circle's orientation enters no contact: skip its sine and cosine.
-                            s.pose.moved(pos, angle)
-                        } else {
-                            Pose::new(pos, angle)
-                        };
-                        p.inc[0] += d.x.abs();
-                        p.inc[1] += d.y.abs();
-                        p.inc[2] += dth.abs();
-                        if fresh {
-                            // Squared: the same two largest, one square root per chunk
-                            // instead of one per body (taken when the chunk is summed).
-                            top_two(&mut p.disp, (pos - built_at[k]).norm_squared());
-                        }
-                    }
-                    *part = p;
-                });
+        // 1.–2. Kick to the half step and drift, chunk by chunk (in a periodic cell: the cell
+        // first — its height under an imposed pressure, the Lees–Edwards shift — to level n+1,
+        // then each body drifted, stretched with the cell and brought back into it).
+        match wd.cell.as_deref_mut() {
+            Some(cell) => {
+                let (stretch, work) = cell.stretch();
+                cell.advance(dt);
+                let cell = *cell;
+                wd.energies.boundary_work += work;
+                let crossing = self.kick_drift::<true>(wd, Some(&cell), stretch);
+                wd.energies.boundary_work += crossing;
+            }
+            None => {
+                self.kick_drift::<false>(wd, None, 1.0);
+            }
         }
         let blowup = |body, what| Blowup {
             step: next_step,
@@ -269,13 +236,24 @@ impl Stepper {
         if let Some(body) = bodies_sum.bad {
             return Err(blowup(body, "velocity"));
         }
+        if let Some(cell) = wd.cell.as_deref_mut()
+            && cell.measures_stress()
+        {
+            cell.measure(
+                &slots.stress,
+                slots.stiffness_yy,
+                slots.elastic_yy,
+                &bodies_sum.kinetic_stress,
+            );
+        }
         // Energy the contacts took out during this step. Verlet applies the forces of time level
         // n+1 over the interval centred on it, so their work is taken with the velocities at n+1
         // (after the second kick): the non-elastic forces' power, summed body by body
         // (Σ_c f·v_rel = Σ_k F_k·v_k + M_k ω_k − Σ_walls F_w·v_w), less the change of the
         // history springs' energy. A moving wall does the work F_w·v_w (see `boundary`).
-        if wd.walls.iter().any(Boundary::moves) {
-            let (mut power, mut power_ne) = (0.0, 0.0);
+        if wd.walls.iter().any(Boundary::moves) || slots.image_power != 0.0 {
+            // The Lees–Edwards seam does work like a moving wall (see `cell`).
+            let (mut power, mut power_ne) = (slots.image_power, slots.image_power_ne);
             for ws in wd.walls.iter() {
                 power += ws.load.force.dot(&ws.velocity);
                 power_ne += ws.load.force_non_elastic.dot(&ws.velocity);
@@ -311,12 +289,132 @@ impl Stepper {
         })
     }
 
+    /// Kick to the half step and drift (stages 1–2), chunk by chunk, into the body partials;
+    /// `PERIODIC`: in `cell`, each body's y stretched by `stretch` (the cell's, under an imposed
+    /// pressure) and the body brought back into the cell, its image counts kept. Returns the
+    /// kinetic energy the bodies gained re-entering a Lees–Edwards cell (the boundary's work:
+    /// their velocity changes by the image's).
+    fn kick_drift<const PERIODIC: bool>(
+        &mut self,
+        wd: &mut Parts,
+        cell: Option<&Cell>,
+        stretch: f64,
+    ) -> f64 {
+        let dt = wd.dt;
+        let h = 0.5 * dt;
+        let n = wd.bodies.len();
+        let Bodies {
+            is_circle,
+            state,
+            force,
+            torque,
+            inv_mass,
+            inv_inertia,
+            image,
+            mass,
+            ..
+        } = &mut *wd.bodies;
+        let (built_at, near_seam) = (&wd.contacts.built_at, &wd.contacts.near_seam[..]);
+        let fresh = built_at.len() == n;
+        let images = &image[..];
+        // A periodic cell's bodies re-enter it: their image counts change (rarely: gathered
+        // per chunk and applied after the pass).
+        state
+            .par_chunks_mut(BODY_CHUNK)
+            .zip(self.body_partials.par_iter_mut())
+            .zip(self.crossings.par_iter_mut())
+            .enumerate()
+            .for_each(|(c, ((state, part), crossings))| {
+                let base = c * BODY_CHUNK;
+                // The chunk's rows of the other arrays, cut to its length: indexed by `k`
+                // below with no bounds check left.
+                let rows = base..base + state.len();
+                let (force, torque) = (&force[rows.clone()], &torque[rows.clone()]);
+                let (inv_mass, inv_inertia) = (&inv_mass[rows.clone()], &inv_inertia[rows.clone()]);
+                let is_circle = &is_circle[rows.clone()];
+                let built_at = if fresh { &built_at[rows] } else { &[][..] };
+                let _ = images;
+                let mut p = BodyPartial::default();
+                if PERIODIC {
+                    crossings.clear();
+                }
+                for (k, s) in state.iter_mut().enumerate() {
+                    let g = base + k;
+                    s.vel += force[k] * (h * inv_mass[k]);
+                    s.omega += torque[k] * h * inv_inertia[k];
+                    let d = s.vel * dt;
+                    let dth = s.omega * dt;
+                    #[allow(unused_mut)]
+                    let mut pos = s.pose.position + d;
+                    let angle = s.pose.angle() + dth;
+                    if !(pos.x.is_finite() && pos.y.is_finite() && angle.is_finite()) {
+                        p.bad.get_or_insert(g);
+                        continue;
+                    }
+                    if PERIODIC && let Some(cell) = cell {
+                        pos.y *= stretch;
+                        if let Some(w) = cell.wrap(pos, s.vel) {
+                            pos = w.position;
+                            let gained = 0.5 * (w.velocity.norm_squared() - s.vel.norm_squared());
+                            s.vel = w.velocity;
+                            crossings.push((g as u32, w.images, gained));
+                        }
+                    }
+                    s.pose = if is_circle[k] {
+                        // A circle's orientation enters no contact: skip its sine and cosine.
+                        s.pose.moved(pos, angle)
+                    } else {
+                        Pose::new(pos, angle)
+                    };
+                    p.inc[0] += d.x.abs();
+                    p.inc[1] += d.y.abs();
+                    p.inc[2] += dth.abs();
+                    if fresh {
+                        // Squared: the same two largest, one square root per chunk
+                        // instead of one per body (taken when the chunk is summed). In a
+                        // periodic cell, the displacement's shortest image (a body that
+                        // re-entered has not moved by a period).
+                        let moved = match cell {
+                            // (Only a body near a seam can have crossed one.)
+                            Some(cell) if PERIODIC && near_seam.get(g) != Some(&false) => {
+                                cell.shortest(pos - built_at[k])
+                            }
+                            _ => pos - built_at[k],
+                        };
+                        top_two(&mut p.disp, moved.norm_squared());
+                    }
+                }
+                *part = p;
+            });
+        let mut gained = 0.0;
+        if PERIODIC {
+            for &(k, d, e) in self.crossings.iter().flatten() {
+                let im = &mut image[k as usize];
+                im[0] += d[0];
+                im[1] += d[1];
+                gained += mass[k as usize] * e;
+            }
+        }
+        gained
+    }
+
     /// Evaluates the forces of the current configuration without advancing (used at t = 0).
     pub(crate) fn evaluate_forces(&mut self, wd: &mut Parts) {
         self.size_partials(wd);
         self.rebuild_neighbours(wd);
-        self.compute_slots(wd, 0.0);
+        let slots = self.compute_slots(wd, 0.0);
         self.gather_forces(wd, None);
+        if let Some(cell) = wd.cell.as_deref_mut()
+            && cell.measures_stress()
+        {
+            let kinetic = cell.kinetic_stress(wd.bodies);
+            cell.measure(
+                &slots.stress,
+                slots.stiffness_yy,
+                slots.elastic_yy,
+                &kinetic,
+            );
+        }
     }
 
     /// Sets each servo wall's velocity for the next step from the load of the last force
@@ -334,6 +432,7 @@ impl Stepper {
         let nb = wd.bodies.len().div_ceil(BODY_CHUNK);
         if self.body_partials.len() != nb {
             self.body_partials.resize(nb, BodyPartial::default());
+            self.crossings.resize(nb, Vec::new());
         }
         self.pass.size(wd.contacts.slots.len(), wd.walls.len());
     }
@@ -348,6 +447,7 @@ impl Stepper {
             wd.walls,
             wd.pairs,
             self.facts.clumps,
+            wd.cell.as_deref(),
             wd.contacts,
         );
         wd.energies.dissipated += lost;
@@ -364,6 +464,13 @@ impl Stepper {
     /// The pass's input for the step just drifted over, `dt` (0 at the start).
     fn pass_input<'a>(&self, wd: &'a mut Parts, dt: f64) -> (PassInput<'a>, &'a mut ContactList) {
         let g = wd.gravity.norm();
+        if let Some(cell) = wd.cell.as_deref()
+            && wd.contacts.near_seam.len() != wd.bodies.len()
+        {
+            let max_bound = wd.bodies.bound.iter().copied().fold(0.0f64, f64::max);
+            let skin = wd.contacts.skin;
+            wd.contacts.mark_near_seams(cell, 2.0 * (max_bound + skin));
+        }
         (
             PassInput {
                 bodies: &*wd.bodies,
@@ -373,6 +480,7 @@ impl Stepper {
                 g,
                 dt,
                 facts: self.facts,
+                cell: wd.cell.as_deref(),
             },
             &mut *wd.contacts,
         )
@@ -405,16 +513,32 @@ impl Stepper {
     /// order. With `kick = Some(h)`, then `v += h F/m`, `ω += h M/I` (the second half-kick) and
     /// the sums of the body pass (net force and moment, energies, first non-finite body).
     fn gather_forces(&mut self, wd: &mut Parts, kick: Option<f64>) -> BodyPartial {
+        match wd.cell.as_deref() {
+            Some(&cell) => self.gather::<true>(wd, kick, Some(&cell)),
+            None => self.gather::<false>(wd, kick, None),
+        }
+    }
+
+    /// [`Stepper::gather_forces`]; `PERIODIC`: in `cell`, each lever arm the shortest image of
+    /// the centroid-to-contact vector (a contact of a body's periodic image lies across a
+    /// seam), the potential energy from the unwrapped positions, and the kinetic stress summed.
+    fn gather<const PERIODIC: bool>(
+        &mut self,
+        wd: &mut Parts,
+        kick: Option<f64>,
+        cell: Option<&Cell>,
+    ) -> BodyPartial {
         let gravity = wd.gravity;
         // Disks under linear laws have no contact couples (nothing but the spring, the dashpot
         // and the slider; a disk's area
         // potential is its depth spring).
         let couples = !self.facts.disks || !self.pass.linear();
         let list = &*wd.contacts;
-        let (data, start, adjacency) = (
+        let (data, start, adjacency, near_seam) = (
             &list.data[..],
             &list.adjacency_start[..],
             &list.adjacency[..],
+            &list.near_seam[..],
         );
         let Bodies {
             state,
@@ -424,8 +548,10 @@ impl Stepper {
             inertia,
             inv_mass,
             inv_inertia,
+            image,
             ..
         } = &mut *wd.bodies;
+        let image = &image[..];
         force
             .par_chunks_mut(BODY_CHUNK)
             .zip(torque.par_chunks_mut(BODY_CHUNK))
@@ -448,10 +574,17 @@ impl Stepper {
                     let x = s.pose.position;
                     let adj = &adjacency[start[k] as usize..start[k + 1] as usize];
                     let f0 = gravity * mass[k]; // T(3): body force
-                    let (f, m, f_ne, m_ne) = if couples {
-                        sum_contacts::<true>(adj, data, x, f0)
-                    } else {
-                        sum_contacts::<false>(adj, data, x, f0)
+                    // Only a body near a seam may have a contact through an image.
+                    let (f, m, f_ne, m_ne) = match cell {
+                        Some(cell) if PERIODIC && near_seam.get(g) != Some(&false) => {
+                            if couples {
+                                sum_contacts::<true, true>(adj, data, x, f0, Some(cell))
+                            } else {
+                                sum_contacts::<false, true>(adj, data, x, f0, Some(cell))
+                            }
+                        }
+                        _ if couples => sum_contacts::<true, false>(adj, data, x, f0, None),
+                        _ => sum_contacts::<false, false>(adj, data, x, f0, None),
                     };
                     force[k] = f;
                     torque[k] = m;
@@ -464,7 +597,28 @@ impl Stepper {
                         p.non_elastic_power += f_ne.dot(&s.vel) + m_ne * s.omega;
                         p.kinetic += 0.5 * mass[k] * s.vel.norm_squared()
                             + 0.5 * inertia[k] * s.omega * s.omega;
-                        p.potential -= mass[k] * gravity.dot(&x);
+                        match cell {
+                            Some(cell) if PERIODIC => {
+                                // (From the unwrapped position: a body that crossed a seam
+                                // has not moved against gravity by a period.)
+                                let at = match image[g] {
+                                    [0, 0] => x,
+                                    images => cell.unwrapped(x, images),
+                                };
+                                p.potential -= mass[k] * gravity.dot(&at);
+                                if cell.measures_stress() {
+                                    // The kinetic stress, about the shear's mean flow.
+                                    let v = Vec2::new(
+                                        s.vel.x - cell.shear_rate * (x.y - 0.5 * cell.size.y),
+                                        s.vel.y,
+                                    );
+                                    p.kinetic_stress[0] += mass[k] * v.x * v.x;
+                                    p.kinetic_stress[1] += mass[k] * v.x * v.y;
+                                    p.kinetic_stress[2] += mass[k] * v.y * v.y;
+                                }
+                            }
+                            _ => p.potential -= mass[k] * gravity.dot(&x),
+                        }
                     }
                 }
                 *part = p;
@@ -477,6 +631,9 @@ impl Stepper {
             sum.kinetic += p.kinetic;
             sum.potential += p.potential;
             sum.non_elastic_power += p.non_elastic_power;
+            for (a, b) in sum.kinetic_stress.iter_mut().zip(p.kinetic_stress) {
+                *a += b;
+            }
         }
         sum
     }
@@ -485,22 +642,29 @@ impl Stepper {
 /// One body's contact sums from its adjacency `adj` (its slots, in key order, with the sign of
 /// each slot's force on it), its centroid `x` and its body force `f0`: the force `f0 + Σ F`
 /// (T4), the moment `Σ r × F` (T22, `r` from the centroid to the contact point) plus the
-/// contacts' couples, and the same two sums of the forces' non-elastic parts. `COUPLES`
+/// contacts' couples, and the same two sums of the forces' non-elastic parts; `cell` the
+/// periodic cell when some contact may lie across a seam. `COUPLES`
 /// false leaves the couples out (a scene whose contacts have none): adding their ±0 would
 /// change no bit, since a sum that starts at +0 is never −0.
 #[inline(always)]
-fn sum_contacts<const COUPLES: bool>(
+fn sum_contacts<const COUPLES: bool, const PERIODIC: bool>(
     adj: &[Adjacent],
     data: &[ContactData],
     x: Vec2,
     f0: Vec2,
+    cell: Option<&Cell>,
 ) -> (Vec2, f64, Vec2, f64) {
     let (mut f, mut m) = (f0, 0.0);
     let (mut f_ne, mut m_ne) = (Vec2::zeros(), 0.0);
     // An inactive slot's data hold zero forces: no test needed.
     for a in adj {
         let d = &data[a.slot()];
-        let (sign, r) = (a.sign(), d.point - x);
+        let r = match cell {
+            // A contact of this body's periodic image: the lever to its point across the seam.
+            Some(cell) if PERIODIC => cell.shortest(d.point - x),
+            _ => d.point - x,
+        };
+        let sign = a.sign();
         let fs = d.force * sign;
         f += fs; // T(4)
         let fe = d.force_non_elastic * sign;

@@ -10,6 +10,7 @@
 //! lowers the limit: for ζ ≫ 1 it tends to `2/(η w)`, set by the dashpot alone.
 
 use super::body::Bodies;
+use super::cell::Cell;
 use super::contacts::Contact;
 use super::materials::{Materials, PairTable};
 use super::world::{Boundary, World};
@@ -220,7 +221,7 @@ impl World {
     pub fn network_critical_dt(&mut self) -> f64 {
         self.refresh_contact_extras();
         let contacts: Vec<Contact> = self.contacts.active().collect();
-        let dt = network_dt(&self.bodies, &contacts);
+        let dt = network_dt(&self.bodies, &contacts, self.cell.as_ref());
         self.diagnostics.dt_critical_observed = self.diagnostics.dt_critical_observed.min(dt);
         dt
     }
@@ -230,7 +231,7 @@ impl World {
 /// two bodies, and whether the second side is a body (not a wall).
 type JacobianRow = (f64, f64, [(usize, [f64; 3]); 2], bool);
 
-fn network_dt(b: &Bodies, contacts: &[Contact]) -> f64 {
+fn network_dt(b: &Bodies, contacts: &[Contact], cell: Option<&Cell>) -> f64 {
     use crate::geometry::Vec2;
     if contacts.is_empty() {
         return f64::INFINITY;
@@ -267,7 +268,9 @@ fn network_dt(b: &Bodies, contacts: &[Contact]) -> f64 {
                 continue;
             }
             let side = |body: usize, sign: f64| {
+                // (In a periodic cell, to the contact point's nearest image.)
                 let r = d.point - b.state[body].pose.position;
+                let r = cell.map_or(r, |c| c.shortest(r));
                 let s = scale[body];
                 (
                     body,

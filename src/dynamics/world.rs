@@ -3,6 +3,7 @@
 pub use super::account::{Diagnostics, Energies};
 use super::body::{Bodies, BodyInit};
 pub use super::boundary::Boundary;
+use super::cell::Cell;
 use super::contacts::ContactList;
 use super::materials::{Materials, PairTable};
 use super::neighbour_list::kept;
@@ -32,6 +33,8 @@ pub struct World {
     pub diagnostics: Diagnostics,
     /// Mean |Δx|, |Δy|, |Δθ| over bodies during the last step (P's quiescence measure).
     pub last_increments: [f64; 3],
+    /// The periodic cell the scene repeats in, if any (see [`super::cell`]).
+    pub cell: Option<Cell>,
     /// The step's scratch (owned here, never read as state).
     stepper: Stepper,
 }
@@ -96,6 +99,7 @@ impl World {
                 ..Default::default()
             },
             last_increments: [0.0; 3],
+            cell: None,
             stepper: Stepper::default(),
         }
     }
@@ -122,8 +126,12 @@ impl World {
             energies: saved.energies,
             diagnostics: saved.diagnostics,
             last_increments: saved.last_increments,
+            cell: saved.cell,
             ..World::unevaluated(bodies, walls, gravity, spec, materials, dt)
         };
+        if saved.cell.is_some() {
+            w.bodies.image = saved.bodies.iter().map(|r| r.image).collect();
+        }
         for (k, r) in saved.bodies.iter().enumerate() {
             let b = &mut w.bodies;
             b.state[k].pose = Pose::with_frame(r.position, r.angle, r.frame);
@@ -161,6 +169,7 @@ impl World {
                         omega: s.omega,
                         force: b.force[k],
                         torque: b.torque[k],
+                        image: b.image.get(k).copied().unwrap_or([0, 0]),
                     }
                 })
                 .collect(),
@@ -192,6 +201,7 @@ impl World {
             energies: self.energies,
             diagnostics: self.diagnostics,
             last_increments: self.last_increments,
+            cell: self.cell,
         }
     }
 
@@ -212,8 +222,35 @@ impl World {
                 step: &mut self.step,
                 time: &mut self.time,
                 last_increments: &mut self.last_increments,
+                cell: self.cell.as_mut(),
             },
         )
+    }
+
+    /// The world with its scene repeating in `cell`: every body brought into the cell (their
+    /// number is returned: a case may place bodies outside it), the forces evaluated again with
+    /// the pairs across the seams. (A cell checked by the case reader: its size against the
+    /// bodies' reach, no wall across a periodic direction.)
+    pub fn with_cell(mut self, cell: Cell) -> (Self, usize) {
+        let b = &mut self.bodies;
+        b.image = vec![[0, 0]; b.len()];
+        let mut moved = 0;
+        for k in 0..b.len() {
+            let s = &mut b.state[k];
+            if let Some(w) = cell.wrap(s.pose.position, s.vel) {
+                s.pose = s.pose.moved(w.position, s.pose.angle());
+                s.vel = w.velocity;
+                b.image[k] = w.images;
+                moved += 1;
+            }
+        }
+        self.cell = Some(cell);
+        self.contacts = ContactList::default();
+        self.evaluate_forces();
+        Stepper::update_servos(&mut self.parts().1);
+        self.energies.kinetic = self.kinetic_energy();
+        self.energies.potential = self.potential_energy();
+        (self, moved)
     }
 
     /// Advances the world by one time step (see [`super::step`] for the stages). Never inlined
@@ -281,7 +318,13 @@ impl World {
     pub fn potential_energy(&self) -> f64 {
         let b = &self.bodies;
         (0..b.len())
-            .map(|k| -b.mass[k] * self.gravity.dot(&b.state[k].pose.position))
+            .map(|k| {
+                let x = match &self.cell {
+                    Some(c) => c.unwrapped(b.state[k].pose.position, b.image[k]),
+                    None => b.state[k].pose.position,
+                };
+                -b.mass[k] * self.gravity.dot(&x)
+            })
             .sum()
     }
 

@@ -24,6 +24,12 @@ use std::path::Path;
 pub const ANALYSIS_HEADER: &str = "t,area,sxx,syy,sxy,p,q,q_over_p,boundary_sxx,boundary_syy,\
 boundary_sxy,packing_fraction,z,z_no_rattlers,rattler_fraction,a_c,theta_c,a_n,theta_n,a_t,\
 theta_t,orientation_order,bodies,contacts";
+/// `analysis.csv`'s header in a periodic cell: [`ANALYSIS_HEADER`] and the cell's measures
+/// ([`crate::analysis::CellMeasures`]).
+pub const ANALYSIS_HEADER_CELL: &str = "t,area,sxx,syy,sxy,p,q,q_over_p,boundary_sxx,\
+boundary_syy,boundary_sxy,packing_fraction,z,z_no_rattlers,rattler_fraction,a_c,theta_c,a_n,\
+theta_n,a_t,theta_t,orientation_order,bodies,contacts,pressure,shear_stress,mu_eff,\
+inertial_number,cell_ly";
 pub const CONTACTS_HEADER: &str = "step,t,i,j,px,py,nx,ny,fn,ft,couple,depth,state";
 /// The header of runs written before the couple was recorded.
 pub const CONTACTS_HEADER_NO_COUPLE: &str = "step,t,i,j,px,py,nx,ny,fn,ft,depth,state";
@@ -71,7 +77,27 @@ pub fn analysis_row(t: &str, m: &Measures) -> String {
         m.bodies.to_string(),
         m.contacts.to_string(),
     ]
+    .into_iter()
+    .chain(m.cell.into_iter().flat_map(|c| {
+        [
+            num(c.pressure),
+            num(c.shear_stress),
+            num(c.mu_eff),
+            num(c.inertial_number),
+            num(c.ly),
+        ]
+    }))
+    .collect::<Vec<_>>()
     .join(",")
+}
+
+/// `analysis.csv`'s header: with the cell's measures in a periodic cell.
+pub fn analysis_header(cell: bool) -> &'static str {
+    if cell {
+        ANALYSIS_HEADER_CELL
+    } else {
+        ANALYSIS_HEADER
+    }
 }
 
 /// The writers of a run's analysis outputs (each optional); as an observer of a run, at the
@@ -86,13 +112,15 @@ pub struct AnalysisOutput {
 
 impl AnalysisOutput {
     /// Creates `analysis.csv` when `analysis`, `contacts.csv` when `contacts`, in
-    /// `dir`; `window` the region of the measures (default: the wall box, else the bodies'
-    /// extent); as an observer it writes every `every` steps.
+    /// `dir`; `window` the region of the measures (default: the periodic cell, the wall box,
+    /// else the bodies' extent); `cell`: the scene has a periodic cell (its measures added); as
+    /// an observer it writes every `every` steps.
     pub fn create(
         dir: &Path,
         analysis: bool,
         contacts: bool,
         window: Option<Window>,
+        cell: bool,
         every: u64,
     ) -> Result<Self, WriteError> {
         let open = |on: bool, name: &str, header: &str| -> Result<Option<LineFile>, WriteError> {
@@ -103,7 +131,7 @@ impl AnalysisOutput {
             f.line(format_args!("{header}"))?;
             Ok(Some(f))
         };
-        let a = open(analysis, "analysis.csv", ANALYSIS_HEADER)?;
+        let a = open(analysis, "analysis.csv", analysis_header(cell))?;
         let c = open(contacts, "contacts.csv", CONTACTS_HEADER)?;
         Ok(AnalysisOutput {
             analysis: a,

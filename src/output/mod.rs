@@ -1,6 +1,7 @@
 //! Output formats. Readers of results only: nothing here changes the world.
 
 pub mod analysis;
+pub mod cell;
 pub mod contacts;
 pub mod docs_tables;
 pub mod forces;

@@ -144,7 +144,12 @@ impl RunData {
             message: e.to_string(),
         })?;
         let traj_file = dir.join("trajectory.csv");
-        let (traj, traj_partial) = rows(&traj_file, "step,t,body,x,y,angle,vx,vy,omega")?;
+        let header = if case.cell.is_some() {
+            super::trace::TRAJECTORY_HEADER_CELL
+        } else {
+            super::trace::TRAJECTORY_HEADER
+        };
+        let (traj, traj_partial) = rows(&traj_file, header)?;
         let n = case.bodies.len();
         let mut incomplete = Vec::new();
         let mut frames: Vec<Frame> = Vec::new();

@@ -46,6 +46,7 @@
 use crate::dynamics::timestep::estimate_critical_dt_of;
 use crate::dynamics::{RestartState, World};
 use crate::output::analysis::AnalysisOutput;
+use crate::output::cell::CellWriter;
 use crate::output::progress::ProgressLines;
 use crate::output::reactions::ReactionsWriter;
 use crate::output::run_data::BodyState;
@@ -100,7 +101,7 @@ pub struct RunOptions {
 
 /// The files a run writes (and `dem2d plot`'s default outputs, drawn from them): what is
 /// removed from a directory before a run replaces an earlier one. The summary comes first.
-pub const OUTPUT_FILES: [&str; 15] = [
+pub const OUTPUT_FILES: [&str; 16] = [
     "summary.json",
     "summary.json.tmp",
     "case.json",
@@ -115,6 +116,7 @@ pub const OUTPUT_FILES: [&str; 15] = [
     "analysis.csv",
     "contacts.csv",
     "walls.csv",
+    "cell.csv",
     "reactions.csv",
 ];
 
@@ -436,6 +438,7 @@ struct Writers {
     incs: IncrementsWriter,
     traj: TrajectoryWriter,
     walls: Option<WallsWriter>,
+    cells: Option<CellWriter>,
     reactions: Option<ReactionsWriter>,
     sampler: CriticalStepSampler,
     analysis: Option<AnalysisOutput>,
@@ -488,6 +491,13 @@ impl RunDir {
             case.gravity.norm(),
         );
         let mut warnings = opts.warnings.clone();
+        let outside = case.bodies_outside_cell();
+        if outside > 0 && opts.restart.is_none() {
+            warnings.push(format!(
+                "{outside} bodies start outside the periodic cell: each is brought into it \
+                 through the seams (its image counts start from the crossings)"
+            ));
+        }
         if case.dt > dt_critical {
             warnings.push(format!(
                 "dt = {:e} exceeds the critical time step estimated from the stiffest possible contact, {:.3e} \
@@ -526,12 +536,17 @@ impl RunDir {
             .ok()
             .map(|v| StateWriter::new(dir, v, case.duration, &case.bodies));
         let every = case.output_every;
+        let cell = world.cell.is_some();
         let writers =
-            TrajectoryWriter::create(&dir.join("trajectory.csv"), every).and_then(|traj| {
+            TrajectoryWriter::create(&dir.join("trajectory.csv"), every, cell).and_then(|traj| {
                 let incs = IncrementsWriter::create(&dir.join("increments.csv"), every)?;
                 let walls = match world.walls.is_empty() {
                     true => None,
                     false => Some(WallsWriter::create(dir, every)?),
+                };
+                let cells = match cell {
+                    true => Some(CellWriter::create(dir, every)?),
+                    false => None,
                 };
                 let reactions = match world.bodies.prescribed.is_empty() {
                     true => None,
@@ -548,6 +563,7 @@ impl RunDir {
                         opts.contacts,
                         opts.analysis_window
                             .map(|[x0, x1, y0, y1]| crate::analysis::Window { x0, x1, y0, y1 }),
+                        cell,
                         every,
                     )?),
                     false => None,
@@ -556,6 +572,7 @@ impl RunDir {
                     incs,
                     traj,
                     walls,
+                    cells,
                     reactions,
                     sampler: CriticalStepSampler { every },
                     analysis,
@@ -606,6 +623,9 @@ impl RunDir {
         sim = sim.observe(&mut w.incs).observe(&mut w.traj);
         if let Some(x) = w.walls.as_mut() {
             sim = sim.observe(x);
+        }
+        if let Some(c) = w.cells.as_mut() {
+            sim = sim.observe(c);
         }
         if let Some(x) = w.reactions.as_mut() {
             sim = sim.observe(x);

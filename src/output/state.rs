@@ -29,7 +29,7 @@ use std::path::{Path, PathBuf};
 
 /// The case's top-level fields in the order a state file lists them (the bodies and the state
 /// come last).
-const CASE_ORDER: [&str; 15] = [
+const CASE_ORDER: [&str; 16] = [
     "version",
     "name",
     "description",
@@ -45,6 +45,7 @@ const CASE_ORDER: [&str; 15] = [
     "materials",
     "pairs",
     "walls",
+    "cell",
 ];
 
 /// A double in its shortest round-trip form (`null` if not finite).
@@ -81,6 +82,20 @@ pub fn state_text(
         };
         if let Some(v) = value {
             let _ = writeln!(out, "  {}: {v},", compact(&Value::from(key)));
+        }
+    }
+    // Keys this list does not know yet still travel with the state (a restart reads the case
+    // from it): after the known ones, in the case's order.
+    if let Some(obj) = case.as_object() {
+        for (key, v) in obj {
+            if !CASE_ORDER.contains(&key.as_str()) && key != "bodies" && key != "state" {
+                let _ = writeln!(
+                    out,
+                    "  {}: {},",
+                    compact(&Value::from(key.as_str())),
+                    compact(v)
+                );
+            }
         }
     }
     // The bodies: the case's, at their current pose and velocity.
@@ -164,6 +179,17 @@ fn write_state_block(
     if let Some(run) = run {
         write_run(out, run);
     }
+    if let Some(c) = &s.cell {
+        let _ = writeln!(
+            out,
+            "    \"cell\": {{\"size\": {}, \"offset\": {}, \"shift\": {}, \"stress\": [{}], \"stiffness_yy\": {}}},",
+            vec2(c.size),
+            num(c.offset),
+            num(c.shift),
+            c.stress.map(num).join(", "),
+            num(c.stiffness_yy)
+        );
+    }
     out.push_str("    \"walls\": [");
     for (k, w) in s.walls.iter().enumerate() {
         let l = &w.load;
@@ -195,6 +221,9 @@ fn write_state_block(
         );
         if bodies.get(k).is_some_and(|i| i.shape.is_circle()) {
             let _ = write!(out, ", \"frame\": [{}, {}]", num(b.frame.0), num(b.frame.1));
+        }
+        if s.cell.is_some() {
+            let _ = write!(out, ", \"image\": [{}, {}]", b.image[0], b.image[1]);
         }
         out.push('}');
     }

@@ -94,9 +94,18 @@ impl LineFile {
     }
 }
 
-/// `trajectory.csv`: `step,t,body,x,y,angle,vx,vy,omega`, full round-trip precision. As an
-/// observer: the first state (on disk at once, so that a run killed at any later moment leaves a
-/// whole frame), every `every` steps, and the state the run ended in.
+/// The header of `trajectory.csv`.
+pub const TRAJECTORY_HEADER: &str = "step,t,body,x,y,angle,vx,vy,omega";
+/// The header of `trajectory.csv` in a periodic cell: the image counts after the rest (see
+/// `dynamics::cell`).
+pub const TRAJECTORY_HEADER_CELL: &str = "step,t,body,x,y,angle,vx,vy,omega,ix,iy";
+
+/// `trajectory.csv`: `step,t,body,x,y,angle,vx,vy,omega` ([`TRAJECTORY_HEADER`]), full
+/// round-trip precision; in a periodic cell the positions are the wrapped ones and each row
+/// ends with the body's image counts `ix,iy` ([`TRAJECTORY_HEADER_CELL`]: the unwrapped
+/// position is `x + ix L_x + iy S`, `y + iy L_y`, with S the cell's total Lees–Edwards shift).
+/// As an observer: the first state (on disk at once, so that a run killed at any later moment
+/// leaves a whole frame), every `every` steps, and the state the run ended in.
 pub struct TrajectoryWriter {
     out: LineFile,
     last_step: Option<u64>,
@@ -104,10 +113,16 @@ pub struct TrajectoryWriter {
 }
 
 impl TrajectoryWriter {
-    /// Creates the file (with its header); as an observer it writes every `every` steps.
-    pub fn create(path: &Path, every: u64) -> Result<Self, WriteError> {
+    /// Creates the file (with its header, with the image counts when `cell`: a periodic cell);
+    /// as an observer it writes every `every` steps.
+    pub fn create(path: &Path, every: u64, cell: bool) -> Result<Self, WriteError> {
         let mut out = LineFile::create(path)?;
-        out.line(format_args!("step,t,body,x,y,angle,vx,vy,omega"))?;
+        let header = if cell {
+            TRAJECTORY_HEADER_CELL
+        } else {
+            TRAJECTORY_HEADER
+        };
+        out.line(format_args!("{header}"))?;
         // A run killed before its first full buffer still leaves a readable (empty) table.
         out.flush()?;
         Ok(TrajectoryWriter {
@@ -134,8 +149,12 @@ impl TrajectoryWriter {
         let b = &world.bodies;
         for k in 0..b.len() {
             let p = &b.state[k].pose;
+            let images = match b.image.get(k) {
+                Some([ix, iy]) => format!(",{ix},{iy}"),
+                None => String::new(),
+            };
             self.out.line(format_args!(
-                "{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{}{}",
                 step,
                 t,
                 k,
@@ -144,7 +163,8 @@ impl TrajectoryWriter {
                 p.angle(),
                 b.state[k].vel.x,
                 b.state[k].vel.y,
-                b.state[k].omega
+                b.state[k].omega,
+                images
             ))?;
         }
         Ok(())

@@ -29,6 +29,8 @@ use super::fields::{
 use super::materials::{Named, body_density, check_mixing, meeting, read_materials, read_pairs};
 use super::ranges::{Placed, SpecContext, check_extent, check_spec, check_steps};
 use crate::contact_law::{Check, ContactSpec, Keys, NormalForce, ParamError};
+use crate::dynamics::cell::{Cell, PRESSURE_RELAXATION, Periodic, Pressure};
+use crate::dynamics::neighbour_list::SKIN_FRACTION;
 use crate::dynamics::{BodyInit, Boundary, Materials, Motion, Servo, Span};
 use crate::geometry::Vec2;
 use serde_json::{Map, Value};
@@ -61,6 +63,9 @@ pub struct Case {
     pub material_names: Vec<String>,
     pub walls: Vec<Boundary>,
     pub bodies: Vec<BodyInit>,
+    /// The periodic cell the scene repeats in (`"cell": {"size": [L_x, L_y], "periodic": "x" |
+    /// "xy", "shear_rate": γ̇, "pressure": P, "pressure_gain": α}`; see `dynamics::cell`).
+    pub cell: Option<Cell>,
 }
 
 /// The case's optional outputs.
@@ -223,6 +228,10 @@ impl Case {
                 density,
             });
         }
+        let cell = match o.get("cell") {
+            None => None,
+            Some(v) => Some(parse_cell(v, &walls, &bodies, gravity)?),
+        };
         // A state file's block (read by `scene::state`, which continues the run from it).
         let _ = o.get("state");
         o.finish()?;
@@ -261,6 +270,7 @@ impl Case {
             material_names: named.names,
             walls,
             bodies,
+            cell,
         })
     }
 
@@ -290,20 +300,42 @@ impl Case {
             material_names: Vec::new(),
             walls,
             bodies,
+            cell: None,
         }
+    }
+
+    /// The same case in the periodic cell `cell` (unchecked, as [`Case::new`]).
+    pub fn with_cell(mut self, cell: Cell) -> Case {
+        self.cell = Some(cell);
+        self
     }
 
     /// The world this case describes, at t = 0 (the forces of the initial configuration
     /// evaluated).
     pub fn build_world(&self) -> crate::dynamics::World {
-        crate::dynamics::World::of_materials(
+        let world = crate::dynamics::World::of_materials(
             &self.bodies,
             self.walls.clone(),
             self.gravity,
             self.contact,
             self.materials.clone(),
             self.dt,
-        )
+        );
+        match self.cell {
+            Some(cell) => world.with_cell(cell).0,
+            None => world,
+        }
+    }
+
+    /// How many bodies lie outside the case's periodic cell (they are brought into it when the
+    /// world is built: see `dynamics::World::with_cell`).
+    pub fn bodies_outside_cell(&self) -> usize {
+        self.cell.map_or(0, |c| {
+            self.bodies
+                .iter()
+                .filter(|b| c.wrap(b.position, b.velocity).is_some())
+                .count()
+        })
     }
 
     /// The world of this case resumed from `state` (a state file's, taken of a world of this
@@ -622,6 +654,113 @@ fn param_error(e: FieldError) -> ParamError {
         field: e.path,
         message: e.message,
     }
+}
+
+/// The periodic cell (see [`Case::cell`]): its size against the bodies' reach, no wall across a
+/// periodic direction, shear and pressure only in a cell periodic in x and y, no gravity there.
+fn parse_cell(
+    v: &Value,
+    walls: &[Boundary],
+    bodies: &[BodyInit],
+    gravity: Vec2,
+) -> Result<Cell, FieldError> {
+    let mut c = Obj::new(v, "cell")?;
+    let size = Vec2::from(c.req_with("size", |v, p| {
+        let [x, y] = vec2(v, p)?;
+        for (k, z) in [x, y].into_iter().enumerate() {
+            scale(&Value::from(z), &format!("{p}[{k}]"))?;
+        }
+        Ok([x, y])
+    })?);
+    let periodic = c.req_with("periodic", |v, p| match string(v, p)?.as_str() {
+        "x" => Ok(Periodic::X),
+        "xy" => Ok(Periodic::XY),
+        other => Err(FieldError::new(
+            p,
+            format!("unknown periodicity `{other}` (expected `x` or `xy`)"),
+        )),
+    })?;
+    let shear_rate = c.opt_with("shear_rate", number)?;
+    let pressure = c.opt_with("pressure", positive)?;
+    let gain = c.opt_with("pressure_gain", positive)?;
+    let at = |k: &str| join("cell", k);
+    if periodic == Periodic::X {
+        for (k, given) in [
+            ("shear_rate", shear_rate.is_some()),
+            ("pressure", pressure.is_some()),
+        ] {
+            if given {
+                return Err(FieldError::new(
+                    at(k),
+                    "needs a cell periodic in x and y (`\"periodic\": \"xy\"`)",
+                ));
+            }
+        }
+    }
+    if let Some(g) = gain {
+        if pressure.is_none() {
+            return Err(FieldError::new(at("pressure_gain"), "needs `pressure`"));
+        }
+        if g > 1.0 {
+            return Err(FieldError::new(
+                at("pressure_gain"),
+                format!(
+                    "must be in (0, 1] (the fraction of the stress error corrected per step), got {g}"
+                ),
+            ));
+        }
+    }
+    c.finish()?;
+    let cell = Cell::new(
+        size,
+        periodic,
+        shear_rate.unwrap_or(0.0),
+        pressure.map(|target| Pressure {
+            target,
+            gain: gain.unwrap_or(PRESSURE_RELAXATION),
+        }),
+    );
+    // At most one image of a pair within reach: every periodic side above twice the reach.
+    let max_bound = bodies
+        .iter()
+        .map(|b| b.shape.bounding_radius())
+        .fold(0.0f64, f64::max);
+    let reach = 2.0 * max_bound + SKIN_FRACTION * max_bound;
+    if let Err((k, least)) = cell.check_size(reach) {
+        return Err(FieldError::new(
+            format!("{}[{k}]", at("size")),
+            format!(
+                "{} cm is too small: a periodic side must exceed twice the reach of a pair \
+                 ({least:.6e} cm: two largest bounding diameters and the neighbour list's skin), \
+                 so that a pair meets at most one image of the other",
+                [size.x, size.y][k]
+            ),
+        ));
+    }
+    for (k, w) in walls.iter().enumerate() {
+        let n = w.line().normal;
+        if periodic == Periodic::XY || n.x.abs() > 1e-12 {
+            return Err(FieldError::new(
+                format!("{}.normal", index("walls", k)),
+                match periodic {
+                    Periodic::XY => "a cell periodic in x and y has no walls".to_string(),
+                    Periodic::X => format!(
+                        "[{}, {}] crosses the cell's periodic x direction: a wall in a cell \
+                         periodic in x must be horizontal (normal [0, 1] or [0, -1])",
+                        n.x, n.y
+                    ),
+                },
+            ));
+        }
+    }
+    if periodic == Periodic::XY && gravity != Vec2::zeros() {
+        return Err(FieldError::new(
+            "gravity",
+            "must be [0, 0] in a cell periodic in x and y (it has no floor: the bodies would \
+             fall forever)",
+        ));
+    }
+    Ok(cell)
 }
 
 /// A wall's motion: `"velocity": [vx, vy]` (cm/s), or `"servo": {"stress": σ, "span": S or

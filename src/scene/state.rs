@@ -437,6 +437,51 @@ pub fn parse_state(
             })
             .collect::<Result<Vec<_>, _>>()
     })?;
+    let cell = match (case.cell, o.get("cell")) {
+        (None, None) => None,
+        (None, Some(_)) => {
+            return Err(FieldError::new(
+                "state.cell",
+                "the case has no periodic cell (`cell`) for this state's",
+            ));
+        }
+        (Some(_), None) => {
+            return Err(FieldError::new(
+                "state.cell",
+                "is missing: the case's periodic cell needs the state's (its height, shift and \
+                 stress)",
+            ));
+        }
+        (Some(mut c), Some(v)) => {
+            let mut k = Obj::new(v, "state.cell")?;
+            let size = k.req_with("size", pair)?;
+            if size.x != c.size.x {
+                return Err(FieldError::new(
+                    "state.cell.size[0]",
+                    format!("{} differs from the case's cell width {}", size.x, c.size.x),
+                ));
+            }
+            if size.y.is_nan() || size.y <= 0.0 {
+                return Err(FieldError::new("state.cell.size[1]", "must be positive"));
+            }
+            c.size = size;
+            c.offset = k.req_with("offset", float)?;
+            c.shift = k.req_with("shift", float)?;
+            c.stress = k.req_with("stress", floats::<4>)?;
+            c.stiffness_yy = k.req_with("stiffness_yy", float)?;
+            k.finish()?;
+            if !(0.0..c.size.x).contains(&c.offset) {
+                return Err(FieldError::new(
+                    "state.cell.offset",
+                    format!(
+                        "must be in [0, {}) (the shift modulo the cell's width)",
+                        c.size.x
+                    ),
+                ));
+            }
+            Some(c)
+        }
+    };
     let bodies_value = o.req("bodies")?;
     let listed = array(bodies_value, "state.bodies")?;
     if listed.len() != case.bodies.len() {
@@ -468,8 +513,23 @@ pub fn parse_state(
                 (c, s)
             }
         };
+        let image = match cell {
+            Some(_) => b.req_with("image", |v, p| {
+                let [x, y] = floats::<2>(v, p)?;
+                let whole = |z: f64| z.fract() == 0.0 && z.abs() < i32::MAX as f64;
+                if !(whole(x) && whole(y)) {
+                    return Err(FieldError::new(
+                        p,
+                        "must be two whole numbers (image counts)",
+                    ));
+                }
+                Ok([x as i32, y as i32])
+            })?,
+            None => [0, 0],
+        };
         b.finish()?;
         bodies.push(BodyRestart {
+            image,
             position: init.position,
             angle: init.angle,
             frame,
@@ -514,6 +574,7 @@ pub fn parse_state(
         energies,
         diagnostics,
         last_increments,
+        cell,
     };
     Ok((state, run))
 }

@@ -6,7 +6,8 @@
 //! recorded the walls), the walls of `case.json` as given are used.
 
 use dem2d::analysis::{self, Frame, FrameBody, Window, wall_box};
-use dem2d::output::analysis::{ANALYSIS_HEADER, analysis_row, read_contact_frames};
+use dem2d::output::analysis::{analysis_header, analysis_row, read_contact_frames};
+use dem2d::output::cell::read_cells;
 use dem2d::output::run_data::RunData;
 use dem2d::run::time::time_text;
 use std::collections::HashMap;
@@ -60,7 +61,15 @@ pub fn run(dir: &Path, window: Option<&[f64]>, out: Option<&Path>) -> Result<(),
         .map(|w| (w.line().point, w.line().normal))
         .collect();
     let n = data.case.bodies.len();
-    let mut text = format!("{ANALYSIS_HEADER}\n");
+    // A periodic cell's state at each frame (its size, shift and stress: `cell.csv`).
+    let cells: HashMap<u64, dem2d::dynamics::cell::Cell> = match &data.case.cell {
+        Some(c) => read_cells(dir, c)
+            .map_err(|e| (1, e.to_string()))?
+            .into_iter()
+            .collect(),
+        None => HashMap::new(),
+    };
+    let mut text = format!("{}\n", analysis_header(data.case.cell.is_some()));
     for f in &data.frames {
         if f.bodies.len() != n {
             return Err((
@@ -82,6 +91,7 @@ pub fn run(dir: &Path, window: Option<&[f64]>, out: Option<&Path>) -> Result<(),
                 shape: b.shape,
                 position: dem2d::geometry::Vec2::new(s.x, s.y),
                 angle: s.angle,
+                density: b.density,
             })
             .collect();
         let frame_contacts = by_step
@@ -106,11 +116,25 @@ pub fn run(dir: &Path, window: Option<&[f64]>, out: Option<&Path>) -> Result<(),
         let walls = walls_by_step
             .get(&f.step)
             .map_or(&case_walls, |&k| &wall_frames[k].1);
+        let cell = match data.case.cell {
+            Some(_) => Some(*cells.get(&f.step).ok_or_else(|| {
+                (
+                    1,
+                    format!(
+                        "{}: no row for step {} of trajectory.csv",
+                        dir.join("cell.csv").display(),
+                        f.step
+                    ),
+                )
+            })?),
+            None => None,
+        };
         let frame = Frame {
             time: f.t,
             bodies,
             contacts: frame_contacts,
             wall_box: wall_box(walls),
+            cell,
         };
         let m = analysis::measure(&frame, window);
         let t = time_text(f.step, data.case.dt);

@@ -3,6 +3,7 @@
 
 mod analyze;
 mod impact;
+mod relax;
 mod study;
 mod verify;
 mod verify_ellipses;
@@ -114,6 +115,34 @@ enum Command {
         /// "output": {"contacts": true} does the same.
         #[arg(long)]
         contacts: bool,
+    },
+    /// Bring a case's bodies to rest at a minimum of their potential energy (FIRE, on positions
+    /// and angles, under the law's conservative part; frictionless laws only): writes
+    /// OUT/state.json, which `dem2d run` continues from, and OUT/relax.json (residual force,
+    /// potential energy, iterations). Exit code 1 when the tolerance is not reached (the state
+    /// reached is written).
+    Relax {
+        /// The case file, or a run's state.json.
+        case: PathBuf,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+        /// Residual force at which the bodies are at rest: the largest out-of-balance force on
+        /// a body (|F| + |M|/r) over the mean magnitude of the forces on a body.
+        #[arg(long, default_value_t = 1e-9)]
+        tolerance: f64,
+        /// The most force evaluations.
+        #[arg(long, default_value_t = 1_000_000)]
+        max_iterations: u64,
+        /// Replace an earlier relaxation's files in OUT.
+        #[arg(long)]
+        overwrite: bool,
+        /// No report on stderr.
+        #[arg(long)]
+        quiet: bool,
+        /// Worker threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
     },
     /// Recompute RUN_DIR/analysis.csv from a run's trajectory.csv, contacts.csv and walls.csv
     /// (a run made with --contacts; fails, naming the file, for a run without per-contact data).
@@ -832,6 +861,24 @@ fn main() -> ExitCode {
                 vtk_every: *vtk_every,
                 analysis: *analysis,
                 contacts: *contacts,
+            })
+        }),
+        Command::Relax {
+            case,
+            out,
+            tolerance,
+            max_iterations,
+            overwrite,
+            quiet,
+            threads,
+        } => set_threads(*threads).and_then(|()| {
+            relax::run(relax::RelaxArgs {
+                case,
+                out,
+                tolerance: *tolerance,
+                max_iterations: *max_iterations,
+                overwrite: *overwrite,
+                quiet: *quiet,
             })
         }),
         Command::Analyze {

@@ -1,0 +1,123 @@
+//! `dem2d relax CASE --out DIR`: the case's bodies brought to rest at a minimum of the potential
+//! energy by FIRE (`dem2d::dynamics::minimise`), written as `DIR/state.json` (a state any run
+//! continues from) and `DIR/relax.json` (the residual force, the potential energy, the
+//! iterations).
+
+use super::{Failure, read_input};
+use dem2d::dynamics::minimise::{Fire, RelaxError, Tolerance, relax};
+use dem2d::output::state::state_text;
+use dem2d::output::write_atomically;
+use std::path::Path;
+
+/// The files `relax` writes.
+const OUTPUTS: [&str; 2] = ["state.json", "relax.json"];
+
+pub struct RelaxArgs<'a> {
+    pub case: &'a Path,
+    pub out: &'a Path,
+    pub tolerance: f64,
+    pub max_iterations: u64,
+    pub overwrite: bool,
+    pub quiet: bool,
+}
+
+pub fn run(args: RelaxArgs) -> Result<(), Failure> {
+    let name = args.case.display().to_string();
+    if !(args.tolerance.is_finite() && args.tolerance > 0.0) {
+        return Err(Failure::input(format!(
+            "--tolerance: must be a positive number, got {}",
+            args.tolerance
+        )));
+    }
+    let text = read_input(&name)?;
+    let file = dem2d::scene::CaseFile::from_json(&text)
+        .map_err(|e| Failure::input(format!("{name}: {e}")))?;
+    let case = file.case;
+    let mut world = match &file.restart {
+        None => case.build_world(),
+        Some(state) => case.resume_world(state).map_err(|e| {
+            Failure::input(format!("{name}: field `state.{}`: {}", e.path, e.message))
+        })?,
+    };
+    dem2d::dynamics::minimise::check_frictionless(&world).map_err(|e| match e {
+        // (Named as the case file names the law: its `contact`, or a wall's.)
+        RelaxError::Friction(_) => Failure::input(format!("{name}: field {e}")),
+        other => Failure::input(format!("{name}: {other}")),
+    })?;
+    let out = args.out;
+    for f in OUTPUTS {
+        if out.join(f).exists() && !args.overwrite {
+            return Err(Failure::input(format!(
+                "{}: holds an earlier relaxation's {f}: give --overwrite to replace it",
+                out.display()
+            )));
+        }
+    }
+    std::fs::create_dir_all(out).map_err(|e| Failure::failed(format!("{}: {e}", out.display())))?;
+    let tol = Tolerance {
+        force: args.tolerance,
+        max_iterations: args.max_iterations,
+    };
+    let start = std::time::Instant::now();
+    let relaxed = relax(&mut world, &Fire::default(), &tol)
+        .map_err(|e| Failure::failed(format!("{name}: {e}")))?;
+    let seconds = start.elapsed().as_secs_f64();
+    let status = if relaxed.converged {
+        "relaxed"
+    } else {
+        "max_iterations"
+    };
+    let state = state_text(
+        &file.value,
+        case.duration,
+        &world.restart_state(),
+        None,
+        &case.bodies,
+        status,
+    );
+    let summary = serde_json::json!({
+        "name": case.name,
+        "status": status,
+        "iterations": relaxed.iterations,
+        "residual": relaxed.residual,
+        "tolerance": args.tolerance,
+        "potential": relaxed.potential,
+        "elastic": world.energies.elastic,
+        "gravity_potential": world.energies.potential,
+        "contacts": world.contacts.active().count(),
+        "wall_seconds": seconds,
+    });
+    let write = |file: &str, text: &str| {
+        write_atomically(out, file, text)
+            .map_err(|e| Failure::failed(format!("{}: {e}", out.join(file).display())))
+    };
+    write("state.json", &state)?;
+    write(
+        "relax.json",
+        &(serde_json::to_string_pretty(&summary).expect("a JSON value serialises") + "\n"),
+    )?;
+    if !args.quiet {
+        eprintln!(
+            "{}: {status} after {} iterations, residual force {:.3e} (tolerance {:e}), potential \
+             energy {:.6e} erg; wall time {seconds:.2} s; output in {}",
+            case.name,
+            relaxed.iterations,
+            relaxed.residual,
+            args.tolerance,
+            relaxed.potential,
+            out.display()
+        );
+    }
+    if relaxed.converged {
+        Ok(())
+    } else {
+        Err(Failure::failed(format!(
+            "{name}: not at rest after {} iterations (residual force {:.3e} > {:e}); the state \
+             reached is in {}",
+            relaxed.iterations,
+            relaxed.residual,
+            args.tolerance,
+            out.display()
+        )))
+    }
+}

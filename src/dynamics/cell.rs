@@ -1,0 +1,458 @@
+//! A periodic cell: the scene repeats in x (and in y), Lees–Edwards shear, and an imposed normal
+//! stress.
+//!
+//! # The cell
+//! The cell spans `[0, L_x) × [0, L_y)`. With `"periodic": "x"` the scene repeats every `L_x`
+//! in x and the case's walls bound it in y; with `"xy"` it repeats in both directions and has
+//! no walls. Every body's centroid is kept in the cell: a body that leaves it through a seam
+//! re-enters through the opposite one, and its image count `(i_x, i_y)` records how often it
+//! crossed (so that its unwrapped position can be rebuilt: see [`Cell::unwrapped`]). A pair of
+//! bodies interacts through the nearest image of its giver ([`Cell::nearest_image`]): the
+//! contact pass shifts the giver's pose by the image's offset (and its velocity by the image's
+//! velocity) where the pair's sides are built, so the narrow phase and the law never know a
+//! cell exists. For the nearest image to be the only one within reach, every side of the cell
+//! must exceed twice the reach of a pair (two bounding diameters and the neighbour list's skin):
+//! [`Cell::check_size`].
+//!
+//! # Lees–Edwards shear (Lees & Edwards, J. Phys. C 5 (1972) 1921)
+//! With a shear rate γ̇ (`"shear_rate"`, periodic in x and y) the image of the cell above is
+//! shifted in x by `s(t) = ∫ γ̇ L_y dt` (kept modulo `L_x`: [`Cell::offset`]) and moves at
+//! `+γ̇ L_y` relative to the cell: a body leaving through the top re-enters at the bottom with
+//! `x − s` and `v_x − γ̇ L_y`, and one leaving through the bottom re-enters at the top with
+//! `x + s` and `v_x + γ̇ L_y`. A steady simple shear `v_x = γ̇ (y − L_y/2)` is then continuous
+//! across the seam. The unwrapped position of a body is `x + i_x L_x + i_y S` with `S` the
+//! total shift (not taken modulo `L_x`: [`Cell::shift`]), continuous in time across a crossing.
+//!
+//! # Imposed pressure
+//! With `"pressure": P` the cell's height follows the normal stress σ_yy (the Love–Weber mean
+//! stress over the cell with its kinetic part, compressive positive: [`Cell::stress`]): each
+//! step `L_y ← λ L_y` and every body's `y ← λ y` (an affine stretch), with
+//! `λ − 1 = α (σ_yy − P)/K_yy` — the error corrected by the fraction α (`"pressure_gain"`,
+//! default [`PRESSURE_RELAXATION`]) against the contacts' affine stiffness K_yy, the rule of
+//! the servo walls (`dynamics::boundary`); the bodies behind the contacts are softer than their
+//! affine stiffness, so the actual correction is smaller and the control does not overshoot.
+//! A cell pushed harder than P dilates; one below P contracts. See [`Cell::stretch`].
+
+use super::partner::ImageShift;
+use crate::geometry::Vec2;
+
+/// The directions in which a cell repeats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Periodic {
+    /// In x; walls bound the scene in y.
+    X,
+    /// In x and y.
+    XY,
+}
+
+impl Periodic {
+    /// The name used in case files.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Periodic::X => "x",
+            Periodic::XY => "xy",
+        }
+    }
+}
+
+/// An imposed normal stress on a cell periodic in x and y (see the module documentation).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pressure {
+    /// The target σ_yy (dyn/cm² per unit thickness: force per unit length), > 0.
+    pub target: f64,
+    /// The fraction α of the stress error corrected per step ([`PRESSURE_RELAXATION`] by
+    /// default; see [`Cell::stretch`]).
+    pub gain: f64,
+}
+
+/// A periodic cell (see the module documentation).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cell {
+    /// `L_x`, `L_y` now (cm).
+    pub size: Vec2,
+    pub periodic: Periodic,
+    /// γ̇ (1/s; 0: no shear).
+    pub shear_rate: f64,
+    /// The x shift of the image above, in `[0, L_x)`.
+    pub offset: f64,
+    /// The total x shift `S = ∫ γ̇ L_y dt` (not reduced modulo `L_x`).
+    pub shift: f64,
+    /// An imposed normal stress, if any.
+    pub pressure: Option<Pressure>,
+    /// The cell's mean stress at the last force evaluation, compressive positive: `(1/A)(Σ_c
+    /// f ⊗ l + Σ_k m v′ ⊗ v′)` (xx, xy, yx, yy; Love–Weber over the pairs of bodies, f the
+    /// force on the receiver and l the branch vector to it from the giver's image; v′ the
+    /// velocity about the shear's mean flow `γ̇ (y − L_y/2)`).
+    pub stress: [f64; 4],
+    /// `(1/A) Σ_c F_s n_y l_y` (F_s the elastic part of a contact's normal force): minus the
+    /// rate at which the contacts' stored energy changes per unit vertical affine strain.
+    pub elastic_yy: f64,
+    /// The contacts' affine stiffness against a vertical stretch, `(1/A) Σ_c k_n (n_y l_y)²`
+    /// (the change of σ_yy per unit vertical strain with the bodies moved affinely).
+    pub stiffness_yy: f64,
+}
+
+/// The relaxation factor of an imposed pressure: the fraction of the stress error the cell's
+/// height corrects per step against the contacts' affine stiffness (see [`Cell::stretch`]).
+pub const PRESSURE_RELAXATION: f64 = 0.1;
+
+/// The largest relative change of a cell's height in one step under an imposed pressure.
+pub const MAX_STRETCH: f64 = 1e-4;
+
+/// What a crossing did to a body: its new position and velocity, and the image counts to add.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Wrapped {
+    pub position: Vec2,
+    pub velocity: Vec2,
+    pub images: [i32; 2],
+}
+
+impl Cell {
+    /// A cell of size `size` repeating in `periodic`, with shear rate `shear_rate` and an
+    /// optional imposed normal stress; the image above starts unshifted.
+    pub fn new(
+        size: Vec2,
+        periodic: Periodic,
+        shear_rate: f64,
+        pressure: Option<Pressure>,
+    ) -> Self {
+        Cell {
+            size,
+            periodic,
+            shear_rate,
+            offset: 0.0,
+            shift: 0.0,
+            pressure,
+            stress: [0.0; 4],
+            elastic_yy: 0.0,
+            stiffness_yy: 0.0,
+        }
+    }
+
+    /// Records the stress and stiffness of a force evaluation from its sums: `contact` the
+    /// pass's `Σ f ⊗ l`, `stiffness` its `Σ k_n (n_y l_y)²`, `kinetic` the bodies' `Σ m v′v′`
+    /// (xx, xy, yy).
+    pub fn measure(
+        &mut self,
+        contact: &[f64; 4],
+        stiffness: f64,
+        elastic: f64,
+        kinetic: &[f64; 3],
+    ) {
+        let a = self.area();
+        self.stress = [
+            (contact[0] + kinetic[0]) / a,
+            (contact[1] + kinetic[1]) / a,
+            (contact[2] + kinetic[1]) / a,
+            (contact[3] + kinetic[2]) / a,
+        ];
+        self.elastic_yy = elastic / a;
+        self.stiffness_yy = stiffness / a;
+    }
+
+    /// `Σ m v′v′` (xx, xy, yy) of `bodies` about the shear's mean flow.
+    pub fn kinetic_stress(&self, bodies: &super::body::Bodies) -> [f64; 3] {
+        let mut k = [0.0; 3];
+        for (s, &m) in bodies.state.iter().zip(&bodies.mass) {
+            let v = Vec2::new(
+                s.vel.x - self.shear_rate * (s.pose.position.y - 0.5 * self.size.y),
+                s.vel.y,
+            );
+            k[0] += m * v.x * v.x;
+            k[1] += m * v.x * v.y;
+            k[2] += m * v.y * v.y;
+        }
+        k
+    }
+
+    /// Whether the cell measures its stress: a cell periodic in x and y (in an `"x"` cell the
+    /// walls carry part of the load, and the packing's stress is `analysis`'s).
+    #[inline]
+    pub fn measures_stress(&self) -> bool {
+        self.periodic_y()
+    }
+
+    /// σ_yy, the normal stress on the cell's horizontal faces (compressive positive; NaN where
+    /// the cell does not measure it).
+    pub fn normal_stress(&self) -> f64 {
+        if self.measures_stress() {
+            self.stress[3]
+        } else {
+            f64::NAN
+        }
+    }
+
+    /// The shear stress `(σ_xy + σ_yx)/2` (NaN where the cell does not measure it).
+    pub fn shear_stress(&self) -> f64 {
+        if self.measures_stress() {
+            0.5 * (self.stress[1] + self.stress[2])
+        } else {
+            f64::NAN
+        }
+    }
+
+    /// Under an imposed pressure, the cell's height for the next step from the stress of the
+    /// last evaluation; returns the factor `λ` it (and every body's y) is stretched by (1
+    /// without a pressure) and the work the stretch does on the bodies: the change of the
+    /// contacts' stored energy, `−Σ F_s n·δl = −A (λ − 1) (1/A)Σ F_s n_y l_y` to first order (the
+    /// affine stretch changes each branch vector by `δl = l_y (λ − 1) ŷ` and no velocity; the
+    /// shear springs, which integrate relative velocities, do not see it). The relative error `σ_yy − P` is corrected by the fraction
+    /// [`PRESSURE_RELAXATION`] per step against the contacts' affine stiffness:
+    /// `λ − 1 = α (σ_yy − P)/K_yy` (the servo walls' rule: `dynamics::boundary`), at most
+    /// [`MAX_STRETCH`] either way (and that much, towards the target, without contacts).
+    pub fn stretch(&mut self) -> (f64, f64) {
+        let Some(p) = self.pressure else {
+            return (1.0, 0.0);
+        };
+        let error = self.normal_stress() - p.target;
+        let strain = if self.stiffness_yy > 0.0 {
+            p.gain * error / self.stiffness_yy
+        } else {
+            MAX_STRETCH.copysign(error)
+        };
+        let lambda = 1.0 + strain.clamp(-MAX_STRETCH, MAX_STRETCH);
+        let work = -self.area() * self.elastic_yy * (lambda - 1.0);
+        self.size.y *= lambda;
+        (lambda, work)
+    }
+
+    /// Whether `p` (inside the cell) lies within `margin` of one of its seams.
+    #[inline]
+    pub fn near_seam(&self, p: Vec2, margin: f64) -> bool {
+        p.x < margin
+            || p.x > self.size.x - margin
+            || (self.periodic_y() && (p.y < margin || p.y > self.size.y - margin))
+    }
+
+    /// Whether the cell repeats in y.
+    #[inline]
+    pub fn periodic_y(&self) -> bool {
+        self.periodic == Periodic::XY
+    }
+
+    /// The smallest side a cell may have for pairs that reach `reach` (the largest bounding
+    /// diameter plus the neighbour list's skin): more than twice that, so that a pair has at
+    /// most one image within reach. Returns the side that is too small, if one is.
+    pub fn check_size(&self, reach: f64) -> Result<(), (usize, f64)> {
+        let least = 2.0 * reach;
+        let sides = [self.size.x, self.size.y];
+        let n = if self.periodic_y() { 2 } else { 1 };
+        match (0..n).find(|&k| sides[k] <= least) {
+            Some(k) => Err((k, least)),
+            None => Ok(()),
+        }
+    }
+
+    /// The image of the giver at `giver` nearest to the receiver at `receiver`: the offset to
+    /// add to the giver's position (a multiple of the periods, with the Lees–Edwards shift across
+    /// the y seam) and the image's velocity relative to the giver (`∓γ̇ L_y` in x across the y
+    /// seam). `None` when the giver itself is the nearest. Exact for every pair whose nearest
+    /// image lies within half a period of the receiver (every pair within reach, given
+    /// [`Cell::check_size`]): the y image first (the one whose height is within half a period),
+    /// then the x image.
+    #[inline]
+    pub fn nearest_image(&self, giver: Vec2, receiver: Vec2) -> Option<ImageShift> {
+        let mut d = receiver - giver;
+        let mut offset = Vec2::zeros();
+        let mut velocity = Vec2::zeros();
+        if self.periodic_y() {
+            let sy = periods(d.y, self.size.y);
+            if sy != 0.0 {
+                // The giver's image `sy` cells above: shifted by sy·(s, L_y), moving at sy·γ̇L_y.
+                offset = Vec2::new(sy * self.offset, sy * self.size.y);
+                velocity.x = sy * self.shear_rate * self.size.y;
+                d -= offset;
+            }
+        }
+        let sx = periods(d.x, self.size.x);
+        if sx != 0.0 {
+            offset.x += sx * self.size.x;
+        }
+        (offset != Vec2::zeros()).then_some(ImageShift { offset, velocity })
+    }
+
+    /// The shortest vector equal to `d` modulo the cell's periods (a lever arm within a body's
+    /// reach, measured from a centroid to a contact point that may lie across a seam).
+    #[inline]
+    pub fn shortest(&self, mut d: Vec2) -> Vec2 {
+        if self.periodic_y() {
+            let sy = periods(d.y, self.size.y);
+            if sy != 0.0 {
+                d.x -= sy * self.offset;
+                d.y -= sy * self.size.y;
+            }
+        }
+        let sx = periods(d.x, self.size.x);
+        if sx != 0.0 {
+            d.x -= sx * self.size.x;
+        }
+        d
+    }
+
+    /// A body at `position` with velocity `velocity` brought back into the cell (see the
+    /// module documentation); `None` when it is inside.
+    #[inline]
+    pub fn wrap(&self, position: Vec2, velocity: Vec2) -> Option<Wrapped> {
+        let (lx, ly) = (self.size.x, self.size.y);
+        let inside_x = position.x >= 0.0 && position.x < lx;
+        let inside_y = !self.periodic_y() || (position.y >= 0.0 && position.y < ly);
+        if inside_x && inside_y {
+            return None;
+        }
+        let (mut p, mut v) = (position, velocity);
+        let mut images = [0i32; 2];
+        if !inside_y {
+            let mut iy = (p.y / ly).floor();
+            p.y -= iy * ly;
+            if p.y >= ly {
+                p.y -= ly; // (a value just below 0 rounds to L_y)
+                iy += 1.0;
+            }
+            // Re-entering `iy` cells down: back by `iy` shifts. The position takes the offset
+            // (the shift modulo L_x, exact enough however long the shear has run); the image
+            // count takes the whole periods the shift has run beyond it, so that
+            // `x + i_x L_x + i_y S` does not jump.
+            p.x -= iy * self.offset;
+            v.x -= iy * self.shear_rate * ly;
+            images[1] = iy as i32;
+            let periods = ((self.shift - self.offset) / lx).round();
+            images[0] = -(iy * periods) as i32;
+        }
+        let mut ix = (p.x / lx).floor();
+        p.x -= ix * lx;
+        if p.x >= lx {
+            p.x -= lx;
+            ix += 1.0;
+        }
+        images[0] += ix as i32;
+        Some(Wrapped {
+            position: p,
+            velocity: v,
+            images,
+        })
+    }
+
+    /// Advances the Lees–Edwards shift over a step `dt`.
+    #[inline]
+    pub fn advance(&mut self, dt: f64) {
+        if self.shear_rate != 0.0 {
+            let ds = self.shear_rate * self.size.y * dt;
+            self.shift += ds;
+            self.offset = (self.offset + ds).rem_euclid(self.size.x);
+        }
+    }
+
+    /// The unwrapped position of a body at `position` with image counts `images`.
+    pub fn unwrapped(&self, position: Vec2, images: [i32; 2]) -> Vec2 {
+        Vec2::new(
+            position.x + images[0] as f64 * self.size.x + images[1] as f64 * self.shift,
+            position.y + images[1] as f64 * self.size.y,
+        )
+    }
+
+    /// The cell's area (per unit thickness).
+    pub fn area(&self) -> f64 {
+        self.size.x * self.size.y
+    }
+}
+
+/// The whole number of periods `l` nearest to `d` (ties either way: both images are then equally
+/// near). Pairs and lever arms lie within one and a half periods (positions are wrapped), decided
+/// by comparisons; the division and rounding (a library call on x86-64's baseline) only beyond.
+#[inline(always)]
+fn periods(d: f64, l: f64) -> f64 {
+    let a = d.abs();
+    if a <= 0.5 * l {
+        0.0
+    } else if a <= 1.5 * l {
+        1.0f64.copysign(d)
+    } else {
+        (d / l).round()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cell(shear: f64) -> Cell {
+        let mut c = Cell::new(Vec2::new(10.0, 8.0), Periodic::XY, shear, None);
+        c.offset = 3.0;
+        c.shift = 23.0; // two periods and the offset
+        c
+    }
+
+    /// Every image by brute force: the nearest of the giver's images within two periods.
+    fn brute_nearest(c: &Cell, giver: Vec2, receiver: Vec2) -> Vec2 {
+        let mut best = (f64::INFINITY, Vec2::zeros());
+        for sy in -2..=2 {
+            for sx in -3..=3 {
+                let off = Vec2::new(
+                    sy as f64 * c.offset + sx as f64 * c.size.x,
+                    sy as f64 * c.size.y,
+                );
+                let d = (giver + off - receiver).norm();
+                if d < best.0 {
+                    best = (d, off);
+                }
+            }
+        }
+        best.1
+    }
+
+    #[test]
+    fn the_nearest_image_is_the_nearest_of_all_images() {
+        let c = cell(0.5);
+        let mut s = 0x2545_F491_4F6C_DD1Du64;
+        let mut next = || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..10_000 {
+            let g = Vec2::new(10.0 * next(), 8.0 * next());
+            let r = Vec2::new(10.0 * next(), 8.0 * next());
+            let off = c.nearest_image(g, r).map_or(Vec2::zeros(), |i| i.offset);
+            let want = brute_nearest(&c, g, r);
+            let want_d = (g + want - r).norm();
+            // The regime the cell's size guarantees for a pair within reach.
+            if want_d >= 0.5 * c.size.x.min(c.size.y) {
+                continue;
+            }
+            assert_eq!(off, want, "{g:?} {r:?}");
+        }
+    }
+
+    #[test]
+    fn a_body_crossing_the_top_re_enters_shifted_and_slower() {
+        let c = cell(0.5);
+        let w = c
+            .wrap(Vec2::new(1.0, 8.25), Vec2::new(2.0, 1.0))
+            .expect("outside");
+        // x − s = 1 − 3 = −2 → 8 (one more x image down).
+        assert_eq!(w.position, Vec2::new(8.0, 0.25));
+        assert_eq!(w.velocity, Vec2::new(2.0 - 0.5 * 8.0, 1.0));
+        // Two periods of shift beyond the offset (S = 23 = 2·10 + 3): i_x = −1 − 2.
+        assert_eq!(w.images, [-3, 1]);
+        // The unwrapped position does not jump across the crossing.
+        let before = Vec2::new(1.0, 8.25);
+        assert_eq!(c.unwrapped(w.position, w.images), before);
+    }
+
+    #[test]
+    fn a_body_inside_stays() {
+        let c = cell(0.0);
+        assert!(c.wrap(Vec2::new(0.0, 7.999), Vec2::zeros()).is_none());
+    }
+
+    #[test]
+    fn a_cell_no_wider_than_twice_the_reach_is_refused() {
+        let c = Cell::new(Vec2::new(4.0, 100.0), Periodic::X, 0.0, None);
+        assert_eq!(c.check_size(2.0), Err((0, 4.0)));
+        assert!(c.check_size(1.9).is_ok());
+        // y is not periodic: its height does not count.
+        let c = Cell::new(Vec2::new(100.0, 1.0), Periodic::X, 0.0, None);
+        assert!(c.check_size(2.0).is_ok());
+    }
+}
