@@ -465,7 +465,7 @@ mod bug_a_wall_given_300_times_ran_to_exit_0 {
         // square can fall; the square cannot leave faster than that allows.
         let mut c =
             Case::from_json(&std::fs::read_to_string(case("throw_square.json")).unwrap()).unwrap();
-        let floor = c.walls[0];
+        let floor = c.walls[0].clone();
         c.walls = vec![floor; 300];
         let mut w = c.build_world();
         let mut sim = Simulation::new(&mut w).until_time(c.duration);

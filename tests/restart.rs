@@ -726,3 +726,94 @@ fn a_scene_of_several_materials_and_prescribed_bodies_continues_exactly() {
             > 0.0
     );
 }
+
+/// A box of disks whose lid follows a program: at rest, down at 20 cm/s, then two servo stages.
+fn program_case() -> String {
+    let mut bodies = Vec::new();
+    for k in 0..30 {
+        let (x, y) = (-4.0 + (k % 5) as f64 * 2.0, 1.0 + (k / 5) as f64 * 1.9);
+        let r = 0.7 + 0.1 * ((k * 7) % 3) as f64;
+        bodies.push(format!(
+            r#"{{ "shape": {{"type": "circle", "r": {r}}}, "position": [{x}, {y}] }}"#
+        ));
+    }
+    format!(
+        r#"{{ "version": 1, "name": "program", "gravity": [0, -980], "dt": 2e-5, "duration": 0.12,
+        "contact": {{ "model": "linear", "kn_over_rho_g": 36400, "restitution": 0.5,
+                      "friction": 0.5 }},
+        "walls": [ {{ "point": [0, 0], "normal": [0, 1] }}, {{ "point": [-5, 0], "normal": [1, 0] }},
+                   {{ "point": [5, 0], "normal": [-1, 0] }},
+                   {{ "point": [0, 11.6], "normal": [0, -1],
+                      "motion": [ {{ "until": 0.02, "velocity": [0, 0] }},
+                                  {{ "until": 0.06, "velocity": [0, -20] }},
+                                  {{ "until": 0.09, "servo": {{ "stress": 5e4, "span": [1, 2],
+                                                               "max_speed": 20 }} }},
+                                  {{ "servo": {{ "stress": 1e4, "span": [1, 2],
+                                                "max_speed": 20 }} }} ] }} ],
+        "bodies": [ {} ] }}"#,
+        bodies.join(",\n")
+    )
+}
+
+#[test]
+fn a_wall_program_continues_where_it_was() {
+    let dir = scratch("program");
+    let case = dir.join("program.json");
+    std::fs::write(&case, program_case()).unwrap();
+    let case = case.to_str().unwrap();
+    let (ac, ab, b2, bc) = (
+        dir.join("ac"),
+        dir.join("ab"),
+        dir.join("b2"),
+        dir.join("bc"),
+    );
+    let run = |from: &str, out: &Path, steps: &str| {
+        run_ok(&[
+            "run",
+            from,
+            "--out",
+            out.to_str().unwrap(),
+            "--max-steps",
+            steps,
+            "--quiet",
+        ])
+    };
+    run(case, &ac, "6000");
+    // B in the velocity stage, B2 in the first servo stage.
+    run(case, &ab, "2000");
+    let state = json(&ab.join("state.json"));
+    assert_eq!(state["state"]["walls"][3]["program"]["stage"], 1);
+    assert_eq!(state["state"]["walls"][3]["program"]["start_time"], 0.02);
+    assert!(state["state"]["walls"][0].get("program").is_none());
+    run(ab.join("state.json").to_str().unwrap(), &b2, "1500");
+    assert_eq!(
+        json(&b2.join("state.json"))["state"]["walls"][3]["program"]["stage"],
+        2
+    );
+    run(b2.join("state.json").to_str().unwrap(), &bc, "2500");
+    check_continuation(&ac, &ab, &b2, (2000, 3500), false);
+    check_continuation(&ac, &b2, &bc, (3500, 6000), true);
+    let want = rows_between(&ac.join("walls.csv"), 2000, 6000);
+    let got = [
+        rows_between(&b2.join("walls.csv"), 2000, u64::MAX),
+        rows_between(&bc.join("walls.csv"), 3500, u64::MAX),
+    ]
+    .concat();
+    assert_eq!(got, want);
+    // The lid met the pile: its servo stages held it against the disks.
+    let lid = json(&ac.join("state.json"))["state"]["walls"][3]["load"]["contacts"]
+        .as_u64()
+        .unwrap();
+    assert!(lid >= 2, "the lid's contacts: {lid}");
+    // A state naming a stage the program does not have is refused, naming it.
+    let mut bad = json(&ab.join("state.json"));
+    bad["state"]["walls"][3]["program"]["stage"] = 9.into();
+    let file = dir.join("bad_stage.json");
+    std::fs::write(&file, serde_json::to_string(&bad).unwrap()).unwrap();
+    let (code, _, err) = dem2d(&["run", file.to_str().unwrap(), "--quiet"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("field `state.walls[3].program.stage`: stage 9 does not exist"),
+        "{err}"
+    );
+}

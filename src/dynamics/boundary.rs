@@ -42,6 +42,17 @@
 //!   moving sample at speed `v` lags by `e = v/G = v K Δt/(α S)`. With no contact (K = 0) the
 //!   wall approaches at `max_speed`. A fixed `gain` may be given instead: then the case is
 //!   responsible for `a < 2`.
+//!
+//! # Wall programs
+//! A wall's motion may be a list of stages ([`Program`]), each a constant velocity or a servo,
+//! each lasting until a time (the last may last to the end; after a last stage that ends, the
+//! wall is at rest): a delayed start, loading then unloading, a stress path. A stage ends at the
+//! step nearest its end time, `n_s = round(until/Δt)` (stages closer than a step are refused
+//! when the case is read), so a step lies in one stage. A velocity stage is anchored where the
+//! wall is when it starts, `p = p_s + v (t − t_s)` with `t_s = n_{s−1} Δt` (no rounding
+//! accumulates within it; the displacement over it is `v (n_s − n_{s−1}) Δt`); a servo stage
+//! moves the wall as a servo wall. The stage, its anchor point and time are the wall's state
+//! (a restart carries them).
 
 use crate::contact_law::ContactSpec;
 use crate::geometry::{Vec2, Wall};
@@ -74,7 +85,7 @@ pub struct Servo {
 }
 
 /// How a wall moves.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Motion {
     /// At rest.
     Fixed,
@@ -82,6 +93,57 @@ pub enum Motion {
     Velocity(Vec2),
     /// Under a servo.
     Servo(Servo),
+    /// A program of stages (see the module documentation).
+    Program(Program),
+}
+
+/// What a wall does during one stage of its program.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StageMotion {
+    /// A constant velocity (zero: at rest).
+    Velocity(Vec2),
+    /// A servo.
+    Servo(Servo),
+}
+
+/// One stage of a wall's program: its motion, until `until` (s; `None`: to the end).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Stage {
+    pub until: Option<f64>,
+    pub motion: StageMotion,
+}
+
+/// A wall's program: its stages in time order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Program {
+    pub stages: Vec<Stage>,
+}
+
+impl Program {
+    /// The step at which stage `s` ends, `round(until/Δt)` (`u64::MAX`: it lasts to the end).
+    #[inline]
+    pub fn end_step(&self, s: usize, dt: f64) -> u64 {
+        match self.stages[s].until {
+            Some(t) => (t / dt).round() as u64,
+            None => u64::MAX,
+        }
+    }
+
+    /// The stage that governs the step from step `n` to `n + 1`: the first that ends after
+    /// step n; `stages.len()` after the last (at rest).
+    pub fn stage_at(&self, n: u64, dt: f64) -> usize {
+        (0..self.stages.len())
+            .find(|&s| self.end_step(s, dt) > n)
+            .unwrap_or(self.stages.len())
+    }
+
+    /// The motion of stage `s` (at rest after the last).
+    #[inline]
+    pub fn motion(&self, s: usize) -> StageMotion {
+        self.stages
+            .get(s)
+            .map_or(StageMotion::Velocity(Vec2::zeros()), |st| st.motion)
+    }
 }
 
 /// What a wall's contacts did in the last force evaluation.
@@ -117,15 +179,19 @@ pub enum BoundaryKind {
 
 /// A boundary: its kind and pose, the contact parameters of contacts with it (the scene's, or
 /// its own overrides), how it moves, and its current velocity and load.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Boundary {
     /// The boundary where it is now.
     pub kind: BoundaryKind,
-    /// Its reference point at `start_time` (the anchor of a constant velocity's motion).
+    /// Its reference point at `start_time` (the anchor of a constant velocity's motion, and of
+    /// a program's current stage).
     pub start: Vec2,
     /// When it was at `start`: 0, or the time of a state file from which a wall given a new
-    /// velocity continues from where it is (see `scene::state`).
+    /// velocity continues from where it is (see `scene::state`), or when the program's
+    /// current stage began.
     pub start_time: f64,
+    /// A program's current stage (the stage of the last drift; 0 before the first).
+    pub stage: usize,
     /// Its contact law when it has its own (`material` None), else its material's.
     pub spec: ContactSpec,
     /// Its material (`None`: its own law, `spec`, governs its contacts with every body; see
@@ -147,14 +213,19 @@ impl Boundary {
     /// A wall moving as `motion` says (its velocity: a constant one at once; a servo's from
     /// the first force evaluation).
     pub fn moving(wall: Wall, spec: ContactSpec, motion: Motion) -> Self {
-        let velocity = match motion {
-            Motion::Velocity(v) => v,
+        let velocity = match &motion {
+            Motion::Velocity(v) => *v,
+            Motion::Program(p) => match p.motion(0) {
+                StageMotion::Velocity(v) => v,
+                StageMotion::Servo(_) => Vec2::zeros(),
+            },
             Motion::Fixed | Motion::Servo(_) => Vec2::zeros(),
         };
         Boundary {
             kind: BoundaryKind::Wall(wall),
             start: wall.point,
             start_time: 0.0,
+            stage: 0,
             spec,
             material: None,
             motion,
@@ -204,14 +275,59 @@ impl Boundary {
         }
     }
 
-    /// Moves the boundary over the drift that ends at `time` (a step of `dt`).
+    /// Moves the boundary over the drift of step `step` (from step `step − 1`, at `step − 1`
+    /// times `dt`, to `time` = `step` times `dt`).
     #[inline]
-    pub fn drift(&mut self, time: f64, dt: f64) {
-        match self.motion {
+    pub fn drift(&mut self, step: u64, time: f64, dt: f64) {
+        match &self.motion {
             Motion::Fixed => {}
             // (t − 0 is t: the uninterrupted run's bits.)
-            Motion::Velocity(v) => self.move_to(self.start + v * (time - self.start_time)),
+            Motion::Velocity(v) => self.move_to(self.start + *v * (time - self.start_time)),
             Motion::Servo(_) => self.move_to(self.point() + self.velocity * dt),
+            Motion::Program(p) => {
+                let n = step - 1;
+                let s = p.stage_at(n, dt);
+                let motion = p.motion(s);
+                if s != self.stage {
+                    // A new stage, anchored where the wall is as it begins.
+                    self.stage = s;
+                    self.start = self.point();
+                    self.start_time = n as f64 * dt;
+                }
+                match motion {
+                    StageMotion::Velocity(v) => {
+                        self.velocity = v;
+                        self.move_to(self.start + v * (time - self.start_time));
+                    }
+                    StageMotion::Servo(_) => self.move_to(self.point() + self.velocity * dt),
+                }
+            }
+        }
+    }
+
+    /// The servo that moves the wall over the step from step `n` (its own, or its program's
+    /// stage's), if any.
+    pub fn servo_at(&self, n: u64, dt: f64) -> Option<Servo> {
+        match &self.motion {
+            Motion::Servo(s) => Some(*s),
+            Motion::Program(p) => match p.motion(p.stage_at(n, dt)) {
+                StageMotion::Servo(s) => Some(s),
+                StageMotion::Velocity(_) => None,
+            },
+            Motion::Fixed | Motion::Velocity(_) => None,
+        }
+    }
+
+    /// The servo of the wall's current stage (its own, or its program's stage of the last
+    /// drift), if any.
+    pub fn servo(&self) -> Option<Servo> {
+        match &self.motion {
+            Motion::Servo(s) => Some(*s),
+            Motion::Program(p) => match p.motion(self.stage) {
+                StageMotion::Servo(s) => Some(s),
+                StageMotion::Velocity(_) => None,
+            },
+            Motion::Fixed | Motion::Velocity(_) => None,
         }
     }
 
@@ -231,9 +347,7 @@ impl Boundary {
     /// The normal stress its contacts carry over its loaded span (servo walls), with the
     /// span; `walls` the scene's boundaries (for a span between two of them).
     pub fn measured_stress(&self, walls: &[Boundary]) -> Option<(f64, f64)> {
-        let Motion::Servo(s) = self.motion else {
-            return None;
-        };
+        let s = self.servo()?;
         let span = span_length(self.line(), &s.span, walls);
         Some((self.load.force.dot(&self.line().normal) / span, span))
     }

@@ -8,7 +8,8 @@
 //!   half-step velocities, so they cannot be evaluated again from the state); a circle's frame
 //!   (the cosine and sine its pose keeps from its first pose, [`crate::geometry::Pose::moved`]);
 //! - every wall's current point, the velocity of its next drift (a servo's was set from the last
-//!   load) and that load;
+//!   load) and that load, and a program's current stage with the point and time it began at
+//!   (its anchor: the stage before may have been a servo's, which no case can replay);
 //! - the neighbour list as built: every slot (pair) in key order, active or not, with its
 //!   history — every part's history values, the energy they hold, the geometry state — its
 //!   narrow-phase [`PairCache`] (the conic pairs' warm start: the next step's crossings are
@@ -59,6 +60,17 @@ pub struct WallRestart {
     pub velocity: Vec2,
     /// Its contacts in the last evaluation.
     pub load: WallLoad,
+    /// A program's stage (see [`super::boundary`]; `None` for a wall without a program).
+    pub program: Option<ProgramRestart>,
+}
+
+/// Where a wall's program is: the stage of its last drift, and the point and time that stage
+/// began at.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProgramRestart {
+    pub stage: usize,
+    pub start: Vec2,
+    pub start_time: f64,
 }
 
 /// One slot of the neighbour list: the pair, its history, its pair cache and its contact.

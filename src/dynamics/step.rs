@@ -40,7 +40,7 @@
 
 use super::account::{Diagnostics, Energies};
 use super::body::Bodies;
-use super::boundary::{Boundary, Motion, servo_velocity};
+use super::boundary::{Boundary, servo_velocity};
 use super::cell::Cell;
 use super::contact_pass::{ContactPass, PassInput, SceneFacts, SlotPartial};
 use super::contacts::{Adjacent, ContactData, ContactList};
@@ -218,7 +218,7 @@ impl Stepper {
         let mut wall_disp = 0.0f64;
         for (k, ws) in wd.walls.iter_mut().enumerate() {
             if ws.moves() {
-                ws.drift(next_time, dt);
+                ws.drift(next_step, next_time, dt);
                 if let Some(at) = wd.contacts.wall_built_at.get(k) {
                     wall_disp = wall_disp.max((ws.line().point - at).dot(&ws.line().normal).abs());
                 }
@@ -251,7 +251,8 @@ impl Stepper {
         // (after the second kick): the non-elastic forces' power, summed body by body
         // (Σ_c f·v_rel = Σ_k F_k·v_k + M_k ω_k − Σ_walls F_w·v_w), less the change of the
         // history springs' energy. A moving wall does the work F_w·v_w (see `boundary`).
-        if wd.walls.iter().any(Boundary::moves) || slots.image_power != 0.0 {
+        let moving_walls = wd.walls.iter().any(Boundary::moves);
+        if moving_walls || slots.image_power != 0.0 {
             // The Lees–Edwards seam does work like a moving wall (see `cell`).
             let (mut power, mut power_ne) = (slots.image_power, slots.image_power_ne);
             for ws in wd.walls.iter() {
@@ -261,7 +262,6 @@ impl Stepper {
             wd.energies.dissipated -=
                 (bodies_sum.non_elastic_power - power_ne) * dt + slots.history_energy_change;
             wd.energies.boundary_work += power * dt;
-            Self::update_servos(wd);
         } else {
             wd.energies.dissipated -=
                 bodies_sum.non_elastic_power * dt + slots.history_energy_change;
@@ -281,6 +281,9 @@ impl Stepper {
         }
         *wd.step = next_step;
         *wd.time = next_time;
+        if moving_walls {
+            Self::update_servos(wd);
+        }
         wd.energies.kinetic = bodies_sum.kinetic;
         wd.energies.potential = bodies_sum.potential;
         Ok(StepReport {
@@ -417,11 +420,12 @@ impl Stepper {
         }
     }
 
-    /// Sets each servo wall's velocity for the next step from the load of the last force
+    /// Sets the velocity for the next step (from the world's step) of each wall a servo moves
+    /// then (a servo wall, or a program in a servo stage) from the load of the last force
     /// evaluation (see [`super::boundary`]).
     pub(crate) fn update_servos(wd: &mut Parts) {
         for k in 0..wd.walls.len() {
-            if let Motion::Servo(s) = wd.walls[k].motion {
+            if let Some(s) = wd.walls[k].servo_at(*wd.step, wd.dt) {
                 wd.walls[k].velocity = servo_velocity(&wd.walls[k], &s, wd.walls, wd.dt);
             }
         }

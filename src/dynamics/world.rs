@@ -3,11 +3,14 @@
 pub use super::account::{Diagnostics, Energies};
 use super::body::{Bodies, BodyInit};
 pub use super::boundary::Boundary;
+use super::boundary::Motion;
 use super::cell::Cell;
 use super::contacts::ContactList;
 use super::materials::{Materials, PairTable};
 use super::neighbour_list::kept;
-use super::restart::{BodyRestart, RestartError, RestartState, SlotRestart, WallRestart};
+use super::restart::{
+    BodyRestart, ProgramRestart, RestartError, RestartState, SlotRestart, WallRestart,
+};
 use super::step::{Blowup, Parts, StepReport, Stepper};
 use crate::contact_law::{ContactSpec, HISTORY_LEN};
 use crate::geometry::{Pose, Vec2};
@@ -144,6 +147,11 @@ impl World {
             ws.move_to(r.point);
             ws.velocity = r.velocity;
             ws.load = r.load;
+            if let Some(p) = r.program {
+                ws.stage = p.stage;
+                ws.start = p.start;
+                ws.start_time = p.start_time;
+            }
         }
         let (stepper, mut parts) = w.parts();
         stepper.restore_neighbours(&mut parts, saved);
@@ -180,6 +188,11 @@ impl World {
                     point: ws.line().point,
                     velocity: ws.velocity,
                     load: ws.load,
+                    program: matches!(ws.motion, Motion::Program(_)).then_some(ProgramRestart {
+                        stage: ws.stage,
+                        start: ws.start,
+                        start_time: ws.start_time,
+                    }),
                 })
                 .collect(),
             slots: (0..c.slots.len())

@@ -297,7 +297,7 @@ impl RunData {
                     w.move_to(w.start + v * frame.t);
                     w.velocity = v;
                 }
-                Motion::Servo(_) => known = false,
+                Motion::Servo(_) | Motion::Program(_) => known = false,
             }
         }
         (walls, known)

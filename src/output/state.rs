@@ -195,7 +195,7 @@ fn write_state_block(
         let l = &w.load;
         let _ = write!(
             out,
-            "{}\n      {{\"point\": {}, \"velocity\": {}, \"load\": {{\"force\": {}, \"force_non_elastic\": {}, \"stiffness\": {}, \"contacts\": {}}}}}",
+            "{}\n      {{\"point\": {}, \"velocity\": {}, \"load\": {{\"force\": {}, \"force_non_elastic\": {}, \"stiffness\": {}, \"contacts\": {}}}",
             if k > 0 { "," } else { "" },
             vec2(w.point),
             vec2(w.velocity),
@@ -204,6 +204,16 @@ fn write_state_block(
             num(l.stiffness),
             l.contacts
         );
+        if let Some(p) = &w.program {
+            let _ = write!(
+                out,
+                ", \"program\": {{\"stage\": {}, \"start\": {}, \"start_time\": {}}}",
+                p.stage,
+                vec2(p.start),
+                num(p.start_time)
+            );
+        }
+        out.push('}');
     }
     out.push_str(if s.walls.is_empty() {
         "],\n"

@@ -20,7 +20,7 @@
 use super::run_data::ReadError;
 use super::trace::{LineFile, WriteError};
 use crate::dynamics::World;
-use crate::dynamics::boundary::{Boundary, Motion, span_length};
+use crate::dynamics::boundary::{Boundary, span_length};
 use crate::geometry::Vec2;
 use crate::run::time::time_text;
 use crate::run::{End, Observer, ObserverError, Plan, StepInfo};
@@ -34,7 +34,7 @@ pub const WALLS_HEADER_LINES_ONLY: &str = "step,t,wall,x,y,nx,ny";
 /// `None` when no other wall bounds it.
 pub fn loaded_span(k: usize, walls: &[Boundary]) -> Option<f64> {
     let me = &walls[k];
-    if let Motion::Servo(s) = me.motion {
+    if let Some(s) = me.servo() {
         return Some(span_length(me.line(), &s.span, walls));
     }
     let (p, t) = (

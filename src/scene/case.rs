@@ -29,6 +29,7 @@ use super::fields::{
 use super::materials::{Named, body_density, check_mixing, meeting, read_materials, read_pairs};
 use super::ranges::{Placed, SpecContext, check_extent, check_spec, check_steps};
 use crate::contact_law::{Check, ContactSpec, Keys, NormalForce, ParamError};
+use crate::dynamics::boundary::{Program, Stage, StageMotion};
 use crate::dynamics::cell::{Cell, PRESSURE_RELAXATION, Periodic, Pressure};
 use crate::dynamics::neighbour_list::SKIN_FRACTION;
 use crate::dynamics::{BodyInit, Boundary, Materials, Motion, Servo, Span};
@@ -174,10 +175,18 @@ impl Case {
                             "give the wall a `material` or contact keys of its own, not both",
                         ));
                     }
-                    Ok((spec, wall_motion(w)?, material))
+                    Ok((spec, wall_motion(w, dt)?, material))
                 })?;
-                if let Motion::Servo(s) = motion {
-                    spans.push((k, s.span));
+                match &motion {
+                    Motion::Servo(s) => spans.push((k, s.span, format!("{path}.servo.span"))),
+                    Motion::Program(p) => {
+                        for (i, st) in p.stages.iter().enumerate() {
+                            if let StageMotion::Servo(s) = st.motion {
+                                spans.push((k, s.span, format!("{path}.motion[{i}].servo.span")));
+                            }
+                        }
+                    }
+                    Motion::Fixed | Motion::Velocity(_) => {}
                 }
                 let boundary = Boundary::moving(wall, spec.unwrap_or(contact), motion);
                 walls.push(match (spec, material) {
@@ -189,8 +198,8 @@ impl Case {
                     }
                 });
             }
-            for (k, span) in spans {
-                check_span(&walls, k, &span)?;
+            for (k, span, at) in spans {
+                check_span(&walls, k, &span, &at)?;
             }
         }
         let list = o.req("bodies")?;
@@ -764,20 +773,40 @@ fn parse_cell(
 }
 
 /// A wall's motion: `"velocity": [vx, vy]` (cm/s), or `"servo": {"stress": σ, "span": S or
-/// [a, b], "max_speed": v, "gain": G}` (see `dynamics::boundary`); fixed without either.
-fn wall_motion(w: &mut Obj) -> Result<Motion, FieldError> {
+/// [a, b], "max_speed": v, "gain": G}`, or `"motion": [stage, …]` (a program, each stage
+/// `{"until": t, "velocity": [vx, vy]}` or `{"until": t, "servo": {…}}`, the last may omit
+/// `until`; see `dynamics::boundary`); fixed without any. `dt` places the stages' ends on steps.
+fn wall_motion(w: &mut Obj, dt: f64) -> Result<Motion, FieldError> {
     let velocity = w.opt_with("velocity", vec2)?;
-    let Some(v) = w.get("servo") else {
+    let servo = w.get("servo");
+    if let Some(p) = w.get("motion") {
+        if let Some(key) = [("velocity", velocity.is_some()), ("servo", servo.is_some())]
+            .into_iter()
+            .find_map(|(k, given)| given.then_some(k))
+        {
+            return Err(FieldError::new(
+                w.field_path(key),
+                "give `motion` (a program of stages, each with its velocity or servo) or the \
+                 wall's own `velocity` or `servo`, not both",
+            ));
+        }
+        return program(p, &w.field_path("motion"), dt).map(Motion::Program);
+    }
+    let Some(v) = servo else {
         return Ok(velocity.map_or(Motion::Fixed, |v| Motion::Velocity(Vec2::from(v))));
     };
-    let at = w.field_path("servo");
     if velocity.is_some() {
         return Err(FieldError::new(
             w.field_path("velocity"),
             "give `velocity` or `servo`, not both (a servo sets the wall's velocity)",
         ));
     }
-    let mut o = Obj::new(v, &at)?;
+    servo_of(v, &w.field_path("servo")).map(Motion::Servo)
+}
+
+/// A servo object `{"stress": σ, "span": S or [a, b], "max_speed": v, "gain": G}` at `at`.
+fn servo_of(v: &Value, at: &str) -> Result<Servo, FieldError> {
+    let mut o = Obj::new(v, at)?;
     let stress = o.req_with("stress", positive)?;
     let span = o.req_with("span", |v, p| match v {
         Value::Array(_) => {
@@ -799,20 +828,117 @@ fn wall_motion(w: &mut Obj) -> Result<Motion, FieldError> {
     let max_speed = o.req_with("max_speed", positive)?;
     let gain = o.opt_with("gain", positive)?;
     o.finish()?;
-    Ok(Motion::Servo(Servo {
+    Ok(Servo {
         stress,
         span,
         gain,
         max_speed,
-    }))
+    })
 }
 
-/// A servo span between two walls must name two other walls that cross the servo wall's line.
-fn check_span(walls: &[Boundary], k: usize, span: &Span) -> Result<(), FieldError> {
+/// A wall's program at `path`: its stages in time order, each ending at a later step than the
+/// one before (the stage ends at the step nearest its `until`, so stages closer than a step
+/// are refused), every one but the last with its `until`.
+fn program(v: &Value, path: &str, dt: f64) -> Result<Program, FieldError> {
+    let items = match v.as_array() {
+        Some(a) if !a.is_empty() => a,
+        _ => {
+            return Err(FieldError::new(
+                path,
+                format!(
+                    "must be a non-empty array of stages ({{\"until\": t, \"velocity\": [vx, \
+                     vy]}} or {{\"until\": t, \"servo\": {{…}}}}; the last may omit `until`), \
+                     got {}",
+                    if v.is_array() {
+                        "an empty array"
+                    } else {
+                        type_of(v)
+                    }
+                ),
+            ));
+        }
+    };
+    let mut stages = Vec::with_capacity(items.len());
+    let mut previous: Option<(f64, f64)> = None;
+    for (i, item) in items.iter().enumerate() {
+        let at = index(path, i);
+        let mut o = Obj::new(item, &at)?;
+        let until = o.opt_with("until", scale)?;
+        let velocity = o.opt_with("velocity", vec2)?;
+        let servo = match o.get("servo") {
+            Some(s) => Some(servo_of(s, &o.field_path("servo"))?),
+            None => None,
+        };
+        let motion = match (velocity, servo) {
+            (Some(v), None) => StageMotion::Velocity(Vec2::from(v)),
+            (None, Some(s)) => StageMotion::Servo(s),
+            (Some(_), Some(_)) => {
+                return Err(FieldError::new(
+                    o.field_path("servo"),
+                    "give the stage a `velocity` or a `servo`, not both",
+                ));
+            }
+            (None, None) => {
+                return Err(FieldError::new(
+                    &at,
+                    "a stage moves the wall at a `velocity` ([0, 0]: at rest) or by a `servo`: \
+                     give one",
+                ));
+            }
+        };
+        let until_at = o.field_path("until");
+        o.finish()?;
+        match until {
+            None if i + 1 < items.len() => {
+                return Err(FieldError::new(
+                    until_at,
+                    "is missing: every stage but the last ends at a time (s)",
+                ));
+            }
+            None => {}
+            Some(t) => {
+                let step = (t / dt).round();
+                match previous {
+                    Some((t0, _)) if t <= t0 => {
+                        return Err(FieldError::new(
+                            until_at,
+                            format!(
+                                "{t} is not after the previous stage's end ({t0}): the stages \
+                                 are listed in time order"
+                            ),
+                        ));
+                    }
+                    Some((t0, s0)) if step <= s0 => {
+                        return Err(FieldError::new(
+                            until_at,
+                            format!(
+                                "{t} is within a step of the previous stage's end ({t0}; dt = \
+                                 {dt}): a stage lasts at least one step"
+                            ),
+                        ));
+                    }
+                    None if step < 1.0 => {
+                        return Err(FieldError::new(
+                            until_at,
+                            format!("{t} is before the first step ends (dt = {dt})"),
+                        ));
+                    }
+                    _ => {}
+                }
+                previous = Some((t, step));
+            }
+        }
+        stages.push(Stage { until, motion });
+    }
+    Ok(Program { stages })
+}
+
+/// A servo span between two walls must name two other walls that cross the servo wall's line
+/// (`at` the span's path).
+fn check_span(walls: &[Boundary], k: usize, span: &Span, at: &str) -> Result<(), FieldError> {
     let Span::Between(a, b) = *span else {
         return Ok(());
     };
-    let at = format!("{}.servo.span", index("walls", k));
     let me = walls[k].line();
     let t = Vec2::new(-me.normal.y, me.normal.x);
     if a == b {

@@ -11,13 +11,14 @@
 use super::case::Case;
 use super::fields::{FieldError, Obj, index, join, parse_json, type_of};
 use crate::contact_law::{HISTORY_LEN, History};
+use crate::dynamics::Motion;
 use crate::dynamics::World;
 use crate::dynamics::account::{Diagnostics, Energies};
 use crate::dynamics::boundary::WallLoad;
 use crate::dynamics::contacts::{ContactData, Slot};
 use crate::dynamics::partner::{MAX_INDEX, Partner};
 use crate::dynamics::restart::{
-    BodyRestart, RestartState, SlotRestart, WallRestart, state_from_name,
+    BodyRestart, ProgramRestart, RestartState, SlotRestart, WallRestart, state_from_name,
 };
 use crate::geometry::Vec2;
 use crate::narrow_phase::PairCache;
@@ -89,7 +90,6 @@ impl CaseFile {
 /// (a wall given a velocity in an edited state had 0). Without this, a wall given a velocity in
 /// a state file jumped to `p₀ + v t` at its first step (issue 29).
 fn continue_walls(case: &mut Case, state: &mut RestartState) {
-    use crate::dynamics::Motion;
     for (w, r) in case.walls.iter_mut().zip(&mut state.walls) {
         if let Motion::Velocity(v) = w.motion {
             if r.point != w.start + v * state.time {
@@ -428,11 +428,51 @@ pub fn parse_state(
                     l.finish()?;
                     Ok(load)
                 })?;
+                let program = w.opt_with("program", |v, p| {
+                    let mut o = Obj::new(v, p)?;
+                    let r = ProgramRestart {
+                        stage: o.req_with("stage", |v, p| {
+                            usize::try_from(whole(v, p)?)
+                                .map_err(|_| FieldError::new(p, "is beyond the largest stage"))
+                        })?,
+                        start: o.req_with("start", pair)?,
+                        start_time: o.req_with("start_time", float)?,
+                    };
+                    o.finish()?;
+                    Ok(r)
+                })?;
+                let at = index(p, k);
+                match (case.walls.get(k).map(|w| &w.motion), &program) {
+                    (Some(Motion::Program(prog)), Some(r)) if r.stage > prog.stages.len() => {
+                        return Err(FieldError::new(
+                            format!("{at}.program.stage"),
+                            format!(
+                                "stage {} does not exist (the wall's program has {} stages)",
+                                r.stage,
+                                prog.stages.len()
+                            ),
+                        ));
+                    }
+                    (Some(Motion::Program(_)), None) => {
+                        return Err(FieldError::new(
+                            at,
+                            "`program` is missing: a wall with a motion program keeps its stage",
+                        ));
+                    }
+                    (Some(m), Some(_)) if !matches!(m, Motion::Program(_)) => {
+                        return Err(FieldError::new(
+                            format!("{at}.program"),
+                            "only a wall with a motion program (`motion` in the case) has one",
+                        ));
+                    }
+                    _ => {}
+                }
                 w.finish()?;
                 Ok(WallRestart {
                     point,
                     velocity,
                     load,
+                    program,
                 })
             })
             .collect::<Result<Vec<_>, _>>()
