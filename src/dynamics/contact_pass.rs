@@ -775,10 +775,13 @@ impl Geometry for Dispatch<'_> {
             chord: false,
             trace: None,
         };
-        contact_with(i, j, cache, request).map(|c| {
-            let spring = SpringOn::of(&c, area_law, &facts);
-            (c.state, c.point, c.normal, c.depth, spring)
-        })
+        // (Not `Option::map` with a closure: the compiler kept that closure out of line, and
+        // the record went through memory to it — 4618 against 4379 instructions per body-step
+        // on the settled 10⁴-ellipse pile under the area law, callgrind's count of
+        // `World::step` over 50 steps as the lab notebook takes it.)
+        let c = contact_with(i, j, cache, request)?;
+        let spring = SpringOn::of(&c, area_law, &facts);
+        Some((c.state, c.point, c.normal, c.depth, spring))
     }
 }
 
