@@ -231,43 +231,49 @@ fn a_block_slides_v0_squared_over_2_mu_g_with_the_pairs_friction() {
 fn bodies_of_a_material_equal_to_the_scenes_step_as_the_scene_without_it() {
     // Naming a material with no keys of its own changes no parameter: the table's copy of the
     // pass (several materials) must give the bits of the copy compiled for one linear law.
-    let bodies = |material: &str| {
-        (0..6)
-            .map(|k| {
-                format!(
-                    r#"{{ "shape": {{"type": "ellipse", "a": 1, "b": 0.6}}, "angle": {},
+    // Ellipses (the dispatcher's copies) and disks (the disk scenes' own).
+    for shape in [
+        r#"{"type": "ellipse", "a": 1, "b": 0.6}"#,
+        r#"{"type": "circle", "r": 0.8}"#,
+    ] {
+        let bodies = |material: &str| {
+            (0..6)
+                .map(|k| {
+                    format!(
+                        r#"{{ "shape": {shape}, "angle": {},
                          "position": [{}, {}] {material} }}"#,
-                    0.4 * k as f64,
-                    -2.5 + 2.1 * (k % 3) as f64,
-                    1.2 + 2.0 * (k / 3) as f64
-                )
-            })
-            .collect::<Vec<_>>()
-            .join(",")
-    };
-    let walls = r#"[ { "point": [0, 0], "normal": [0, 1] }, { "point": [-4, 0], "normal": [1, 0] },
+                        0.4 * k as f64,
+                        -2.5 + 2.1 * (k % 3) as f64,
+                        1.2 + 2.0 * (k / 3) as f64
+                    )
+                })
+                .collect::<Vec<_>>()
+                .join(",")
+        };
+        let walls = r#"[ { "point": [0, 0], "normal": [0, 1] }, { "point": [-4, 0], "normal": [1, 0] },
                      { "point": [4, 0], "normal": [-1, 0], "friction": 0.2 } ]"#;
-    let contact = r#"{ "model": "linear", "kn_over_rho_g": 36400, "eta_n_over_rho_g": 20,
+        let contact = r#"{ "model": "linear", "kn_over_rho_g": 36400, "eta_n_over_rho_g": 20,
                        "friction": 0.5 }"#;
-    let run = |c: Case| {
-        let mut w = c.with_dt(2e-5).build_world();
-        Simulation::new(&mut w).for_steps(10000).run().unwrap();
-        assert!(w.contacts.active().count() >= 5);
-        format!("{:?}", w.restart_state())
-    };
-    let plain = run(case(
-        contact,
-        "{}",
-        "[]",
-        walls,
-        &format!("[{}]", bodies("")),
-    ));
-    let named = run(case(
-        contact,
-        r#"{ "same": {} }"#,
-        "[]",
-        walls,
-        &format!("[{}]", bodies(r#", "material": "same""#)),
-    ));
-    assert_eq!(plain, named);
+        let run = |c: Case| {
+            let mut w = c.with_dt(2e-5).build_world();
+            Simulation::new(&mut w).for_steps(10000).run().unwrap();
+            assert!(w.contacts.active().count() >= 5);
+            format!("{:?}", w.restart_state())
+        };
+        let plain = run(case(
+            contact,
+            "{}",
+            "[]",
+            walls,
+            &format!("[{}]", bodies("")),
+        ));
+        let named = run(case(
+            contact,
+            r#"{ "same": {} }"#,
+            "[]",
+            walls,
+            &format!("[{}]", bodies(r#", "material": "same""#)),
+        ));
+        assert_eq!(plain, named);
+    }
 }

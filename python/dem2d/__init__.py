@@ -124,6 +124,8 @@ class Run:
     `contacts`: `contacts.csv`'s rows as arrays (`step`, `i` (-1 for a wall), `wall`, `j`,
     `point`, `normal`, `depth`, `force`, `fn`, `ft`, `couple`, `state`), None without the file.
     `analysis` and `walls`: the columns of `analysis.csv` and `walls.csv`, None without them.
+    In a periodic cell: `images` (F, N, 2), the bodies' image counts, `cell` the columns of
+    `cell.csv`, and `unwrapped_positions` (F, N, 2); None without a cell.
     `summary`: `summary.json` as a dict. `case`: `case.json`; `state`: `state.json` as a Case
     (give it to `Simulation` to continue the run), None without it. `incomplete`: what was
     left out of files that end part-way through a line or a frame.
@@ -147,8 +149,29 @@ class Run:
         self.analysis = _read_csv(analysis) if analysis.exists() else None
         walls = self.path / "walls.csv"
         self.walls = _read_csv(walls) if walls.exists() else None
+        self.images = d.get("images")
+        cell = self.path / "cell.csv"
+        self.cell = _read_csv(cell) if self.images is not None and cell.exists() else None
         state = self.path / "state.json"
         self.state = Case.load(state) if state.exists() else None
+
+    @property
+    def unwrapped_positions(self):
+        """The positions unwrapped through the cell's seams, (F, N, 2): `x + ix lx + iy shift`,
+        `y + iy ly` with the frame's cell size and total shift from `cell.csv` (None without a
+        cell)."""
+        if self.images is None or self.cell is None:
+            return None
+        import numpy as np
+
+        rows = {int(s): k for k, s in enumerate(self.cell["step"])}
+        at = np.array([rows[int(s)] for s in self.step], dtype=int)
+        lx, ly, shift = (self.cell[k][at][:, None] for k in ("lx", "ly", "shift"))
+        ix, iy = self.images[..., 0], self.images[..., 1]
+        out = self.positions.copy()
+        out[..., 0] += ix * lx + iy * shift
+        out[..., 1] += iy * ly
+        return out
 
     @property
     def status(self):

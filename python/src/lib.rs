@@ -869,6 +869,167 @@ impl Simulation {
         d.set_item("orientation_order", m.orientation_order)?;
         d.set_item("bodies", m.bodies)?;
         d.set_item("contacts", m.contacts)?;
+        // In a periodic cell, `analysis.csv`'s cell columns.
+        if let Some(c) = m.cell {
+            let cell = PyDict::new(py);
+            for (k, v) in [
+                ("pressure", c.pressure),
+                ("shear_stress", c.shear_stress),
+                ("mu_eff", c.mu_eff),
+                ("inertial_number", c.inertial_number),
+                ("ly", c.ly),
+            ] {
+                cell.set_item(k, v)?;
+            }
+            d.set_item("cell", cell)?;
+        } else {
+            d.set_item("cell", py.None())?;
+        }
+        Ok(d)
+    }
+
+    /// The periodic cell now (None without one): `size` (Lx, Ly, cm), `periodic` ("x" or
+    /// "xy"), `shear_rate` (1/s), `offset` (the Lees–Edwards shift of the image above modulo
+    /// Lx) and `shift` (its total, cm), `pressure` (the imposed σ_yy, or None), `stress` (the
+    /// cell's mean stress of the last evaluation, 2×2, compression positive, kinetic part
+    /// included; NaN in an "x" cell), `normal_stress` (σ_yy), `shear_stress` ((σ_xy + σ_yx)/2),
+    /// `stiffness_yy` and `area` (cm²), as `cell.csv` writes them.
+    #[getter]
+    fn cell<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let g = self.lock(py)?;
+        let Some(c) = g.world.cell.as_ref() else {
+            return Ok(None);
+        };
+        let d = PyDict::new(py);
+        d.set_item("size", (c.size.x, c.size.y))?;
+        d.set_item("periodic", c.periodic.as_str())?;
+        d.set_item("shear_rate", c.shear_rate)?;
+        d.set_item("offset", c.offset)?;
+        d.set_item("shift", c.shift)?;
+        d.set_item("pressure", c.pressure.map(|p| p.target))?;
+        let measured = c.measures_stress();
+        let stress = if measured { c.stress } else { [f64::NAN; 4] };
+        d.set_item(
+            "stress",
+            PyArray1::from_vec(py, stress.to_vec()).reshape([2, 2])?,
+        )?;
+        d.set_item("normal_stress", c.normal_stress())?;
+        d.set_item("shear_stress", c.shear_stress())?;
+        d.set_item(
+            "stiffness_yy",
+            if measured { c.stiffness_yy } else { f64::NAN },
+        )?;
+        d.set_item("area", c.area())?;
+        Ok(Some(d))
+    }
+
+    /// In a periodic cell, how often each body crossed its seams (ix, iy), shape (n, 2); None
+    /// without a cell.
+    #[getter]
+    fn images<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let g = self.lock(py)?;
+        if g.world.cell.is_none() {
+            return Ok(None);
+        }
+        let flat: Vec<i64> = g
+            .world
+            .bodies
+            .image
+            .iter()
+            .flat_map(|i| [i[0] as i64, i[1] as i64])
+            .collect();
+        let n = flat.len() / 2;
+        Ok(Some(
+            PyArray1::from_vec(py, flat).reshape([n, 2])?.into_any(),
+        ))
+    }
+
+    /// The positions unwrapped through the seams (`x + ix Lx + iy S`, `y + iy Ly`: the cell's
+    /// `Cell::unwrapped`), shape (n, 2); the positions themselves without a cell.
+    #[getter]
+    fn unwrapped_positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let g = self.lock(py)?;
+        let b = &g.world.bodies;
+        match g.world.cell.as_ref() {
+            None => pairs(py, b.state.iter().map(|s| s.pose.position)),
+            Some(c) => pairs(
+                py,
+                b.state
+                    .iter()
+                    .zip(&b.image)
+                    .map(|(s, i)| c.unwrapped(s.pose.position, *i)),
+            ),
+        }
+    }
+
+    /// Brings the bodies to rest at a minimum of their potential energy: FIRE on positions and
+    /// angles under the law's conservative part (`dem2d::dynamics::minimise`, what `dem2d
+    /// relax` does; frictionless laws only, else `dem2d.InputError` naming the field). Stops
+    /// when the residual force (the largest out-of-balance force on a body, |F| + |M|/r, over
+    /// the mean magnitude of the forces on a body) is below `tolerance`, or after
+    /// `max_iterations` force evaluations. Returns a dict: `status` ("relaxed" or
+    /// "max_iterations"), `iterations`, `residual`, `potential` (erg), `converged`. The step
+    /// count does not change; the GIL is released while it works (it is not interrupted by
+    /// Ctrl-C: give `max_iterations`).
+    #[pyo3(signature = (tolerance=1e-9, max_iterations=1_000_000))]
+    fn relax<'py>(
+        &self,
+        py: Python<'py>,
+        tolerance: f64,
+        max_iterations: u64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        use dem2d::dynamics::minimise::{Fire, RelaxError, Tolerance, check_frictionless, relax};
+        if !(tolerance.is_finite() && tolerance > 0.0) {
+            return Err(input_error(
+                py,
+                format!("tolerance: must be a positive number, got {tolerance}"),
+            ));
+        }
+        let mut guard = self.lock(py)?;
+        let inner = &mut *guard;
+        let prefix = inner
+            .case
+            .get()
+            .source
+            .as_ref()
+            .map(|p| format!("{}: ", p.display()))
+            .unwrap_or_default();
+        if let Err(e) = check_frictionless(&inner.world) {
+            return Err(match &e {
+                // Named as the case file names the law, as `dem2d relax` does.
+                RelaxError::Friction(whose) => {
+                    let field = format!("{whose}.friction").into_py_any(py)?;
+                    error(
+                        py,
+                        "InputError",
+                        format!("{prefix}field {e}"),
+                        &[("field", field)],
+                    )
+                }
+                other => input_error(py, format!("{prefix}{other}")),
+            });
+        }
+        let tol = Tolerance {
+            force: tolerance,
+            max_iterations,
+        };
+        let Inner { world, pool, .. } = inner;
+        let relaxed = py
+            .detach(|| pool.install(|| relax(world, &Fire::default(), &tol)))
+            .map_err(|e| error(py, "RunError", format!("{prefix}{e}"), &[]))?;
+        let d = PyDict::new(py);
+        d.set_item(
+            "status",
+            if relaxed.converged {
+                "relaxed"
+            } else {
+                "max_iterations"
+            },
+        )?;
+        d.set_item("iterations", relaxed.iterations)?;
+        d.set_item("residual", relaxed.residual)?;
+        d.set_item("potential", relaxed.potential)?;
+        d.set_item("converged", relaxed.converged)?;
         Ok(d)
     }
 
@@ -1039,6 +1200,13 @@ fn load_run<'py>(py: Python<'py>, dir: PathBuf) -> PyResult<Bound<'py, PyDict>> 
         "spins",
         PyArray1::from_vec(py, field(&|b| b.omega)).reshape([f, n])?,
     )?;
+    if run.case.cell.is_some() {
+        let images: Vec<i64> = frames
+            .iter()
+            .flat_map(|fr| fr.images.iter().flat_map(|i| [i[0] as i64, i[1] as i64]))
+            .collect();
+        d.set_item("images", PyArray1::from_vec(py, images).reshape([f, n, 2])?)?;
+    }
     let inc = PyDict::new(py);
     let i = &run.increments;
     inc.set_item(

@@ -180,7 +180,8 @@ impl ContactPass {
 
     /// When every pair of a kind has the same law — one density for all bodies, and no law that
     /// depends on the pair's mass (restitution-tuned dashpots) — resolves the body–body law and
-    /// each wall's once instead of at every contact.
+    /// each wall's once instead of at every contact: with one material, the body pairs' and each
+    /// wall's; with several, every law of the table.
     fn resolve(&mut self, pairs: &PairTable, walls: &[Boundary], facts: &SceneFacts, g: f64) {
         self.laws.clear();
         self.linear.clear();
@@ -192,11 +193,11 @@ impl ContactPass {
         }
         if pairs.count() > 1 {
             self.laws.extend(pairs.all().map(|p| p.resolve(rho, g)));
-            return;
-        }
-        self.laws.push(pairs.body_pair(0, 0).resolve(rho, g));
-        for w in 0..walls.len() {
-            self.laws.push(pairs.wall(w, 0).resolve(rho, g));
+        } else {
+            self.laws.push(pairs.body_pair(0, 0).resolve(rho, g));
+            for w in 0..walls.len() {
+                self.laws.push(pairs.wall(w, 0).resolve(rho, g));
+            }
         }
         for law in &self.laws {
             match LinearDashpots::of(law) {
@@ -251,7 +252,8 @@ impl ContactPass {
         let (linear, laws) = (&self.linear[..], &self.laws[..]);
         let chunk = Chunk {
             cx: &cx,
-            linear: Linear(linear),
+            linear,
+            materials: pairs.count() > 1,
             resolved: Resolved::new(laws, pairs),
             circles: facts.circles,
             disks: facts.disks && !linear.is_empty(),
@@ -530,7 +532,11 @@ impl PassContext<'_> {
 #[derive(Clone, Copy)]
 struct Chunk<'a> {
     cx: &'a PassContext<'a>,
-    linear: Linear<'a>,
+    /// The step's laws when all are linear with constant dashpots ([`Linear`]; empty
+    /// otherwise).
+    linear: &'a [LinearDashpots],
+    /// Several materials: the laws as [`PairTable::all`] lists them.
+    materials: bool,
     resolved: Resolved<'a>,
     /// Some pair may take the lean path.
     circles: bool,
@@ -547,13 +553,53 @@ impl Chunk<'_> {
         slots: &mut [Slot],
         data: &mut [ContactData],
         loads: &mut [WallLoad],
+        cache: Option<&mut [PairCache]>,
+        history: Option<(&mut [f64], usize)>,
+        p: &mut SlotPartial,
+    ) {
+        // (A scene of several materials in copies of its own: one material's keep their code.)
+        if self.materials {
+            let linear = Linear::<true>(self.linear);
+            self.run_with::<PERIODIC, true>(slots, data, loads, cache, history, p, linear);
+        } else {
+            let linear = Linear::<false>(self.linear);
+            self.run_with::<PERIODIC, false>(slots, data, loads, cache, history, p, linear);
+        }
+    }
+
+    /// [`Chunk::run`] with the linear laws `linear`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn run_with<const PERIODIC: bool, const MATERIALS: bool>(
+        &self,
+        slots: &mut [Slot],
+        data: &mut [ContactData],
+        loads: &mut [WallLoad],
         mut cache: Option<&mut [PairCache]>,
         mut history: Option<(&mut [f64], usize)>,
         p: &mut SlotPartial,
+        linear: Linear<MATERIALS>,
     ) {
         let cx = self.cx;
-        let linear = self.linear;
         let is_linear = !linear.0.is_empty();
+        if self.disks && MATERIALS {
+            // Each body pair's law from the table.
+            let data = &mut data[..slots.len()];
+            for k in 0..slots.len() {
+                if let Some(ahead) = slots.get(k + PREFETCH_AHEAD) {
+                    prefetch_partner(cx.bodies, ahead, &cx.bodies.bound);
+                }
+                let (slot, to) = (&mut slots[k], SlotOut::data(&mut data[k]));
+                if !slot.is_wall() {
+                    contact_slot::<_, _, true, PERIODIC>(slot, to, Disks, linear, cx, p, loads);
+                } else {
+                    contact_slot_apart::<_, _, false, PERIODIC>(
+                        slot, to, Disks, linear, cx, p, loads,
+                    );
+                }
+            }
+            return;
+        }
         if self.disks {
             // The body pairs' law (the first) held here, where it stays in registers, rather
             // than read from the scene's list at every slot.
@@ -571,7 +617,7 @@ impl Chunk<'_> {
                         slot,
                         to,
                         Disks,
-                        Linear(&pair_law),
+                        Linear::<false>(&pair_law),
                         cx,
                         p,
                         loads,
@@ -835,15 +881,21 @@ pub(crate) trait LawSource: Copy {
     fn law(self, sides: Sides, cx: &PassContext) -> (Law, f64);
 }
 
-/// Laws all of [`LinearDashpots`]'s kind (`[0]` body pairs, `[1 + w]` wall w).
+/// Laws all of [`LinearDashpots`]'s kind (one material: `[0]` body pairs, `[1 + w]` wall w;
+/// `MATERIALS`, several: as [`PairTable::all`] lists them).
 #[derive(Clone, Copy)]
-struct Linear<'a>(&'a [LinearDashpots]);
+struct Linear<'a, const MATERIALS: bool>(&'a [LinearDashpots]);
 
-impl LawSource for Linear<'_> {
+impl<const MATERIALS: bool> LawSource for Linear<'_, MATERIALS> {
     const LINEAR: bool = true;
     #[inline(always)]
-    fn law(self, sides: Sides, _: &PassContext) -> (Law, f64) {
-        (self.0[sides.wall().map_or(0, |w| 1 + w)].law(), f64::NAN)
+    fn law(self, sides: Sides, cx: &PassContext) -> (Law, f64) {
+        let at = if MATERIALS {
+            cx.pair_index(sides)
+        } else {
+            sides.wall().map_or(0, |w| 1 + w)
+        };
+        (self.0[at].law(), f64::NAN)
     }
 }
 

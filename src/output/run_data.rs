@@ -26,6 +26,9 @@ pub struct Frame {
     pub step: u64,
     pub t: f64,
     pub bodies: Vec<BodyState>,
+    /// In a periodic cell, each body's image counts `ix, iy` (the trajectory's last columns:
+    /// see [`crate::dynamics::cell::Cell::unwrapped`]); empty otherwise.
+    pub images: Vec<[i32; 2]>,
 }
 
 /// One row of `increments.csv`.
@@ -144,7 +147,8 @@ impl RunData {
             message: e.to_string(),
         })?;
         let traj_file = dir.join("trajectory.csv");
-        let header = if case.cell.is_some() {
+        let cell = case.cell.is_some();
+        let header = if cell {
             super::trace::TRAJECTORY_HEADER_CELL
         } else {
             super::trace::TRAJECTORY_HEADER
@@ -172,6 +176,7 @@ impl RunData {
                     step,
                     t,
                     bodies: Vec::new(),
+                    images: Vec::new(),
                 });
             }
             let f = frames.last_mut().expect("pushed");
@@ -195,6 +200,9 @@ impl RunData {
                 vy: r[7],
                 omega: r[8],
             });
+            if cell {
+                f.images.push([r[9] as i32, r[10] as i32]);
+            }
         }
         if let Some(last) = frames.last()
             && last.bodies.len() != n
