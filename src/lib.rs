@@ -5,7 +5,7 @@
 //! note T (`// T(14)`). Full references are in the user guide (docs/src/references.md).
 //!
 //! # Pipeline
-//! `scene JSON → World → broad phase → narrow phase (ContactGeometry) → contact law → forces and
+//! `scene JSON → World → broad phase → narrow phase (Contact) → contact law → forces and
 //! moments → integrator → quiescence check → output`.
 //!
 //! # Conventions

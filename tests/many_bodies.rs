@@ -97,14 +97,14 @@ fn all_pairs(w: &World) -> BTreeSet<(u32, u32)> {
     let mut out = BTreeSet::new();
     for i in 0..b.len() {
         for j in i + 1..b.len() {
-            let c = contact(&body(i), &body(j)).unwrap();
-            if c.geometry.is_some_and(|g| g.depth > 0.0) {
+            let c = contact(&body(i), &body(j));
+            if c.is_some_and(|g| g.depth > 0.0) {
                 out.insert((i as u32, j as u32));
             }
         }
         for (k, ws) in w.walls.iter().enumerate() {
-            let c = contact(&Object::Wall(*ws.line()), &body(i)).unwrap();
-            if c.geometry.is_some_and(|g| g.depth > 0.0) {
+            let c = contact(&Object::Wall(*ws.line()), &body(i));
+            if c.is_some_and(|g| g.depth > 0.0) {
                 out.insert((i as u32, Partner::Wall(k).key()));
             }
         }

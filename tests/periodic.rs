@@ -81,10 +81,7 @@ fn brute_force_pairs(w: &World, cell: &Cell) -> BTreeSet<(usize, usize)> {
                         shape: b.shape[j],
                         pose: b.state[j].pose,
                     };
-                    if contact(&oi, &oj)
-                        .and_then(|c| c.geometry)
-                        .is_some_and(|g| g.depth > 0.0)
-                    {
+                    if contact(&oi, &oj).is_some_and(|g| g.depth > 0.0) {
                         touching += 1;
                     }
                 }

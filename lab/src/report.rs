@@ -1170,7 +1170,6 @@ fn kernel_report(quick: bool) -> (String, String) {
                         for (i, j) in &r.pairs {
                             if let Some(g) =
                                 contact(std::hint::black_box(i), std::hint::black_box(j))
-                                    .and_then(|c| c.geometry)
                             {
                                 acc += g.depth;
                             }

@@ -125,11 +125,18 @@ impl DampingSpec {
                     restitution: harmonic(a, b),
                 }
             }
-            _ => {
+            (DampingSpec::Linear(Dashpots { .. }), DampingSpec::Linear(Restitution(_)))
+            | (DampingSpec::Linear(Restitution(_)), DampingSpec::Linear(Dashpots { .. }))
+            | (DampingSpec::Linear(Dashpots { .. }), DampingSpec::Hertz { .. })
+            | (DampingSpec::Hertz { .. }, DampingSpec::Linear(Dashpots { .. })) => {
                 return Err(MixError::new(
                     "restitution",
                     "one material gives dashpots and the other a restitution",
                 ));
+            }
+            (DampingSpec::Linear(Restitution(_)), DampingSpec::Hertz { .. })
+            | (DampingSpec::Hertz { .. }, DampingSpec::Linear(Restitution(_))) => {
+                return Err(MixError::new("model", "the two materials' models differ"));
             }
         })
     }

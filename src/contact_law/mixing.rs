@@ -63,10 +63,12 @@ pub(crate) fn harmonic_scaled(a: Scaled, b: Scaled, key: &'static str) -> Result
     match (a, b) {
         (Scaled::Absolute(x), Scaled::Absolute(y)) => Ok(Scaled::Absolute(harmonic(x, y))),
         (Scaled::OverRhoG(x), Scaled::OverRhoG(y)) => Ok(Scaled::OverRhoG(harmonic(x, y))),
-        _ => Err(MixError::new(
-            key,
-            format!("one material gives `{key}` and the other `{key}_over_rho_g`"),
-        )),
+        (Scaled::Absolute(_), Scaled::OverRhoG(_)) | (Scaled::OverRhoG(_), Scaled::Absolute(_)) => {
+            Err(MixError::new(
+                key,
+                format!("one material gives `{key}` and the other `{key}_over_rho_g`"),
+            ))
+        }
     }
 }
 

@@ -558,26 +558,30 @@ pub struct LinearDashpots {
 }
 
 impl LinearDashpots {
-    /// The law's numbers, when it is of this kind.
+    /// The law's numbers, when it is of this kind. Every part's kinds are named (a new kind
+    /// of part must say here whether it is of this kind).
     pub fn of(law: &Law) -> Option<Self> {
-        match *law {
-            Law {
-                normal: NormalPart::Linear { kn },
-                damping: DampingPart::Dashpots { eta_n, eta_s },
-                tangential:
-                    TangentialPart {
-                        stiffness: ShearStiffness::Constant(ks),
-                        friction,
-                    },
-                rolling: None,
-            } => Some(LinearDashpots {
+        let kn = match law.normal {
+            NormalPart::Linear { kn } => kn,
+            NormalPart::Hertz { .. } => return None,
+        };
+        let (eta_n, eta_s) = match law.damping {
+            DampingPart::Dashpots { eta_n, eta_s } => (eta_n, eta_s),
+            DampingPart::Restitution { .. } | DampingPart::Hertz { .. } => return None,
+        };
+        let ks = match law.tangential.stiffness {
+            ShearStiffness::Constant(ks) => ks,
+            ShearStiffness::Mindlin { .. } => return None,
+        };
+        match law.rolling {
+            None => Some(LinearDashpots {
                 kn,
                 eta_n,
                 eta_s,
                 ks,
-                friction,
+                friction: law.tangential.friction,
             }),
-            _ => None,
+            Some(RollingPart { .. }) => None,
         }
     }
 

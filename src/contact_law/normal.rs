@@ -208,7 +208,10 @@ impl NormalSpec {
                 kn: harmonic_scaled(a, b, "kn")?,
             },
             (SpringSpec::Hertz { .. }, SpringSpec::Hertz { .. }) => self.spring,
-            _ => return Err(MixError::new("model", "the two materials' models differ")),
+            (SpringSpec::Linear { .. }, SpringSpec::Hertz { .. })
+            | (SpringSpec::Hertz { .. }, SpringSpec::Linear { .. }) => {
+                return Err(MixError::new("model", "the two materials' models differ"));
+            }
         };
         Ok(NormalSpec {
             spring,

@@ -15,7 +15,7 @@
 use super::EquivalentOverlap;
 use crate::geometry::Vec2;
 use crate::geometry::overlap_area::DiskLens;
-use crate::narrow_phase::{ContactGeometry, ContactState, OverlapArea};
+use crate::narrow_phase::{Contact, ContactState, OverlapArea};
 
 /// What the normal spring of one contact acts on, and where it acts.
 #[derive(Clone, Copy, Debug)]
@@ -42,45 +42,34 @@ pub trait PairFacts {
 }
 
 impl SpringOn {
-    /// What the spring acts on for a contact in `state` with the record `geo` (its flat overlap
-    /// and its area when the narrow phase gave them), under the area law or not.
-    #[inline]
-    pub fn of(
-        state: ContactState,
-        geo: &ContactGeometry,
-        area_law: bool,
-        pair: &impl PairFacts,
-    ) -> SpringOn {
-        match (geo.flat, geo.area) {
-            // Flat on flat against a wall: a Winkler foundation under either law (against a
-            // straight line it is the gradient of its energy); between two bodies under the depth
-            // law only.
-            (Some(f), _)
-                if state == ContactState::Overlap && (pair.against_wall() || !area_law) =>
-            {
-                let ybar = (f.centroid - geo.chord.0).dot(&geo.normal).abs();
-                SpringOn::Winkler(f.area / pair.face_length(), 2.0 * ybar, f.centroid)
-            }
-            (_, Some(a)) if area_law => SpringOn::Area(
+    /// What the spring acts on for the contact `c` (its flat overlap and its area when the
+    /// narrow phase gave them), under the area law or not.
+    #[inline(always)]
+    pub fn of(c: &Contact, area_law: bool, pair: &impl PairFacts) -> SpringOn {
+        // Flat on flat against a wall: a Winkler foundation under either law (against a
+        // straight line it is the gradient of its energy); between two bodies under the depth
+        // law only.
+        if let Some(f) = c.flat
+            && c.state == ContactState::Overlap
+            && (pair.against_wall() || !area_law)
+        {
+            // ȳ: the centroid's distance from the chord's line.
+            let ybar = (f.centroid - c.point).dot(&c.normal).abs();
+            return SpringOn::Winkler(f.area / pair.face_length(), 2.0 * ybar, f.centroid);
+        }
+        match c.area {
+            Some(a) if area_law => SpringOn::Area(
                 a,
-                if pair.flat_pair() {
+                // Two flat-sided bodies' overlap in two crossings carries its flat overlap
+                // (`Contact::flat`, asked for above only against a wall or under the depth
+                // law): the pair's facts are asked only for the other states.
+                if c.flat.is_some() || (c.state != ContactState::Overlap && pair.flat_pair()) {
                     EquivalentOverlap::Flat(pair.face_length())
                 } else {
                     EquivalentOverlap::Lens(pair.lens())
                 },
             ),
-            _ => SpringOn::Depth,
-        }
-    }
-
-    /// For a pair of conics (never flat-sided): the area potential on the lens of the pair's
-    /// equal-area disks when the area law gave an area, else the depth — as [`SpringOn::of`]
-    /// decides for such a pair.
-    #[inline(always)]
-    pub fn of_conics(area: Option<OverlapArea>, area_law: bool, pair: &impl PairFacts) -> SpringOn {
-        match area {
-            Some(a) if area_law => SpringOn::Area(a, EquivalentOverlap::Lens(pair.lens())),
-            _ => SpringOn::Depth,
+            Some(_) | None => SpringOn::Depth,
         }
     }
 

@@ -189,7 +189,7 @@ impl RollingPart {
         let damping = match (a.damping, b.damping) {
             (None, None) => None,
             (Some(x), Some(y)) => Some(harmonic(x, y)),
-            _ => {
+            (Some(_), None) | (None, Some(_)) => {
                 return Err(MixError::new(
                     "rolling_damping",
                     "one material gives it and the other does not",

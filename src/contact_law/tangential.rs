@@ -69,7 +69,10 @@ impl TangentialSpec {
                 ShearSpec::Constant(harmonic_scaled(a, b, "ks")?)
             }
             (ShearSpec::Mindlin, ShearSpec::Mindlin) => ShearSpec::Mindlin,
-            _ => return Err(MixError::new("model", "the two materials' models differ")),
+            (ShearSpec::Constant(_), ShearSpec::Mindlin)
+            | (ShearSpec::Mindlin, ShearSpec::Constant(_)) => {
+                return Err(MixError::new("model", "the two materials' models differ"));
+            }
         };
         Ok(TangentialSpec {
             stiffness,

@@ -14,9 +14,10 @@
 //!    fallback geometries, the deepest overlap).
 //!
 //! # Compiled for what a scene needs
-//! [`contact_slot`] is generic over where its geometry comes from ([`Geometry`]: the circle
-//! kernels on the bodies' radii in a scene of disks, a circle pair's lean contact computed ahead
-//! for the chunk, or the dispatcher with the slot's pair cache), over its laws ([`LawSource`]:
+//! [`contact_slot`] is generic over where its geometry comes from ([`Geometry`]: the narrow
+//! phase's dispatcher on circles of the bodies' radii in a scene of disks, a circle pair's
+//! contact computed ahead for the chunk, or the dispatcher on the bodies' shapes with the slot's
+//! pair cache), over its laws ([`LawSource`]:
 //! all linear with constant dashpots — the law's kinds then known, so that nothing it does not
 //! read is computed — or resolved), and over whether the slot pairs two
 //! bodies (`PAIR`: no wall branch left). Each combination the pass takes is a copy of the same
@@ -24,7 +25,7 @@
 //! scene allows (10⁴ disks: ~40 % fewer per slot than the general copy).
 
 use super::body::Bodies;
-use super::boundary::{Boundary, BoundaryKind, WallLoad};
+use super::boundary::{Boundary, WallLoad};
 use super::cell::Cell;
 use super::contacts::{ContactData, ContactExtra, ContactList, Slot};
 use super::kinematics::{self, Contact};
@@ -34,12 +35,8 @@ use super::partner::{Partner, Sides};
 use crate::contact_law::{ContactSpec, History, Law, LinearDashpots, NormalForce, PairSpec};
 use crate::contact_law::{HISTORY_LEN, Needs, PairFacts, SpringOn};
 use crate::geometry::overlap_area::DiskLens;
-use crate::geometry::{Pose, Vec2};
-use crate::narrow_phase::circle_circle::overlap_circle_circle;
-use crate::narrow_phase::circle_wall::overlap_wall_circle;
-use crate::narrow_phase::{
-    ContactState, LeanContact, PairCache, Request, Side, conic_lean, contact_sides, overlap_lean,
-};
+use crate::geometry::{Pose, Shape, Vec2};
+use crate::narrow_phase::{self, ContactState, PairCache, Request, Side, contact_with};
 use rayon::prelude::*;
 
 /// Neighbour-list slots per parallel chunk. A fixed size: every sum is formed chunk by chunk
@@ -743,37 +740,52 @@ pub(crate) trait Geometry {
     fn find(self, sides: Sides, cx: &PassContext) -> Option<Found>;
 }
 
-/// A scene of disks: the circle kernels on the bodies' bounding radii, without the
-/// dispatcher's sides (the wall is the giver, i, as [`PassContext::sides`] has it): the same
-/// kernels on the same numbers as the dispatcher's lean path, the same bits.
+/// A scene of disks: the dispatcher on circles of the bodies' bounding radii (their radii),
+/// without their shapes (the wall is the giver, i, as [`PassContext::sides`] has it): the same
+/// kernels on the same numbers as for the bodies' own shapes, the same bits. The spring on the
+/// depth (a disk's area potential is that spring).
 #[derive(Clone, Copy)]
 struct Disks;
+
+impl Disks {
+    /// The slot's contact, from an empty pair cache (a circle pair keeps nothing).
+    #[inline(always)]
+    fn contact(self, sides: Sides, cx: &PassContext) -> Option<narrow_phase::Contact> {
+        let b = cx.bodies;
+        let recv = sides.receiver;
+        let circle_j = Shape::Circle { r: b.bound[recv] };
+        let j = Side::Body(&circle_j, &b.state[recv].pose);
+        match sides.giver {
+            Partner::Wall(w) => contact_with(
+                cx.walls[w].side(),
+                j,
+                &mut PairCache::default(),
+                Request::LEAN,
+            ),
+            Partner::Body(k) => {
+                let circle_i = Shape::Circle { r: b.bound[k] };
+                let mut store = Pose::IDENTITY;
+                let i = Side::Body(&circle_i, cx.giver_pose(k, sides, &mut store));
+                contact_with(i, j, &mut PairCache::default(), Request::LEAN)
+            }
+        }
+    }
+}
 
 impl Geometry for Disks {
     const DISKS: bool = true;
     #[inline(always)]
     fn find(self, sides: Sides, cx: &PassContext) -> Option<Found> {
-        let b = cx.bodies;
-        let recv = sides.receiver;
-        let (rj, pj) = (b.bound[recv], &b.state[recv].pose);
-        let mut store = Pose::IDENTITY;
-        let found = match sides.giver {
-            Partner::Wall(w) => match &cx.walls[w].kind {
-                BoundaryKind::Wall(wall) => overlap_wall_circle(wall, rj, pj),
-            },
-            Partner::Body(k) => {
-                overlap_circle_circle(b.bound[k], cx.giver_pose(k, sides, &mut store), rj, pj)
-            }
-        };
-        found.map(|(state, point, normal, depth)| (state, point, normal, depth, SpringOn::Depth))
+        self.contact(sides, cx)
+            .map(|c| (c.state, c.point, c.normal, c.depth, SpringOn::Depth))
     }
 }
 
-/// A pair through the narrow phase's lean path, computed ahead for the chunk ([`lean_of`]): two
-/// circles, a circle and a wall, a clump's member pair. The spring on the depth (a disk's area
-/// potential is that spring).
+/// A pair's contact computed ahead for the chunk ([`lean_of`]: two circles, a circle and a
+/// wall, a clump's member pair). The spring on the depth (a disk's area potential is that
+/// spring).
 #[derive(Clone, Copy)]
-struct Lean(Option<LeanContact>);
+struct Lean(Option<narrow_phase::Contact>);
 
 impl Geometry for Lean {
     const DISKS: bool = false;
@@ -784,9 +796,9 @@ impl Geometry for Lean {
     }
 }
 
-/// The narrow phase's dispatcher with the slot's pair cache (conic pairs start from the last
-/// step's crossings if the contact lasts, or a separating axis, and leave the next step's
-/// there; `None`: a scene no pair of which keeps anything).
+/// The narrow phase's dispatcher on the bodies' shapes with the slot's pair cache (conic pairs
+/// start from the last step's crossings if the contact lasts, or a separating axis, and leave
+/// the next step's there; `None`: a scene no pair of which keeps anything).
 struct Dispatch<'a>(Option<&'a mut PairCache>);
 
 impl Geometry for Dispatch<'_> {
@@ -805,28 +817,18 @@ impl Geometry for Dispatch<'_> {
         };
         let mut store = Pose::IDENTITY;
         let (i, j) = cx.sides(sides, &mut store);
-        // The conic pairs through the dispatcher's lean record ([`conic_lean`]: the same kernel
-        // without the chord's world coordinates and the full record, whose copies cost the
-        // 10⁴-ellipse pile ~5 % of its step); the other kinds through the full dispatcher.
-        match conic_lean(i, j, cache, area_law) {
-            Some(c) => c.map(|c| {
-                let spring = SpringOn::of_conics(c.area, area_law, &facts);
-                (c.state, c.point, c.normal, c.depth, spring)
-            }),
-            None => {
-                let request = Request {
-                    area: area_law,
-                    chord: false,
-                    trace: None,
-                };
-                let c = contact_sides(i, j, cache, request)
-                    .expect("a slot pairs a body with a body or a wall");
-                c.geometry.map(|geo| {
-                    let spring = SpringOn::of(c.state, &geo, area_law, &facts);
-                    (c.state, geo.point, geo.normal, geo.depth, spring)
-                })
-            }
-        }
+        let request = Request {
+            area: area_law,
+            chord: false,
+            trace: None,
+        };
+        // (Not `Option::map` with a closure: the compiler kept that closure out of line, and
+        // the record went through memory to it — 4618 against 4379 instructions per body-step
+        // on the settled 10⁴-ellipse pile under the area law, callgrind's count of
+        // `World::step` over 50 steps as the lab notebook takes it.)
+        let c = contact_with(i, j, cache, request)?;
+        let spring = SpringOn::of(&c, area_law, &facts);
+        Some((c.state, c.point, c.normal, c.depth, spring))
     }
 }
 
@@ -1145,18 +1147,21 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool, const PERIODIC: boo
     }
 }
 
-/// A slot's pair through the narrow phase's lean path ([`overlap_lean`]): `Some` for two
-/// circles, a circle and a wall, or a clump's member pair ([`members::lean_contact`]); `None`
-/// for the other pair kinds.
+/// A slot's pair computed ahead for the chunk: `Some` for two circles or a circle and a wall
+/// ([`Disks`]' geometry: the bodies' radii are their bounding radii) and for a clump's member
+/// pair ([`members::lean_contact`]); `None` for the other pair kinds.
 #[inline(always)]
-fn lean_of<const PERIODIC: bool>(slot: &Slot, cx: &PassContext) -> Option<Option<LeanContact>> {
+fn lean_of<const PERIODIC: bool>(
+    slot: &Slot,
+    cx: &PassContext,
+) -> Option<Option<narrow_phase::Contact>> {
     let sides = cx.slot_sides::<false, PERIODIC>(slot);
     if slot.sub != 0 {
         return Some(members::lean_contact(cx.bodies, cx.walls, slot, sides));
     }
-    let mut store = Pose::IDENTITY;
-    let (i, j) = cx.sides(sides, &mut store);
-    overlap_lean(i, j)
+    let b = cx.bodies;
+    let circles = b.is_circle[sides.receiver] && sides.giving_body().is_none_or(|k| b.is_circle[k]);
+    circles.then(|| Disks.contact(sides, cx))
 }
 
 /// Asks the processor to fetch the state of slot `s`'s second body (`j`, not a wall) and its

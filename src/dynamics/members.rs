@@ -8,15 +8,14 @@ use super::boundary::Boundary;
 use super::contacts::Slot;
 use super::partner::{Partner, Sides};
 use crate::geometry::{Clump, Pose, Shape};
-use crate::narrow_phase::{LeanContact, Request, Side, clump, overlap_lean};
+use crate::narrow_phase::{Contact, PairCache, Request, Side, clump, contact_with};
 
-/// A clump slot's member pair's contact, as the lean path gives it: the lean path's when the
-/// member's partner is a circle or a wall (or another clump's member), the clump kernels'
-/// otherwise (a member against an ellipse, a rectangle or a polygon, from an empty pair cache).
-/// The contact pass takes it with the spring on its depth: a member is a disk, whose area
-/// potential against a wall or a disk *is* that spring; against an ellipse, a rectangle or a
-/// polygon the area law would take the lens potential, which clump members do not (a
-/// documented limitation).
+/// A clump slot's member pair's contact, from the dispatcher on the member (a circle at its
+/// world centre) and the other side, from an empty pair cache, without a chord or an area. The
+/// contact pass takes it with the spring on its depth: a member is a disk, whose area potential
+/// against a wall or a disk *is* that spring; against an ellipse, a rectangle or a polygon the
+/// area law would take the lens potential, which clump members do not (a documented
+/// limitation).
 #[cold]
 #[inline(never)]
 pub(crate) fn lean_contact(
@@ -24,24 +23,10 @@ pub(crate) fn lean_contact(
     walls: &[Boundary],
     slot: &Slot,
     sides: Sides,
-) -> Option<LeanContact> {
+) -> Option<Contact> {
     let store = placed(b, slot, sides);
     let (i, j) = sides_of(b, walls, sides, &store);
-    if let Some(lean) = overlap_lean(i, j) {
-        return lean;
-    }
-    let request = Request {
-        area: false,
-        chord: false,
-        trace: None,
-    };
-    let c = clump::contact_member(i, j, &request);
-    c.geometry.map(|g| LeanContact {
-        state: c.state,
-        point: g.point,
-        normal: g.normal,
-        depth: g.depth,
-    })
+    contact_with(i, j, &mut PairCache::default(), Request::LEAN)
 }
 
 /// The member circles of a clump slot's two sides, `[giver, receiver]`, each placed at its

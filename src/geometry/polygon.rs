@@ -196,11 +196,7 @@ impl Polygon {
     /// Support `max over vertices of u·v` (u in the body frame, any length).
     #[inline]
     pub fn support(&self, u: Vec2) -> f64 {
-        self.0
-            .vertices
-            .iter()
-            .map(|v| u.x * v.x + u.y * v.y)
-            .fold(f64::NEG_INFINITY, f64::max)
+        vertex_support(&self.0.vertices, u)
     }
 
     /// The data's address (a stable key for canonical orders within one process).
@@ -208,6 +204,36 @@ impl Polygon {
         self.0
     }
 }
+
+/// `max over the vertices of u·v` (u any length): a convex polygon's support along `u`.
+#[inline]
+pub fn vertex_support(vertices: &[Vec2], u: Vec2) -> f64 {
+    vertices
+        .iter()
+        .map(|v| u.x * v.x + u.y * v.y)
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// The corners of a `w × h` rectangle centred at the origin (its sides along the axes),
+/// counter-clockwise from `(−w/2, −h/2)`.
+#[inline]
+pub fn rectangle_corners(w: f64, h: f64) -> [Vec2; 4] {
+    let (x, y) = (0.5 * w, 0.5 * h);
+    [
+        Vec2::new(-x, -y),
+        Vec2::new(x, -y),
+        Vec2::new(x, y),
+        Vec2::new(-x, y),
+    ]
+}
+
+/// The outward normals of [`rectangle_corners`]' edges (edge k from corner k to k + 1).
+pub const RECTANGLE_NORMALS: [Vec2; 4] = [
+    Vec2::new(0.0, -1.0),
+    Vec2::new(1.0, 0.0),
+    Vec2::new(0.0, 1.0),
+    Vec2::new(-1.0, 0.0),
+];
 
 impl PolygonData {
     fn new(given: &[[f64; 2]]) -> Result<PolygonData, PolygonError> {

@@ -233,20 +233,39 @@ impl Shape {
         }
     }
 
+    /// The vertices of a shape with corners, counter-clockwise about the centroid (body
+    /// frame): a polygon's, a rectangle's four corners (written into `corners`, from
+    /// `(−w/2, −h/2)`, and read from there) — to the narrow phase a rectangle *is* a
+    /// four-vertex polygon; none for a smooth shape (circle, ellipse) or a clump.
+    #[inline]
+    pub fn vertices<'a>(&'a self, corners: &'a mut [Vec2; 4]) -> &'a [Vec2] {
+        match *self {
+            Shape::Polygon(ref p) => &p.data().vertices,
+            Shape::Rectangle { w, h } => {
+                *corners = super::polygon::rectangle_corners(w, h);
+                &corners[..]
+            }
+            Shape::Circle { .. } | Shape::Ellipse { .. } | Shape::Clump(_) => &[],
+        }
+    }
+
+    /// The outward unit normals of the edges of [`Shape::vertices`] (edge k from vertex k to
+    /// k + 1); none for a smooth shape or a clump.
+    #[inline]
+    pub fn edge_normals(&self) -> &'static [Vec2] {
+        match *self {
+            Shape::Polygon(p) => &p.data().normals,
+            Shape::Rectangle { .. } => &super::polygon::RECTANGLE_NORMALS,
+            Shape::Circle { .. } | Shape::Ellipse { .. } | Shape::Clump(_) => &[],
+        }
+    }
+
     /// The boundary as a closed list of body-frame points for drawing, where the shape has
     /// corners (rectangle, polygon): its vertices counter-clockwise; `None` for a conic.
     pub fn corners(&self) -> Option<Vec<Vec2>> {
         match *self {
             Shape::Circle { .. } | Shape::Ellipse { .. } | Shape::Clump(_) => None,
-            Shape::Rectangle { w, h } => {
-                let (x, y) = (0.5 * w, 0.5 * h);
-                Some(vec![
-                    Vec2::new(-x, -y),
-                    Vec2::new(x, -y),
-                    Vec2::new(x, y),
-                    Vec2::new(-x, y),
-                ])
-            }
+            Shape::Rectangle { w, h } => Some(super::polygon::rectangle_corners(w, h).to_vec()),
             Shape::Polygon(p) => Some(p.vertices.to_vec()),
         }
     }

@@ -4,25 +4,26 @@
 //! along the line of centres, so the chord definition gives the textbook contact exactly:
 //! normal along the line of centres, `δ = r_i + r_j − d`.
 
-use super::{Contact, ContactGeometry, ContactState, OverlapArea, Request, TOUCH_TOL};
+use super::{Contact, ContactState, OverlapArea, Request, TOUCH_TOL};
 use crate::geometry::overlap_area::ellipse_cap;
 use crate::geometry::{Pose, Vec2};
 
-/// A circle pair's state, contact point, normal and depth, without the chord (whose half-length
-/// costs a square root the dynamics does not read). `None` when separated.
-/// [`contact_circle_circle`] is this plus what the request asks.
+/// Contact between circle i (radius `ri`) and circle j (radius `rj`): the chord's half-length
+/// when `request.chord` (a square root the dynamics does not read), the overlap area when
+/// `request.area`.
 ///
 /// Swap-symmetric by construction (bit for bit): every quantity is formed from expressions
 /// that are exactly symmetric in i and j (`r_i + r_j`, `c_i + c_j`, `|c_j − c_i|`) or exactly
 /// antisymmetric (`c_j − c_i`, `r_i − r_j`), so exchanging the circles negates the normal and
 /// keeps the rest.
 #[inline(always)]
-pub fn overlap_circle_circle(
+pub fn contact_circle_circle(
     ri: f64,
     pi: &Pose,
     rj: f64,
     pj: &Pose,
-) -> Option<(ContactState, Vec2, Vec2, f64)> {
+    request: &Request,
+) -> Option<Contact> {
     let dv = pj.position - pi.position;
     let d2 = dv.norm_squared();
     let sum = ri + rj;
@@ -31,6 +32,15 @@ pub fn overlap_circle_circle(
     }
     let d = d2.sqrt();
     let depth = sum - d;
+    let lean = |state, point, normal| Contact {
+        state,
+        point,
+        normal,
+        depth,
+        half_chord: 0.0,
+        area: None,
+        flat: None,
+    };
     if d <= (ri - rj).abs() {
         // One circle inside the other: normal along the line of centres; for concentric
         // circles the x axis, from the larger to the smaller (so that it flips with the pair;
@@ -43,7 +53,7 @@ pub fn overlap_circle_circle(
             -Vec2::x()
         };
         let inner = if ri >= rj { pj.position } else { pi.position };
-        return Some((ContactState::Contained, inner, n, depth));
+        return Some(lean(ContactState::Contained, inner, n));
     }
     let n = dv * (1.0 / d);
     // The radical line (the chord's line) is at (d² + r_i² − r_j²)/(2d) from c_i along n, i.e.
@@ -56,30 +66,17 @@ pub fn overlap_circle_circle(
     } else {
         ContactState::Overlap
     };
-    Some((state, point, n, depth))
-}
-
-/// Contact between circle i (radius `ri`) and circle j (radius `rj`): the chord when
-/// `request.chord` (otherwise both ends at the contact point, unless the area is asked), the
-/// overlap area when `request.area`. Swap-symmetric bit for bit, as [`overlap_circle_circle`]
-/// (the chord's two ends exchange).
-#[inline(always)]
-pub fn contact_circle_circle(ri: f64, pi: &Pose, rj: f64, pj: &Pose, request: &Request) -> Contact {
-    let Some((state, point, n, depth)) = overlap_circle_circle(ri, pi, rj, pj) else {
-        return Contact::SEPARATED;
-    };
-    let area = request.area;
-    let mut overlap = None;
-    let chord = if state == ContactState::Contained || !(request.chord || area) {
-        (point, point)
-    } else {
+    let mut c = lean(state, point, n);
+    if request.chord || request.area {
         // Half the chord is twice the area of the triangle of sides r_i, r_j, d over d (Heron),
         // written with δ = r_i + r_j − d: no cancellation at small overlaps, and symmetric.
         let d = ri + rj - depth;
         let heron = depth * ((2.0 * ri - depth) * (2.0 * rj - depth)) * (2.0 * (ri + rj) - depth);
         let half = heron.max(0.0).sqrt() / (2.0 * d);
-        let t = Vec2::new(-n.y, n.x);
-        if area && state == ContactState::Overlap {
+        if request.chord {
+            c.half_chord = half;
+        }
+        if request.area && state == ContactState::Overlap {
             // The cap of each circle beyond the chord, from its sagitta — h_i = δ(2r_j − δ)/(2d)
             // for i, h_j = δ(2r_i − δ)/(2d) for j (r − h would cancel at small overlaps) — in
             // the frame (t, n) about its centre.
@@ -88,7 +85,7 @@ pub fn contact_circle_circle(ri: f64, pi: &Pose, rj: f64, pj: &Pose, request: &R
                 depth * (2.0 * rj - depth) / (2.0 * d),
                 depth * (2.0 * ri - depth) / (2.0 * d),
             );
-            overlap = Some(OverlapArea {
+            c.area = Some(OverlapArea {
                 area: cap(ri, hi) + cap(rj, hj),
                 length: 2.0 * half,
                 normal: n,
@@ -96,17 +93,6 @@ pub fn contact_circle_circle(ri: f64, pi: &Pose, rj: f64, pj: &Pose, request: &R
                 couple: 0.0,
             });
         }
-        (point - t * half, point + t * half)
-    };
-    Contact {
-        state,
-        geometry: Some(ContactGeometry {
-            point,
-            normal: n,
-            depth,
-            chord,
-            flat: None,
-            area: overlap,
-        }),
     }
+    Some(c)
 }

@@ -16,7 +16,7 @@ pub fn contact_wall_ellipse(
     b: f64,
     pose: &Pose,
     request: &Request,
-) -> Contact {
+) -> Option<Contact> {
     let area = request.area;
     let scale = pow2_floor(a.max(b));
     let inv = 1.0 / scale;
@@ -27,7 +27,7 @@ pub fn contact_wall_ellipse(
     let s = ((a * nx) * (a * nx) + (b * ny) * (b * ny)).sqrt();
     let depth = s - h;
     if depth < -TOUCH_TOL {
-        return Contact::SEPARATED;
+        return None;
     }
     // The wall line in the body frame is n_b·x = −h: x = m + σ t, m = −h n_b, t ⟂ n_b.
     let (mx, my, tx, ty) = (-h * nx, -h * ny, -ny, nx);
@@ -56,18 +56,14 @@ pub fn contact_wall_ellipse(
     } else {
         ContactState::Contained
     };
-    let mut g = frame.geometry(p, q, mid, [nx, ny], depth);
-    g.normal = wall.normal;
+    let mut c = frame.contact(state, p, q, mid, [nx, ny], depth, request);
+    c.normal = wall.normal;
     if area && state == ContactState::Overlap {
         // The part of the ellipse below the wall line, from the depth (exact to rounding).
         let cap = ellipse_cap_at_depth(a, b, [-nx, -ny], depth);
-        g.area = Some(frame.overlap(&LocalOverlap::chord(cap, p, q, [nx, ny])));
-        if let Some(o) = &mut g.area {
-            o.normal = wall.normal;
-        }
+        let mut o = frame.overlap(&LocalOverlap::chord(cap, p, q, [nx, ny]));
+        o.normal = wall.normal;
+        c.area = Some(o);
     }
-    Contact {
-        state,
-        geometry: Some(g),
-    }
+    Some(c)
 }

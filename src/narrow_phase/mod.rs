@@ -1,22 +1,29 @@
 //! Narrow phase: for a pair of objects, whether they touch and, if so, the contact record of the
-//! chord definition. One file and one kernel per pair kind (`contact_<i>_<j>`), and one
-//! dispatcher, [`contact_with`], through which every caller goes (the dynamics, the `contact`
-//! command, the reports, the tests and benchmarks):
-//! - it takes the two [`Object`]s, an opaque per-pair cache ([`PairCache`]: what the pair kind
-//!   keeps from one query to the next, the conic pairs' warm start; parry keeps its contact
-//!   workspace so) and a [`Request`] (whether the overlap area and the chord are wanted, and
-//!   whether to report if the warm start gave the result);
-//! - it chooses the pair's canonical order ([`computed_in_order`]), calls the kernel, and turns
-//!   the result round when the pair was given the other way — the one place where the normal is
-//!   flipped and the cache re-expressed.
+//! chord definition. One file and one kernel per pair kind (`contact_<i>_<j>`), one record
+//! ([`Contact`]) and one dispatcher, [`contact_with`], through which every caller goes (the
+//! dynamics, the `contact` command, the reports, the tests and benchmarks):
+//! - it takes the two sides ([`Object`]s or borrowed [`Side`]s), an opaque per-pair cache
+//!   ([`PairCache`]: what the pair kind keeps from one query to the next, the conic pairs' warm
+//!   start; parry keeps its contact workspace so) and a [`Request`] (whether the overlap area
+//!   and the chord are wanted, and whether to report if the warm start gave the result);
+//! - one exhaustive match over the pair's kinds picks the kernel and the order it computes the
+//!   pair in, and turns the result round when that order is not the one given — the one place
+//!   where the normal is flipped and the cache re-expressed.
+//!
+//! The kinds the kernels know: a wall, a circle, an ellipse (a conic), a convex polygon (a
+//! polygon, or a rectangle as its four corners: [`Shape::vertices`]), a clump (its member
+//! disks' contacts). The closed forms and the conic pairs (what a scene of disks or ellipses meets at
+//! every step) are inlined into the caller; the polygon pairs and the clumps are computed out of
+//! line ([`cold`]), so that they do not weigh on the hot pairs' code.
 //!
 //! [`contact`] is the one-off query (an empty cache, everything computed).
 //!
 //! # Conventions (for every pair kind)
 //! - The unit `normal` points from i towards j. For a wall as i it is the wall's normal; for a
 //!   wall as j it is minus the wall's normal.
-//! - `chord = (p1, p2)`: the two points where the boundaries cross; `point` is its midpoint and
-//!   `normal` is perpendicular to it.
+//! - The chord: the two points where the boundaries cross, `point ± half_chord · t` with `t` the
+//!   normal turned a quarter turn counter-clockwise ([`Contact::chord`]); `point` is its
+//!   midpoint and `normal` is perpendicular to it.
 //! - `depth` `δ = h_i(n) + h_j(−n)` with `h` the support function: the overlap measured along the
 //!   normal, positive when penetrating. (`δ = h_i(n) − n·p1 + h_j(−n) + n·p1`: the `n·p1` cancel.)
 //!   The sign of `n` is the one with the smaller depth (for bodies: `n·(c_j − c_i) ≥ 0`).
@@ -26,18 +33,20 @@
 //!   distance itself, however far the wall's point lies along the line.
 //!
 //! # Swap symmetry
-//! Swapping i and j gives the same state, depth, point, chord (its ends possibly exchanged) and
-//! flat overlap, and the normal negated; for the overlap area ([`OverlapArea`]) the same area,
+//! Swapping i and j gives the same state, depth, point, chord (its ends exchanged) and flat
+//! overlap, and the normal negated; for the overlap area ([`OverlapArea`]) the same area,
 //! length and point, with the normal and the couple negated ([`Contact::swapped`]). This holds
 //! **bit for bit**, by construction: every pair is computed in one order only, and the other
 //! order is that result swapped —
 //! - a wall and a body: the wall as i;
-//! - a circle and an ellipse: the circle as i; a rectangle and a conic: the rectangle as i;
-//! - two bodies of the same kind (ellipses, rectangles): the order of [`computed_first`], a
-//!   total order on (sizes, position, orientation) that depends on the pair alone. The kernels
-//!   compute in a frame centred on their first body and decide states on quantities rounded in
-//!   that frame, so two orders could otherwise differ in the last bits — and at a decision's
-//!   threshold in the state (a concentric pair's fallback normal was even i's own x axis);
+//! - a circle and an ellipse: the circle as i; a polygon (or rectangle) and a conic: the
+//!   polygon as i;
+//! - two ellipses, two polygons (rectangles among them): the order of [`computed_first`], a
+//!   total order on (kind, sizes, position, orientation) that depends on the pair alone. The
+//!   kernels compute in a frame centred on their first body and decide states on quantities
+//!   rounded in that frame, so two orders could otherwise differ in the last bits — and at a
+//!   decision's threshold in the state (a concentric pair's fallback normal was even i's own x
+//!   axis);
 //! - two circles: a closed form whose every term is exactly symmetric (`r_i + r_j`,
 //!   `c_i + c_j`, `|c_j − c_i|`) or antisymmetric (`c_j − c_i`, `r_i − r_j`), so no order is
 //!   chosen ([`circle_circle`]).
@@ -52,25 +61,20 @@
 //! [`ContactState::Deep`] or [`ContactState::Contained`], which later stages count and report.
 
 use crate::geometry::{Pose, Shape, Vec2, Wall};
-use ellipse_ellipse::Warm;
 use std::cell::Cell;
 
 pub use cache::PairCache;
 
 pub mod cache;
-pub mod circle_circle;
-pub mod circle_ellipse;
-pub mod circle_wall;
+mod circle_circle;
+mod circle_wall;
 pub mod clump;
 pub mod ellipse_ellipse;
-pub mod ellipse_wall;
-pub mod polygon_circle;
-pub mod polygon_conic;
-pub mod polygon_polygon;
-pub mod polygon_wall;
-pub mod rectangle_conic;
-pub mod rectangle_rectangle;
-pub mod rectangle_wall;
+mod ellipse_wall;
+mod polygon_conic;
+mod polygon_polygon;
+mod polygon_wall;
+mod small;
 
 /// How two objects relate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -103,25 +107,66 @@ impl ContactState {
     pub fn is_deep(&self) -> bool {
         matches!(self, ContactState::Deep | ContactState::Contained)
     }
+
+    /// The state of a query's result: [`Separated`](Self::Separated) for none.
+    #[inline]
+    pub fn of(c: Option<&Contact>) -> ContactState {
+        c.map_or(ContactState::Separated, |c| c.state)
+    }
 }
 
-/// The one contact record every pair kind produces (world coordinates).
+/// The one contact record every pair kind produces (world coordinates), for two objects that
+/// touch; a query's `None` is "apart".
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ContactGeometry {
+pub struct Contact {
+    /// Relation of the pair (never [`ContactState::Separated`]).
+    pub state: ContactState,
     /// Chord midpoint (contact point).
     pub point: Vec2,
     /// Unit normal from i towards j, perpendicular to the chord.
     pub normal: Vec2,
     /// Overlap along `normal` (positive when penetrating).
     pub depth: f64,
-    /// The two boundary crossings (equal for touching and for the fallbacks' degenerate chords).
-    pub chord: (Vec2, Vec2),
-    /// The overlap polygon's area and centroid where both sides are flat (rectangle–wall,
-    /// rectangle–rectangle); `None` otherwise. See [`FlatOverlap`].
-    pub flat: Option<FlatOverlap>,
+    /// Half the chord's length ([`Contact::chord`]): 0 for touching and for the fallbacks'
+    /// degenerate chords, and when the [`Request`] did not ask for the chord (the dynamics
+    /// reads none; two circles, say, would pay a square root for it).
+    pub half_chord: f64,
     /// The overlap area and its gradient, when asked for (see [`OverlapArea`]); `None`
     /// otherwise, and for touching pairs.
     pub area: Option<OverlapArea>,
+    /// The overlap polygon's area and centroid where both sides are flat (a flat-sided body —
+    /// `Shape::is_flat_sided`, a rectangle — against a wall or another); `None` otherwise. See
+    /// [`FlatOverlap`].
+    pub flat: Option<FlatOverlap>,
+}
+
+impl Contact {
+    /// The chord's two ends, `point ∓ half_chord · t` with `t = (−n_y, n_x)` (the same two
+    /// points, exchanged, for the pair seen the other way round).
+    #[inline]
+    pub fn chord(&self) -> (Vec2, Vec2) {
+        let t = Vec2::new(-self.normal.y, self.normal.x) * self.half_chord;
+        (self.point - t, self.point + t)
+    }
+
+    /// The same contact seen from the other body (i ↔ j): normal flipped (and the area
+    /// gradient's normal and couple), all else kept.
+    #[inline(always)]
+    pub fn swapped(mut self) -> Contact {
+        self.turn();
+        self
+    }
+
+    /// Turns this contact round in place ([`Contact::swapped`]).
+    #[inline(always)]
+    fn turn(&mut self) {
+        self.normal = -self.normal;
+        if let Some(a) = &mut self.area {
+            // The other body's gradient: the opposite force and the opposite couple.
+            a.normal = -a.normal;
+            a.couple = -a.couple;
+        }
+    }
 }
 
 /// The overlap area `A` of a pair and how it changes with j's rigid motion: the geometry of the
@@ -167,37 +212,6 @@ pub struct FlatOverlap {
     pub centroid: Vec2,
 }
 
-/// Result of a narrow-phase query.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Contact {
-    /// Relation of the pair.
-    pub state: ContactState,
-    /// Contact record; `None` exactly when `state` is `Separated`.
-    pub geometry: Option<ContactGeometry>,
-}
-
-impl Contact {
-    /// The separated result.
-    pub const SEPARATED: Contact = Contact {
-        state: ContactState::Separated,
-        geometry: None,
-    };
-
-    /// The same contact seen from the other body (i ↔ j): normal flipped, all else kept.
-    #[inline]
-    pub fn swapped(mut self) -> Contact {
-        if let Some(g) = &mut self.geometry {
-            g.normal = -g.normal;
-            if let Some(a) = &mut g.area {
-                // The other body's gradient: the opposite force and the opposite couple.
-                a.normal = -a.normal;
-                a.couple = -a.couple;
-            }
-        }
-        self
-    }
-}
-
 /// One side of a pair: a placed body or a wall.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Object {
@@ -237,142 +251,13 @@ impl<'a> From<&'a Object> for Side<'a> {
     }
 }
 
-/// The lean contact record of the pair kinds whose contact is a closed form that needs no chord
-/// ([`overlap_lean`]): the state, the contact point, the unit normal from i to j and the depth —
-/// the fields of [`ContactGeometry`] a spring on the depth reads, without the ~200-byte
-/// [`Contact`] around them.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LeanContact {
-    pub state: ContactState,
-    pub point: Vec2,
-    pub normal: Vec2,
-    pub depth: f64,
-}
-
-impl LeanContact {
-    #[inline(always)]
-    fn of((state, point, normal, depth): (ContactState, Vec2, Vec2, f64)) -> Self {
-        LeanContact {
-            state,
-            point,
-            normal,
-            depth,
-        }
-    }
-}
-
-/// The lean record of the conic pair kinds (circle–ellipse, ellipse–ellipse; [`conic_lean`]):
-/// [`LeanContact`]'s fields and, when asked, the overlap area — all a contact law reads of a
-/// conic pair, without the chord's world coordinates and the flat overlap of the full
-/// [`Contact`] (whose copying through the dispatcher's layers cost the 10⁴-ellipse pile ~5 % of
-/// its step).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LeanConic {
-    pub state: ContactState,
-    pub point: Vec2,
-    pub normal: Vec2,
-    pub depth: f64,
-    /// As [`ContactGeometry::area`].
-    pub area: Option<OverlapArea>,
-}
-
-impl LeanConic {
-    /// The same contact seen from the other body, as [`Contact::swapped`].
-    #[inline(always)]
-    fn swapped(mut self) -> Self {
-        self.normal = -self.normal;
-        if let Some(a) = &mut self.area {
-            a.normal = -a.normal;
-            a.couple = -a.couple;
-        }
-        self
-    }
-}
-
-/// What a conic kernel builds from its local-frame results: the full [`Contact`] or the
-/// [`LeanConic`]. One algorithm, two records; each field is computed by the same expression in
-/// both (the same bits).
-pub(crate) trait Record: Copy {
-    /// Apart.
-    const SEPARATED: Self;
-    /// A contact in state `state` with chord `p1 p2`, contact point `mid`, unit normal `n` and
-    /// depth `depth`, all in `frame`'s local coordinates.
-    fn local(
-        frame: &LocalFrame,
-        state: ContactState,
-        p1: [f64; 2],
-        p2: [f64; 2],
-        mid: [f64; 2],
-        n: [f64; 2],
-        depth: f64,
-    ) -> Self;
-    /// Adds the overlap area (a record with geometry only).
-    fn set_area(&mut self, area: OverlapArea);
-}
-
-impl Record for Contact {
-    const SEPARATED: Self = Contact::SEPARATED;
-    #[inline(always)]
-    fn local(
-        frame: &LocalFrame,
-        state: ContactState,
-        p1: [f64; 2],
-        p2: [f64; 2],
-        mid: [f64; 2],
-        n: [f64; 2],
-        depth: f64,
-    ) -> Self {
-        Contact {
-            state,
-            geometry: Some(frame.geometry(p1, p2, mid, n, depth)),
-        }
-    }
-    #[inline(always)]
-    fn set_area(&mut self, area: OverlapArea) {
-        if let Some(g) = &mut self.geometry {
-            g.area = Some(area);
-        }
-    }
-}
-
-impl Record for Option<LeanConic> {
-    const SEPARATED: Self = None;
-    #[inline(always)]
-    fn local(
-        frame: &LocalFrame,
-        state: ContactState,
-        _p1: [f64; 2],
-        _p2: [f64; 2],
-        mid: [f64; 2],
-        n: [f64; 2],
-        depth: f64,
-    ) -> Self {
-        // As `LocalFrame::geometry`, without the chord.
-        Some(LeanConic {
-            state,
-            point: frame.point(mid),
-            normal: frame.vector(n),
-            depth: depth * frame.scale,
-            area: None,
-        })
-    }
-    #[inline(always)]
-    fn set_area(&mut self, area: OverlapArea) {
-        if let Some(c) = self {
-            c.area = Some(area);
-        }
-    }
-}
-
 /// What a query computes besides the contact's state, point, normal and depth (which it always
 /// gives), and whether to report how it got them.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Request<'a> {
-    /// The overlap area and its gradient ([`ContactGeometry::area`]).
+    /// The overlap area and its gradient ([`Contact::area`]).
     pub area: bool,
-    /// The chord's two ends. Without it, a pair kind whose chord costs work nobody would read
-    /// (two circles, a circle and a wall: a square root for the half-chord) may leave both ends
-    /// at the contact point; the others give the chord anyway.
+    /// The chord's half-length ([`Contact::half_chord`]; 0 without it).
     pub chord: bool,
     /// Where to record whether the pair cache's warm start gave the result (rather than the
     /// computation from scratch): for the tests that hold the warm path to the same bars.
@@ -386,331 +271,187 @@ impl Request<'static> {
         chord: true,
         trace: None,
     };
-    /// The chord geometry without the overlap area (what the depth law reads).
+    /// The chord geometry without the overlap area.
     pub const CHORD: Request<'static> = Request {
         area: false,
         chord: true,
         trace: None,
     };
+    /// The state, point, normal and depth alone (what a spring on the depth reads).
+    pub const LEAN: Request<'static> = Request {
+        area: false,
+        chord: false,
+        trace: None,
+    };
 }
 
 /// Contact between two objects from scratch (an empty [`PairCache`]), with everything
-/// ([`Request::FULL`]); `None` for two walls. See [`contact_with`].
+/// ([`Request::FULL`]); `None` when they are apart (or both walls). See [`contact_with`].
 #[inline]
 pub fn contact(i: &Object, j: &Object) -> Option<Contact> {
     contact_with(i, j, &mut PairCache::default(), Request::FULL)
 }
 
-/// The narrow-phase dispatcher: the contact between objects `i` and `j` (normal from i to j),
-/// computing what `request` asks, starting from what `cache` kept from the last query of this
-/// pair and leaving in it what the next query starts from; `None` for two walls (never a pair).
+/// The narrow-phase dispatcher: the contact between `i` and `j` (normal from i to j; `None`
+/// when they are apart, or both walls: two walls are never a pair), computing what `request`
+/// asks, starting from what `cache` kept from the last query of this pair and leaving in it
+/// what the next query starts from.
 ///
-/// Every pair kind is computed in one order only, its canonical order ([`computed_in_order`]),
-/// by the kernel of its file; the other order is that result [`Contact::swapped`] — here, the
-/// one place where a pair is turned round. The cache always speaks of the caller's i: it is
-/// re-expressed for the kernel when the pair is computed the other way round, and back.
-/// Closed forms where they exist (a circle pair never touches the conic machinery).
+/// One exhaustive match over the pair's kinds: a wall, a circle, an ellipse, a convex polygon
+/// (a polygon, or a rectangle as its four corners: [`Shape::vertices`]), a clump. Every pair
+/// kind is computed in one order only, its canonical order (see the module documentation), by
+/// the kernel of its file; the other order is that result [`Contact::swapped`] — here, the one
+/// place where a pair is turned round. The cache always speaks of the caller's i: it is
+/// re-expressed for the kernel when the pair is computed the other way round, and back. Closed
+/// forms where they exist (a circle pair never touches the conic machinery); the polygon and
+/// clump pairs out of line ([`cold`]).
 #[inline(always)]
-pub fn contact_with(
-    i: &Object,
-    j: &Object,
+pub fn contact_with<'a>(
+    i: impl Into<Side<'a>>,
+    j: impl Into<Side<'a>>,
     cache: &mut PairCache,
     request: Request,
 ) -> Option<Contact> {
-    if i.is_clump() || j.is_clump() {
-        // A clump's contacts are its members' (circles): the deepest, for one record.
-        return Some(clump::contact_clump(i.into(), j.into(), &request));
-    }
-    contact_sides(i.into(), j.into(), cache, request)
-}
-
-/// [`contact_with`] for borrowed sides (the same dispatcher: [`contact_with`] is this), for
-/// every pair but one with a clump (panics): a clump's contacts are its members', which its
-/// callers (the dynamics, [`contact_with`]) resolve first — so that the step's copy of this
-/// dispatcher has no trace of clumps.
-#[inline(always)]
-pub fn contact_sides(i: Side, j: Side, cache: &mut PairCache, request: Request) -> Option<Contact> {
-    let in_order = side_in_order(i, j)?;
-    let guess = cache.warm();
-    let (c, next, used) = if in_order {
-        contact_in_order(i, j, guess, &request)
-    } else {
-        let (c, next, used) = contact_in_order(j, i, seen_from(guess, i, j), &request);
-        (c.swapped(), seen_from(next, j, i), used)
-    };
-    cache.set_warm(next);
+    use Shape::{Circle, Clump, Ellipse, Polygon, Rectangle};
+    let (i, j) = (i.into(), j.into());
+    let r = &request;
     if let Some(t) = request.trace {
-        t.set(used);
+        t.set(false); // (the conic pairs' kernel records whether the warm start gave the result)
     }
-    Some(c)
-}
-
-/// The dispatcher's lean path, for the pair kinds whose contact is a closed form that needs
-/// no chord and keeps nothing in a [`PairCache`] — two circles, a wall and a circle (either way
-/// round): `Some` of what [`contact_with`] gives for them without a chord or an area (the same
-/// kernels, `overlap_circle_circle` and `overlap_wall_circle`, the same canonical order and the
-/// same flip: equal bit for bit, `None` inside when separated), as a [`LeanContact`]; `None`
-/// for every other pair kind (call [`contact_sides`]). A disk's area potential is the spring on
-/// its depth (`contact_law::normal`), so the dynamics needs no more for these pairs under either
-/// law.
-#[inline(always)]
-pub fn overlap_lean(i: Side, j: Side) -> Option<Option<LeanContact>> {
-    use Shape::Circle;
-    match (i, j) {
-        (Side::Body(Circle { r: ri }, pi), Side::Body(Circle { r: rj }, pj)) => {
-            Some(circle_circle::overlap_circle_circle(*ri, pi, *rj, pj).map(LeanContact::of))
-        }
-        (Side::Wall(wall), Side::Body(Circle { r }, pose)) => {
-            Some(circle_wall::overlap_wall_circle(wall, *r, pose).map(LeanContact::of))
-        }
-        (Side::Body(Circle { r }, pose), Side::Wall(wall)) => {
-            Some(circle_wall::overlap_wall_circle(wall, *r, pose).map(|o| {
-                // Computed with the wall as i and turned round, as the dispatcher does.
-                let mut c = LeanContact::of(o);
-                c.normal = -c.normal;
-                c
-            }))
-        }
-        _ => None,
-    }
-}
-
-/// The dispatcher's lean path for the conic pairs (circle–ellipse either way round, and
-/// ellipse–ellipse): `Some` of what [`contact_sides`] gives for them with `area` asked or not
-/// (the same kernel, the same canonical order, the same flip and the same warm start kept in
-/// `cache`: equal bit for bit), without the chord ends, as a [`LeanConic`] (`None` inside when
-/// separated); `None` for every other pair kind.
-#[inline(always)]
-pub fn conic_lean(
-    i: Side,
-    j: Side,
-    cache: &mut PairCache,
-    area: bool,
-) -> Option<Option<LeanConic>> {
-    use Shape::{Circle, Ellipse};
-    let (Side::Body(si, pi), Side::Body(sj, pj)) = (i, j) else {
-        return None;
-    };
-    let guess = cache.warm();
-    let (c, next) = match (*si, *sj) {
-        (Circle { r }, Ellipse { a, b }) => {
-            let (c, next, _) = ellipse_ellipse::conic_pair(r, r, pi, a, b, pj, guess, area);
-            (c, next)
-        }
-        (Ellipse { a, b }, Circle { r }) => {
-            let back = seen_from(guess, i, j);
-            let (c, next, _) =
-                ellipse_ellipse::conic_pair::<Option<LeanConic>>(r, r, pj, a, b, pi, back, area);
-            (c.map(LeanConic::swapped), seen_from(next, j, i))
-        }
-        (Ellipse { a: ai, b: bi }, Ellipse { a: aj, b: bj }) => {
-            // [`computed_first`], whose first key is `a`: two ellipses of different `a` (most
-            // pairs of a polydisperse scene) are decided by it alone, here where it inlines.
-            let first = match ai.total_cmp(&aj) {
-                std::cmp::Ordering::Less => true,
-                std::cmp::Ordering::Greater => false,
-                std::cmp::Ordering::Equal => computed_first(si, pi, sj, pj),
-            };
-            if first {
-                let (c, next, _) = ellipse_ellipse::conic_pair(ai, bi, pi, aj, bj, pj, guess, area);
-                (c, next)
-            } else {
-                let back = seen_from(guess, i, j);
-                let (c, next, _) = ellipse_ellipse::conic_pair::<Option<LeanConic>>(
-                    aj, bj, pj, ai, bi, pi, back, area,
-                );
-                (c.map(LeanConic::swapped), seen_from(next, j, i))
-            }
-        }
-        _ => return None,
-    };
-    cache.set_warm(next);
-    Some(c)
-}
-
-/// A warm start given relative to `from`, re-expressed relative to `to` (the pair's other
-/// object). Only body pairs carry one.
-#[inline(always)]
-fn seen_from(w: Option<Warm>, from: Side, to: Side) -> Option<Warm> {
-    match (from, to) {
-        (Side::Body(_, a), Side::Body(_, b)) => w.map(|w| w.seen_from(a, b)),
-        (Side::Wall(_), _) | (_, Side::Wall(_)) => w,
-    }
-}
-
-/// The kernels, for pairs in their canonical order only (see [`computed_in_order`]). Returns
-/// the contact, the warm start for the next query (conic pairs; none for the others) and
-/// whether `guess` gave the result.
-#[inline(always)]
-fn contact_in_order(
-    i: Side,
-    j: Side,
-    guess: Option<Warm>,
-    request: &Request,
-) -> (Contact, Option<Warm>, bool) {
-    use Shape::*;
-    let plain = |c: Contact| (c, None, false);
-    match (i, j) {
-        (Side::Wall(wall), Side::Body(shape, pose)) => plain(match *shape {
-            Circle { r } => circle_wall::contact_wall_circle(wall, r, pose, request),
-            Ellipse { a, b } => ellipse_wall::contact_wall_ellipse(wall, a, b, pose, request),
-            Rectangle { w, h } => rectangle_wall::contact_wall_rectangle(wall, w, h, pose),
-            Polygon(ref p) => polygon_wall::contact_wall_polygon(wall, p, pose),
-            Clump(_) => unreachable!("a clump is resolved into its members first (contact_with)"),
-        }),
-        (Side::Body(si, pi), Side::Body(sj, pj)) => match (*si, *sj) {
-            (Circle { r: ri }, Circle { r: rj }) => plain(circle_circle::contact_circle_circle(
-                ri, pi, rj, pj, request,
-            )),
-            (Circle { r }, Ellipse { a, b }) => {
-                circle_ellipse::contact_circle_ellipse(r, pi, a, b, pj, guess, request)
-            }
-            (Ellipse { a: ai, b: bi }, Ellipse { a: aj, b: bj }) => {
-                ellipse_ellipse::contact_ellipse_ellipse(ai, bi, pi, aj, bj, pj, guess, request)
-            }
-            (Rectangle { w, h }, Circle { .. } | Ellipse { .. }) => plain(
-                rectangle_conic::contact_rectangle_conic(w, h, pi, sj, pj, request),
-            ),
-            (Rectangle { w: wi, h: hi }, Rectangle { w: wj, h: hj }) => plain(
-                rectangle_rectangle::contact_rectangle_rectangle(wi, hi, pi, wj, hj, pj, request),
-            ),
-            (Polygon(p), Circle { r }) => plain(polygon_circle::contact_polygon_circle(
-                &p, pi, r, pj, request,
-            )),
-            (Polygon(p), Ellipse { a, b }) => plain(polygon_conic::contact_polygon_ellipse(
-                &p, pi, a, b, pj, request,
-            )),
-            (Polygon(p), Polygon(q)) => plain(polygon_polygon::contact_polygon_polygon(
-                polygon_side(&p),
-                pi,
-                polygon_side(&q),
-                pj,
-                request,
-            )),
-            (Polygon(p), Rectangle { w, h }) => {
-                let (x, y) = (0.5 * w, 0.5 * h);
-                let corners = [
-                    Vec2::new(-x, -y),
-                    Vec2::new(x, -y),
-                    Vec2::new(x, y),
-                    Vec2::new(-x, y),
-                ];
-                let rect = polygon_polygon::ConvexSide {
-                    vertices: &corners,
-                    normals: &RECTANGLE_NORMALS,
-                    bound: 0.5 * w.hypot(h),
-                };
-                plain(polygon_polygon::contact_polygon_polygon(
-                    polygon_side(&p),
-                    pi,
-                    rect,
-                    pj,
-                    request,
-                ))
-            }
-            (Clump(_), _) | (_, Clump(_)) => {
-                unreachable!("a clump is resolved into its members first (contact_with)")
-            }
-            (Ellipse { .. }, Circle { .. })
-            | (Circle { .. } | Ellipse { .. }, Rectangle { .. })
-            | (Circle { .. } | Ellipse { .. } | Rectangle { .. }, Polygon(_)) => {
-                unreachable!("computed the other way round (computed_in_order)")
-            }
-        },
-        (Side::Body(..) | Side::Wall(_), Side::Wall(_)) => {
-            unreachable!("a wall is computed first, and two walls are no pair")
-        }
-    }
-}
-
-/// A rectangle's outward edge normals, its corners counter-clockwise from `(−w/2, −h/2)`.
-const RECTANGLE_NORMALS: [Vec2; 4] = [
-    Vec2::new(0.0, -1.0),
-    Vec2::new(1.0, 0.0),
-    Vec2::new(0.0, 1.0),
-    Vec2::new(-1.0, 0.0),
-];
-
-/// A polygon as one side of the polygon pair kernel.
-#[inline]
-fn polygon_side(p: &crate::geometry::Polygon) -> polygon_polygon::ConvexSide<'static> {
-    let d = p.data();
-    polygon_polygon::ConvexSide {
-        vertices: &d.vertices,
-        normals: &d.normals,
-        bound: d.bounding_radius,
-    }
-}
-
-/// Whether the pair `(i, j)` is computed in the order given (i first), rather than as `(j, i)`
-/// and swapped; `None` for two walls. The canonical order: a wall before a body; between two
-/// kinds of body, a polygon before everything else, a rectangle before a conic and a circle
-/// before an ellipse; between two bodies
-/// of the same kind, [`computed_first`] — but two circles are computed as given, their closed
-/// form being exactly symmetric (see the module documentation).
-#[inline(always)]
-pub fn computed_in_order(i: &Object, j: &Object) -> Option<bool> {
-    side_in_order(i.into(), j.into())
-}
-
-/// [`computed_in_order`] for borrowed sides.
-#[inline(always)]
-fn side_in_order(i: Side, j: Side) -> Option<bool> {
     match (i, j) {
         (Side::Wall(_), Side::Wall(_)) => None,
-        (Side::Wall(_), Side::Body(..)) => Some(true),
-        (Side::Body(..), Side::Wall(_)) => Some(false),
-        (Side::Body(si, pi), Side::Body(sj, pj)) => Some(match kind_rank(si).cmp(&kind_rank(sj)) {
-            std::cmp::Ordering::Less => true,
-            std::cmp::Ordering::Greater => false,
-            std::cmp::Ordering::Equal => match si {
-                Shape::Circle { .. } => true,
-                Shape::Ellipse { .. }
-                | Shape::Rectangle { .. }
-                | Shape::Polygon(_)
-                | Shape::Clump(_) => computed_first(si, pi, sj, pj),
-            },
-        }),
+        (Side::Wall(w), Side::Body(sj, pj)) => match sj {
+            Circle { r: rj } => circle_wall::contact_wall_circle(w, *rj, pj, r),
+            Ellipse { a, b } => ellipse_wall::contact_wall_ellipse(w, *a, *b, pj, r),
+            Rectangle { .. } | Polygon(_) => {
+                cold(|| polygon_wall::contact_wall_polygon(w, sj, pj, r))
+            }
+            // A clump's contacts are its members' (circles): the deepest, for one record.
+            Clump(_) => cold(|| clump::contact_clump(i, j, r)),
+        },
+        (Side::Body(si, pi), Side::Wall(w)) => match si {
+            Circle { r: ri } => turned(circle_wall::contact_wall_circle(w, *ri, pi, r)),
+            Ellipse { a, b } => turned(ellipse_wall::contact_wall_ellipse(w, *a, *b, pi, r)),
+            Rectangle { .. } | Polygon(_) => {
+                turned(cold(|| polygon_wall::contact_wall_polygon(w, si, pi, r)))
+            }
+            Clump(_) => cold(|| clump::contact_clump(i, j, r)),
+        },
+        (Side::Body(si, pi), Side::Body(sj, pj)) => match (si, sj) {
+            (Circle { r: ri }, Circle { r: rj }) => {
+                circle_circle::contact_circle_circle(*ri, pi, *rj, pj, r)
+            }
+            (Circle { r: ri }, Ellipse { a, b }) => {
+                conic(cache, (*ri, *ri, pi), (*a, *b, pj), true, r)
+            }
+            (Ellipse { a, b }, Circle { r: rj }) => {
+                conic(cache, (*a, *b, pi), (*rj, *rj, pj), false, r)
+            }
+            (Ellipse { a: ai, b: bi }, Ellipse { a: aj, b: bj }) => {
+                // [`computed_first`], whose first keys are the kind and `a`: two ellipses of
+                // different `a` (most pairs of a polydisperse scene) are decided by `a` alone,
+                // here where it inlines.
+                let first = match ai.total_cmp(aj) {
+                    std::cmp::Ordering::Less => true,
+                    std::cmp::Ordering::Greater => false,
+                    std::cmp::Ordering::Equal => computed_first(si, pi, sj, pj),
+                };
+                conic(cache, (*ai, *bi, pi), (*aj, *bj, pj), first, r)
+            }
+            (Rectangle { .. } | Polygon(_), Circle { r: rj }) => {
+                cold(|| polygon_conic::contact_polygon_conic(si, pi, *rj, *rj, pj, r))
+            }
+            (Rectangle { .. } | Polygon(_), Ellipse { a, b }) => {
+                cold(|| polygon_conic::contact_polygon_conic(si, pi, *a, *b, pj, r))
+            }
+            (Circle { r: ri }, Rectangle { .. } | Polygon(_)) => turned(cold(|| {
+                polygon_conic::contact_polygon_conic(sj, pj, *ri, *ri, pi, r)
+            })),
+            (Ellipse { a, b }, Rectangle { .. } | Polygon(_)) => turned(cold(|| {
+                polygon_conic::contact_polygon_conic(sj, pj, *a, *b, pi, r)
+            })),
+            (Rectangle { .. } | Polygon(_), Rectangle { .. } | Polygon(_)) => cold(|| {
+                if computed_first(si, pi, sj, pj) {
+                    polygon_polygon::contact_polygon_polygon(si, pi, sj, pj, r)
+                } else {
+                    turned(polygon_polygon::contact_polygon_polygon(sj, pj, si, pi, r))
+                }
+            }),
+            (Clump(_), _) | (_, Clump(_)) => cold(|| clump::contact_clump(i, j, r)),
+        },
     }
 }
 
-/// Which of two bodies of different kinds a pair computes first: the lower rank. A polygon
-/// comes first against any other body (its kernels clip or cut the other with its edges; a
-/// rectangle is passed to the polygon pair as its corners), a rectangle first against a conic (its kernel cuts the conic with its edges), a circle first
-/// against an ellipse (the pencil's frame is centred on the first, and a circle's orientation
-/// is arbitrary).
+/// A pair computed the other way round, turned back ([`Contact::swapped`]).
 #[inline(always)]
-fn kind_rank(s: &Shape) -> u8 {
-    match s {
-        Shape::Polygon(_) => 0,
-        Shape::Rectangle { .. } => 1,
-        Shape::Circle { .. } => 2,
-        Shape::Ellipse { .. } => 3,
-        Shape::Clump(_) => 4,
+fn turned(mut c: Option<Contact>) -> Option<Contact> {
+    if let Some(c) = &mut c {
+        c.turn();
     }
+    c
 }
 
-/// Whether a pair of two bodies of the same kind is computed in the order given (i first),
-/// rather than as (j, i) and swapped: the canonical order, by the sizes (`a` then `b`, or `w`
-/// then `h`; a polygon's area then bounding radius), then the position (x then y), then the
-/// orientation (cos then sin), then (two polygons only) the vertex lists, i before j when its
-/// key is not greater. Every kernel computes in a frame centred on its first body and decides
-/// on quantities rounded in that frame, so only one order per pair makes the swap exact, in the
-/// state as in the last bit. The order depends on the pair alone (never on how it was called);
-/// two bodies with equal keys are the same object in the same place, and either order computes
-/// the same thing.
+/// The dispatcher's out-of-line half: each pair kind that takes it gets its own copy of this
+/// function (its kernel inlined into it), called from the dispatcher — so that the kernels of
+/// the polygon and clump pairs, which a scene of disks or ellipses never meets, take no room
+/// in the copies of the dispatcher inlined into the dynamics' per-slot code.
+#[cold]
+#[inline(never)]
+fn cold(kernel: impl FnOnce() -> Option<Contact>) -> Option<Contact> {
+    kernel()
+}
+
+/// A conic pair (circle–ellipse, ellipse–ellipse; a circle is the conic `a = b = r`) `(a_i,
+/// b_i, pose_i)`, `(a_j, b_j, pose_j)`, computed in the given order when `in_order`, else as
+/// `(j, i)` and turned round; the warm start read from and left in `cache` (relative to the
+/// caller's i).
+#[inline(always)]
+fn conic(
+    cache: &mut PairCache,
+    (ai, bi, pi): (f64, f64, &Pose),
+    (aj, bj, pj): (f64, f64, &Pose),
+    in_order: bool,
+    request: &Request,
+) -> Option<Contact> {
+    let guess = cache.warm();
+    let mut next = None;
+    let c = if in_order {
+        ellipse_ellipse::conic_pair(ai, bi, pi, aj, bj, pj, guess, &mut next, request)
+    } else {
+        let back = guess.map(|w| w.seen_from(pi, pj));
+        let mut c = ellipse_ellipse::conic_pair(aj, bj, pj, ai, bi, pi, back, &mut next, request);
+        next = next.map(|w| w.seen_from(pj, pi));
+        if let Some(c) = &mut c {
+            c.turn();
+        }
+        c
+    };
+    cache.set_warm(next);
+    c
+}
+
+/// Whether a pair of two bodies is computed in the order given (i first), rather than as
+/// (j, i) and swapped, where the pair kind does not decide it (two ellipses, two polygons — a
+/// rectangle among them): the canonical order, by the kind (a polygon before a rectangle),
+/// the sizes (`a` then `b`, or `w` then `h`; a polygon's area then bounding radius), then the
+/// position (x then y), then the orientation (cos then sin), then (two polygons only) the
+/// vertex lists, i before j when its key is not greater. Every kernel computes in a frame
+/// centred on its first body and decides on quantities rounded in that frame, so only one order
+/// per pair makes the swap exact, in the state as in the last bit. The order depends on the
+/// pair alone (never on how it was called); two bodies with equal keys are the same object in
+/// the same place, and either order computes the same thing.
 #[inline]
 pub fn computed_first(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose) -> bool {
     let key = |s: &Shape, p: &Pose| {
-        let (u, v) = match *s {
-            Shape::Circle { r } => (r, r),
-            Shape::Ellipse { a, b } => (a, b),
-            Shape::Rectangle { w, h } => (w, h),
-            Shape::Polygon(q) => (q.area, q.bounding_radius),
-            Shape::Clump(q) => (q.area, q.bounding_radius),
+        let (kind, u, v) = match *s {
+            Shape::Circle { r } => (0.0, r, r),
+            Shape::Ellipse { a, b } => (1.0, a, b),
+            Shape::Polygon(q) => (2.0, q.area, q.bounding_radius),
+            Shape::Rectangle { w, h } => (3.0, w, h),
+            Shape::Clump(q) => (4.0, q.area, q.bounding_radius),
         };
         let (c, sn) = p.cos_sin();
-        [u, v, p.position.x, p.position.y, c, sn]
+        [kind, u, v, p.position.x, p.position.y, c, sn]
     };
     let (ki, kj) = (key(si, pi), key(sj, pj));
     for (x, y) in ki.iter().zip(&kj) {
@@ -721,10 +462,10 @@ pub fn computed_first(si: &Shape, pi: &Pose, sj: &Shape, pj: &Pose) -> bool {
         }
     }
     if let (Shape::Polygon(p), Shape::Polygon(q)) = (si, sj) {
-        let flat = |v: &[Vec2]| v.iter().flat_map(|x| [x.x, x.y]).collect::<Vec<f64>>();
-        let (a, b) = (flat(&p.vertices), flat(&q.vertices));
-        for (x, y) in a.iter().zip(&b) {
-            match x.total_cmp(y) {
+        let flat = |v: &'static [Vec2]| v.iter().flat_map(|x| [x.x, x.y]);
+        let (a, b) = (&p.data().vertices, &q.data().vertices);
+        for (x, y) in flat(a).zip(flat(b)) {
+            match x.total_cmp(&y) {
                 std::cmp::Ordering::Less => return true,
                 std::cmp::Ordering::Greater => return false,
                 std::cmp::Ordering::Equal => {}
@@ -762,23 +503,34 @@ impl LocalFrame {
         self.origin + self.vector(p) * self.scale
     }
 
-    /// A contact record from local quantities (lengths in units of `scale`).
-    #[inline]
-    pub fn geometry(
+    /// A contact record in state `state` from local quantities (lengths in units of `scale`):
+    /// the chord `p1 p2` (its half-length when `request` asks for the chord), the contact point
+    /// `mid`, the unit normal `n` and the depth.
+    #[allow(clippy::too_many_arguments)] // the record's local quantities and the request
+    #[inline(always)]
+    pub fn contact(
         &self,
+        state: ContactState,
         p1: [f64; 2],
         p2: [f64; 2],
         mid: [f64; 2],
         n: [f64; 2],
         depth: f64,
-    ) -> ContactGeometry {
-        ContactGeometry {
+        request: &Request,
+    ) -> Contact {
+        let half_chord = if request.chord {
+            0.5 * (p2[0] - p1[0]).hypot(p2[1] - p1[1]) * self.scale
+        } else {
+            0.0
+        };
+        Contact {
+            state,
             point: self.point(mid),
             normal: self.vector(n),
             depth: depth * self.scale,
-            chord: (self.point(p1), self.point(p2)),
-            flat: None,
+            half_chord,
             area: None,
+            flat: None,
         }
     }
 

@@ -1,36 +1,37 @@
-//! Polygon–ellipse contact (and polygon–circle, through [`super::polygon_circle`]): the
-//! polygon's edges ∩ the conic, in the conic's own frame (`x²/a² + y²/b² = 1`; a circle is
-//! `a = b = r`). The same algorithm as [`super::rectangle_conic`], for any convex polygon.
+//! Polygon–ellipse and polygon–circle contact (a rectangle as its four corners): the polygon's
+//! edges ∩ the conic, in the conic's own frame (`x²/a² + y²/b² = 1`; a circle is `a = b = r`).
 //!
 //! The overlap area of two crossings is exact in closed form: the polygon's part beyond the
 //! chord (a clipped polygon, shoelace) plus the conic's segment beyond it (`½ab(Δφ − sin Δφ)`,
 //! [`ellipse_cap`]); for a chord on one face, the conic's segment at the face's depth.
 
+use super::small::List;
 use super::{
     Contact, ContactState, LocalFrame, LocalOverlap, Request, TOUCH_TOL, deep_fallback,
     deep_overlap, orient, pow2_floor,
 };
 use crate::geometry::overlap_area::{ellipse_cap, ellipse_cap_at_depth, polygon_cap};
-use crate::geometry::{Polygon, Pose, Vec2};
+use crate::geometry::polygon::vertex_support;
+use crate::geometry::{Pose, Shape, Vec2};
 
-/// Contact between convex polygon i and ellipse j (semi-axes `a`, `b`; a circle is `a = b`);
-/// with `request.area`, the overlap area too (the polygon's cap beyond the chord plus the
-/// conic's).
-#[inline]
-pub fn contact_polygon_ellipse(
-    poly: &Polygon,
+/// Contact between convex polygon i (a polygon, or a rectangle as its corners:
+/// [`Shape::vertices`]) and ellipse j
+/// (semi-axes `a`, `b`; a circle is `a = b`); with `request.area`, the overlap area too (the
+/// polygon's cap beyond the chord plus the conic's).
+pub fn contact_polygon_conic(
+    poly: &Shape,
     pi: &Pose,
     a: f64,
     b: f64,
     pj: &Pose,
     request: &Request,
-) -> Contact {
+) -> Option<Contact> {
     let area = request.area;
     let dv = pi.position - pj.position; // polygon centroid relative to the conic
     let d = dv.norm();
-    let rr = poly.bounding_radius;
+    let rr = poly.bounding_radius();
     if d > rr + a.max(b) {
-        return Contact::SEPARATED;
+        return None;
     }
     let scale = pow2_floor(rr.max(a).max(b));
     let inv = 1.0 / scale;
@@ -40,17 +41,19 @@ pub fn contact_polygon_ellipse(
     let (ci, si) = pi.cos_sin();
     let (cj, sj) = pj.cos_sin();
     let (cr, sr) = (ci * cj + si * sj, si * cj - ci * sj); // polygon axis in conic frame
-    let poly_support =
-        |ux: f64, uy: f64| poly.support(Vec2::new(cr * ux + sr * uy, -sr * ux + cr * uy)) * inv;
+    let mut corners = [Vec2::zeros(); 4];
+    let verts = poly.vertices(&mut corners);
+    let poly_support = |ux: f64, uy: f64| {
+        vertex_support(verts, Vec2::new(cr * ux + sr * uy, -sr * ux + cr * uy)) * inv
+    };
     let ell_support = |ux: f64, uy: f64| ((a * ux) * (a * ux) + (b * uy) * (b * uy)).sqrt();
     // Penetration along n (polygon i → conic j): s_i(n) + s_j(n) − n·(c_j − c_i).
     let depth =
         |n: [f64; 2]| poly_support(n[0], n[1]) + ell_support(n[0], n[1]) + n[0] * c.x + n[1] * c.y;
     if d > 0.0 && depth([-c.x / d * scale, -c.y / d * scale]) < 0.0 {
-        return Contact::SEPARATED; // separating axis along the line of centres
+        return None; // separating axis along the line of centres
     }
-    let q: Vec<[f64; 2]> = poly
-        .vertices
+    let q: List<[f64; 2]> = verts
         .iter()
         .map(|v| {
             let p = [v.x * inv, v.y * inv];
@@ -61,8 +64,8 @@ pub fn contact_polygon_ellipse(
     let (ia2, ib2) = (1.0 / (a * a), 1.0 / (b * b));
     let quad = |p: [f64; 2]| p[0] * p[0] * ia2 + p[1] * p[1] * ib2;
     // Implicit value Q(c) − 1 of each corner, shared by its two edges.
-    let gamma: Vec<f64> = q.iter().map(|&p| quad(p) - 1.0).collect();
-    let mut cross: Vec<Crossing> = Vec::with_capacity(4);
+    let gamma: List<f64> = q.iter().map(|&p| quad(p) - 1.0).collect();
+    let mut cross: List<Crossing> = List::new();
     let mut tangent: Option<([f64; 2], [f64; 2])> = None;
     // Along edge k, from corner k by `e` to corner k+1, the conic reads α s² + 2β s + γ_k = 0.
     // Which edges cross is decided by the corners' sides, each known to rounding (γ is the
@@ -153,13 +156,11 @@ pub fn contact_polygon_ellipse(
             let (nrm, dpt) = orient(nrm, depth);
             if dpt <= TOUCH_TOL {
                 // Crossings within rounding of each other and of tangency.
-                return Contact {
-                    state: ContactState::Touching,
-                    geometry: Some(frame.geometry(p, qv, super::midpoint(p, qv), nrm, dpt)),
-                };
+                let mid = super::midpoint(p, qv);
+                return Some(frame.contact(ContactState::Touching, p, qv, mid, nrm, dpt, request));
             }
             let mid = super::midpoint(p, qv);
-            let mut g = frame.geometry(p, qv, mid, nrm, dpt);
+            let mut g = frame.contact(ContactState::Overlap, p, qv, mid, nrm, dpt, request);
             if area {
                 let caps = if cross[0].edge == cross[1].edge {
                     // A face cuts the conic: the chord is on the face line (no cap of the
@@ -172,16 +173,13 @@ pub fn contact_polygon_ellipse(
                 };
                 g.area = Some(frame.overlap(&LocalOverlap::chord(caps, p, qv, nrm)));
             }
-            Contact {
-                state: ContactState::Overlap,
-                geometry: Some(g),
-            }
+            Some(g)
         }
-        n if n >= 3 => {
-            let mut pts: Vec<[f64; 2]> = cross.iter().map(Crossing::point).collect();
+        3.. => {
+            let mut pts: List<[f64; 2]> = cross.iter().map(Crossing::point).collect();
             let (p, qv, nrm, dpt) = deep_fallback(&mut pts[..n], depth);
             let mid = super::midpoint(p, qv);
-            let mut g = frame.geometry(p, qv, mid, nrm, dpt);
+            let mut g = frame.contact(ContactState::Deep, p, qv, mid, nrm, dpt, request);
             if area {
                 let o = deep_overlap(
                     &pts[..n],
@@ -204,12 +202,9 @@ pub fn contact_polygon_ellipse(
                 );
                 g.area = Some(frame.overlap(&o));
             }
-            Contact {
-                state: ContactState::Deep,
-                geometry: Some(g),
-            }
+            Some(g)
         }
-        _ => {
+        0 | 1 => {
             if let Some((t, face)) = tangent {
                 // An edge within rounding of tangency: the half-chord cannot tell a tiny overlap
                 // from a tiny gap where the conic is sharply curved, the depth through that face
@@ -225,10 +220,7 @@ pub fn contact_polygon_ellipse(
                     } else {
                         ContactState::Overlap
                     };
-                    return Contact {
-                        state,
-                        geometry: Some(frame.geometry(t, t, t, nrm, dpt)),
-                    };
+                    return Some(frame.contact(state, t, t, t, nrm, dpt, request));
                 }
             }
             // No crossing: nested or apart. The solids meet only if one lies inside the other,
@@ -242,7 +234,7 @@ pub fn contact_polygon_ellipse(
                 (r[0] - p[0]) * (-p[1]) - (r[1] - p[1]) * (-p[0]) > 0.0
             });
             if !(poly_centre_in || conic_centre_in) {
-                return Contact::SEPARATED;
+                return None;
             }
             let toward = if d > 0.0 {
                 [-c.x * scale / d, -c.y * scale / d]
@@ -250,12 +242,17 @@ pub fn contact_polygon_ellipse(
                 [1.0, 0.0]
             };
             let (nrm, dpt) = orient(toward, depth);
-            let poly_inner = poly.area * inv * inv <= std::f64::consts::PI * a * b;
+            let poly_inner = poly.area() * inv * inv <= std::f64::consts::PI * a * b;
             let inner = if poly_inner { [c.x, c.y] } else { [0.0, 0.0] };
-            Contact {
-                state: ContactState::Contained,
-                geometry: Some(frame.geometry(inner, inner, inner, nrm, dpt)),
-            }
+            Some(frame.contact(
+                ContactState::Contained,
+                inner,
+                inner,
+                inner,
+                nrm,
+                dpt,
+                request,
+            ))
         }
     }
 }

@@ -1,5 +1,5 @@
-//! Polygon–polygon contact (and polygon–rectangle: a rectangle is passed as its four corners)
-//! by convex clipping, in a frame centred on i.
+//! Polygon–polygon contact (rectangles among them, each as its four corners) by convex
+//! clipping, in a frame centred on i.
 //!
 //! The overlap of two convex polygons is a convex polygon: j is clipped by i's edge lines
 //! (Sutherland & Hodgman 1974), every edge of the result carrying the label of the body edge it
@@ -7,8 +7,8 @@
 //! the exact overlap area, and the boundary crossings are the vertices where the labels change
 //! from i to j: each is a clipped point, computed once from the two edges that meet there. A
 //! run of edges where j's edge lies on i's (collinear faces, labelled both) counts as one
-//! crossing at its midpoint, as in [`super::rectangle_rectangle`], so two aligned stacked
-//! squares get the chord across the middle of their overlap.
+//! crossing at its midpoint, so two aligned stacked squares get the chord across the middle of
+//! their overlap, the normal along the stack and the depth exactly.
 //!
 //! Separation and the touching depth come from the separating-axis test over both polygons'
 //! edge normals (exact for convex polygons); the depth of any normal from the support
@@ -19,16 +19,18 @@
 //! `L_e u_e` over the overlap's edges on j (halved on shared edges, where the one-sided
 //! derivatives differ).
 
+use super::small::List;
 use super::{
     Contact, ContactState, LocalFrame, LocalOverlap, Request, TOUCH_TOL, deep_fallback, orient,
     pow2_floor,
 };
 use crate::geometry::overlap_area::polygon_area;
-use crate::geometry::{Pose, Vec2};
+use crate::geometry::{Pose, Shape, Vec2};
 
 /// Which body's boundary an edge of the overlap lies on.
-#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Default)]
 enum Side {
+    #[default]
     I,
     J,
     Both,
@@ -36,37 +38,33 @@ enum Side {
 
 /// The label a clipped edge carries while clipping: the body edge it lies on, or the line
 /// outside i that first cuts j down (which never survives i's faces).
-#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Default)]
 enum Label {
     I(usize),
     J(usize),
+    #[default]
     Outside,
 }
 
-/// One side of a polygon pair: body-frame vertices (counter-clockwise about the centroid), the
-/// outward unit normals of its edges (edge k from vertex k to k + 1) and its bounding radius.
-#[derive(Clone, Copy, Debug)]
-pub struct ConvexSide<'a> {
-    pub vertices: &'a [Vec2],
-    pub normals: &'a [Vec2],
-    pub bound: f64,
-}
-
-/// Contact between convex polygons i and j; with `request.area`, the overlap area (the clipped
-/// polygon's, exactly) and its gradient too.
+/// Contact between convex polygons i and j (polygons, or rectangles as their corners:
+/// [`Shape::vertices`]); with `request.area`, the overlap area (the clipped polygon's, exactly)
+/// and its gradient too; for two flat-sided bodies ([`Shape::is_flat_sided`]: rectangles), the
+/// [`FlatOverlap`](super::FlatOverlap) of a two-crossing overlap.
 pub fn contact_polygon_polygon(
-    side_i: ConvexSide,
+    side_i: &Shape,
     pi: &Pose,
-    side_j: ConvexSide,
+    side_j: &Shape,
     pj: &Pose,
     request: &Request,
-) -> Contact {
-    let (vi, bound_i) = (side_i.vertices, side_i.bound);
-    let (vj, bound_j) = (side_j.vertices, side_j.bound);
+) -> Option<Contact> {
+    let flat = side_i.is_flat_sided() && side_j.is_flat_sided();
+    let (mut corners_i, mut corners_j) = ([Vec2::zeros(); 4], [Vec2::zeros(); 4]);
+    let (vi, bound_i) = (side_i.vertices(&mut corners_i), side_i.bounding_radius());
+    let (vj, bound_j) = (side_j.vertices(&mut corners_j), side_j.bounding_radius());
     let area = request.area;
     let dv = pj.position - pi.position;
     if dv.norm_squared() > (bound_i + bound_j) * (bound_i + bound_j) {
-        return Contact::SEPARATED;
+        return None;
     }
     let scale = pow2_floor(bound_i.max(bound_j));
     let inv = 1.0 / scale;
@@ -74,16 +72,16 @@ pub fn contact_polygon_polygon(
     let (ci, si) = pi.cos_sin();
     let (cj, sj) = pj.cos_sin();
     let (cr, sr) = (cj * ci + sj * si, sj * ci - cj * si); // j's axis in i's frame
-    let qi: Vec<[f64; 2]> = vi.iter().map(|v| [v.x * inv, v.y * inv]).collect();
+    let qi: List<[f64; 2]> = vi.iter().map(|v| [v.x * inv, v.y * inv]).collect();
     // j's vertices relative to its centroid (rotated into i's frame), and placed.
-    let rj: Vec<[f64; 2]> = vj
+    let rj: List<[f64; 2]> = vj
         .iter()
         .map(|v| {
             let (x, y) = (v.x * inv, v.y * inv);
             [cr * x - sr * y, sr * x + cr * y]
         })
         .collect();
-    let qj: Vec<[f64; 2]> = rj.iter().map(|p| [c.x + p[0], c.y + p[1]]).collect();
+    let qj: List<[f64; 2]> = rj.iter().map(|p| [c.x + p[0], c.y + p[1]]).collect();
     let (ni, nj) = (qi.len(), qj.len());
     let dot = |u: [f64; 2], p: [f64; 2]| u[0] * p[0] + u[1] * p[1];
     let max_dot = |u: [f64; 2], ps: &[[f64; 2]]| {
@@ -94,13 +92,13 @@ pub fn contact_polygon_polygon(
     // δ(n) = h_i(n) + h_j(−n), j's support about its centroid (the offset n·c apart).
     let depth = |n: [f64; 2]| max_dot(n, &qi) + max_dot([-n[0], -n[1]], &rj) - dot(n, [c.x, c.y]);
     // Face normals: i's as stored (its frame is the local one), j's turned into it.
-    let ui: Vec<[f64; 2]> = side_i.normals.iter().map(|u| [u.x, u.y]).collect();
-    let uj: Vec<[f64; 2]> = side_j
-        .normals
+    let ui: List<[f64; 2]> = side_i.edge_normals().iter().map(|u| [u.x, u.y]).collect();
+    let uj: List<[f64; 2]> = side_j
+        .edge_normals()
         .iter()
         .map(|u| [cr * u.x - sr * u.y, sr * u.x + cr * u.y])
         .collect();
-    let di: Vec<f64> = (0..ni).map(|k| dot(ui[k], qi[k])).collect();
+    let di: List<f64> = (0..ni).map(|k| dot(ui[k], qi[k])).collect();
     // Separating axes: i's outward face normals (n = u) and j's (n = −u). Along i's face k the
     // depth is `d_k + h_j(−u_k) − u_k·c` (i's support along its own face normal is the face's
     // offset), along j's face `h_i(u_k) + e_k + u_k·c` likewise; the other body's support is
@@ -128,7 +126,7 @@ pub fn contact_polygon_polygon(
     }
     let tol = TOUCH_TOL;
     if sat.0 < -tol {
-        return Contact::SEPARATED;
+        return None;
     }
     let frame = LocalFrame {
         origin: pi.position,
@@ -140,7 +138,7 @@ pub fn contact_polygon_polygon(
     // (and so every point clipping makes on j's edges). Which they are follows from j's support
     // along each face normal, walked as above; a margin keeps a face whose line j touches to
     // within rounding among the clipping ones.
-    let mut active = vec![false; ni];
+    let mut active: List<bool> = (0..ni).map(|_| false).collect();
     let mut kj = argmax(&qj, ui[0]);
     for (k, &u) in ui.iter().enumerate() {
         let (next, h) = walk(&qj, u, kj);
@@ -157,17 +155,14 @@ pub fn contact_polygon_polygon(
     // is decided by it (an area test would scale with the square of a vertex's penetration).
     if poly.len() < 3 || sat.0 <= tol {
         let p = mean(&poly).unwrap_or([0.5 * c.x, 0.5 * c.y]);
-        return Contact {
-            state: ContactState::Touching,
-            geometry: Some(frame.geometry(p, p, p, sat.1, sat.0)),
-        };
+        return Some(frame.contact(ContactState::Touching, p, p, p, sat.1, sat.0, request));
     }
     // j's edge k lies on i's edge line m (same outward normal, same offset): asked only of the
     // overlap's edges.
     let twins = |m: usize, k: usize| {
         dot(ui[m], uj[k]) >= 1.0 - 1e-12 && (dot(ui[m], qj[k]) - di[m]).abs() <= tol
     };
-    let mut edges: Vec<Edge> = Vec::with_capacity(poly.len());
+    let mut edges: List<Edge> = List::new();
     for k in 0..poly.len() {
         let (p, l) = poly[k];
         let q = poly[(k + 1) % poly.len()].0;
@@ -213,10 +208,15 @@ pub fn contact_polygon_polygon(
         let (n, dpt) = orient([toward[0] / l, toward[1] / l], depth);
         // No overlap area: it no longer changes, and the contact falls back to the spring on
         // the depth (as every pair kind's containment does).
-        return Contact {
-            state: ContactState::Contained,
-            geometry: Some(frame.geometry(inner, inner, inner, n, dpt)),
-        };
+        return Some(frame.contact(
+            ContactState::Contained,
+            inner,
+            inner,
+            inner,
+            n,
+            dpt,
+            request,
+        ));
     }
     // Walk once around, starting on a non-shared edge; a change between I and J is a crossing,
     // at the midpoint of the shared run between them (the common vertex when there is none).
@@ -225,9 +225,9 @@ pub fn contact_polygon_polygon(
         .iter()
         .position(|e| e.side != Side::Both)
         .expect("has I and J edges");
-    let mut cross: Vec<Cross> = Vec::with_capacity(4);
+    let mut cross: List<Cross> = List::new();
     let mut last = edges[start];
-    let mut run: Vec<usize> = Vec::new();
+    let mut run: List<usize> = List::new();
     for step in 1..=ne {
         let k = (start + step) % ne;
         let e = edges[k];
@@ -274,25 +274,35 @@ pub fn contact_polygon_polygon(
             };
             let (n, dpt) = orient(nrm, depth);
             let mid = super::midpoint(a.point, b.point);
-            let mut g = frame.geometry(a.point, b.point, mid, n, dpt);
-            if area {
-                let pts: Vec<[f64; 2]> = poly.iter().map(|p| p.0).collect();
-                let a_poly = polygon_area(&pts);
-                g.area = Some(frame.overlap(&LocalOverlap::chord(a_poly, a.point, b.point, n)));
+            let mut g = frame.contact(
+                ContactState::Overlap,
+                a.point,
+                b.point,
+                mid,
+                n,
+                dpt,
+                request,
+            );
+            if area || flat {
+                let pts: List<[f64; 2]> = poly.iter().map(|p| p.0).collect();
+                if flat {
+                    g.flat = Some(frame.flat(&pts));
+                }
+                if area {
+                    let a_poly = polygon_area(&pts);
+                    g.area = Some(frame.overlap(&LocalOverlap::chord(a_poly, a.point, b.point, n)));
+                }
             }
-            Contact {
-                state: ContactState::Overlap,
-                geometry: Some(g),
-            }
+            Some(g)
         }
         nc => {
-            let mut pts: Vec<[f64; 2]> = cross.iter().map(|c| c.point).collect();
+            let mut pts: List<[f64; 2]> = cross.iter().map(|c| c.point).collect();
             if pts.len() < 2 {
                 pts.push(pts.first().copied().unwrap_or([0.5 * c.x, 0.5 * c.y]));
             }
             let (p, q, n, dpt) = deep_fallback(&mut pts, depth);
             let mid = super::midpoint(p, q);
-            let mut g = frame.geometry(p, q, mid, n, dpt);
+            let mut g = frame.contact(ContactState::Deep, p, q, mid, n, dpt, request);
             if area && nc >= 2 {
                 let m = pts
                     .iter()
@@ -300,10 +310,7 @@ pub fn contact_polygon_polygon(
                 let centre = [m[0] / nc as f64, m[1] / nc as f64];
                 g.area = Some(frame.overlap(&gradient(&edges, [c.x, c.y], centre)));
             }
-            Contact {
-                state: ContactState::Deep,
-                geometry: Some(g),
-            }
+            Some(g)
         }
     }
 }
@@ -311,7 +318,7 @@ pub fn contact_polygon_polygon(
 /// The overlap's area and its exact gradient for j's rigid motion (see the module
 /// documentation), acting at `centre`; `c_j` is j's centroid.
 fn gradient(edges: &[Edge], c_j: [f64; 2], centre: [f64; 2]) -> LocalOverlap {
-    let mut pts: Vec<[f64; 2]> = edges.iter().map(|e| e.p).collect();
+    let mut pts: List<[f64; 2]> = edges.iter().map(|e| e.p).collect();
     if pts.is_empty() {
         pts.push(centre);
     }
@@ -341,7 +348,7 @@ fn gradient(edges: &[Edge], c_j: [f64; 2], centre: [f64; 2]) -> LocalOverlap {
 }
 
 /// An edge of the intersection polygon and the sides of i and of j it lies on.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 struct Edge {
     p: [f64; 2],
     q: [f64; 2],
@@ -351,7 +358,7 @@ struct Edge {
 }
 
 /// A boundary crossing and the sides of i and j it lies on.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 struct Cross {
     point: [f64; 2],
     i_side: Option<usize>,
@@ -420,13 +427,13 @@ fn clip(
     u: &[[f64; 2]],
     d: &[f64],
     active: &[bool],
-) -> Vec<([f64; 2], Label)> {
-    let mut buf: Vec<([f64; 2], Label)> = qj
+) -> List<([f64; 2], Label)> {
+    let mut buf: List<([f64; 2], Label)> = qj
         .iter()
         .enumerate()
         .map(|(k, &p)| (p, Label::J(k)))
         .collect();
-    let mut out = Vec::with_capacity(qj.len() + u.len());
+    let mut out = List::new();
     // The slab's line first (labelled `Outside`: it lies outside i), then i's active faces.
     let planes = std::iter::once((slab.0, slab.1, Label::Outside)).chain(
         (0..u.len())

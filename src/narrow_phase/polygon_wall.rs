@@ -1,31 +1,42 @@
-//! Wall–polygon contact: the wall line ∩ the polygon's edges, in the polygon's frame (as
-//! [`super::rectangle_wall`], for any convex polygon).
+//! Wall–polygon contact (a rectangle as its four corners): the wall line ∩ the polygon's
+//! edges, in the polygon's frame.
 
-use super::{Contact, ContactState, LocalFrame, LocalOverlap, TOUCH_TOL, pow2_floor};
+use super::small::List;
+use super::{Contact, ContactState, LocalFrame, LocalOverlap, Request, TOUCH_TOL, pow2_floor};
 use crate::geometry::overlap_area::polygon_area;
-use crate::geometry::{Polygon, Pose, Wall};
+use crate::geometry::{Pose, Shape, Vec2, Wall};
 
-/// Contact between a wall (i) and a convex polygon (j).
+/// Contact between a wall (i) and a convex polygon `poly` (j): a polygon, or a rectangle as
+/// its corners ([`Shape::vertices`]).
 ///
 /// The depth is the deepest vertex's penetration (the polygon's support along the wall's
 /// inward normal minus its centroid's height); the chord joins the two points where the wall
-/// line crosses the edges; the overlap area is the polygon's part beyond the line (exact, a
-/// clipped polygon). No [`FlatOverlap`](super::FlatOverlap): a polygon takes the laws of smooth
-/// bodies (see `Shape::is_flat_sided`).
-pub fn contact_wall_polygon(wall: &Wall, poly: &Polygon, pose: &Pose) -> Contact {
-    let scale = pow2_floor(poly.bounding_radius);
+/// line crosses the edges, so a rectangle lying flat gets its contact point in the middle of
+/// its bottom edge and one on a corner gets it next to that corner; the overlap area is the
+/// polygon's part beyond the line (exact, a clipped polygon). For a flat-sided body
+/// ([`Shape::is_flat_sided`]: a rectangle), the [`FlatOverlap`](super::FlatOverlap) of that
+/// part too; a polygon takes the laws of smooth bodies.
+pub fn contact_wall_polygon(
+    wall: &Wall,
+    poly: &Shape,
+    pose: &Pose,
+    request: &Request,
+) -> Option<Contact> {
+    let flat = poly.is_flat_sided();
+    let scale = pow2_floor(poly.bounding_radius());
     let inv = 1.0 / scale;
     let hc = wall.signed_distance(pose.position) * inv;
     let nb = pose.to_body_vector(wall.normal);
-    let verts = &poly.vertices;
+    let mut corners = [Vec2::zeros(); 4];
+    let verts = poly.vertices(&mut corners);
     let n = verts.len();
-    let q: Vec<[f64; 2]> = verts.iter().map(|v| [v.x * inv, v.y * inv]).collect();
-    let s: Vec<f64> = q.iter().map(|c| hc + nb.x * c[0] + nb.y * c[1]).collect();
+    let q: List<[f64; 2]> = verts.iter().map(|v| [v.x * inv, v.y * inv]).collect();
+    let s: List<f64> = q.iter().map(|c| hc + nb.x * c[0] + nb.y * c[1]).collect();
     let lowest = s.iter().copied().fold(f64::INFINITY, f64::min);
     let depth = -lowest;
     let tol = TOUCH_TOL;
     if depth < -tol {
-        return Contact::SEPARATED;
+        return None;
     }
     let (c, sn) = pose.cos_sin();
     let frame = LocalFrame {
@@ -37,7 +48,7 @@ pub fn contact_wall_polygon(wall: &Wall, poly: &Polygon, pose: &Pose) -> Contact
     let mut cross = [[0.0f64; 2]; 2];
     let mut nc = 0;
     // The part of the polygon beyond the wall line, as a polygon (for its area).
-    let mut under: Vec<[f64; 2]> = Vec::with_capacity(n + 2);
+    let mut under: List<[f64; 2]> = List::new();
     for a in 0..n {
         let b = (a + 1) % n;
         if s[a] < 0.0 {
@@ -66,7 +77,7 @@ pub fn contact_wall_polygon(wall: &Wall, poly: &Polygon, pose: &Pose) -> Contact
     } else {
         // Touching: the vertex (or edge) on the line; its midpoint.
         let (mut sx, mut sy, mut m) = (0.0, 0.0, 0.0);
-        for (c, &v) in q.iter().zip(&s) {
+        for (c, &v) in q.iter().zip(s.iter()) {
             if v <= lowest + tol {
                 sx += c[0];
                 sy += c[1];
@@ -77,17 +88,17 @@ pub fn contact_wall_polygon(wall: &Wall, poly: &Polygon, pose: &Pose) -> Contact
         (ContactState::Touching, p, p)
     };
     let mid = super::midpoint(p1, p2);
-    let mut g = frame.geometry(p1, p2, mid, normal_local, depth);
-    g.normal = wall.normal;
-    if state == ContactState::Overlap {
+    let mut c = frame.contact(state, p1, p2, mid, normal_local, depth, request);
+    c.normal = wall.normal;
+    if flat {
+        c.flat = Some(frame.flat(&under));
+    }
+    if state == ContactState::Overlap && request.area {
         // The overlap is the polygon below the line; its gradient is the chord's.
         let a = polygon_area(&under);
         let mut o = frame.overlap(&LocalOverlap::chord(a, p1, p2, normal_local));
         o.normal = wall.normal;
-        g.area = Some(o);
+        c.area = Some(o);
     }
-    Contact {
-        state,
-        geometry: Some(g),
-    }
+    Some(c)
 }

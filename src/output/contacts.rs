@@ -3,7 +3,7 @@
 //! geometry fields `null` when separated. Numbers are written with full round-trip precision
 //! (the shortest representation that reads back to the same double).
 
-use crate::narrow_phase::Contact;
+use crate::narrow_phase::{Contact, ContactState};
 use serde::Serialize;
 
 /// The serialised form of one contact (fields in this order).
@@ -21,21 +21,24 @@ fn z(x: f64) -> f64 {
     x + 0.0
 }
 
-impl From<&Contact> for ContactRecord {
-    fn from(c: &Contact) -> Self {
-        let g = c.geometry.as_ref();
+impl ContactRecord {
+    /// The record of a query's result (`None`: apart).
+    pub fn of(c: Option<&Contact>) -> Self {
         let v = |p: crate::geometry::Vec2| [z(p.x), z(p.y)];
         ContactRecord {
-            state: c.state.as_str(),
-            depth: g.map(|g| z(g.depth)),
-            normal: g.map(|g| v(g.normal)),
-            point: g.map(|g| v(g.point)),
-            chord: g.map(|g| [v(g.chord.0), v(g.chord.1)]),
+            state: ContactState::of(c).as_str(),
+            depth: c.map(|c| z(c.depth)),
+            normal: c.map(|c| v(c.normal)),
+            point: c.map(|c| v(c.point)),
+            chord: c.map(|c| {
+                let (p, q) = c.chord();
+                [v(p), v(q)]
+            }),
         }
     }
 }
 
-/// One line of JSON for a contact.
-pub fn contact_json(c: &Contact) -> String {
-    serde_json::to_string(&ContactRecord::from(c)).expect("plain numbers and strings serialise")
+/// One line of JSON for a query's result (`None`: apart).
+pub fn contact_json(c: Option<&Contact>) -> String {
+    serde_json::to_string(&ContactRecord::of(c)).expect("plain numbers and strings serialise")
 }

@@ -395,12 +395,13 @@ fn run_contact(file: &str) -> Result<(), Failure> {
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
     let failed = |e: std::io::Error| Failure::failed(format!("standard output: cannot write: {e}"));
     for (i, j) in &pairs {
-        let c = contact(i, j).expect("parse_pairs rejects wall–wall pairs");
+        // (`None`: apart; `parse_pairs` rejects wall–wall pairs.)
+        let c = contact(i, j);
         if i.is_clump() || j.is_clump() {
             // A clump pair: its deepest member contact, and every member pair's under
             // `members` (with `i_member`, `j_member`; 0 for a side that is not a clump).
             let mut v: serde_json::Value =
-                serde_json::from_str(&contact_json(&c)).expect("a record");
+                serde_json::from_str(&contact_json(c.as_ref())).expect("a record");
             let members = dem2d::narrow_phase::clump::member_contacts(
                 i.into(),
                 j.into(),
@@ -409,7 +410,7 @@ fn run_contact(file: &str) -> Result<(), Failure> {
             .into_iter()
             .map(|(a, b, m)| {
                 let mut r: serde_json::Value =
-                    serde_json::from_str(&contact_json(&m)).expect("a record");
+                    serde_json::from_str(&contact_json(m.as_ref())).expect("a record");
                 r["i_member"] = a.into();
                 r["j_member"] = b.into();
                 r
@@ -418,7 +419,7 @@ fn run_contact(file: &str) -> Result<(), Failure> {
             v["members"] = members.into();
             writeln!(out, "{v}").map_err(failed)?;
         } else {
-            writeln!(out, "{}", contact_json(&c)).map_err(failed)?;
+            writeln!(out, "{}", contact_json(c.as_ref())).map_err(failed)?;
         }
     }
     out.flush().map_err(failed)
