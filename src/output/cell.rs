@@ -12,12 +12,11 @@
 //!   of the load (`analysis.csv` gives the packing's stress).
 
 use super::run_data::ReadError;
-use super::trace::{LineFile, WriteError};
+use super::trace::{FrameFile, LineFile, WriteError};
 use crate::dynamics::World;
 use crate::dynamics::cell::Cell;
 use crate::geometry::Vec2;
 use crate::run::time::time_text;
-use crate::run::{End, Observer, ObserverError, Plan, StepInfo};
 use std::path::Path;
 
 pub const CELL_HEADER: &str = "step,t,lx,ly,offset,shift,sxx,sxy,syx,syy,stiffness_yy";
@@ -73,22 +72,17 @@ impl CellWriter {
     }
 }
 
-impl Observer for CellWriter {
-    fn start(&mut self, world: &mut World, _: &Plan) -> Result<(), ObserverError> {
-        self.write(world, world.step)?;
-        Ok(self.flush()?)
+impl FrameFile for CellWriter {
+    fn every(&self) -> u64 {
+        self.every
     }
 
-    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
-        if !info.blowup && info.step.is_multiple_of(self.every) {
-            self.write(world, info.step)?;
-        }
-        Ok(())
+    fn write_frame(&mut self, world: &World, step: u64) -> Result<(), WriteError> {
+        self.write(world, step)
     }
 
-    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
-        self.write(world, end.step)?;
-        Ok(self.flush()?)
+    fn flush_frames(&mut self) -> Result<(), WriteError> {
+        self.flush()
     }
 }
 

@@ -13,10 +13,9 @@
 //!
 //! The forces are those of the frame's step (the last force evaluation).
 
-use super::trace::{LineFile, WriteError};
+use super::trace::{FrameFile, LineFile, WriteError};
 use crate::dynamics::World;
 use crate::run::time::time_text;
-use crate::run::{End, Observer, ObserverError, Plan, StepInfo};
 use std::path::Path;
 
 pub const REACTIONS_HEADER: &str = "step,t,body,x,y,angle,fx,fy,moment,power";
@@ -79,21 +78,16 @@ impl ReactionsWriter {
     }
 }
 
-impl Observer for ReactionsWriter {
-    fn start(&mut self, world: &mut World, _: &Plan) -> Result<(), ObserverError> {
-        self.write(world, world.step)?;
-        Ok(self.flush()?)
+impl FrameFile for ReactionsWriter {
+    fn every(&self) -> u64 {
+        self.every
     }
 
-    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
-        if !info.blowup && info.step.is_multiple_of(self.every) {
-            self.write(world, info.step)?;
-        }
-        Ok(())
+    fn write_frame(&mut self, world: &World, step: u64) -> Result<(), WriteError> {
+        self.write(world, step)
     }
 
-    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
-        self.write(world, end.step)?;
-        Ok(self.flush()?)
+    fn flush_frames(&mut self) -> Result<(), WriteError> {
+        self.flush()
     }
 }

@@ -195,6 +195,37 @@ impl Observer for TrajectoryWriter {
     }
 }
 
+/// A file with one block of rows per output frame — the start, every [`FrameFile::every`]
+/// steps (a blown-up state excepted) and the end — written as an observer of a run
+/// (`cell.csv`, `walls.csv`, `reactions.csv`).
+pub trait FrameFile {
+    /// Steps between frames.
+    fn every(&self) -> u64;
+    /// Writes the frame of `world` at `step` (a second call for the same step writes nothing).
+    fn write_frame(&mut self, world: &World, step: u64) -> Result<(), WriteError>;
+    /// Flushes what is written.
+    fn flush_frames(&mut self) -> Result<(), WriteError>;
+}
+
+impl<T: FrameFile> Observer for T {
+    fn start(&mut self, world: &mut World, _: &Plan) -> Result<(), ObserverError> {
+        self.write_frame(world, world.step)?;
+        Ok(self.flush_frames()?)
+    }
+
+    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+        if !info.blowup && info.step.is_multiple_of(self.every()) {
+            self.write_frame(world, info.step)?;
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
+        self.write_frame(world, end.step)?;
+        Ok(self.flush_frames()?)
+    }
+}
+
 /// Per-step increments are written for runs of up to this many steps, thinned beyond.
 pub const MAX_INCREMENT_ROWS: u64 = 200_000;
 

@@ -18,12 +18,11 @@
 //! Runs written before these columns have `step,t,wall,x,y,nx,ny` only; [`read_walls`] reads both.
 
 use super::run_data::ReadError;
-use super::trace::{LineFile, WriteError};
+use super::trace::{FrameFile, LineFile, WriteError};
 use crate::dynamics::World;
 use crate::dynamics::boundary::{Boundary, span_length};
 use crate::geometry::Vec2;
 use crate::run::time::time_text;
-use crate::run::{End, Observer, ObserverError, Plan, StepInfo};
 use std::path::Path;
 
 pub const WALLS_HEADER: &str = "step,t,wall,x,y,nx,ny,vx,vy,fn,ft,contacts,span,sn,st";
@@ -131,22 +130,17 @@ impl WallsWriter {
     }
 }
 
-impl Observer for WallsWriter {
-    fn start(&mut self, world: &mut World, _: &Plan) -> Result<(), ObserverError> {
-        self.write(world, world.step)?;
-        Ok(self.flush()?)
+impl FrameFile for WallsWriter {
+    fn every(&self) -> u64 {
+        self.every
     }
 
-    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
-        if !info.blowup && info.step.is_multiple_of(self.every) {
-            self.write(world, info.step)?;
-        }
-        Ok(())
+    fn write_frame(&mut self, world: &World, step: u64) -> Result<(), WriteError> {
+        self.write(world, step)
     }
 
-    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
-        self.write(world, end.step)?;
-        Ok(self.flush()?)
+    fn flush_frames(&mut self) -> Result<(), WriteError> {
+        self.flush()
     }
 }
 
