@@ -89,49 +89,19 @@ impl FrameFile for CellWriter {
 /// The cell of every row of `dir/cell.csv`, by step: the case's cell (its periodicity, shear
 /// rate and pressure) with the row's size, shift and stress.
 pub fn read_cells(dir: &Path, case_cell: &Cell) -> Result<Vec<(u64, Cell)>, ReadError> {
-    let file = dir.join("cell.csv");
-    let text = std::fs::read_to_string(&file).map_err(|e| ReadError {
-        file: file.clone(),
-        message: e.to_string(),
-    })?;
-    let bad = |line: usize, m: String| ReadError {
-        file: file.clone(),
-        message: format!("line {line}: {m}"),
-    };
-    let mut lines = text.lines();
-    match lines.next() {
-        Some(CELL_HEADER) => {}
-        other => {
-            return Err(bad(
-                1,
-                format!("expected the header `{CELL_HEADER}`, got {other:?}"),
-            ));
-        }
-    }
-    let mut out = Vec::new();
-    for (k, line) in lines.enumerate() {
-        // (An empty field: a stress the cell does not measure.)
-        let v: Result<Vec<f64>, _> = line
-            .split(',')
-            .map(|f| {
-                if f.is_empty() {
-                    Ok(f64::NAN)
-                } else {
-                    f.parse::<f64>()
-                }
-            })
-            .collect();
-        let v = v.map_err(|e| bad(k + 2, format!("not a number: {e}")))?;
-        if v.len() != 11 {
-            return Err(bad(k + 2, format!("{} fields, expected 11", v.len())));
-        }
-        let mut c = *case_cell;
-        c.size = Vec2::new(v[2], v[3]);
-        c.offset = v[4];
-        c.shift = v[5];
-        c.stress = [v[6], v[7], v[8], v[9]];
-        c.stiffness_yy = v[10];
-        out.push((v[0] as u64, c));
-    }
-    Ok(out)
+    // (The run files' reader: an empty field is NaN — an "x" cell's stress — and a last line
+    // cut short is left out.)
+    let (rows, _) = super::run_data::rows(&dir.join("cell.csv"), CELL_HEADER)?;
+    Ok(rows
+        .into_iter()
+        .map(|v| {
+            let mut c = *case_cell;
+            c.size = Vec2::new(v[2], v[3]);
+            c.offset = v[4];
+            c.shift = v[5];
+            c.stress = [v[6], v[7], v[8], v[9]];
+            c.stiffness_yy = v[10];
+            (v[0] as u64, c)
+        })
+        .collect())
 }

@@ -92,7 +92,7 @@ pub fn whole_lines(text: &str) -> (&str, bool) {
 
 /// Parses CSV rows of numbers with the expected header; a last line without its newline is
 /// left out (the second value says so).
-fn rows(file: &Path, header: &str) -> Result<(Vec<Vec<f64>>, bool), ReadError> {
+pub(crate) fn rows(file: &Path, header: &str) -> Result<(Vec<Vec<f64>>, bool), ReadError> {
     let text = read(file)?;
     let (whole, partial) = whole_lines(&text);
     // A header cut short is no table.
