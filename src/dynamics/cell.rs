@@ -132,13 +132,8 @@ impl Cell {
     /// Records the stress and stiffness of a force evaluation from its sums: `contact` the
     /// pass's `Σ f ⊗ l`, `stiffness` its `Σ k_n (n_y l_y)²`, `kinetic` the bodies' `Σ m v′v′`
     /// (xx, xy, yy).
-    pub fn measure(
-        &mut self,
-        contact: &[f64; 4],
-        stiffness: f64,
-        elastic: f64,
-        kinetic: &[f64; 3],
-    ) {
+    pub(crate) fn measure(&mut self, slots: &super::contact_pass::SlotPartial, kinetic: &[f64; 3]) {
+        let (contact, stiffness, elastic) = (&slots.stress, slots.stiffness_yy, slots.elastic_yy);
         let a = self.area();
         self.stress = [
             (contact[0] + kinetic[0]) / a,
@@ -154,15 +149,21 @@ impl Cell {
     pub fn kinetic_stress(&self, bodies: &super::body::Bodies) -> [f64; 3] {
         let mut k = [0.0; 3];
         for (s, &m) in bodies.state.iter().zip(&bodies.mass) {
-            let v = Vec2::new(
-                s.vel.x - self.shear_rate * (s.pose.position.y - 0.5 * self.size.y),
-                s.vel.y,
-            );
-            k[0] += m * v.x * v.x;
-            k[1] += m * v.x * v.y;
-            k[2] += m * v.y * v.y;
+            self.add_kinetic_stress(&mut k, m, s.vel, s.pose.position);
         }
         k
+    }
+
+    /// Adds a body's `m v′v′` (xx, xy, yy) to `k`: mass `m`, velocity `vel`, at `position`.
+    #[inline]
+    pub fn add_kinetic_stress(&self, k: &mut [f64; 3], m: f64, vel: Vec2, position: Vec2) {
+        let v = Vec2::new(
+            vel.x - self.shear_rate * (position.y - 0.5 * self.size.y),
+            vel.y,
+        );
+        k[0] += m * v.x * v.x;
+        k[1] += m * v.x * v.y;
+        k[2] += m * v.y * v.y;
     }
 
     /// Whether the cell measures its stress: a cell periodic in x and y (in an `"x"` cell the

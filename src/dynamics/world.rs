@@ -3,7 +3,7 @@
 pub use super::account::{Diagnostics, Energies};
 use super::body::{Bodies, BodyInit};
 pub use super::boundary::Boundary;
-use super::boundary::Motion;
+use super::boundary::{Motion, update_servos};
 use super::cell::Cell;
 use super::contacts::ContactList;
 use super::materials::{Materials, PairTable};
@@ -69,11 +69,17 @@ impl World {
         dt: f64,
     ) -> Self {
         let mut w = World::unevaluated(bodies, walls, gravity, spec, materials, dt);
-        w.evaluate_forces();
-        Stepper::update_servos(&mut w.parts().1);
-        w.energies.kinetic = w.kinetic_energy();
-        w.energies.potential = w.potential_energy();
+        w.start();
         w
+    }
+
+    /// The forces of the configuration as it stands, the servos' velocities for the first step
+    /// and the energies: what a world starts from.
+    fn start(&mut self) {
+        self.evaluate_forces();
+        update_servos(&mut self.walls, self.step, self.dt);
+        self.energies.kinetic = self.kinetic_energy();
+        self.energies.potential = self.potential_energy();
     }
 
     /// The scene at t = 0 with nothing evaluated: no contacts, no forces, no energies.
@@ -259,10 +265,7 @@ impl World {
         }
         self.cell = Some(cell);
         self.contacts = ContactList::default();
-        self.evaluate_forces();
-        Stepper::update_servos(&mut self.parts().1);
-        self.energies.kinetic = self.kinetic_energy();
-        self.energies.potential = self.potential_energy();
+        self.start();
         (self, moved)
     }
 
