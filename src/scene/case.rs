@@ -322,14 +322,7 @@ impl Case {
     /// The world this case describes, at t = 0 (the forces of the initial configuration
     /// evaluated).
     pub fn build_world(&self) -> crate::dynamics::World {
-        let world = crate::dynamics::World::of_materials(
-            &self.bodies,
-            self.walls.clone(),
-            self.gravity,
-            self.contact,
-            self.materials.clone(),
-            self.dt,
-        );
+        let world = crate::dynamics::World::of_scene(self.scene());
         match self.cell {
             Some(cell) => world.with_cell(cell).0,
             None => world,
@@ -354,15 +347,19 @@ impl Case {
         &self,
         state: &crate::dynamics::RestartState,
     ) -> Result<crate::dynamics::World, crate::dynamics::RestartError> {
-        crate::dynamics::World::resume(
-            &self.bodies,
-            self.walls.clone(),
-            self.gravity,
-            self.contact,
-            self.materials.clone(),
-            self.dt,
-            state,
-        )
+        crate::dynamics::World::resume(self.scene(), state)
+    }
+
+    /// What the case's world is made of.
+    pub fn scene(&self) -> crate::dynamics::Scene<'_> {
+        crate::dynamics::Scene {
+            bodies: &self.bodies,
+            walls: self.walls.clone(),
+            gravity: self.gravity,
+            spec: self.contact,
+            materials: self.materials.clone(),
+            dt: self.dt,
+        }
     }
 
     /// The same case stepped with `dt`.
