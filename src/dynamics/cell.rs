@@ -157,10 +157,7 @@ impl Cell {
     /// Adds a body's `m v′v′` (xx, xy, yy) to `k`: mass `m`, velocity `vel`, at `position`.
     #[inline]
     pub fn add_kinetic_stress(&self, k: &mut [f64; 3], m: f64, vel: Vec2, position: Vec2) {
-        let v = Vec2::new(
-            vel.x - self.shear_rate * (position.y - 0.5 * self.size.y),
-            vel.y,
-        );
+        let v = Vec2::new(vel.x - self.mean_flow(position.y), vel.y);
         k[0] += m * v.x * v.x;
         k[1] += m * v.x * v.y;
         k[2] += m * v.y * v.y;
@@ -341,6 +338,21 @@ impl Cell {
             self.shift += ds;
             self.offset = (self.offset + ds).rem_euclid(self.size.x);
         }
+    }
+
+    /// [`Cell::unwrapped`], `position` itself for a body in the cell (`[0, 0]`).
+    #[inline]
+    pub fn unwrapped_at(&self, position: Vec2, images: [i32; 2]) -> Vec2 {
+        match images {
+            [0, 0] => position,
+            images => self.unwrapped(position, images),
+        }
+    }
+
+    /// The x velocity of the shear's mean flow at height `y`.
+    #[inline]
+    pub fn mean_flow(&self, y: f64) -> f64 {
+        self.shear_rate * (y - 0.5 * self.size.y)
     }
 
     /// The unwrapped position of a body at `position` with image counts `images`.
