@@ -415,7 +415,7 @@ impl Stepper {
         if let Some(cell) = wd.cell.as_deref() {
             wd.contacts.mark_near_seams(cell, wd.bodies);
         }
-        if wd.pairs.all().any(|p| p.spec.rolling.is_some()) {
+        if wd.pairs.all().any(|p| p.spec.counts_contacts()) {
             wd.contacts.count_touching(wd.bodies.len());
         }
         (
