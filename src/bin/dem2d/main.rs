@@ -55,6 +55,10 @@ enum Command {
         /// Packings per aspect ratio (jamming; default 10).
         #[arg(long)]
         packings: Option<usize>,
+        /// Aspect ratios a/b, comma-separated (jamming and shear; default: each study's own
+        /// list).
+        #[arg(long, value_delimiter = ',')]
+        aspects: Option<Vec<f64>>,
         /// Worker threads (default: all cores; the jamming study runs its packings in
         /// parallel).
         #[arg(long)]
@@ -842,15 +846,19 @@ fn main() -> ExitCode {
             write_cases,
             grains,
             packings,
+            aspects,
             threads,
             docs,
             check,
         } => set_threads(*threads).and_then(|()| {
             study::run(
                 *name,
-                *write_cases,
-                *grains,
-                *packings,
+                &study::Options {
+                    write_cases: *write_cases,
+                    grains: *grains,
+                    packings: *packings,
+                    aspects: aspects.clone(),
+                },
                 docs_mode(*docs, *check),
             )
         }),

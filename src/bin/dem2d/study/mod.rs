@@ -110,17 +110,29 @@ pub fn put_case(path: &Path, text: &str) {
     }
 }
 
-/// Runs `study`; `write_cases` also writes its case files into `cases/`; `grains` sets the
-/// sample size of the studies that take one (the others ignore it). With `docs`, the study's
-/// table goes into its marked region of the user guide ([`Study::table_name`]), or (checking) is
-/// compared with it, and so are the case files with `write_cases`: a difference is a failure.
-pub fn run(
-    study: Study,
-    write_cases: bool,
-    grains: Option<usize>,
-    packings: Option<usize>,
-    docs: Option<Mode>,
-) -> Result<(), crate::Failure> {
+/// What a study is asked for beyond its defaults (each study ignores what it does not take).
+#[derive(Clone, Debug, Default)]
+pub struct Options {
+    /// Also write the study's case files into `cases/`.
+    pub write_cases: bool,
+    /// The sample size.
+    pub grains: Option<usize>,
+    /// Packings per aspect ratio.
+    pub packings: Option<usize>,
+    /// The aspect ratios.
+    pub aspects: Option<Vec<f64>>,
+}
+
+/// Runs `study` with `options`. With `docs`, the study's table goes into its marked region of
+/// the user guide ([`Study::table_name`]), or (checking) is compared with it, and so are the
+/// case files with `write_cases`: a difference is a failure.
+pub fn run(study: Study, options: &Options, docs: Option<Mode>) -> Result<(), crate::Failure> {
+    let Options {
+        write_cases,
+        grains,
+        packings,
+        ..
+    } = *options;
     let checking = docs == Some(Mode::Check);
     CASE_FILES.store(
         match (write_cases, checking) {
@@ -142,6 +154,7 @@ pub fn run(
         Study::Jamming => jamming::run(
             grains.unwrap_or(jamming::N),
             packings.unwrap_or(jamming::PACKINGS),
+            options.aspects.as_deref().unwrap_or(&jamming::ASPECTS),
         ),
     }
     // A run that blows up ends the study with its report.
