@@ -59,6 +59,9 @@ enum Command {
         /// list).
         #[arg(long, value_delimiter = ',')]
         aspects: Option<Vec<f64>>,
+        /// Inertial numbers, comma-separated (shear; default 0.003,0.01,0.03,0.1,0.3).
+        #[arg(long, value_delimiter = ',')]
+        inertial: Option<Vec<f64>>,
         /// Worker threads (default: all cores; the jamming study runs its packings in
         /// parallel).
         #[arg(long)]
@@ -847,6 +850,7 @@ fn main() -> ExitCode {
             grains,
             packings,
             aspects,
+            inertial,
             threads,
             docs,
             check,
@@ -858,6 +862,7 @@ fn main() -> ExitCode {
                     grains: *grains,
                     packings: *packings,
                     aspects: aspects.clone(),
+                    inertial: inertial.clone(),
                 },
                 docs_mode(*docs, *check),
             )

@@ -10,6 +10,7 @@ pub mod packing;
 pub mod repose;
 pub mod representation;
 pub mod rolling_fig3;
+pub mod shear;
 
 use dem2d::output::docs_tables::Mode;
 use std::path::Path;
@@ -43,6 +44,10 @@ pub enum Study {
     /// by FIRE, 10 (`--packings`) packings per aspect ratio (1–3): φ_J and Z_J against the
     /// published values; writes figures/jamming.svg and figures/jamming.md.
     Jamming,
+    /// Steady simple shear at imposed pressure in a Lees–Edwards cell: μ(I), φ(I) and the
+    /// ellipses' orientation of 256 (`--grains`) frictional grains (μ = 0.4), α in 1–3
+    /// (`--aspects`), I in 0.003–0.3 (`--inertial`); writes figures/shear.svg and .md.
+    Shear,
 }
 
 impl Study {
@@ -57,6 +62,7 @@ impl Study {
             Study::Packing => "packing",
             Study::Representation => "representation",
             Study::Jamming => "jamming",
+            Study::Shear => "shear",
         }
     }
 }
@@ -121,6 +127,8 @@ pub struct Options {
     pub packings: Option<usize>,
     /// The aspect ratios.
     pub aspects: Option<Vec<f64>>,
+    /// The inertial numbers.
+    pub inertial: Option<Vec<f64>>,
 }
 
 /// Runs `study` with `options`. With `docs`, the study's table goes into its marked region of
@@ -155,6 +163,11 @@ pub fn run(study: Study, options: &Options, docs: Option<Mode>) -> Result<(), cr
             grains.unwrap_or(jamming::N),
             packings.unwrap_or(jamming::PACKINGS),
             options.aspects.as_deref().unwrap_or(&jamming::ASPECTS),
+        ),
+        Study::Shear => shear::run(
+            grains.unwrap_or(shear::N),
+            options.aspects.as_deref().unwrap_or(&shear::ASPECTS),
+            options.inertial.as_deref().unwrap_or(&shear::INERTIAL),
         ),
     }
     // A run that blows up ends the study with its report.
