@@ -20,6 +20,8 @@
 //! it stalls: its energy changes by less than [`STALL`] of itself over 1000 iterations while
 //! its residual does not halve (O'Hern's second criterion; near jamming FIRE relaxes the soft
 //! modes of ellipse packings only slowly, and the residual stays near 1e-3 for 10⁵ iterations).
+//! A stalled minimisation that lands in the band runs on without the stall criterion (up to
+//! 10⁵ iterations) before the band is checked again and the contacts counted.
 //! [`PACKINGS`] packings per α (different seeds), in parallel.
 
 use super::Table;
@@ -27,7 +29,7 @@ use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
 use dem2d::dynamics::BodyInit;
 use dem2d::dynamics::World;
 use dem2d::dynamics::cell::{Cell, Periodic};
-use dem2d::dynamics::minimise::{Fire, Tolerance, relax};
+use dem2d::dynamics::minimise::{Fire, Relaxed, Tolerance, relax};
 use dem2d::dynamics::partner::Partner;
 use dem2d::geometry::{Pose, Shape, Vec2};
 use dem2d::output::plot::{self, LinePanel, Series};
@@ -201,6 +203,7 @@ pub fn jam(n: usize, aspect: f64, seed: u64) -> Packing {
         stall: STALL,
         energy: 1e-3 * U_TOL * unit,
     };
+    let polish = Tolerance { stall: 0.0, ..tol };
     let fire = Fire::default();
     // The search for the band: compress by δφ = 5 % until jammed; then keep the highest
     // unjammed φ (u below the band) and the two lowest jammed ones (u above it) and aim at the
@@ -212,9 +215,17 @@ pub fn jam(n: usize, aspect: f64, seed: u64) -> Packing {
     let (mut minimisations, mut iterations) = (0, 0);
     let mut found = false;
     for _ in 0..200 {
-        let r = relax(&mut w, &fire, &tol).expect("frictionless");
+        let mut r = relax(&mut w, &fire, &tol).expect("frictionless");
         minimisations += 1;
         iterations += r.iterations;
+        let in_band = |r: &Relaxed| (U_TOL..=2.0 * U_TOL).contains(&(r.potential / unit));
+        if r.stalled && in_band(&r) {
+            // In the band, but stalled: run on to the residual (or the iteration budget) before
+            // counting contacts, so that Z_J is the minimum's.
+            r = relax(&mut w, &fire, &polish).expect("frictionless");
+            minimisations += 1;
+            iterations += r.iterations;
+        }
         let u = r.potential / unit;
         let now = phi(&w, total);
         if std::env::var_os("DEM2D_JAMMING_TRACE").is_some() {
@@ -227,9 +238,13 @@ pub fn jam(n: usize, aspect: f64, seed: u64) -> Packing {
             found = true;
             break;
         }
+        // The packing changes as it is compressed and decompressed: a point on the other side
+        // of the newest one is stale and goes (the bracket must hold the newest).
         if u < U_TOL {
+            above.retain(|&(p, _)| p > now);
             below = Some(below.map_or(now, |b: f64| b.max(now)));
         } else {
+            below = below.filter(|&b| b < now);
             above.push((now, u.powf(0.4)));
             above.sort_by(|a, b| a.0.total_cmp(&b.0));
             above.truncate(2);
