@@ -212,6 +212,7 @@ pub fn jam(n: usize, aspect: f64, seed: u64) -> Packing {
     // between where no such line lands inside the bracket.
     let target = (1.5 * U_TOL).powf(0.4);
     let (mut below, mut above): (Option<f64>, Vec<(f64, f64)>) = (None, Vec::new());
+    let mut width = f64::INFINITY;
     let (mut minimisations, mut iterations) = (0, 0);
     let mut found = false;
     for _ in 0..200 {
@@ -262,8 +263,16 @@ pub fn jam(n: usize, aspect: f64, seed: u64) -> Packing {
                     }
                     _ => None,
                 };
+                // (A secant that has not halved the bracket since the last step is stalling on
+                // one side, as regula falsi does: halve instead.)
+                let shrinking = hi - lo < 0.5 * width;
+                width = hi - lo;
                 match secant {
-                    Some(p) if p > lo + 0.01 * (hi - lo) && p < hi - 0.01 * (hi - lo) => p,
+                    Some(p)
+                        if shrinking && p > lo + 0.01 * (hi - lo) && p < hi - 0.01 * (hi - lo) =>
+                    {
+                        p
+                    }
                     _ => 0.5 * (lo + hi),
                 }
             }
@@ -329,13 +338,15 @@ pub fn run(n: usize, packings: usize, aspects: &[f64]) -> Result<String, dem2d::
         })
         .collect();
     let mut table = Table::new(
-        "| α | φ_J (mean ± sd) | Z_J, rattlers out (mean ± sd) | rattlers | packings in the band | minimisations, FIRE iterations (mean) | published |\n|---|---|---|---|---|---|---|",
+        "| α | φ_J (mean ± sd, in the band) | Z_J, rattlers out (mean ± sd, in the band) | rattlers | packings in the band | minimisations, FIRE iterations (mean) | published |\n|---|---|---|---|---|---|---|",
     );
     let mut rows = Vec::new();
     for &a in aspects {
         let ps: Vec<&Packing> = done.iter().filter(|p| p.aspect == a).collect();
-        let phis: Vec<f64> = ps.iter().map(|p| p.phi).collect();
-        let zs: Vec<f64> = ps.iter().map(|p| p.z).collect();
+        // The means are over the packings that reached the band (a packing whose bracket
+        // closed on a rearrangement without it is counted, not averaged).
+        let phis: Vec<f64> = ps.iter().filter(|p| p.found).map(|p| p.phi).collect();
+        let zs: Vec<f64> = ps.iter().filter(|p| p.found).map(|p| p.z).collect();
         let (pm, psd) = mean_sd(&phis);
         let (zm, zsd) = mean_sd(&zs);
         let rat = ps.iter().map(|p| p.rattlers).sum::<f64>() / ps.len() as f64;
@@ -349,7 +360,9 @@ pub fn run(n: usize, packings: usize, aspects: &[f64]) -> Result<String, dem2d::
             ps.len(),
             published(a)
         ));
-        rows.push((a, pm, psd, zm, zsd));
+        if found > 0 {
+            rows.push((a, pm, psd, zm, zsd));
+        }
     }
     let wall = start.elapsed().as_secs_f64();
     let mut md = table.text();
