@@ -13,7 +13,7 @@
 
 use dem2d::dynamics::World;
 use dem2d::geometry::{Polygon, Pose, Segment, Shape, Vec2};
-use dem2d::narrow_phase::{Object, contact};
+use dem2d::narrow_phase::{Object, PairCache, Request, contact, contact_with};
 use dem2d::scene::Case;
 
 fn case(contact: &str, walls: &str, bodies: &str, gravity: f64) -> World {
@@ -399,8 +399,13 @@ fn the_contact_of_every_shape_with_a_segment_matches_a_fine_sampling_of_its_boun
             let c = seg.a + seg.tangent * along + seg.normal() * across;
             let pose = Pose::new(c, 2.0 * PI * rng.next());
             let body = Object::Body { shape, pose };
-            let got = contact(&Object::Segment(seg), &body);
-            let swapped = contact(&body, &Object::Segment(seg));
+            // (The depth law's geometry: an ellipse's under the area law is tested below.)
+            let seg_side = Object::Segment(seg);
+            let lean = |i: &Object, j: &Object| {
+                contact_with(i, j, &mut PairCache::default(), Request::CHORD)
+            };
+            let got = lean(&seg_side, &body);
+            let swapped = lean(&body, &seg_side);
             let boundary = sample(&shape, &pose, n);
             let (depth, normal, face) = brute_force(&seg, &boundary, c);
             // The sampling's error: a chord of the boundary's step cuts at most its sagitta
@@ -538,5 +543,142 @@ fn the_energy_of_bodies_bouncing_in_an_elastic_funnel_of_segments_is_conserved()
             "{nf}: not second order: {coarse:e} → {fine:e}"
         );
         assert!(fine < 2e-4, "{nf}: drift {fine:e}");
+    }
+}
+
+/// The area of the part of the polygon `poly` on the side `u·(x − e) ≥ 0` of the line through
+/// `e` (Sutherland–Hodgman, then the shoelace formula).
+fn cut_area(poly: &[Vec2], e: Vec2, u: Vec2) -> f64 {
+    let mut out = Vec::new();
+    let k = poly.len();
+    for i in 0..k {
+        let (p, q) = (poly[i], poly[(i + 1) % k]);
+        let (sp, sq) = (u.dot(&(p - e)), u.dot(&(q - e)));
+        if sp >= 0.0 {
+            out.push(p);
+        }
+        if (sp >= 0.0) != (sq >= 0.0) {
+            out.push(p + (q - p) * (sp / (sp - sq)));
+        }
+    }
+    let n = out.len();
+    0.5 * (0..n)
+        .map(|i| {
+            let (p, q) = (out[i], out[(i + 1) % n]);
+            p.x * q.y - p.y * q.x
+        })
+        .sum::<f64>()
+        .abs()
+}
+
+#[test]
+fn under_the_area_law_an_ellipses_end_contact_is_the_least_cap_through_the_end() {
+    // Against a brute force: of the lines through the end, the one that cuts the least area off
+    // the ellipse (a 100 000-gon of its boundary), found by a search over the angle.
+    let seg = Segment::new(Vec2::new(-4.0, 0.0), Vec2::new(0.0, 0.0)).unwrap();
+    let (a, b) = (1.5, 0.6);
+    let shape = Shape::Ellipse { a, b };
+    let mut rng = Rng(0x2545_F491_4F6C_DD1D);
+    let mut checked = 0;
+    while checked < 20 {
+        let pose = Pose::new(
+            Vec2::new(0.2 + 1.2 * rng.next(), 0.3 + 0.5 * rng.next()),
+            PI * rng.next(),
+        );
+        let body = Object::Body { shape, pose };
+        let Some(c) = contact(&Object::Segment(seg), &body) else {
+            continue;
+        };
+        if c.point != seg.b {
+            continue; // the face
+        }
+        let area = c.area.expect("an end contact's overlap area").area;
+        let poly = sample(&shape, &pose, 100_000);
+        // The cap on the side away from the centre of the line through the end at angle t.
+        let cap = |t: f64| {
+            let u = Vec2::new(t.cos(), t.sin());
+            let u = if u.dot(&(pose.position - seg.b)) > 0.0 {
+                -u
+            } else {
+                u
+            };
+            (cut_area(&poly, seg.b, u), -u)
+        };
+        // Every half degree, then a ternary search about the least.
+        let coarse = (0..360)
+            .map(|k| PI * k as f64 / 360.0)
+            .min_by(|&s, &t| cap(s).0.total_cmp(&cap(t).0))
+            .unwrap();
+        let (mut lo, mut hi) = (coarse - PI / 360.0, coarse + PI / 360.0);
+        for _ in 0..60 {
+            let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
+            if cap(m1).0 < cap(m2).0 {
+                hi = m2;
+            } else {
+                lo = m1;
+            }
+        }
+        let (least, best) = cap(0.5 * (lo + hi));
+        // The 100 000-gon's cut lacks the sagittas of its sides along the cap's arc: ≤ 1e-9 cm².
+        assert!(
+            (area - least).abs() < 1e-7 * least + 1e-9,
+            "{pose:?}: area {area} vs least cap {least}"
+        );
+        assert!(
+            c.normal.dot(&best) > 1.0 - 1e-8,
+            "{pose:?}: normal {:?} vs {best:?}",
+            c.normal
+        );
+        checked += 1;
+    }
+}
+
+#[test]
+fn under_the_area_law_an_ellipse_crossing_an_end_changes_its_area_and_force_continuously() {
+    // An ellipse held 0.05 cm into a horizontal segment, swept across its end in steps of 1e-4
+    // cm: the area, the potential's argument, changes by at most its gradient's length L times
+    // the step (dA = −L n·dx), also where the contact changes from the face to the end; the
+    // force's direction turns by at most a few steps' worth.
+    let seg = Segment::new(Vec2::new(-6.0, 0.0), Vec2::new(0.0, 0.0)).unwrap();
+    let (a, b) = (1.5, 0.6);
+    let shape = Shape::Ellipse { a, b };
+    for angle in [0.0, 0.4, 1.2] {
+        let probe = Pose::new(Vec2::zeros(), angle);
+        let reach = shape.support(probe.to_body_vector(Vec2::new(0.0, -1.0)));
+        let dx = 1e-4;
+        let (mut last, mut ends, mut faces) = (None::<(f64, f64, Vec2)>, 0, 0);
+        let mut x = -3.0;
+        while x < 3.0 {
+            let pose = Pose::new(Vec2::new(x, reach - 0.05), angle);
+            let c = contact(&Object::Segment(seg), &Object::Body { shape, pose });
+            let now = c.and_then(|c| c.area.map(|o| (o.area, o.length, o.normal)));
+            if let Some(c) = c {
+                if c.point == seg.b {
+                    ends += 1;
+                } else {
+                    faces += 1;
+                }
+            }
+            if let (Some((a0, l0, n0)), Some((a1, l1, n1))) = (last, now) {
+                assert!(
+                    (a1 - a0).abs() <= 1.01 * l0.max(l1) * dx + 1e-12,
+                    "angle {angle}, x = {x}: area {a0} → {a1}"
+                );
+                assert!(
+                    n0.dot(&n1) > (20.0 * dx).cos(),
+                    "angle {angle}, x = {x}: {n0:?} → {n1:?}"
+                );
+            }
+            if let (Some((area, ..)), None) = (last, now) {
+                // It ends where the area has gone.
+                assert!(area < 1e-6, "angle {angle}: dropped at area {area}");
+            }
+            last = now;
+            x += dx;
+        }
+        assert!(
+            ends > 100 && faces > 1000,
+            "angle {angle}: {faces} faces, {ends} ends"
+        );
     }
 }

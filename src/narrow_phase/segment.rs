@@ -19,8 +19,12 @@
 //!   depth is the distance from E to the body's boundary (positive with E inside the body), the
 //!   normal the body's inward normal at its boundary point q closest to E (from E towards q
 //!   when E is outside: for a circle the line of centres), the contact point E itself. A point
-//!   has no overlap area: under the area law an end contact is a spring on this depth (for a
-//!   disk that is the area law's own force; see the physics documentation for ellipses).
+//!   has no overlap area: under the area law a circle's or a polygon's end contact is a spring
+//!   on this depth (for a disk that is the area law's own force).
+//!
+//! An ellipse under the area law (`request.area`) takes its own rule instead, whose potential
+//! is continuous from face to end ([`ellipse_area`]): the face while the face's chord midpoint
+//! lies over the segment, else the end as the half-plane through it that cuts the least area.
 //!
 //! For a circle this is the segment's point closest to the centre — the disk's contact with the
 //! segment as a closed set — and continuous as the disk rolls over an end. For an ellipse, at the
@@ -34,7 +38,7 @@
 
 use super::{Contact, ContactState, LocalFrame, Request, TOUCH_TOL, pow2_floor};
 use super::{circle_wall, ellipse_wall, polygon_wall};
-use crate::geometry::{Pose, Segment, Shape, Vec2};
+use crate::geometry::{Pose, Segment, Shape, Vec2, Wall};
 
 /// Contact between a segment (i) and a body (j) that is not a clump.
 #[inline]
@@ -46,6 +50,9 @@ pub fn contact_segment_body(
 ) -> Option<Contact> {
     let c = pose.position;
     let side = seg.facing(c);
+    if let (Shape::Ellipse { a, b }, true) = (*shape, request.area) {
+        return ellipse_area(seg, side, a, b, pose, request);
+    }
     let deepest = deepest_point(shape, pose, side.normal);
     let tau = seg.along(deepest);
     if (0.0..=seg.length).contains(&tau) {
@@ -253,4 +260,47 @@ fn point_polygon(v: &[Vec2], inv: f64, p: Vec2) -> (f64, Vec2) {
     } else {
         (-best_out.0, best_out.1)
     }
+}
+
+/// An ellipse against a segment under the area law (`side` the line it meets): the face while
+/// the midpoint of the chord the line cuts lies over the segment, else the end E on that side,
+/// as the half-plane through E whose chord E bisects — the line through E that cuts the least
+/// area off the ellipse, conjugate to the diameter through E (normal `∇(x²/a² + y²/b²)` at E,
+/// in the body frame). By the envelope theorem the least cap's gradient is its chord's, at E:
+/// the force `W′(A) L n` at E is the gradient of the potential `W(A_min)`. Where the face's
+/// chord midpoint reaches the end, the bisected chord through the end is the face's own: the
+/// area, the force and its point change continuously from face to end.
+fn ellipse_area(
+    seg: &Segment,
+    side: &Wall,
+    a: f64,
+    b: f64,
+    pose: &Pose,
+    request: &Request,
+) -> Option<Contact> {
+    let face = ellipse_wall::contact_wall_ellipse(side, a, b, pose, request)?;
+    let tau = seg.along(face.point);
+    if (0.0..=seg.length).contains(&tau) {
+        return Some(face);
+    }
+    let end = if tau < 0.0 { seg.a } else { seg.b };
+    // (In units of the larger semi-axis, in the body frame.)
+    let s = a.max(b);
+    let p = pose.to_body_vector((end - pose.position) / s);
+    let (ua, ub) = (a / s, b / s);
+    let q = (p.x / ua).powi(2) + (p.y / ub).powi(2);
+    if q >= 1.0 {
+        // The end lies outside the ellipse, and so does the whole chord beyond it.
+        return None;
+    }
+    let g = Vec2::new(p.x / (ua * ua), p.y / (ub * ub));
+    // The half-plane's normal points into its free side, towards the centre (−∇Q; at the
+    // centre itself, where every chord is bisected, the face's).
+    let normal = if g.x == 0.0 && g.y == 0.0 {
+        side.normal
+    } else {
+        -pose.to_world_vector(g)
+    };
+    let wall = Wall::new(end, normal)?;
+    ellipse_wall::contact_wall_ellipse(&wall, a, b, pose, request)
 }
