@@ -12,6 +12,7 @@ pub mod cell;
 pub mod contact_pass;
 pub mod contacts;
 pub mod kinematics;
+pub mod local_damping;
 pub mod materials;
 pub mod members;
 pub mod minimise;

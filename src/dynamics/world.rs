@@ -38,6 +38,9 @@ pub struct World {
     pub last_increments: [f64; 3],
     /// The periodic cell the scene repeats in, if any (see [`super::cell`]).
     pub cell: Option<Cell>,
+    /// Cundall's local non-viscous damping coefficient α in [0, 1) (0: off; see
+    /// [`super::step`]'s stage 4).
+    pub local_damping: f64,
     /// The step's scratch (owned here, never read as state).
     stepper: Stepper,
 }
@@ -103,6 +106,7 @@ impl World {
             },
             last_increments: [0.0; 3],
             cell: None,
+            local_damping: 0.0,
             stepper: Stepper::default(),
         }
     }
@@ -236,6 +240,7 @@ impl World {
                 time: &mut self.time,
                 last_increments: &mut self.last_increments,
                 cell: self.cell.as_mut(),
+                local_damping: self.local_damping,
             },
         )
     }

@@ -67,6 +67,9 @@ pub struct Case {
     /// The periodic cell the scene repeats in (`"cell": {"size": [L_x, L_y], "periodic": "x" |
     /// "xy", "shear_rate": γ̇, "pressure": P, "pressure_gain": α}`; see `dynamics::cell`).
     pub cell: Option<Cell>,
+    /// Cundall's local non-viscous damping coefficient α (`"damping": {"local": α}`, in [0, 1);
+    /// 0, the default: off; see `dynamics::local_damping`).
+    pub local_damping: f64,
 }
 
 /// The case's optional outputs.
@@ -256,6 +259,10 @@ impl Case {
             None => None,
             Some(v) => Some(parse_cell(v, &walls, &bodies, gravity)?),
         };
+        let local_damping = match o.get("damping") {
+            None => 0.0,
+            Some(v) => parse_damping(v)?,
+        };
         // A state file's block (read by `scene::state`, which continues the run from it).
         let _ = o.get("state");
         o.finish()?;
@@ -310,6 +317,7 @@ impl Case {
             walls,
             bodies,
             cell,
+            local_damping,
         })
     }
 
@@ -340,6 +348,7 @@ impl Case {
             walls,
             bodies,
             cell: None,
+            local_damping: 0.0,
         }
     }
 
@@ -360,10 +369,12 @@ impl Case {
             self.materials.clone(),
             self.dt,
         );
-        match self.cell {
+        let mut world = match self.cell {
             Some(cell) => world.with_cell(cell).0,
             None => world,
-        }
+        };
+        world.local_damping = self.local_damping;
+        world
     }
 
     /// How many bodies lie outside the case's periodic cell (they are brought into it when the
@@ -384,7 +395,7 @@ impl Case {
         &self,
         state: &crate::dynamics::RestartState,
     ) -> Result<crate::dynamics::World, crate::dynamics::RestartError> {
-        crate::dynamics::World::resume(
+        let mut world = crate::dynamics::World::resume(
             &self.bodies,
             self.walls.clone(),
             self.gravity,
@@ -392,7 +403,9 @@ impl Case {
             self.materials.clone(),
             self.dt,
             state,
-        )
+        )?;
+        world.local_damping = self.local_damping;
+        Ok(world)
     }
 
     /// The same case stepped with `dt`.
@@ -695,6 +708,24 @@ fn param_error(e: FieldError) -> ParamError {
         field: e.path,
         message: e.message,
     }
+}
+
+/// Cundall's local damping (`"damping": {"local": α}`, see [`Case::local_damping`]): α in
+/// [0, 1) (at 1 a body moving away from rest would feel no force; above, a force pushing it on).
+fn parse_damping(v: &Value) -> Result<f64, FieldError> {
+    let mut d = Obj::new(v, "damping")?;
+    let alpha = d.req_with("local", number)?;
+    d.finish()?;
+    if !(0.0..1.0).contains(&alpha) {
+        return Err(FieldError::new(
+            "damping.local",
+            format!(
+                "must be in [0, 1) (Cundall's local damping: the fraction of a body's unbalanced \
+                 force turned against its motion), got {alpha}"
+            ),
+        ));
+    }
+    Ok(alpha)
 }
 
 /// The periodic cell (see [`Case::cell`]): its size against the bodies' reach, no wall across a
