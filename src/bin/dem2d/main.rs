@@ -214,6 +214,10 @@ enum Command {
         /// Scene: figure width in pixels (default: 1000, wider for a snapshot of many bodies).
         #[arg(long)]
         width: Option<u32>,
+        /// Scene, in a periodic cell: also draw the periodic images of the bodies a seam cuts,
+        /// so that grains at a seam look whole.
+        #[arg(long)]
+        images: bool,
     },
     /// Generate a pile of disks or ellipses on a jittered lattice in a box, as a case file
     /// (`cases/settle_disks_10k.json` is `--shape disks --n 10000 --seed 1`).
@@ -301,6 +305,7 @@ struct PlotArgs {
     last: bool,
     color: ColorArg,
     width: Option<u32>,
+    images: bool,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -632,14 +637,21 @@ fn plot(run_dir: &std::path::Path, kind: PlotKind, args: PlotArgs) -> Result<(),
             "--width: must be 200 … 20000 pixels, got {w}"
         )));
     }
-    let scene_only = args.every.is_some() || args.last || !matches!(args.color, ColorArg::Auto);
+    let scene_only =
+        args.every.is_some() || args.last || args.images || !matches!(args.color, ColorArg::Auto);
     if scene_only && !matches!(kind, PlotKind::Scene) {
         return Err(Failure::input(
-            "--every, --last and --color apply to --kind scene only".into(),
+            "--every, --last, --color and --images apply to --kind scene only".into(),
         ));
     }
     let run = dem2d::output::run_data::RunData::load(run_dir)
         .map_err(|e| Failure::input(e.to_string()))?;
+    if args.images && run.case.cell.is_none() {
+        return Err(Failure::input(format!(
+            "--images: {} has no periodic cell (`cell` in its case), so no images to draw",
+            run_dir.display()
+        )));
+    }
     match run.summary["status"].as_str() {
         Some("completed" | "at_rest" | "max_steps") => {}
         Some(status) => say(&format!(
@@ -714,6 +726,7 @@ fn plot(run_dir: &std::path::Path, kind: PlotKind, args: PlotArgs) -> Result<(),
                     ColorArg::Rotation => ColorBy::Rotation,
                     ColorArg::Force => ColorBy::Force,
                 },
+                images: args.images,
                 ..SceneOptions::default()
             },
         ),
@@ -942,6 +955,7 @@ fn main() -> ExitCode {
             last,
             color,
             width,
+            images,
         } => plot(
             run_dir,
             *kind,
@@ -953,6 +967,7 @@ fn main() -> ExitCode {
                 last: *last,
                 color: *color,
                 width: *width,
+                images: *images,
             },
         ),
         Command::Generate {
