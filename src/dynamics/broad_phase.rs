@@ -176,17 +176,21 @@ impl Grid {
         }
         let size = 2.0 * bodies.bound.iter().copied().fold(0.0f64, f64::max) + margin;
         let (lx, ly) = (cell.size.x, cell.size.y);
-        let nx = ((lx / size).floor() as i64).max(1);
+        // At most 2n + 8 tiles a side: more would be empty (a cell far larger than its bodies'
+        // reach — 1e31 cm wide, say — would otherwise ask for more tiles than memory holds).
+        let most = (2 * n + 8) as f64;
+        let tiles = |l: f64| (l / size).floor().min(most) as i64;
+        let nx = tiles(lx).max(1);
         // Not periodic in y: the bodies' extent in y, tiled from its bottom.
         let (y0, ny) = if cell.periodic_y() {
-            (0.0, ((ly / size).floor() as i64).max(1))
+            (0.0, tiles(ly).max(1))
         } else {
             let (lo, hi) = bodies
                 .state
                 .iter()
                 .map(|s| s.pose.position.y)
                 .fold((f64::MAX, f64::MIN), |(l, h), y| (l.min(y), h.max(y)));
-            (lo, (((hi - lo) / size).floor() as i64 + 1).max(1))
+            (lo, (tiles(hi - lo) + 1).max(1))
         };
         let (wx, wy) = (
             lx / nx as f64,
