@@ -176,22 +176,26 @@ impl Grid {
         }
         let size = 2.0 * bodies.bound.iter().copied().fold(0.0f64, f64::max) + margin;
         let (lx, ly) = (cell.size.x, cell.size.y);
-        // At most 2n + 8 tiles a side: more would be empty (a cell far larger than its bodies'
-        // reach — 1e31 cm wide, say — would otherwise ask for more tiles than memory holds).
-        let most = (2 * n + 8) as f64;
-        let tiles = |l: f64| (l / size).floor().min(most) as i64;
-        let nx = tiles(lx).max(1);
+        let fx = (lx / size).floor().max(1.0);
         // Not periodic in y: the bodies' extent in y, tiled from its bottom.
-        let (y0, ny) = if cell.periodic_y() {
-            (0.0, tiles(ly).max(1))
+        let (y0, fy) = if cell.periodic_y() {
+            (0.0, (ly / size).floor().max(1.0))
         } else {
             let (lo, hi) = bodies
                 .state
                 .iter()
                 .map(|s| s.pose.position.y)
                 .fold((f64::MAX, f64::MIN), |(l, h), y| (l.min(y), h.max(y)));
-            (lo, (tiles(hi - lo) + 1).max(1))
+            (lo, ((hi - lo) / size).floor() + 1.0)
         };
+        // A sparse cell (far larger than its bodies' reach) gets at most a few tiles per body,
+        // each larger than the reach: the same pairs, without a tiling larger than memory.
+        let cap = (4 * n).max(64) as f64;
+        let f = (fx * fy / cap).sqrt().max(1.0);
+        let (nx, ny) = (
+            ((fx / f).floor() as i64).max(1),
+            ((fy / f).floor() as i64).max(1),
+        );
         let (wx, wy) = (
             lx / nx as f64,
             if cell.periodic_y() {

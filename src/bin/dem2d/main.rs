@@ -55,6 +55,13 @@ enum Command {
         /// Packings per aspect ratio (jamming; default 10).
         #[arg(long)]
         packings: Option<usize>,
+        /// Aspect ratios a/b, comma-separated (jamming and shear; default: each study's own
+        /// list).
+        #[arg(long, value_delimiter = ',')]
+        aspects: Option<Vec<f64>>,
+        /// Inertial numbers, comma-separated (shear; default 0.003,0.01,0.03,0.1,0.3).
+        #[arg(long, value_delimiter = ',')]
+        inertial: Option<Vec<f64>>,
         /// Worker threads (default: all cores; the jamming study runs its packings in
         /// parallel).
         #[arg(long)]
@@ -855,15 +862,21 @@ fn main() -> ExitCode {
             write_cases,
             grains,
             packings,
+            aspects,
+            inertial,
             threads,
             docs,
             check,
         } => set_threads(*threads).and_then(|()| {
             study::run(
                 *name,
-                *write_cases,
-                *grains,
-                *packings,
+                &study::Options {
+                    write_cases: *write_cases,
+                    grains: *grains,
+                    packings: *packings,
+                    aspects: aspects.clone(),
+                    inertial: inertial.clone(),
+                },
                 docs_mode(*docs, *check),
             )
         }),
