@@ -242,7 +242,8 @@ impl Stepper {
         if let Some(cell) = wd.cell.as_deref_mut()
             && cell.measures_stress()
         {
-            cell.measure(&slots, &bodies_sum.kinetic_stress);
+            // (With the stretch's second half of work: see `Cell::stretch`.)
+            wd.energies.boundary_work += cell.measure(&slots, &bodies_sum.kinetic_stress);
         }
         // 5. Account: the energy the contacts took out, the work of the walls and of the
         // prescribed bodies; the servos' next velocities.
@@ -372,8 +373,7 @@ impl Stepper {
         if let Some(cell) = wd.cell.as_deref_mut()
             && cell.measures_stress()
         {
-            let kinetic = cell.kinetic_stress(wd.bodies);
-            cell.measure(&slots, &kinetic);
+            let _outside_a_step = cell.measure(&slots, &cell.kinetic_stress(wd.bodies));
         }
     }
 
