@@ -19,10 +19,10 @@ use super::summary::Status;
 use super::trace::WriteError;
 use crate::contact_law::History;
 use crate::dynamics::restart::{RestartState, state_name};
-use crate::dynamics::{BodyInit, World};
-use crate::geometry::Vec2;
+use crate::dynamics::World;
+use crate::geometry::{Shape, Vec2};
 use crate::run::{End, Observer, ObserverError, RunError, RunProgress, StepInfo};
-use serde_json::Value;
+use serde_json::{Value, json};
 use std::fmt::Write as _;
 use std::io;
 use std::path::{Path, PathBuf};
@@ -62,17 +62,22 @@ fn compact(v: &Value) -> String {
 }
 
 /// The text of a state file: `case` the run's case as read (its JSON), `duration` the run's
-/// duration (the case's, or the one the command line gave), `state` the world's state, `run`
-/// the run's progress, `bodies` the case's bodies (for which of them are circles: a circle's
-/// frame is written), `status` how the run ended.
+/// duration (the case's, or the one the command line gave), `world` the world (its state, and
+/// which of its bodies are circles: a circle's frame is written), `run` the run's progress,
+/// `status` how the run ended.
+///
+/// Each body is listed with the fields the case gave it, found by its identity
+/// ([`crate::dynamics::Bodies::id`]: the case's `bodies[id]`, or where a state file's `ids`
+/// put it); a body inserted during the run ([`crate::dynamics::flow`]) with its shape and the
+/// `material` and `density` its inserter was given.
 pub fn state_text(
     case: &Value,
     duration: f64,
-    state: &RestartState,
+    world: &World,
     run: Option<&RunProgress>,
-    bodies: &[BodyInit],
     status: &str,
 ) -> String {
+    let state = &world.restart_state();
     let mut out = String::with_capacity(256 + 200 * (state.bodies.len() + state.slots.len()));
     out.push_str("{\n");
     for key in CASE_ORDER {
@@ -100,10 +105,25 @@ pub fn state_text(
     }
     // The bodies: the case's, at their current pose and velocity.
     out.push_str("  \"bodies\": [\n");
-    let empty = Value::Object(Default::default());
     let listed = case.get("bodies").and_then(Value::as_array);
+    // Where each identity is listed in the case (a state file's `ids`; else its index).
+    let listed_ids: Option<Vec<u64>> = case
+        .get("state")
+        .and_then(|s| s.get("ids"))
+        .and_then(Value::as_array)
+        .map(|a| a.iter().filter_map(Value::as_u64).collect());
+    let place: std::collections::HashMap<u64, usize> = match &listed_ids {
+        Some(ids) => ids.iter().enumerate().map(|(k, &id)| (id, k)).collect(),
+        None => (0..listed.map_or(0, Vec::len))
+            .map(|k| (k as u64, k))
+            .collect(),
+    };
     for (k, b) in state.bodies.iter().enumerate() {
-        let given = listed.and_then(|l| l.get(k)).unwrap_or(&empty);
+        let id = world.bodies.id[k];
+        let given = match place.get(&id).and_then(|&at| listed.and_then(|l| l.get(at))) {
+            Some(v) => v.clone(),
+            None => inserted_body(case, world, k),
+        };
         let mut line = String::from("{");
         if let Some(shape) = given.get("shape") {
             let _ = write!(line, "\"shape\": {}, ", compact(shape));
@@ -134,16 +154,46 @@ pub fn state_text(
     }
     out.push_str("  ],\n");
     out.push_str("  \"state\": {\n");
-    write_state_block(&mut out, state, run, bodies, status);
+    let circles: Vec<bool> = world.bodies.shape.iter().map(|s| s.is_circle()).collect();
+    write_state_block(&mut out, state, run, &circles, status);
     out.push_str("  }\n}\n");
     out
+}
+
+/// The fields of body `k`, inserted during the run: its shape, and the `material` and
+/// `density` given to the first of the case's inserters that makes bodies of its material and
+/// density.
+fn inserted_body(case: &Value, world: &World, k: usize) -> Value {
+    let b = &world.bodies;
+    let shape = match b.shape[k] {
+        Shape::Circle { r } => json!({"type": "circle", "r": r}),
+        Shape::Ellipse { a, b } => json!({"type": "ellipse", "a": a, "b": b}),
+        Shape::Rectangle { w, h } => json!({"type": "rectangle", "w": w, "h": h}),
+        // (Inserters make none of these.)
+        Shape::Polygon(_) | Shape::Clump(_) => Value::Null,
+    };
+    let mut fields = serde_json::Map::new();
+    fields.insert("shape".into(), shape);
+    let inserters = world.flow.as_ref().map_or(&[][..], |f| &f.inserters[..]);
+    let given = inserters
+        .iter()
+        .position(|i| i.material == b.material[k] && i.density == b.density[k])
+        .and_then(|at| case.get("insert")?.as_array()?.get(at));
+    if let Some(g) = given {
+        for key in ["material", "density"] {
+            if let Some(v) = g.get(key) {
+                fields.insert(key.into(), v.clone());
+            }
+        }
+    }
+    Value::Object(fields)
 }
 
 fn write_state_block(
     out: &mut String,
     s: &RestartState,
     run: Option<&RunProgress>,
-    bodies: &[BodyInit],
+    circles: &[bool],
     status: &str,
 ) {
     let _ = writeln!(out, "    \"status\": {},", compact(&Value::from(status)));
@@ -190,6 +240,38 @@ fn write_state_block(
             num(c.stiffness_yy)
         );
     }
+    if s.flow.is_some() || s.ids.iter().enumerate().any(|(k, &id)| id != k as u64) {
+        let ids: Vec<String> = s.ids.iter().map(u64::to_string).collect();
+        let _ = writeln!(out, "    \"next_id\": {},", s.next_id);
+        let _ = writeln!(out, "    \"ids\": [{}],", ids.join(", "));
+    }
+    if let Some(f) = &s.flow {
+        let inserters: Vec<String> = f
+            .inserters
+            .iter()
+            .map(|i| {
+                let next = if i.next_try.is_finite() {
+                    format!(", \"next_try\": {}", num(i.next_try))
+                } else {
+                    String::new()
+                };
+                format!(
+                    "{{\"rng\": \"{:#x}\", \"inserted\": {}{next}}}",
+                    i.rng, i.inserted
+                )
+            })
+            .collect();
+        let applied = f
+            .applied_step
+            .map_or(String::new(), |s| format!("\"applied_step\": {s}, "));
+        let _ = writeln!(
+            out,
+            "    \"flow\": {{{applied}\"discharged\": {}, \"discharged_mass\": {}, \"inserters\": [{}]}},",
+            f.discharged,
+            num(f.discharged_mass),
+            inserters.join(", ")
+        );
+    }
     out.push_str("    \"walls\": [");
     for (k, w) in s.walls.iter().enumerate() {
         let l = &w.load;
@@ -229,7 +311,7 @@ fn write_state_block(
             vec2(b.force),
             num(b.torque)
         );
-        if bodies.get(k).is_some_and(|i| i.shape.is_circle()) {
+        if circles.get(k) == Some(&true) {
             let _ = write!(out, ", \"frame\": [{}, {}]", num(b.frame.0), num(b.frame.1));
         }
         if s.cell.is_some() {
@@ -348,18 +430,10 @@ pub fn write_state(
     case: &Value,
     duration: f64,
     world: &World,
-    bodies: &[BodyInit],
     run: &RunProgress,
     status: &str,
 ) -> io::Result<()> {
-    let text = state_text(
-        case,
-        duration,
-        &world.restart_state(),
-        Some(run),
-        bodies,
-        status,
-    );
+    let text = state_text(case, duration, world, Some(run), status);
     super::write_atomically(dir, "state.json", &text)
 }
 
@@ -370,17 +444,15 @@ pub struct StateWriter {
     dir: PathBuf,
     case: Value,
     duration: f64,
-    bodies: Vec<BodyInit>,
 }
 
 impl StateWriter {
-    /// Into `dir`, for the run of `case` (its JSON) of `duration` with the case's `bodies`.
-    pub fn new(dir: &Path, case: &Value, duration: f64, bodies: &[BodyInit]) -> Self {
+    /// Into `dir`, for the run of `case` (its JSON) of `duration`.
+    pub fn new(dir: &Path, case: &Value, duration: f64) -> Self {
         StateWriter {
             dir: dir.to_path_buf(),
             case: case.clone(),
             duration,
-            bodies: bodies.to_vec(),
         }
     }
 
@@ -396,7 +468,6 @@ impl StateWriter {
             &self.case,
             self.duration,
             world,
-            &self.bodies,
             run,
             status.as_str(),
         )

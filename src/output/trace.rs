@@ -157,7 +157,7 @@ impl TrajectoryWriter {
                 "{},{},{},{},{},{},{},{},{}{}",
                 step,
                 t,
-                k,
+                b.id[k],
                 p.position.x,
                 p.position.y,
                 p.angle(),

@@ -32,7 +32,7 @@ use crate::contact_law::{Check, ContactSpec, Keys, NormalForce, ParamError};
 use crate::dynamics::boundary::{Program, Stage, StageMotion};
 use crate::dynamics::cell::{Cell, PRESSURE_RELAXATION, Periodic, Pressure};
 use crate::dynamics::neighbour_list::SKIN_FRACTION;
-use crate::dynamics::{BodyInit, Boundary, Materials, Motion, Servo, Span};
+use crate::dynamics::{BodyInit, Boundary, Flow, Materials, Motion, Servo, Span};
 use crate::geometry::Vec2;
 use serde_json::{Map, Value};
 
@@ -67,6 +67,8 @@ pub struct Case {
     /// The periodic cell the scene repeats in (`"cell": {"size": [L_x, L_y], "periodic": "x" |
     /// "xy", "shear_rate": γ̇, "pressure": P, "pressure_gain": α}`; see `dynamics::cell`).
     pub cell: Option<Cell>,
+    /// Insertion and outflow regions (`insert`, `outflow`; see [`crate::dynamics::flow`]).
+    pub flow: Option<Flow>,
 }
 
 /// The case's optional outputs.
@@ -206,8 +208,11 @@ impl Case {
         let items = list.as_array().ok_or_else(|| {
             FieldError::new("bodies", format!("must be an array, got {}", type_of(list)))
         })?;
-        if items.is_empty() {
-            return Err(FieldError::new("bodies", "must list at least one body"));
+        if items.is_empty() && !o.has("insert") {
+            return Err(FieldError::new(
+                "bodies",
+                "must list at least one body (or the case must `insert` some)",
+            ));
         }
         let mut bodies = Vec::with_capacity(items.len());
         for (k, item) in items.iter().enumerate() {
@@ -241,15 +246,23 @@ impl Case {
             None => None,
             Some(v) => Some(parse_cell(v, &walls, &bodies, gravity)?),
         };
+        let (insert, outflow) = (o.get("insert"), o.get("outflow"));
+        let flow = super::flow::parse_flow(insert, outflow, &named, &bodies)?;
         // A state file's block (read by `scene::state`, which continues the run from it).
         let _ = o.get("state");
         o.finish()?;
+        // The inserters' bodies are checked as the case's are (sizes, materials, ranges).
+        let templates = flow.as_ref().map(super::flow::templates).unwrap_or_default();
+        let checked: Vec<BodyInit> = bodies.iter().chain(&templates).copied().collect();
         check_steps(duration, dt)?;
-        let mut placed: Vec<Placed> = bodies
+        let mut placed: Vec<Placed> = checked
             .iter()
             .enumerate()
             .map(|(k, b)| Placed::Body {
-                path: index("bodies", k),
+                path: match k.checked_sub(bodies.len()) {
+                    None => index("bodies", k),
+                    Some(i) => join(&index("insert", i), "size"),
+                },
                 shape: &b.shape,
                 position: b.position,
             })
@@ -260,9 +273,9 @@ impl Case {
         }));
         check_extent(&placed)?;
         check_walls(&walls, &bodies)?;
-        let meets = meeting(&bodies, &walls);
+        let meets = meeting(&checked, &walls);
         check_mixing(&named, (&contact, &contact_map), &meets)?;
-        check_contact_ranges(&contact, &named, &meets, &walls, &bodies, gravity)?;
+        check_contact_ranges(&contact, &named, &meets, &walls, &checked, gravity)?;
         Ok(Case {
             name,
             description,
@@ -280,6 +293,7 @@ impl Case {
             walls,
             bodies,
             cell,
+            flow,
         })
     }
 
@@ -310,6 +324,7 @@ impl Case {
             walls,
             bodies,
             cell: None,
+            flow: None,
         }
     }
 
@@ -330,8 +345,12 @@ impl Case {
             self.materials.clone(),
             self.dt,
         );
-        match self.cell {
+        let world = match self.cell {
             Some(cell) => world.with_cell(cell).0,
+            None => world,
+        };
+        match &self.flow {
+            Some(flow) => world.with_flow(flow.clone(), None),
             None => world,
         }
     }
@@ -354,7 +373,7 @@ impl Case {
         &self,
         state: &crate::dynamics::RestartState,
     ) -> Result<crate::dynamics::World, crate::dynamics::RestartError> {
-        crate::dynamics::World::resume(
+        let world = crate::dynamics::World::resume(
             &self.bodies,
             self.walls.clone(),
             self.gravity,
@@ -362,7 +381,11 @@ impl Case {
             self.materials.clone(),
             self.dt,
             state,
-        )
+        )?;
+        Ok(match &self.flow {
+            Some(flow) => world.with_flow(flow.clone(), state.flow.as_ref()),
+            None => world,
+        })
     }
 
     /// The same case stepped with `dt`.
