@@ -19,7 +19,7 @@ use super::summary::Status;
 use super::trace::WriteError;
 use crate::contact_law::History;
 use crate::dynamics::restart::{RestartState, state_name};
-use crate::dynamics::World;
+use crate::dynamics::{BodyInit, World};
 use crate::geometry::{Shape, Vec2};
 use crate::run::{End, Observer, ObserverError, RunError, RunProgress, StepInfo};
 use serde_json::{Value, json};
@@ -62,22 +62,23 @@ fn compact(v: &Value) -> String {
 }
 
 /// The text of a state file: `case` the run's case as read (its JSON), `duration` the run's
-/// duration (the case's, or the one the command line gave), `world` the world (its state, and
-/// which of its bodies are circles: a circle's frame is written), `run` the run's progress,
-/// `status` how the run ended.
+/// duration (the case's, or the one the command line gave), `state` the world's state, `run`
+/// the run's progress, `bodies` the world's bodies as they are (for which of them are circles:
+/// a circle's frame is written; and the fields of a body inserted during the run), `status`
+/// how the run ended.
 ///
 /// Each body is listed with the fields the case gave it, found by its identity
 /// ([`crate::dynamics::Bodies::id`]: the case's `bodies[id]`, or where a state file's `ids`
-/// put it); a body inserted during the run ([`crate::dynamics::flow`]) with its shape and the
-/// `material` and `density` its inserter was given.
+/// put it); a body inserted during the run ([`crate::dynamics::flow`]) with its shape, its
+/// material's name and its density (unless its material gives it).
 pub fn state_text(
     case: &Value,
     duration: f64,
-    world: &World,
+    state: &RestartState,
     run: Option<&RunProgress>,
+    bodies: &[BodyInit],
     status: &str,
 ) -> String {
-    let state = &world.restart_state();
     let mut out = String::with_capacity(256 + 200 * (state.bodies.len() + state.slots.len()));
     out.push_str("{\n");
     for key in CASE_ORDER {
@@ -119,10 +120,10 @@ pub fn state_text(
             .collect(),
     };
     for (k, b) in state.bodies.iter().enumerate() {
-        let id = world.bodies.id[k];
+        let id = state.ids.get(k).copied().unwrap_or(k as u64);
         let given = match place.get(&id).and_then(|&at| listed.and_then(|l| l.get(at))) {
             Some(v) => v.clone(),
-            None => inserted_body(case, world, k),
+            None => bodies.get(k).map_or(Value::Null, |b| inserted_body(case, b)),
         };
         let mut line = String::from("{");
         if let Some(shape) = given.get("shape") {
@@ -154,18 +155,17 @@ pub fn state_text(
     }
     out.push_str("  ],\n");
     out.push_str("  \"state\": {\n");
-    let circles: Vec<bool> = world.bodies.shape.iter().map(|s| s.is_circle()).collect();
+    let circles: Vec<bool> = bodies.iter().map(|b| b.shape.is_circle()).collect();
     write_state_block(&mut out, state, run, &circles, status);
     out.push_str("  }\n}\n");
     out
 }
 
-/// The fields of body `k`, inserted during the run: its shape, and the `material` and
-/// `density` given to the first of the case's inserters that makes bodies of its material and
-/// density.
-fn inserted_body(case: &Value, world: &World, k: usize) -> Value {
-    let b = &world.bodies;
-    let shape = match b.shape[k] {
+/// The fields of a body inserted during the run: its shape, its material (by name: material
+/// k is the case's k-th in `materials`, as the reader numbers them) and its density unless its
+/// material gives one.
+fn inserted_body(case: &Value, b: &BodyInit) -> Value {
+    let shape = match b.shape {
         Shape::Circle { r } => json!({"type": "circle", "r": r}),
         Shape::Ellipse { a, b } => json!({"type": "ellipse", "a": a, "b": b}),
         Shape::Rectangle { w, h } => json!({"type": "rectangle", "w": w, "h": h}),
@@ -174,17 +174,20 @@ fn inserted_body(case: &Value, world: &World, k: usize) -> Value {
     };
     let mut fields = serde_json::Map::new();
     fields.insert("shape".into(), shape);
-    let inserters = world.flow.as_ref().map_or(&[][..], |f| &f.inserters[..]);
-    let given = inserters
-        .iter()
-        .position(|i| i.material == b.material[k] && i.density == b.density[k])
-        .and_then(|at| case.get("insert")?.as_array()?.get(at));
-    if let Some(g) = given {
-        for key in ["material", "density"] {
-            if let Some(v) = g.get(key) {
-                fields.insert(key.into(), v.clone());
-            }
+    let material = match b.material {
+        0 => None,
+        m => case
+            .get("materials")
+            .and_then(Value::as_object)
+            .and_then(|o| o.iter().nth(m as usize - 1)),
+    };
+    if let Some((name, given)) = material {
+        fields.insert("material".into(), Value::from(name.as_str()));
+        if given.get("density").is_none() {
+            fields.insert("density".into(), json!(b.density));
         }
+    } else {
+        fields.insert("density".into(), json!(b.density));
     }
     Value::Object(fields)
 }
@@ -433,8 +436,32 @@ pub fn write_state(
     run: &RunProgress,
     status: &str,
 ) -> io::Result<()> {
-    let text = state_text(case, duration, world, Some(run), status);
+    let text = state_text(
+        case,
+        duration,
+        &world.restart_state(),
+        Some(run),
+        &current_bodies(world),
+        status,
+    );
     super::write_atomically(dir, "state.json", &text)
+}
+
+/// The world's bodies as they are now (shape, material, density: what a state file lists).
+pub fn current_bodies(world: &World) -> Vec<BodyInit> {
+    let b = &world.bodies;
+    (0..b.len())
+        .map(|k| BodyInit {
+            shape: b.shape[k],
+            position: b.state[k].pose.position,
+            angle: b.state[k].pose.angle(),
+            velocity: b.state[k].vel,
+            omega: b.state[k].omega,
+            density: b.density[k],
+            material: b.material[k],
+            prescribed: b.is_prescribed(k),
+        })
+        .collect()
 }
 
 /// The writer of a run's `state.json` (an observer): when the run ends, however it ends but by a

@@ -68,7 +68,14 @@ pub fn run(args: RelaxArgs) -> Result<(), Failure> {
     } else {
         "max_iterations"
     };
-    let state = state_text(&file.value, case.duration, &world, None, status);
+    let state = state_text(
+        &file.value,
+        case.duration,
+        &world.restart_state(),
+        None,
+        &case.bodies,
+        status,
+    );
     let summary = serde_json::json!({
         "name": case.name,
         "status": status,
