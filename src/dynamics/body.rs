@@ -176,7 +176,9 @@ impl Bodies {
         cut(&mut self.torque, keep);
         cut(&mut self.image, keep);
         cut(&mut self.id, keep);
-        self.prescribed = (0..self.len()).filter(|&k| self.inv_mass[k] == 0.0).collect();
+        self.prescribed = (0..self.len())
+            .filter(|&k| self.inv_mass[k] == 0.0)
+            .collect();
     }
 
     /// Number of bodies.

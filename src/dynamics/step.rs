@@ -452,6 +452,7 @@ impl Stepper {
     /// data (a rebuild between steps, after bodies were inserted).
     pub(crate) fn rebuild_neighbours_with(&mut self, wd: &mut Parts, carry_data: bool) {
         self.facts = SceneFacts::of(wd.bodies);
+        self.builder.carry_data = carry_data;
         let lost = self.builder.rebuild(
             wd.bodies,
             wd.walls,
@@ -459,8 +460,8 @@ impl Stepper {
             self.facts.clumps,
             wd.cell.as_deref(),
             wd.contacts,
-            carry_data,
         );
+        self.builder.carry_data = false;
         wd.energies.dissipated += lost;
         self.size_partials(wd);
     }

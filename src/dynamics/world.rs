@@ -2,12 +2,12 @@
 
 pub use super::account::{Diagnostics, Energies};
 use super::body::{Bodies, BodyInit};
-use super::flow::{FlowRestart, Target};
 pub use super::boundary::Boundary;
 use super::boundary::Motion;
 use super::cell::Cell;
 use super::contacts::{ContactList, REMOVED};
 use super::flow::{Discharge, Flow, SplitMix64, draw_body, draw_position};
+use super::flow::{FlowRestart, Target};
 use super::materials::{Materials, PairTable};
 use super::neighbour_list::kept;
 use super::restart::{
@@ -467,9 +467,7 @@ impl World {
         }
         self.bodies.retain(&keep);
         let cached = !self.contacts.cache.is_empty();
-        let lost = self
-            .contacts
-            .drop_bodies(&map, self.bodies.len(), cached);
+        let lost = self.contacts.drop_bodies(&map, self.bodies.len(), cached);
         self.energies.dissipated += lost;
         let (stepper, mut parts) = self.parts();
         stepper.regather_forces(&mut parts);

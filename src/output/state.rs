@@ -121,9 +121,14 @@ pub fn state_text(
     };
     for (k, b) in state.bodies.iter().enumerate() {
         let id = state.ids.get(k).copied().unwrap_or(k as u64);
-        let given = match place.get(&id).and_then(|&at| listed.and_then(|l| l.get(at))) {
+        let given = match place
+            .get(&id)
+            .and_then(|&at| listed.and_then(|l| l.get(at)))
+        {
             Some(v) => v.clone(),
-            None => bodies.get(k).map_or(Value::Null, |b| inserted_body(case, b)),
+            None => bodies
+                .get(k)
+                .map_or(Value::Null, |b| inserted_body(case, b)),
         };
         let mut line = String::from("{");
         if let Some(shape) = given.get("shape") {

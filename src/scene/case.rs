@@ -252,7 +252,10 @@ impl Case {
         let _ = o.get("state");
         o.finish()?;
         // The inserters' bodies are checked as the case's are (sizes, materials, ranges).
-        let templates = flow.as_ref().map(super::flow::templates).unwrap_or_default();
+        let templates = flow
+            .as_ref()
+            .map(super::flow::templates)
+            .unwrap_or_default();
         let checked: Vec<BodyInit> = bodies.iter().chain(&templates).copied().collect();
         check_steps(duration, dt)?;
         let mut placed: Vec<Placed> = checked

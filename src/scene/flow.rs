@@ -175,9 +175,7 @@ fn inserter(v: &Value, path: &str, named: &Named) -> Result<Inserter, FieldError
             Some("rectangle") => Ok(InsertShape::Rectangle),
             _ => Err(FieldError::new(
                 p,
-                format!(
-                    "unknown shape {v} (an inserter makes `circle`, `ellipse` or `rectangle`)"
-                ),
+                format!("unknown shape {v} (an inserter makes `circle`, `ellipse` or `rectangle`)"),
             )),
         })?
         .unwrap_or(InsertShape::Circle);

@@ -666,9 +666,7 @@ fn parse_flow(v: &Value, path: &str, case: &Case) -> Result<FlowRestart, FieldEr
                         })
                 })?;
                 let inserted = i.req_with("inserted", whole)?;
-                let next_try = i
-                    .opt_with("next_try", float)?
-                    .unwrap_or(f64::NEG_INFINITY);
+                let next_try = i.opt_with("next_try", float)?.unwrap_or(f64::NEG_INFINITY);
                 i.finish()?;
                 Ok(InserterState {
                     rng,
