@@ -529,7 +529,7 @@ fn the_outputs_reference_lists_every_file_and_column_a_run_writes() {
         .expect("an example of a sheared cell with the analysis");
     std::fs::write(dir.join("cell.json"), &cell_case).unwrap();
     let status = Command::new(env!("CARGO_BIN_EXE_dem2d"))
-        .args(["run", "cell.json", "--out", "cell_run", "--quiet"])
+        .args(["run", "cell.json", "--out", "cell_run", "--quiet", "--vtk"])
         .current_dir(&dir)
         .status()
         .unwrap();
@@ -577,6 +577,20 @@ fn the_outputs_reference_lists_every_file_and_column_a_run_writes() {
         .collect();
     assert!(listed.contains("discharge.csv"));
     assert_eq!(documented.get("discharge.csv"), Some(&header));
+    // A VTK frame's field data gain the cell's state (its cell data are the same arrays).
+    let frame = read(&out.join("vtk/frame_00000.vtu"));
+    let start = frame.find("<FieldData").expect("field data");
+    let body = &frame[start..frame.find("</FieldData>").expect("closed")];
+    let field: Vec<String> = body
+        .split("Name=\"")
+        .skip(1)
+        .map(|part| part[..part.find('"').unwrap()].to_string())
+        .filter(|n| n != "TIME" && n != "STEP")
+        .collect();
+    assert_eq!(
+        documented["vtk/frame_NNNNN.vtu (cell)"], field,
+        "VTK field data in a periodic cell: documented (left) against written (right)"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -231,3 +231,89 @@ fn the_case_file_can_ask_for_vtk_and_bad_vtk_requests_are_refused() {
     );
     assert!(!err.contains("panicked"), "{err}");
 }
+
+/// Runs `tests/vtk_check.py` on `run` and returns its output; `None` where no Python has VTK
+/// (refused when `DEM2D_REQUIRE_VTK` is set).
+fn vtk_check(run: &Path) -> Option<String> {
+    let Some(py) = vtk_python() else {
+        assert!(
+            std::env::var_os("DEM2D_REQUIRE_VTK").is_none(),
+            "DEM2D_REQUIRE_VTK is set but no Python with VTK was found (install python3-vtk9)"
+        );
+        eprintln!("SKIPPED the VTK reader check: no Python with VTK's module");
+        return None;
+    };
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/vtk_check.py");
+    let out = Command::new(&py)
+        .arg(&script)
+        .arg(run)
+        .output()
+        .expect("run the VTK check");
+    let stdout = String::from_utf8_lossy(&out.stdout).to_string();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    eprintln!("{stdout}{stderr}");
+    assert!(out.status.success(), "{stdout}\n{stderr}");
+    Some(stdout)
+}
+
+#[test]
+fn a_periodic_cell_is_drawn_with_its_size_and_shift_and_contacts_across_a_seam_to_an_image() {
+    // The shear tutorial's Lees–Edwards cell at imposed pressure (its height shrinks from 20 cm
+    // as it is compressed): the outline and the field data follow cell.csv frame by frame, and
+    // the contacts across a seam end at the giver's image (tests/vtk_check.py).
+    let dir = scratch("cell");
+    let run = dir.join("shear");
+    let (code, _, err) = dem2d(&[
+        "run",
+        "cases/shear_cell.json",
+        "--out",
+        run.to_str().unwrap(),
+        "--quiet",
+        "--max-steps",
+        "12000",
+        "--vtk-every",
+        "2000",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    if let Some(out) = vtk_check(&run) {
+        assert!(out.contains("vtk check passed: 7 frames"), "{out}");
+        let seams: usize = out
+            .rsplit("cells, ")
+            .next()
+            .and_then(|s| s.split(' ').next())
+            .and_then(|n| n.parse().ok())
+            .unwrap();
+        assert!(
+            seams >= 10,
+            "too few contacts across a seam to check: {out}"
+        );
+    }
+    // A cell periodic in x between a floor and a lid: its two seams.
+    let case = dir.join("x.json");
+    std::fs::write(
+        &case,
+        r#"{ "version": 1, "name": "periodic_x", "units": "cm",
+  "gravity": [0, -980], "dt": 1e-5, "duration": 0.05, "output_every": 1000,
+  "cell": { "size": [8, 10], "periodic": "x" },
+  "contact": { "model": "linear", "kn_over_rho_g": 36400, "restitution": 0.5, "friction": 0.5 },
+  "walls": [ { "point": [0, 0], "normal": [0, 1] },
+             { "point": [0, 10], "normal": [0, -1], "velocity": [5, 0] } ],
+  "bodies": [ { "shape": {"type": "ellipse", "a": 1.0, "b": 0.5}, "position": [7.5, 1] },
+              { "shape": {"type": "circle", "r": 0.6}, "position": [0.2, 1] } ] }"#,
+    )
+    .unwrap();
+    let run = dir.join("x");
+    let (code, _, err) = dem2d(&[
+        "run",
+        case.to_str().unwrap(),
+        "--out",
+        run.to_str().unwrap(),
+        "--quiet",
+        "--vtk",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    if let Some(out) = vtk_check(&run) {
+        assert!(out.contains("vtk check passed: 6 frames"), "{out}");
+        assert!(out.contains("2 cell outlines"), "{out}");
+    }
+}

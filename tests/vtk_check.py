@@ -19,7 +19,13 @@ Checks, for every frame listed in run.pvd:
   diameters);
 - contact lines join the centroids of the pair's bodies (or a body's centroid and a point on
   the wall); normals are unit; F_n = F.n >= 0 and F = F_n n + F_t t;
-- wall lines run along the wall (perpendicular to its normal, through its point).
+- wall lines run along the wall (perpendicular to its normal, through its point);
+- in a periodic cell (cell.csv): the field data CELL_SIZE, CELL_OFFSET, CELL_SHIFT equal to
+  cell.csv's row of that step (to the bit); the cell's outline (kind 3) is the closed poly-line
+  (0, 0), (Lx, 0), (Lx, Ly), (0, Ly), (0, 0) at that row's size ("xy"), or the two seams x = 0
+  and x = Lx ("x"); a contact line across a seam ends at an image of the giver's centroid (its
+  centroid shifted by a period, with the Lees-Edwards offset across the y seam) no farther
+  than half a period from the receiver.
 Prints one line per frame and exits 1 at the first failure.
 """
 
@@ -67,10 +73,19 @@ def main(run):
         for row in csv.DictReader(f):
             contacts_at[int(row["step"])] = int(row["contacts"])
 
+    cellspec = case.get("cell")
+    cells_at = {}
+    if cellspec is not None:
+        with open(os.path.join(run, "cell.csv")) as f:
+            for row in csv.DictReader(f):
+                cells_at[int(row["step"])] = row
+    n_cell = 0 if cellspec is None else (1 if cellspec["periodic"] == "xy" else 2)
+
     pvd = ET.parse(os.path.join(run, "run.pvd")).getroot()
     datasets = pvd.findall("./Collection/DataSet")
     check(len(datasets) >= 2, f"run.pvd lists {len(datasets)} frames")
     total_cells = 0
+    total_seam = 0
     for ds in datasets:
         path = os.path.join(run, ds.get("file"))
         reader = vtk.vtkXMLUnstructuredGridReader()
@@ -89,13 +104,27 @@ def main(run):
         cd = grid.GetCellData()
         arr = {cd.GetArrayName(i): vtk_to_numpy(cd.GetArray(i)) for i in range(cd.GetNumberOfArrays())}
         kind = arr["kind"]
-        n_body, n_contact, n_wall = (int((kind == k).sum()) for k in (0, 1, 2))
+        n_body, n_contact, n_wall, n_outline = (int((kind == k).sum()) for k in (0, 1, 2, 3))
         check(n_body == nb, f"{path}: {n_body} body cells, case has {nb} bodies")
         check(n_wall == nw, f"{path}: {n_wall} wall cells, case has {nw} walls")
+        check(n_outline == n_cell, f"{path}: {n_outline} cell outlines, want {n_cell}")
         if step > 0:
             want = contacts_at[step]
             check(n_contact == want, f"{path}: {n_contact} contact cells, increments.csv says {want}")
-        check(grid.GetNumberOfCells() == nb + n_contact + nw, f"{path}: cell count")
+        check(grid.GetNumberOfCells() == nb + n_contact + nw + n_outline, f"{path}: cell count")
+        lx = ly = offset = None
+        if cellspec is not None:
+            row = cells_at.get(step)
+            check(row is not None, f"{path}: step {step} is not a row of cell.csv")
+            lx, ly, offset, shift = (float(row[k]) for k in ("lx", "ly", "offset", "shift"))
+            size = vtk_to_numpy(fd.GetArray("CELL_SIZE"))
+            check(size.shape == (1, 2) and size[0][0] == lx and size[0][1] == ly,
+                  f"{path}: CELL_SIZE {size} != cell.csv ({lx}, {ly})")
+            for name, want in (("CELL_OFFSET", offset), ("CELL_SHIFT", shift)):
+                got = vtk_to_numpy(fd.GetArray(name))[0]
+                check(got == want, f"{path}: {name} {got} != cell.csv {want}")
+        else:
+            check(fd.GetArray("CELL_SIZE") is None, f"{path}: CELL_SIZE without a cell")
         total_cells += grid.GetNumberOfCells()
 
         sizes = vtk.vtkCellSizeFilter()
@@ -171,6 +200,7 @@ def main(run):
                   f"{path}: body {k} tensor eigenvalues {ev}, semi-axes {a}, {b}")
 
         centroid = {k: (float(rows[k]["x"]), float(rows[k]["y"])) for k in range(nb)}
+        n_seam = 0
         for c in range(grid.GetNumberOfCells()):
             if kind[c] == 1:
                 check(grid.GetCellType(c) == vtk.VTK_LINE, f"{path}: contact cell {c} is not a line")
@@ -181,7 +211,18 @@ def main(run):
                 check(tuple(p0[:2]) == centroid[i], f"{path}: contact {c} starts at {p0}, not body {i}'s centroid")
                 n = arr["normal"][c]
                 check(abs(math.hypot(n[0], n[1]) - 1) < 1e-12, f"{path}: contact {c} normal {n}")
-                if j >= 0:
+                if j >= 0 and cellspec is not None and tuple(p1[:2]) != centroid[j]:
+                    # Across a seam: an image of j's centroid, within half a period of i's.
+                    dx, dy = p1[0] - centroid[j][0], p1[1] - centroid[j][1]
+                    ky = round(dy / ly) if cellspec["periodic"] == "xy" else 0
+                    check(abs(dy - ky * ly) <= 1e-9 * ly, f"{path}: contact {c} image {p1} off by {dy} in y")
+                    kx = (dx - ky * offset) / lx
+                    check(abs(kx - round(kx)) <= 1e-9 * max(1, abs(kx)) and (kx, ky) != (0, 0),
+                          f"{path}: contact {c} image {p1} is not a periodic image of body {j}")
+                    check(abs(p1[0] - p0[0]) <= lx / 2 and abs(p1[1] - p0[1]) <= (ly / 2 if ky else ly),
+                          f"{path}: contact {c} image {p1} not the nearest to body {i}")
+                    n_seam += 1
+                elif j >= 0:
                     check(tuple(p1[:2]) == centroid[j], f"{path}: contact {c} ends at {p1}, not body {j}'s centroid")
                 else:
                     w = walls[-1 - j]
@@ -206,9 +247,21 @@ def main(run):
                 for p in (p0, p1):
                     d = ((p[0] - wp[0]) * wn[0] + (p[1] - wp[1]) * wn[1]) / norm
                     check(abs(d) <= 1e-9 * max(1.0, abs(p[0]), abs(p[1])), f"{path}: wall {arr['id'][c]} line point {p} off the wall by {d}")
-        print(f"{ds.get('file')}: step {step}, t = {t}: {nb} bodies, {n_contact} contacts, {nw} walls; "
+            elif kind[c] == 3:
+                outline = grid.GetCell(c)
+                P = [tuple(pts[outline.GetPointId(i)][:2]) for i in range(outline.GetNumberOfPoints())]
+                if cellspec["periodic"] == "xy":
+                    check(grid.GetCellType(c) == vtk.VTK_POLY_LINE, f"{path}: cell outline {c} is not a poly-line")
+                    want = [(0, 0), (lx, 0), (lx, ly), (0, ly), (0, 0)]
+                    check(P == want, f"{path}: cell outline {P} != {want}")
+                else:
+                    check(grid.GetCellType(c) == vtk.VTK_LINE, f"{path}: cell seam {c} is not a line")
+                    check(P[0][0] == P[1][0] and P[0][0] in (0.0, lx) and P[0][1] < P[1][1],
+                          f"{path}: cell seam {P} is not x = 0 or x = {lx}")
+        print(f"{ds.get('file')}: step {step}, t = {t}: {nb} bodies, {n_contact} contacts, {nw} walls, {n_outline} cell outlines, {n_seam} contacts across a seam; "
               f"largest polygon area deficit {worst_area:.2e} of the body's")
-    print(f"vtk check passed: {len(datasets)} frames, {total_cells} cells")
+        total_seam += n_seam
+    print(f"vtk check passed: {len(datasets)} frames, {total_cells} cells, {total_seam} contacts across a seam")
 
 
 if __name__ == "__main__":

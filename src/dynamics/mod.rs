@@ -13,6 +13,7 @@ pub mod contact_pass;
 pub mod contacts;
 pub mod flow;
 pub mod kinematics;
+pub mod local_damping;
 pub mod materials;
 pub mod members;
 pub mod minimise;

@@ -15,7 +15,9 @@
 //!    `F`, `r × F` and the contact's couple on each body (T3, T4, T22; `r` from the centroid to
 //!    the contact point, so the normal force has a moment on non-circular bodies), plus gravity
 //!    (T3); each wall's load is summed.
-//! 4. **Kick**: `v_{n+1} = v_{n+½} + ½Δt F_{n+1}/m`, `ω_{n+1} = ω_{n+½} + ½Δt M_{n+1}/I` (T1).
+//! 4. **Kick**: `v_{n+1} = v_{n+½} + ½Δt F_{n+1}/m`, `ω_{n+1} = ω_{n+½} + ½Δt M_{n+1}/I` (T1);
+//!    with Cundall's local damping (`"damping": {"local": α}`), `F_{n+1}` and `M_{n+1}` first
+//!    gain `−α |F| sign(v)` per component and `−α |M| sign(ω)` ([`super::local_damping`]).
 //! 5. **Account**: the dissipated energy and the work of the walls and of the prescribed bodies
 //!    over the step; the servo walls' velocities for the next drift, from their loads.
 //!
@@ -44,6 +46,7 @@ use super::boundary::{Boundary, servo_velocity};
 use super::cell::Cell;
 use super::contact_pass::{ContactPass, PassInput, SceneFacts, SlotPartial};
 use super::contacts::{Adjacent, ContactData, ContactList};
+use super::local_damping::local_damping;
 use super::materials::PairTable;
 use super::neighbour_list::{self, Builder};
 use super::restart::RestartState;
@@ -123,6 +126,8 @@ pub(crate) struct Parts<'a> {
     pub last_increments: &'a mut [f64; 3],
     /// The periodic cell, if any.
     pub cell: Option<&'a mut Cell>,
+    /// Cundall's local damping coefficient α (0: off; see stage 4).
+    pub local_damping: f64,
 }
 
 /// The stepper: the scratch the step reuses from step to step (the neighbour list's builder, the
@@ -552,6 +557,7 @@ impl Stepper {
         cell: Option<&Cell>,
     ) -> BodyPartial {
         let gravity = wd.gravity;
+        let alpha = wd.local_damping;
         // Disks under linear laws have no contact couples (nothing but the spring, the dashpot
         // and the slider; a disk's area
         // potential is its depth spring).
@@ -598,7 +604,7 @@ impl Stepper {
                     let adj = &adjacency[start[k] as usize..start[k + 1] as usize];
                     let f0 = gravity * mass[k]; // T(3): body force
                     // Only a body near a seam may have a contact through an image.
-                    let (f, m, f_ne, m_ne) = match cell {
+                    let (mut f, mut m, mut f_ne, mut m_ne) = match cell {
                         Some(cell) if PERIODIC && near_seam.get(g) != Some(&false) => {
                             if couples {
                                 sum_contacts::<true, true>(adj, data, x, f0, Some(cell))
@@ -609,6 +615,30 @@ impl Stepper {
                         _ if couples => sum_contacts::<true, false>(adj, data, x, f0, None),
                         _ => sum_contacts::<false, false>(adj, data, x, f0, None),
                     };
+                    if alpha > 0.0
+                        && let Some(h) = kick
+                    {
+                        // Cundall's local damping against the predicted v_{n+1}, ω_{n+1} (in a
+                        // sheared cell, about the mean flow); not on a prescribed body.
+                        let mut v = s.vel + f * (h * inv_mass[k]);
+                        if let Some(cell) = cell
+                            && PERIODIC
+                        {
+                            v.x -= cell.shear_rate * (x.y - 0.5 * cell.size.y);
+                        }
+                        let w = s.omega + m * h * inv_inertia[k];
+                        let (fd, md) = local_damping(alpha, f, m, v, w);
+                        let fd = if inv_mass[k] == 0.0 {
+                            Vec2::zeros()
+                        } else {
+                            fd
+                        };
+                        let md = if inv_inertia[k] == 0.0 { 0.0 } else { md };
+                        f += fd;
+                        f_ne += fd;
+                        m += md;
+                        m_ne += md;
+                    }
                     force[k] = f;
                     torque[k] = m;
                     if let Some(h) = kick {

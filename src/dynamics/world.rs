@@ -44,6 +44,9 @@ pub struct World {
     pub flow: Option<Flow>,
     /// The identity the next inserted body gets ([`Bodies::id`]).
     pub next_id: u64,
+    /// Cundall's local non-viscous damping coefficient α in [0, 1) (0: off; see
+    /// [`super::step`]'s stage 4).
+    pub local_damping: f64,
     /// The step's scratch (owned here, never read as state).
     stepper: Stepper,
 }
@@ -111,6 +114,7 @@ impl World {
             cell: None,
             flow: None,
             next_id: bodies.len() as u64,
+            local_damping: 0.0,
             stepper: Stepper::default(),
         }
     }
@@ -249,6 +253,7 @@ impl World {
                 time: &mut self.time,
                 last_increments: &mut self.last_increments,
                 cell: self.cell.as_mut(),
+                local_damping: self.local_damping,
             },
         )
     }

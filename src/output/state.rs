@@ -29,7 +29,7 @@ use std::path::{Path, PathBuf};
 
 /// The case's top-level fields in the order a state file lists them (the bodies and the state
 /// come last).
-const CASE_ORDER: [&str; 16] = [
+const CASE_ORDER: [&str; 17] = [
     "version",
     "name",
     "description",
@@ -46,6 +46,7 @@ const CASE_ORDER: [&str; 16] = [
     "pairs",
     "walls",
     "cell",
+    "damping",
 ];
 
 /// A double in its shortest round-trip form (`null` if not finite).

@@ -9,7 +9,17 @@
 //! - **1, a contact**: a line (`VTK_LINE`) from the centroid of i to the centroid of j, or from
 //!   the body's centroid to the contact point for a body–wall contact (force chains);
 //! - **2, a wall**: its line, clipped to the box holding every body and wall point seen so far
-//!   (padded by 5 %), so that it does not change length from frame to frame.
+//!   (padded by 5 %), so that it does not change length from frame to frame;
+//! - **3, the periodic cell's outline** (a case with `"cell"`): in a cell periodic in x and y,
+//!   its rectangle `[0, L_x] × [0, L_y]` at the frame's size as a closed poly-line
+//!   (`VTK_POLY_LINE`, five points, the last the first: a line, not a filled face, so that it
+//!   hides no body); in a cell periodic in x only, its two seams `x = 0` and `x = L_x` as lines
+//!   across the walls' box. (The Lees–Edwards shift moves the image above along the top edge,
+//!   which stays where it is: the shift is in the field data.)
+//!
+//! A body's outline is drawn once, where its centroid is (inside the cell), so a body cut by a
+//! seam sticks out of it; a contact across a seam is drawn from the receiver's centroid to the
+//! giver's image nearest to it (a new point), not across the cell.
 //!
 //! Cell data (zero where an array does not apply to a kind): `id` (body index, contact ordinal,
 //! wall index), `pair` (a contact's i and j, a wall w given as j = −1 − w), `shape` (0 circle, 1
@@ -23,8 +33,10 @@
 //! `body_normal_force` (a body's Σ F_n over its contacts, dyn), and for contacts
 //! `normal_force` (F·n ≥ 0, dyn), `tangential_force` (F·t with t = (−n_y, n_x), dyn), `force`
 //! (the force on j, or on the body for a wall contact), `normal` (unit, from i towards j, or from
-//! the wall) and `depth` (δ, cm). Field data `TIME` (s) and `STEP`. Forces are per unit
-//! thickness, as everywhere in dem2d.
+//! the wall) and `depth` (δ, cm). Field data `TIME` (s) and `STEP`, and with a periodic cell
+//! `CELL_SIZE` (L_x, L_y: cm, L_y following an imposed pressure), `CELL_OFFSET` (the
+//! Lees–Edwards shift of the image above modulo L_x, cm) and `CELL_SHIFT` (the total shift S,
+//! cm), as in `cell.csv`. Forces are per unit thickness, as everywhere in dem2d.
 //!
 //! # Format
 //! VTK XML, `UnstructuredGrid` version 1.0, every array inline in base64 (`format="binary"`,
@@ -46,6 +58,7 @@ use std::path::{Path, PathBuf};
 
 /// The VTK cell types used.
 const VTK_LINE: u8 = 3;
+const VTK_POLY_LINE: u8 = 4;
 const VTK_POLYGON: u8 = 7;
 
 /// Writes the frames of one run and keeps its `run.pvd` up to date.
@@ -263,7 +276,18 @@ impl VtkWriter {
                         -1 - w as i64,
                     )
                 }
-                Partner::Body(j) => (centroid0 + i, centroid0 + j as i64, j as i64),
+                Partner::Body(j) => {
+                    let (pi, pj) = (b.state[i as usize].pose.position, b.state[j].pose.position);
+                    // Across a seam: to the giver's image nearest the receiver.
+                    let to = match &world.cell {
+                        Some(cell) if cell.shortest(pj - pi) != pj - pi => {
+                            let q = pi + cell.shortest(pj - pi);
+                            push_point(&mut points, (q.x, q.y))
+                        }
+                        _ => centroid0 + j as i64,
+                    };
+                    (centroid0 + i, to, j as i64)
+                }
             };
             connectivity.extend([from, to]);
             offsets.push(connectivity.len() as i64);
@@ -303,6 +327,34 @@ impl VtkWriter {
                 }
             }
         }
+        // The periodic cell: its rectangle, or its two seams across the walls' box.
+        if let Some(cell) = &world.cell {
+            let (lx, ly) = (cell.size.x, cell.size.y);
+            let lines: Vec<(u8, Vec<(f64, f64)>)> = if cell.periodic_y() {
+                let corners = [(0.0, 0.0), (lx, 0.0), (lx, ly), (0.0, ly)];
+                vec![(VTK_POLY_LINE, corners.to_vec())]
+            } else {
+                let (_, _, y0, y1) = self.bbox.unwrap_or((0.0, lx, 0.0, ly));
+                let pad = 0.05 * (y1 - y0);
+                [0.0, lx]
+                    .iter()
+                    .map(|&x| (VTK_LINE, vec![(x, y0 - pad), (x, y1 + pad)]))
+                    .collect()
+            };
+            for (ty, pts) in lines {
+                let ids: Vec<i64> = pts.iter().map(|&p| push_point(&mut points, p)).collect();
+                connectivity.extend(&ids);
+                if ty == VTK_POLY_LINE {
+                    connectivity.push(ids[0]); // closed
+                }
+                offsets.push(connectivity.len() as i64);
+                types.push(ty);
+                cells.push(Cell {
+                    kind: 3,
+                    ..Cell::default()
+                });
+            }
+        }
 
         let (np, nc) = (points.len() / 3, types.len());
         let mut x = String::with_capacity(points.len() * 12 + nc * 200);
@@ -317,6 +369,12 @@ impl VtkWriter {
             &f64s(&[time_value(step, world.dt)]),
         );
         array(&mut x, "Int64", "STEP", 1, &i64s(&[step as i64]));
+        if let Some(cell) = &world.cell {
+            let size = [cell.size.x, cell.size.y];
+            array(&mut x, "Float64", "CELL_SIZE", 2, &f64s(&size));
+            array(&mut x, "Float64", "CELL_OFFSET", 1, &f64s(&[cell.offset]));
+            array(&mut x, "Float64", "CELL_SHIFT", 1, &f64s(&[cell.shift]));
+        }
         writeln!(
             x,
             "    </FieldData>\n    <Piece NumberOfPoints=\"{np}\" NumberOfCells=\"{nc}\">\n      <Points>"

@@ -69,6 +69,9 @@ pub struct Case {
     pub cell: Option<Cell>,
     /// Insertion and outflow regions (`insert`, `outflow`; see [`crate::dynamics::flow`]).
     pub flow: Option<Flow>,
+    /// Cundall's local non-viscous damping coefficient α (`"damping": {"local": α}`, in [0, 1);
+    /// 0, the default: off; see `dynamics::local_damping`).
+    pub local_damping: f64,
 }
 
 /// The case's optional outputs.
@@ -248,6 +251,10 @@ impl Case {
         };
         let (insert, outflow) = (o.get("insert"), o.get("outflow"));
         let flow = super::flow::parse_flow(insert, outflow, &named, &bodies)?;
+        let local_damping = match o.get("damping") {
+            None => 0.0,
+            Some(v) => parse_damping(v)?,
+        };
         // A state file's block (read by `scene::state`, which continues the run from it).
         let _ = o.get("state");
         o.finish()?;
@@ -297,6 +304,7 @@ impl Case {
             bodies,
             cell,
             flow,
+            local_damping,
         })
     }
 
@@ -328,6 +336,7 @@ impl Case {
             bodies,
             cell: None,
             flow: None,
+            local_damping: 0.0,
         }
     }
 
@@ -348,10 +357,11 @@ impl Case {
             self.materials.clone(),
             self.dt,
         );
-        let world = match self.cell {
+        let mut world = match self.cell {
             Some(cell) => world.with_cell(cell).0,
             None => world,
         };
+        world.local_damping = self.local_damping;
         match &self.flow {
             Some(flow) => world.with_flow(flow.clone(), None),
             None => world,
@@ -376,7 +386,7 @@ impl Case {
         &self,
         state: &crate::dynamics::RestartState,
     ) -> Result<crate::dynamics::World, crate::dynamics::RestartError> {
-        let world = crate::dynamics::World::resume(
+        let mut world = crate::dynamics::World::resume(
             &self.bodies,
             self.walls.clone(),
             self.gravity,
@@ -385,6 +395,7 @@ impl Case {
             self.dt,
             state,
         )?;
+        world.local_damping = self.local_damping;
         Ok(match &self.flow {
             Some(flow) => world.with_flow(flow.clone(), state.flow.as_ref()),
             None => world,
@@ -689,6 +700,24 @@ fn param_error(e: FieldError) -> ParamError {
         field: e.path,
         message: e.message,
     }
+}
+
+/// Cundall's local damping (`"damping": {"local": α}`, see [`Case::local_damping`]): α in
+/// [0, 1) (at 1 a body moving away from rest would feel no force; above, a force pushing it on).
+fn parse_damping(v: &Value) -> Result<f64, FieldError> {
+    let mut d = Obj::new(v, "damping")?;
+    let alpha = d.req_with("local", number)?;
+    d.finish()?;
+    if !(0.0..1.0).contains(&alpha) {
+        return Err(FieldError::new(
+            "damping.local",
+            format!(
+                "must be in [0, 1) (Cundall's local damping: the fraction of a body's unbalanced \
+                 force turned against its motion), got {alpha}"
+            ),
+        ));
+    }
+    Ok(alpha)
 }
 
 /// The periodic cell (see [`Case::cell`]): its size against the bodies' reach, no wall across a
