@@ -189,6 +189,7 @@ fn check(i: &Spec, j: &Spec, along: [f64; 2], k: f64) -> Result<ContactState, St
                 path: name.to_string(),
                 point: w.point,
             },
+            Object::Segment(_) => unreachable!("the generator makes no segment walls"),
         })
         .collect();
     check_extent(&placed).map_err(|e| format!("generator left the ranges: {e:?}"))?;

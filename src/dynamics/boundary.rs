@@ -55,7 +55,7 @@
 //! (a restart carries them).
 
 use crate::contact_law::ContactSpec;
-use crate::geometry::{Vec2, Wall};
+use crate::geometry::{Segment, Vec2, Wall};
 use crate::narrow_phase::Side;
 
 /// The servo's relaxation factor α: the fraction of the stress error corrected per step against
@@ -175,6 +175,9 @@ impl WallLoad {
 pub enum BoundaryKind {
     /// A half-plane: its line, and the normal pointing into the free side.
     Wall(Wall),
+    /// A finite segment, both of whose sides are solid and whose ends are points (see
+    /// [`Segment`] and `narrow_phase::segment`).
+    Segment(Segment),
 }
 
 /// A boundary: its kind and pose, the contact parameters of contacts with it (the scene's, or
@@ -213,6 +216,12 @@ impl Boundary {
     /// A wall moving as `motion` says (its velocity: a constant one at once; a servo's from
     /// the first force evaluation).
     pub fn moving(wall: Wall, spec: ContactSpec, motion: Motion) -> Self {
+        Self::of_kind(BoundaryKind::Wall(wall), spec, motion)
+    }
+
+    /// A boundary of kind `kind` moving as `motion` says (a segment moves at a velocity or by
+    /// a program of velocity stages; a servo is for half-plane walls).
+    pub fn of_kind(kind: BoundaryKind, spec: ContactSpec, motion: Motion) -> Self {
         let velocity = match &motion {
             Motion::Velocity(v) => *v,
             Motion::Program(p) => match p.motion(0) {
@@ -221,9 +230,13 @@ impl Boundary {
             },
             Motion::Fixed | Motion::Servo(_) => Vec2::zeros(),
         };
+        let start = match &kind {
+            BoundaryKind::Wall(w) => w.point,
+            BoundaryKind::Segment(s) => s.a,
+        };
         Boundary {
-            kind: BoundaryKind::Wall(wall),
-            start: wall.point,
+            kind,
+            start,
             start_time: 0.0,
             stage: 0,
             spec,
@@ -235,11 +248,23 @@ impl Boundary {
     }
 
     /// The boundary's line: a wall's own (its point moves with the boundary, its normal points
-    /// into the free side). Servo spans, loads along the normal and drawings read it.
+    /// into the free side), a segment's front line (through its first end, normal to the left
+    /// going from its first end to its second). Servo spans, loads along the normal and
+    /// drawings read it.
     #[inline]
     pub fn line(&self) -> &Wall {
         match &self.kind {
             BoundaryKind::Wall(w) => w,
+            BoundaryKind::Segment(s) => &s.front,
+        }
+    }
+
+    /// The segment, if the boundary is one.
+    #[inline]
+    pub fn segment(&self) -> Option<&Segment> {
+        match &self.kind {
+            BoundaryKind::Wall(_) => None,
+            BoundaryKind::Segment(s) => Some(s),
         }
     }
 
@@ -254,16 +279,46 @@ impl Boundary {
     pub fn side(&self) -> Side<'_> {
         match &self.kind {
             BoundaryKind::Wall(w) => Side::Wall(w),
+            BoundaryKind::Segment(s) => Side::Segment(s),
         }
     }
 
-    /// The signed distance of the point `x` from the boundary, positive on its free side: a
-    /// body whose bounding circle of radius r about x has `signed_distance(x) > r` cannot touch
-    /// it.
+    /// The signed distance of the point `x` from the boundary, positive on its free side (a
+    /// segment: its distance, both sides being free): a body whose bounding circle of radius r
+    /// about x has `signed_distance(x) > r` cannot touch it.
     #[inline]
     pub fn signed_distance(&self, x: Vec2) -> f64 {
         match &self.kind {
             BoundaryKind::Wall(w) => w.signed_distance(x),
+            BoundaryKind::Segment(s) => s.distance(x),
+        }
+    }
+
+    /// Whether a body whose bounding circle about `x` has radius `reach` (its bounding radius
+    /// plus a margin) can touch the boundary: within `reach` of a wall's line; inside a
+    /// segment's bounding box grown by `reach` (the broad phase's test, four comparisons) and
+    /// within `reach` of the segment. Returns the (signed) distance when it can.
+    #[inline]
+    pub fn near(&self, x: Vec2, reach: f64) -> Option<f64> {
+        match &self.kind {
+            BoundaryKind::Wall(w) => Some(w.signed_distance(x)).filter(|&d| d <= reach),
+            BoundaryKind::Segment(s) => {
+                if !s.box_holds(x, reach) {
+                    return None;
+                }
+                Some(s.distance(x)).filter(|&d| d <= reach)
+            }
+        }
+    }
+
+    /// How far the boundary has moved towards bodies since its reference point was `at`: a
+    /// wall's displacement along its normal, a segment's whole displacement (its ends move
+    /// along its line too).
+    #[inline]
+    pub fn displacement_since(&self, at: Vec2) -> f64 {
+        match &self.kind {
+            BoundaryKind::Wall(w) => (w.point - at).dot(&w.normal).abs(),
+            BoundaryKind::Segment(s) => (s.a - at).norm(),
         }
     }
 
@@ -272,6 +327,7 @@ impl Boundary {
     pub fn move_to(&mut self, p: Vec2) {
         match &mut self.kind {
             BoundaryKind::Wall(w) => w.point = p,
+            BoundaryKind::Segment(s) => s.move_to(p),
         }
     }
 

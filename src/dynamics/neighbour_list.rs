@@ -82,8 +82,7 @@ impl Builder {
             let walls = if held_i { &[][..] } else { walls };
             for (w, ws) in walls.iter().enumerate() {
                 let wj = Partner::Wall(w).key();
-                let d = ws.signed_distance(x);
-                if d <= r + skin {
+                if let Some(d) = ws.near(x, r + skin) {
                     match bodies.shape[i].clump() {
                         None => list.keys.push((i as u32, wj, 0)),
                         Some(c) => {

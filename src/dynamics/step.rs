@@ -225,7 +225,7 @@ impl Stepper {
             if ws.moves() {
                 ws.drift(next_step, next_time, dt);
                 if let Some(at) = wd.contacts.wall_built_at.get(k) {
-                    wall_disp = wall_disp.max((ws.line().point - at).dot(&ws.line().normal).abs());
+                    wall_disp = wall_disp.max(ws.displacement_since(*at));
                 }
             }
         }

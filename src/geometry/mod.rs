@@ -10,9 +10,11 @@ pub mod mass;
 pub mod overlap_area;
 pub mod pencil;
 pub mod polygon;
+pub mod segment;
 pub mod shape;
 pub mod support;
 
 pub use clump::{Clump, ClumpError};
 pub use polygon::{Polygon, PolygonError};
+pub use segment::{Segment, SegmentError};
 pub use shape::{Pose, Shape, ShapeError, Vec2, Wall};

@@ -60,7 +60,7 @@
 //! single chord. They are never dropped: they get a defined fallback geometry and the state
 //! [`ContactState::Deep`] or [`ContactState::Contained`], which later stages count and report.
 
-use crate::geometry::{Pose, Shape, Vec2, Wall};
+use crate::geometry::{Pose, Segment, Shape, Vec2, Wall};
 use std::cell::Cell;
 
 pub use cache::PairCache;
@@ -74,6 +74,7 @@ mod ellipse_wall;
 mod polygon_conic;
 mod polygon_polygon;
 mod polygon_wall;
+pub mod segment;
 mod small;
 
 /// How two objects relate.
@@ -212,11 +213,12 @@ pub struct FlatOverlap {
     pub centroid: Vec2,
 }
 
-/// One side of a pair: a placed body or a wall.
+/// One side of a pair: a placed body, a wall (a half-plane) or a segment wall.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Object {
     Body { shape: Shape, pose: Pose },
     Wall(Wall),
+    Segment(Segment),
 }
 
 /// One side of a pair, borrowed: what a caller that keeps its bodies elsewhere (the dynamics)
@@ -225,6 +227,7 @@ pub enum Object {
 pub enum Side<'a> {
     Body(&'a Shape, &'a Pose),
     Wall(&'a Wall),
+    Segment(&'a Segment),
 }
 
 impl Object {
@@ -247,6 +250,7 @@ impl<'a> From<&'a Object> for Side<'a> {
         match o {
             Object::Body { shape, pose } => Side::Body(shape, pose),
             Object::Wall(w) => Side::Wall(w),
+            Object::Segment(s) => Side::Segment(s),
         }
     }
 }
@@ -319,7 +323,16 @@ pub fn contact_with<'a>(
         t.set(false); // (the conic pairs' kernel records whether the warm start gave the result)
     }
     match (i, j) {
-        (Side::Wall(_), Side::Wall(_)) => None,
+        (Side::Wall(_) | Side::Segment(_), Side::Wall(_) | Side::Segment(_)) => None,
+        // A segment as i; a clump through its members (circles).
+        (Side::Segment(s), Side::Body(sj, pj)) => match sj {
+            Clump(_) => cold(|| clump::contact_clump(i, j, r)),
+            _ => cold(|| segment::contact_segment_body(s, sj, pj, r)),
+        },
+        (Side::Body(si, pi), Side::Segment(s)) => match si {
+            Clump(_) => cold(|| clump::contact_clump(i, j, r)),
+            _ => turned(cold(|| segment::contact_segment_body(s, si, pi, r))),
+        },
         (Side::Wall(w), Side::Body(sj, pj)) => match sj {
             Circle { r: rj } => circle_wall::contact_wall_circle(w, *rj, pj, r),
             Ellipse { a, b } => ellipse_wall::contact_wall_ellipse(w, *a, *b, pj, r),

@@ -368,6 +368,13 @@ fn scene_bounds(panels: &[Vec<(Drawn, ColorBy)>]) -> (f64, f64, f64, f64) {
             continue;
         };
         for wall in &d.run.walls_at(last).0 {
+            if let Some(seg) = wall.segment() {
+                // A segment wall: the box holds it whole.
+                for p in [seg.a, seg.b] {
+                    (x0, x1, y0, y1) = (x0.min(p.x), x1.max(p.x), y0.min(p.y), y1.max(p.y));
+                }
+                continue;
+            }
             let (pt, n) = (wall.line().point, wall.line().normal);
             if n.x.abs() < 1e-12 && (pt.y - y0).abs() < 0.5 * h.max(w) {
                 y0 = y0.min(pt.y);
@@ -749,7 +756,11 @@ where
                     continue;
                 }
                 let t = Vec2::new(-then.line().normal.y, then.line().normal.x);
-                if let Some((a, b)) = clip_line(then.line().point, t, bounds) {
+                let drawn = match then.segment() {
+                    Some(seg) => Some((seg.a, seg.b)),
+                    None => clip_line(then.line().point, t, bounds),
+                };
+                if let Some((a, b)) = drawn {
                     chart
                         .draw_series(std::iter::once(PathElement::new(
                             vec![(a.x, a.y), (b.x, b.y)],
@@ -760,6 +771,16 @@ where
             }
         }
         for w in &now {
+            if let Some(seg) = w.segment() {
+                // A segment wall: both sides solid, a thick line without hatching.
+                chart
+                    .draw_series(std::iter::once(PathElement::new(
+                        vec![(seg.a.x, seg.a.y), (seg.b.x, seg.b.y)],
+                        BLACK.stroke_width(2 * S),
+                    )))
+                    .map_err(err)?;
+                continue;
+            }
             let (n, t) = (
                 w.line().normal,
                 Vec2::new(-w.line().normal.y, w.line().normal.x),

@@ -184,7 +184,10 @@ impl VtkWriter {
         let b = &world.bodies;
         let points = (0..b.len())
             .map(|k| (b.state[k].pose.position, b.bound[k]))
-            .chain(world.walls.iter().map(|w| (w.line().point, 0.0)));
+            .chain(world.walls.iter().flat_map(|w| match w.segment() {
+                Some(s) => vec![(s.a, 0.0), (s.b, 0.0)],
+                None => vec![(w.line().point, 0.0)],
+            }));
         for (p, r) in points {
             x0 = x0.min(p.x - r);
             x1 = x1.max(p.x + r);
@@ -312,7 +315,11 @@ impl VtkWriter {
             let bx = (x0 - pad, x1 + pad, y0 - pad, y1 + pad);
             for (w, ws) in world.walls.iter().enumerate() {
                 let (p, nrm) = (ws.line().point, ws.line().normal);
-                if let Some((a, e)) = clip_line(p, Vec2::new(-nrm.y, nrm.x), bx) {
+                let drawn = match ws.segment() {
+                    Some(s) => Some((s.a, s.b)),
+                    None => clip_line(p, Vec2::new(-nrm.y, nrm.x), bx),
+                };
+                if let Some((a, e)) = drawn {
                     let ia = push_point(&mut points, (a.x, a.y));
                     let ie = push_point(&mut points, (e.x, e.y));
                     connectivity.extend([ia, ie]);

@@ -36,6 +36,10 @@ pub fn loaded_span(k: usize, walls: &[Boundary]) -> Option<f64> {
     if let Some(s) = me.servo() {
         return Some(span_length(me.line(), &s.span, walls));
     }
+    if let Some(seg) = me.segment() {
+        // A segment wall's load is spread over the segment.
+        return Some(seg.length);
+    }
     let (p, t) = (
         me.line().point,
         Vec2::new(-me.line().normal.y, me.line().normal.x),
@@ -43,7 +47,8 @@ pub fn loaded_span(k: usize, walls: &[Boundary]) -> Option<f64> {
     // The line p + s t on the free side of wall j: s (n_j·t) ≥ n_j·(p_j − p).
     let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
     for (j, o) in walls.iter().enumerate() {
-        if j == k {
+        if j == k || o.segment().is_some() {
+            // (A segment bounds no half-plane wall's line.)
             continue;
         }
         let (nt, gap) = (

@@ -4,11 +4,13 @@
 //! `vertices`: `[[x, y], …]`, counter-clockwise and convex, shifted to their centroid — the
 //! body's `position` is the centroid's, `clump` with `disks`: `[{"center": [x, y], "r": r}, …]`,
 //! shifted to the centroid of their union — the body's `position` is that centroid's) and
-//! `{"wall": {"point": [x, y], "normal": [nx, ny]}}`.
+//! `{"wall": {"point": [x, y], "normal": [nx, ny]}}` or a segment wall
+//! `{"wall": {"segment": [[x0, y0], [x1, y1]]}}`.
 
 use super::fields::{FieldError, Obj, index, number, scale, type_of, vec2};
 use super::ranges::{Placed, check_extent};
-use crate::geometry::{Clump, ClumpError, Polygon, PolygonError, Pose, Shape, Vec2, Wall};
+use crate::geometry::{Clump, ClumpError, Polygon, PolygonError, Pose, Segment, SegmentError};
+use crate::geometry::{Shape, Vec2, Wall};
 use crate::narrow_phase::Object;
 use serde_json::Value;
 
@@ -145,6 +147,74 @@ pub fn parse_wall_with<T>(
     Ok((wall, t))
 }
 
+/// What a wall object describes: a half-plane or a segment.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum WallGeometry {
+    HalfPlane(Wall),
+    Segment(Segment),
+}
+
+/// A wall's inner object: a half-plane `{"point": [x, y], "normal": [nx, ny]}` (as
+/// [`parse_wall_with`]) or a segment `{"segment": [[x0, y0], [x1, y1]]}` (its two ends, cm; not
+/// both). `extra` reads any further fields before unknown ones are rejected.
+pub fn parse_wall_or_segment_with<T>(
+    v: &Value,
+    path: &str,
+    extra: impl FnOnce(&mut Obj) -> Result<T, FieldError>,
+) -> Result<(WallGeometry, T), FieldError> {
+    let mut o = Obj::new(v, path)?;
+    if !o.has("segment") {
+        return parse_wall_with(v, path, extra).map(|(w, t)| (WallGeometry::HalfPlane(w), t));
+    }
+    for key in ["point", "normal"] {
+        if o.has(key) {
+            return Err(FieldError::new(
+                o.field_path(key),
+                "give a wall's `segment` (its two ends) or its `point` and `normal` (a \
+                 half-plane), not both",
+            ));
+        }
+    }
+    let segment = o.req_with("segment", parse_segment)?;
+    let t = extra(&mut o)?;
+    o.finish()?;
+    Ok((WallGeometry::Segment(segment), t))
+}
+
+/// A segment's two ends `[[x0, y0], [x1, y1]]` (finite, distinct).
+pub fn parse_segment(v: &Value, path: &str) -> Result<Segment, FieldError> {
+    let ends = match v.as_array() {
+        Some(a) if a.len() == 2 => [vec2(&a[0], &index(path, 0))?, vec2(&a[1], &index(path, 1))?],
+        _ => {
+            return Err(FieldError::new(
+                path,
+                format!(
+                    "must be two points [[x0, y0], [x1, y1]], got {}",
+                    match v {
+                        Value::Array(a) => format!("an array of {} elements", a.len()),
+                        other => type_of(other).to_string(),
+                    }
+                ),
+            ));
+        }
+    };
+    Segment::new(Vec2::from(ends[0]), Vec2::from(ends[1])).map_err(|e| {
+        FieldError::new(
+            path,
+            match e {
+                SegmentError::ZeroLength => format!(
+                    "has zero length: both ends are [{}, {}] (a segment wall needs two distinct \
+                     ends)",
+                    ends[0][0], ends[0][1]
+                ),
+                SegmentError::NonFinite => {
+                    "its ends are too far apart: b − a overflows".to_string()
+                }
+            },
+        )
+    })
+}
+
 /// A placed body `{"shape": …, "position": [x, y], "angle": θ}` (`angle` defaults to 0), with
 /// `extra` reading any further fields before unknown ones are rejected.
 pub fn parse_body_with<T>(
@@ -162,9 +232,12 @@ pub fn parse_body_with<T>(
 pub fn parse_object(v: &Value, path: &str) -> Result<Object, FieldError> {
     let mut o = Obj::new(v, path)?;
     if o.has("wall") {
-        let (wall, ()) = o.req_with("wall", |v, p| parse_wall_with(v, p, |_| Ok(())))?;
+        let (wall, ()) = o.req_with("wall", |v, p| parse_wall_or_segment_with(v, p, |_| Ok(())))?;
         o.finish()?;
-        return Ok(Object::Wall(wall));
+        return Ok(match wall {
+            WallGeometry::HalfPlane(w) => Object::Wall(w),
+            WallGeometry::Segment(s) => Object::Segment(s),
+        });
     }
     let (shape, pose, ()) = parse_body_with(&mut o, |_| Ok(()))?;
     o.finish()?;
@@ -186,21 +259,35 @@ pub fn parse_pairs(v: &Value) -> Result<Vec<(Object, Object)>, FieldError> {
         let i = o.req_with("i", parse_object)?;
         let j = o.req_with("j", parse_object)?;
         o.finish()?;
-        if matches!((i, j), (Object::Wall(_), Object::Wall(_))) {
+        if matches!(
+            (i, j),
+            (
+                Object::Wall(_) | Object::Segment(_),
+                Object::Wall(_) | Object::Segment(_)
+            )
+        ) {
             return Err(FieldError::new(path, "a pair of two walls has no contact"));
         }
         let placed: Vec<Placed> = [(&i, "i"), (&j, "j")]
             .into_iter()
-            .map(|(o, side)| match o {
-                Object::Body { shape, pose } => Placed::Body {
+            .flat_map(|(o, side)| match o {
+                Object::Body { shape, pose } => vec![Placed::Body {
                     path: format!("{path}.{side}"),
                     shape,
                     position: pose.position,
-                },
-                Object::Wall(w) => Placed::Wall {
+                }],
+                Object::Wall(w) => vec![Placed::Wall {
                     path: format!("{path}.{side}.wall"),
                     point: w.point,
-                },
+                }],
+                Object::Segment(s) => [s.a, s.b]
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &point)| Placed::Wall {
+                        path: format!("{path}.{side}.wall.segment[{k}]"),
+                        point,
+                    })
+                    .collect(),
             })
             .collect();
         check_extent(&placed)?;

@@ -21,7 +21,7 @@
 //! `restitution` instead (T12); `friction`) or `hertz_mindlin` (`young`, `poisson`,
 //! `restitution`, `friction`; T10–T20). A wall may override any contact parameter.
 
-use super::body::{parse_body_with, parse_wall_with};
+use super::body::{WallGeometry, parse_body_with, parse_wall_or_segment_with};
 use super::fields::{
     FieldError, Obj, index, join, non_negative, number, positive, scale, type_of, unknown_field,
     vec2,
@@ -29,7 +29,7 @@ use super::fields::{
 use super::materials::{Named, body_density, check_mixing, meeting, read_materials, read_pairs};
 use super::ranges::{Placed, SpecContext, check_extent, check_spec, check_steps};
 use crate::contact_law::{Check, ContactSpec, Keys, NormalForce, ParamError};
-use crate::dynamics::boundary::{Program, Stage, StageMotion};
+use crate::dynamics::boundary::{BoundaryKind, Program, Stage, StageMotion};
 use crate::dynamics::cell::{Cell, PRESSURE_RELAXATION, Periodic, Pressure};
 use crate::dynamics::neighbour_list::SKIN_FRACTION;
 use crate::dynamics::{BodyInit, Boundary, Flow, Materials, Motion, Servo, Span};
@@ -171,17 +171,18 @@ impl Case {
             let mut spans = Vec::new();
             for (k, item) in items.iter().enumerate() {
                 let path = index("walls", k);
-                let (wall, (spec, motion, material)) = parse_wall_with(item, &path, |w| {
-                    let material = w.opt_with("material", |v, p| named.index_of(v, p))?;
-                    let spec = wall_overrides(w, &contact_map)?;
-                    if material.is_some() && spec.is_some() {
-                        return Err(FieldError::new(
-                            w.field_path("material"),
-                            "give the wall a `material` or contact keys of its own, not both",
-                        ));
-                    }
-                    Ok((spec, wall_motion(w, dt)?, material))
-                })?;
+                let (wall, (spec, motion, material)) =
+                    parse_wall_or_segment_with(item, &path, |w| {
+                        let material = w.opt_with("material", |v, p| named.index_of(v, p))?;
+                        let spec = wall_overrides(w, &contact_map)?;
+                        if material.is_some() && spec.is_some() {
+                            return Err(FieldError::new(
+                                w.field_path("material"),
+                                "give the wall a `material` or contact keys of its own, not both",
+                            ));
+                        }
+                        Ok((spec, wall_motion(w, dt)?, material))
+                    })?;
                 match &motion {
                     Motion::Servo(s) => spans.push((k, s.span, format!("{path}.servo.span"))),
                     Motion::Program(p) => {
@@ -193,7 +194,21 @@ impl Case {
                     }
                     Motion::Fixed | Motion::Velocity(_) => {}
                 }
-                let boundary = Boundary::moving(wall, spec.unwrap_or(contact), motion);
+                let kind = match wall {
+                    WallGeometry::HalfPlane(w) => BoundaryKind::Wall(w),
+                    WallGeometry::Segment(s) => {
+                        if let Some((_, _, at)) = spans.iter().find(|(w, ..)| *w == k) {
+                            return Err(FieldError::new(
+                                at.trim_end_matches(".span").to_string(),
+                                "a servo moves a half-plane wall (`point`, `normal`); a segment \
+                                 wall moves at a `velocity` or by a `motion` program of velocity \
+                                 stages",
+                            ));
+                        }
+                        BoundaryKind::Segment(s)
+                    }
+                };
+                let boundary = Boundary::of_kind(kind, spec.unwrap_or(contact), motion);
                 walls.push(match (spec, material) {
                     // A wall of its own law.
                     (Some(_), _) => boundary,
@@ -277,10 +292,25 @@ impl Case {
                 position: b.position,
             })
             .collect();
-        placed.extend(walls.iter().enumerate().map(|(w, ws)| Placed::Wall {
-            path: index("walls", w),
-            point: ws.line().point,
-        }));
+        for (w, ws) in walls.iter().enumerate() {
+            match ws.segment() {
+                None => placed.push(Placed::Wall {
+                    path: index("walls", w),
+                    point: ws.line().point,
+                }),
+                Some(s) => {
+                    placed.extend(
+                        [s.a, s.b]
+                            .iter()
+                            .enumerate()
+                            .map(|(k, &point)| Placed::Wall {
+                                path: format!("{}.segment[{k}]", index("walls", w)),
+                                point,
+                            }),
+                    )
+                }
+            }
+        }
         check_extent(&placed)?;
         check_walls(&walls, &bodies)?;
         let meets = meeting(&checked, &walls);
@@ -456,8 +486,10 @@ fn check_walls(walls: &[Boundary], bodies: &[BodyInit]) -> Result<(), FieldError
         .iter()
         .map(|b| b.shape.inscribed_radius())
         .fold(f64::INFINITY, f64::min);
-    for (j, b) in walls.iter().enumerate() {
-        for (i, a) in walls[..j].iter().enumerate() {
+    // (Segment walls: both sides solid, no free side to check; two may well share a line.)
+    let half_plane = |w: &Boundary| w.segment().is_none();
+    for (j, b) in walls.iter().enumerate().filter(|(_, b)| half_plane(b)) {
+        for (i, a) in walls[..j].iter().enumerate().filter(|(_, a)| half_plane(a)) {
             let (na, nb) = (a.line().normal, b.line().normal);
             let parallel = na.dot(&nb) > 0.0 && (na.x * nb.y - na.y * nb.x).abs() < 1e-6;
             let gap = na.dot(&(b.point() - a.point())).abs();
@@ -474,7 +506,7 @@ fn check_walls(walls: &[Boundary], bodies: &[BodyInit]) -> Result<(), FieldError
             }
         }
     }
-    for (k, w) in walls.iter().enumerate() {
+    for (k, w) in walls.iter().enumerate().filter(|(_, w)| half_plane(w)) {
         let solid = bodies
             .iter()
             .filter(|b| w.line().normal.dot(&(b.position - w.point())) < 0.0)
@@ -802,6 +834,13 @@ fn parse_cell(
         ));
     }
     for (k, w) in walls.iter().enumerate() {
+        if w.segment().is_some() {
+            return Err(FieldError::new(
+                format!("{}.segment", index("walls", k)),
+                "segment walls are not supported in a periodic cell (a segment is not repeated \
+                 across its seams)",
+            ));
+        }
         let n = w.line().normal;
         if periodic == Periodic::XY || n.x.abs() > 1e-12 {
             return Err(FieldError::new(

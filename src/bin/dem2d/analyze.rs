@@ -58,6 +58,8 @@ pub fn run(dir: &Path, window: Option<&[f64]>, out: Option<&Path>) -> Result<(),
         .case
         .walls
         .iter()
+        // (The box of four half-plane walls: segment walls bound no box.)
+        .filter(|w| w.segment().is_none())
         .map(|w| (w.line().point, w.line().normal))
         .collect();
     let n = data.case.bodies.len();

@@ -1,0 +1,306 @@
+//! Segment–body contact: a finite line segment `a b` (a thin plate, both sides solid; see
+//! [`Segment`]) against a circle, an ellipse or a convex polygon (a clump's members are
+//! circles: [`super::clump`]).
+//!
+//! # Face or end
+//! The body meets the side its centroid `c` is on ([`Segment::facing`]: the front when `c` lies
+//! on the line). Its **deepest point** `d` towards that side — the point of the body that
+//! reaches furthest across the line, its support point along the side's inward normal (a
+//! circle's: below its centre; an ellipse's in closed form; a polygon's deepest vertex) — decides
+//! what it touches:
+//! - `τ(d) ∈ [0, L]` (it lies over the segment): the **face**. The contact is the half-plane
+//!   wall's of that side's line, by the same kernel on the same numbers ([`super::circle_wall`],
+//!   [`super::ellipse_wall`], [`super::polygon_wall`]): a body resting on a segment is, bit for
+//!   bit, a body resting on the half-plane of its line. Its overlap area (the area law) and flat
+//!   overlap are the half-plane's too: exact while the chord lies on the segment, and counting
+//!   the part of the cut beyond the end when the chord runs past it (the body's deepest point
+//!   still over the segment).
+//! - otherwise the **end** on that side (`a` for `τ < 0`, `b` for `τ > L`), a point `E`: the
+//!   depth is the distance from E to the body's boundary (positive with E inside the body), the
+//!   normal the body's inward normal at its boundary point q closest to E (from E towards q
+//!   when E is outside: for a circle the line of centres), the contact point E itself. A point
+//!   has no overlap area: under the area law a circle's or a polygon's end contact is a spring
+//!   on this depth (for a disk that is the area law's own force).
+//!
+//! An ellipse under the area law (`request.area`) takes its own rule instead, whose potential
+//! is continuous from face to end ([`ellipse_area`]): the face while the face's chord midpoint
+//! lies over the segment, else the end as the half-plane through it that cuts the least area.
+//!
+//! For a circle this is the segment's point closest to the centre — the disk's contact with the
+//! segment as a closed set — and continuous as the disk rolls over an end. For an ellipse, at the
+//! change from face to end the end lies straight above d at the face's depth, and d is its
+//! closest boundary point while that depth is below the ellipse's radius of curvature there
+//! (≥ b²/a): the depth, the normal and the spring's energy are continuous for any overlap a
+//! DEM contact reaches. A polygon's corner crossing an end while it penetrates has a jump
+//! (from its depth to the end's distance from the nearer edge).
+//!
+//! The segment is i (the giver): the normal points from it into the body.
+
+use super::{Contact, ContactState, LocalFrame, Request, TOUCH_TOL, pow2_floor};
+use super::{circle_wall, ellipse_wall, polygon_wall};
+use crate::geometry::{Pose, Segment, Shape, Vec2, Wall};
+
+/// Contact between a segment (i) and a body (j) that is not a clump.
+#[inline]
+pub fn contact_segment_body(
+    seg: &Segment,
+    shape: &Shape,
+    pose: &Pose,
+    request: &Request,
+) -> Option<Contact> {
+    let c = pose.position;
+    let side = seg.facing(c);
+    if let (Shape::Ellipse { a, b }, true) = (*shape, request.area) {
+        return ellipse_area(seg, side, a, b, pose, request);
+    }
+    let deepest = deepest_point(shape, pose, side.normal);
+    let tau = seg.along(deepest);
+    if (0.0..=seg.length).contains(&tau) {
+        return match *shape {
+            Shape::Circle { r } => circle_wall::contact_wall_circle(side, r, pose, request),
+            Shape::Ellipse { a, b } => {
+                ellipse_wall::contact_wall_ellipse(side, a, b, pose, request)
+            }
+            Shape::Rectangle { .. } | Shape::Polygon(_) => {
+                polygon_wall::contact_wall_polygon(side, shape, pose, request)
+            }
+            Shape::Clump(_) => unreachable!("a clump meets a segment through its members"),
+        };
+    }
+    let end = if tau < 0.0 { seg.a } else { seg.b };
+    contact_point_body(end, shape, pose, request)
+}
+
+/// The body's point that reaches furthest against `normal` (the support point along `−normal`).
+#[inline]
+pub fn deepest_point(shape: &Shape, pose: &Pose, normal: Vec2) -> Vec2 {
+    let c = pose.position;
+    match *shape {
+        Shape::Circle { .. } => c,
+        Shape::Ellipse { a, b } => {
+            let u = pose.to_body_vector(-normal);
+            let (ax, by) = (a * u.x, b * u.y);
+            let s = ax.hypot(by);
+            c + pose.to_world_vector(Vec2::new(a * ax / s, b * by / s))
+        }
+        Shape::Rectangle { .. } | Shape::Polygon(_) => {
+            let mut corners = [Vec2::zeros(); 4];
+            let u = pose.to_body_vector(normal);
+            let v = shape
+                .vertices(&mut corners)
+                .iter()
+                .copied()
+                .min_by(|p, q| u.dot(p).total_cmp(&u.dot(q)))
+                .unwrap_or(Vec2::zeros());
+            c + pose.to_world_vector(v)
+        }
+        Shape::Clump(_) => c,
+    }
+}
+
+/// Contact between the point `e` (i) and a body (j): the depth of `e` inside the body (negative
+/// outside: `None` beyond the touching tolerance), the normal the body's inward normal at its
+/// boundary point closest to `e`, the contact point `e`. No chord, no overlap area.
+pub fn contact_point_body(
+    e: Vec2,
+    shape: &Shape,
+    pose: &Pose,
+    request: &Request,
+) -> Option<Contact> {
+    let _ = request;
+    let scale = pow2_floor(shape.bounding_radius());
+    let inv = 1.0 / scale;
+    // The point in the body's frame, in units of `scale`.
+    let p = pose.to_body_vector((e - pose.position) * inv);
+    let (depth, n) = match *shape {
+        Shape::Circle { r } => {
+            let r = r * inv;
+            let d = p.norm();
+            let n = if d > 0.0 { -p / d } else { Vec2::new(0.0, 1.0) };
+            (r - d, n)
+        }
+        Shape::Ellipse { a, b } => point_ellipse(a * inv, b * inv, p),
+        Shape::Rectangle { .. } | Shape::Polygon(_) => {
+            let mut corners = [Vec2::zeros(); 4];
+            let v = shape.vertices(&mut corners);
+            point_polygon(v, inv, p)
+        }
+        Shape::Clump(_) => unreachable!("a clump meets a point through its members"),
+    };
+    if depth < -TOUCH_TOL {
+        return None;
+    }
+    let (cos, sin) = pose.cos_sin();
+    let frame = LocalFrame {
+        origin: pose.position,
+        cos,
+        sin,
+        scale,
+    };
+    let state = if depth <= TOUCH_TOL {
+        ContactState::Touching
+    } else {
+        ContactState::Overlap
+    };
+    Some(Contact {
+        state,
+        point: e,
+        normal: frame.vector([n.x, n.y]),
+        depth: depth * scale,
+        half_chord: 0.0,
+        area: None,
+        flat: None,
+    })
+}
+
+/// The depth of the point `p` inside the ellipse `x²/a² + y²/b² = 1` (its distance to the
+/// boundary; negative outside) and the ellipse's inward normal at the boundary point closest to
+/// `p`, by Eberly's bisection ("Distance from a point to an ellipse", 2011): the closest point
+/// `q = (a² p_x/(t + a²), b² p_y/(t + b²))` for the root t of
+/// `(a p_x/(t + a²))² + (b p_y/(t + b²))² = 1` (t > 0 outside, t < 0 inside).
+pub(crate) fn point_ellipse(a: f64, b: f64, p: Vec2) -> (f64, Vec2) {
+    // In the first quadrant, the larger semi-axis first.
+    let swap = a < b;
+    let (e0, e1, y0, y1) = if swap {
+        (b, a, p.y.abs(), p.x.abs())
+    } else {
+        (a, b, p.x.abs(), p.y.abs())
+    };
+    let (x0, x1) = closest_first_quadrant(e0, e1, y0, y1);
+    let (qx, qy) = if swap { (x1, x0) } else { (x0, x1) };
+    let q = Vec2::new(qx.copysign(p.x), qy.copysign(p.y));
+    let inside = (p.x / a).powi(2) + (p.y / b).powi(2) < 1.0;
+    let dist = (q - p).norm();
+    // The outward normal at q: the gradient of x²/a² + y²/b².
+    let g = Vec2::new(q.x / (a * a), q.y / (b * b));
+    let n = -g / g.norm();
+    (if inside { dist } else { -dist }, n)
+}
+
+/// Eberly's closest point of the ellipse with semi-axes `e0 ≥ e1` to `(y0, y1)`, both ≥ 0.
+fn closest_first_quadrant(e0: f64, e1: f64, y0: f64, y1: f64) -> (f64, f64) {
+    if y1 > 0.0 {
+        if y0 > 0.0 {
+            let (z0, z1) = (y0 / e0, y1 / e1);
+            let g = z0 * z0 + z1 * z1 - 1.0;
+            if g == 0.0 {
+                return (y0, y1);
+            }
+            let r0 = (e0 / e1) * (e0 / e1);
+            let s = root(r0, z0, z1, g);
+            (r0 * y0 / (s + r0), y1 / (s + 1.0))
+        } else {
+            (0.0, e1)
+        }
+    } else {
+        let (numer, denom) = (e0 * y0, e0 * e0 - e1 * e1);
+        if numer < denom {
+            let x = numer / denom;
+            (e0 * x, e1 * (1.0 - x * x).max(0.0).sqrt())
+        } else {
+            (e0, 0.0)
+        }
+    }
+}
+
+/// The root of `(r0 z0/(s + r0))² + (z1/(s + 1))² = 1` by bisection to the last bit.
+fn root(r0: f64, z0: f64, z1: f64, g: f64) -> f64 {
+    let n0 = r0 * z0;
+    let (mut s0, mut s1) = (z1 - 1.0, if g < 0.0 { 0.0 } else { n0.hypot(z1) - 1.0 });
+    let mut s = 0.0;
+    // (Each halving gains a bit; the loop ends when the midpoint rounds to an end.)
+    for _ in 0..2200 {
+        s = 0.5 * (s0 + s1);
+        if s == s0 || s == s1 {
+            break;
+        }
+        let (u, v) = (n0 / (s + r0), z1 / (s + 1.0));
+        let g = u * u + v * v - 1.0;
+        if g > 0.0 {
+            s0 = s;
+        } else if g < 0.0 {
+            s1 = s;
+        } else {
+            break;
+        }
+    }
+    s
+}
+
+/// The depth of the point `p` inside the convex polygon of vertices `v` (counter-clockwise,
+/// scaled by `inv`) and its inward normal at the boundary point closest to `p`.
+fn point_polygon(v: &[Vec2], inv: f64, p: Vec2) -> (f64, Vec2) {
+    let k = v.len();
+    // Inside: the nearest edge line. Outside: the nearest boundary point.
+    let mut best_in = (f64::INFINITY, Vec2::zeros());
+    let mut best_out = (f64::INFINITY, Vec2::zeros());
+    let mut inside = true;
+    for i in 0..k {
+        let (a, b) = (v[i] * inv, v[(i + 1) % k] * inv);
+        let e = b - a;
+        let len = e.norm();
+        let u = Vec2::new(e.y / len, -e.x / len); // outward
+        let s = u.dot(&(p - a));
+        if s > 0.0 {
+            inside = false;
+        }
+        if -s < best_in.0 {
+            best_in = (-s, -u);
+        }
+        let t = (e.dot(&(p - a)) / (len * len)).clamp(0.0, 1.0);
+        let q = a + e * t;
+        let d = (q - p).norm();
+        if d < best_out.0 {
+            let n = if d > 0.0 { (q - p) / d } else { -u };
+            best_out = (d, n);
+        }
+    }
+    if inside {
+        best_in
+    } else {
+        (-best_out.0, best_out.1)
+    }
+}
+
+/// An ellipse against a segment under the area law (`side` the line it meets): the face while
+/// the midpoint of the chord the line cuts lies over the segment, else the end E on that side,
+/// as the half-plane through E whose chord E bisects — the line through E that cuts the least
+/// area off the ellipse, conjugate to the diameter through E (normal `∇(x²/a² + y²/b²)` at E,
+/// in the body frame). By the envelope theorem the least cap's gradient is its chord's, at E:
+/// the force `W′(A) L n` at E is the gradient of the potential `W(A_min)`. Where the face's
+/// chord midpoint reaches the end, the bisected chord through the end is the face's own: the
+/// area, the force and its point change continuously from face to end.
+fn ellipse_area(
+    seg: &Segment,
+    side: &Wall,
+    a: f64,
+    b: f64,
+    pose: &Pose,
+    request: &Request,
+) -> Option<Contact> {
+    let face = ellipse_wall::contact_wall_ellipse(side, a, b, pose, request)?;
+    let tau = seg.along(face.point);
+    if (0.0..=seg.length).contains(&tau) {
+        return Some(face);
+    }
+    let end = if tau < 0.0 { seg.a } else { seg.b };
+    // (In units of the larger semi-axis, in the body frame.)
+    let s = a.max(b);
+    let p = pose.to_body_vector((end - pose.position) / s);
+    let (ua, ub) = (a / s, b / s);
+    let q = (p.x / ua).powi(2) + (p.y / ub).powi(2);
+    if q >= 1.0 {
+        // The end lies outside the ellipse, and so does the whole chord beyond it.
+        return None;
+    }
+    let g = Vec2::new(p.x / (ua * ua), p.y / (ub * ub));
+    // The half-plane's normal points into its free side, towards the centre (−∇Q; at the
+    // centre itself, where every chord is bisected, the face's).
+    let normal = if g.x == 0.0 && g.y == 0.0 {
+        side.normal
+    } else {
+        -pose.to_world_vector(g)
+    };
+    let wall = Wall::new(end, normal)?;
+    ellipse_wall::contact_wall_ellipse(&wall, a, b, pose, request)
+}
