@@ -274,3 +274,26 @@ fn keep_holds_the_number_of_bodies() {
     assert!(f.discharged > 30, "{}", f.discharged);
     assert_eq!(w.next_id, 15 + f.discharged);
 }
+
+/// The energy account through the flow: bodies falling freely (no contacts), inserted at
+/// 500 cm/s and removed 20 cm below, conserve `K + P` but for the energy inserted and removed,
+/// which the account books as boundary work: `E − E₀ − W` stays at round-off.
+#[test]
+fn the_energy_inserted_and_removed_is_booked_as_boundary_work() {
+    let text = falling(500.0, None, "").replace("[0, -100]", "[0, -500]");
+    let mut w = world_of(&text);
+    let e0 = w.energies.total();
+    let mut worst = 0.0f64;
+    let mut scale = 0.0f64;
+    Simulation::new(&mut w)
+        .for_steps(5000)
+        .run_each(|w, r| {
+            assert_eq!(r.contacts, 0);
+            let e = w.energies;
+            worst = worst.max((e.total() - e0 - e.boundary_work).abs());
+            scale = scale.max(e.kinetic + e.potential.abs());
+        })
+        .unwrap();
+    assert!(w.flow.as_ref().unwrap().discharged > 100);
+    assert!(worst <= 1e-12 * scale, "{worst} against {scale}");
+}
