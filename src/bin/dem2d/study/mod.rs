@@ -10,6 +10,7 @@ pub mod packing;
 pub mod repose;
 pub mod representation;
 pub mod rolling_fig3;
+pub mod silo;
 
 use dem2d::output::docs_tables::Mode;
 use std::path::Path;
@@ -43,6 +44,10 @@ pub enum Study {
     /// by FIRE, 10 (`--packings`) packings per aspect ratio (1–3): φ_J and Z_J against the
     /// published values; writes figures/jamming.svg and figures/jamming.md.
     Jamming,
+    /// Discharge of a flat-bottomed 2D silo (600 grains kept, outlet D): W(D) for disks against
+    /// Beverloo's law (C, k fitted), ellipses α = 2 and 3, clogging probability of small
+    /// outlets; writes figures/silo.svg and figures/silo.md.
+    Silo,
 }
 
 impl Study {
@@ -57,6 +62,7 @@ impl Study {
             Study::Packing => "packing",
             Study::Representation => "representation",
             Study::Jamming => "jamming",
+            Study::Silo => "silo",
         }
     }
 }
@@ -143,6 +149,7 @@ pub fn run(
             grains.unwrap_or(jamming::N),
             packings.unwrap_or(jamming::PACKINGS),
         ),
+        Study::Silo => silo::run(),
     }
     // A run that blows up ends the study with its report.
     .map_err(|e| crate::Failure::failed(format!("dem2d study: {e}")))?;
