@@ -3,9 +3,16 @@
 drawn at random (seed 1) onto a 10 x 15 lattice (spacings 1.25 and 4/3 cm) in a 12.5 x 20 cm cell
 periodic in x and y, moving with the shear's mean flow 3 (y - 10) cm/s plus random velocities up
 to 1 cm/s, sheared at 3 /s under an imposed pressure of 1000 dyn/cm. Run: python3 cases/make_shear_cell.py > cases/shear_cell.json
+
+With --compress, the same grains without friction and without shear, at rest but for the random
+velocities, compressed for 3 s at 5000 dyn/cm: a jammed frictionless packing for `dem2d relax`.
+Run: python3 cases/make_shear_cell.py --compress > cases/compress_cell_mu0.json
 """
 import json
 import random
+import sys
+
+compress = "--compress" in sys.argv[1:]
 
 rng = random.Random(1)
 nx, ny, lx, ly, rate = 10, 15, 12.5, 20.0, 3.0
@@ -18,7 +25,8 @@ for k, r in enumerate(radii):
     bodies.append({
         "shape": {"type": "circle", "r": round(r, 12)},
         "position": [round(x, 12), round(y, 12)],
-        "velocity": [round(rate * (y - ly / 2) + rng.uniform(-1, 1), 6), round(rng.uniform(-1, 1), 6)],
+        "velocity": [round((0 if compress else rate * (y - ly / 2)) + rng.uniform(-1, 1), 6),
+                     round(rng.uniform(-1, 1), 6)],
     })
 case = {
     "version": 1,
@@ -36,5 +44,14 @@ case = {
     "contact": {"model": "linear", "kn": 1e6, "restitution": 0.5, "friction": 0.4},
     "bodies": bodies,
 }
+if compress:
+    case["name"] = "compress_cell_mu0"
+    case["description"] = ("A frictionless packing compressed in a periodic cell at P = 5000 dyn/cm "
+                           "(the shear tutorial's grains, no shear): relax its end state with dem2d "
+                           "relax; made by cases/make_shear_cell.py --compress")
+    case["duration"] = 3.0
+    case["output"] = {}
+    case["cell"] = {"size": [lx, ly], "periodic": "xy", "pressure": 5000}
+    case["contact"]["friction"] = 0
 text = json.dumps(case, indent=1)
 print(text)

@@ -17,6 +17,7 @@ fn tight() -> Tolerance {
         force: 1e-11,
         max_iterations: 200_000,
         energy: 0.0,
+        stall: 0.0,
     }
 }
 

@@ -459,3 +459,130 @@ fn plot_refuses_what_it_cannot_draw() {
         "{err}"
     );
 }
+
+#[test]
+fn a_periodic_cell_is_drawn_at_its_size_with_the_images_of_the_bodies_a_seam_cuts() {
+    // The shear tutorial's cell, 6000 steps (its height has shrunk under the imposed pressure):
+    // a snapshot (150 bodies), each body a filled polygon followed by its images. Which images
+    // overlap the cell, and where they lie — `(x + kx Lx + ky s, y + ky Ly)` with s the
+    // Lees–Edwards offset of the image above — is worked out here from trajectory.csv and
+    // cell.csv, and the polygons' centres are fitted against it.
+    let dir = scratch("cell");
+    let run = dir.join("run");
+    let (code, _, err) = dem2d(&[
+        "run",
+        "cases/shear_cell.json",
+        "--out",
+        run.to_str().unwrap(),
+        "--quiet",
+        "--max-steps",
+        "6000",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let svg_path = dir.join("scene.svg");
+    let (code, _, err) = dem2d(&[
+        "plot",
+        run.to_str().unwrap(),
+        "--out",
+        svg_path.to_str().unwrap(),
+        "--images",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let svg = std::fs::read_to_string(&svg_path).unwrap();
+    let cell = std::fs::read_to_string(run.join("cell.csv")).unwrap();
+    let last: Vec<f64> = cell
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let (step, lx, ly, offset) = (last[0], last[2], last[3], last[4]);
+    assert!(ly < 19.0, "the cell should have shrunk: {ly}");
+    let case: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(run.join("case.json")).unwrap()).unwrap();
+    let radii: Vec<f64> = case["bodies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| b["shape"]["r"].as_f64().unwrap())
+        .collect();
+    let traj = std::fs::read_to_string(run.join("trajectory.csv")).unwrap();
+    let mut want = Vec::new();
+    for row in traj.lines().skip(1) {
+        let v: Vec<f64> = row.split(',').map(|v| v.parse().unwrap()).collect();
+        if v[0] != step {
+            continue;
+        }
+        let (x, y, r) = (v[3], v[4], radii[v[2] as usize]);
+        want.push((x, y));
+        for ky in [-1.0, 0.0, 1.0] {
+            for kx in [-1.0, 0.0, 1.0] {
+                let (cx, cy) = (x + kx * lx + ky * offset, y + ky * ly);
+                if (kx, ky) != (0.0, 0.0)
+                    && cx + r > 0.0
+                    && cx - r < lx
+                    && cy + r > 0.0
+                    && cy - r < ly
+                {
+                    want.push((cx, cy));
+                }
+            }
+        }
+    }
+    assert!(want.len() > radii.len() + 5, "few images: {}", want.len());
+    let polygons = shapes_points(&svg, "<polygon");
+    assert_eq!(polygons.len(), want.len(), "bodies and their images");
+    let centres: Vec<(f64, f64)> = polygons
+        .iter()
+        .map(|p| {
+            let n = p.len() as f64;
+            (
+                p.iter().map(|q| q.0).sum::<f64>() / n,
+                p.iter().map(|q| q.1).sum::<f64>() / n,
+            )
+        })
+        .collect();
+    let (sx, _, wx) = fit(&want
+        .iter()
+        .zip(&centres)
+        .map(|(w, c)| (w.0, c.0))
+        .collect::<Vec<_>>());
+    let (sy, _, wy) = fit(&want
+        .iter()
+        .zip(&centres)
+        .map(|(w, c)| (w.1, c.1))
+        .collect::<Vec<_>>());
+    // Within a pixel; at equal scale (y drawn upwards).
+    assert!(wx < 1.0 && wy < 1.0, "centres off by {wx}, {wy} px");
+    assert!((sx + sy).abs() < 0.002 * sx, "scales {sx}, {sy}");
+    // The cell's rectangle at the last frame's size: a closed 5-point polyline whose extent is
+    // Lx × Ly at that scale.
+    let rect = shapes_points(&svg, "<polyline")
+        .into_iter()
+        .filter(|p| p.len() == 5 && p[0] == p[4])
+        .map(|p| extent(&p))
+        .find(|&(w, h)| (w / sx - lx).abs() < 0.05 && (h / sx - ly).abs() < 0.05);
+    assert!(
+        rect.is_some(),
+        "no rectangle of the cell's size {lx} × {ly}"
+    );
+    // --images on a run without a cell is refused.
+    let plain = dir.join("plain");
+    let (code, _, _) = dem2d(&[
+        "run",
+        "cases/settle3_dt1e-5.json",
+        "--out",
+        plain.to_str().unwrap(),
+        "--quiet",
+        "--max-steps",
+        "10",
+    ]);
+    assert_eq!(code, 0);
+    let (code, _, err) = dem2d(&["plot", plain.to_str().unwrap(), "--images"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--images") && err.contains("no periodic cell"),
+        "{err}"
+    );
+}

@@ -103,13 +103,15 @@ fn figures_quick_writes_every_figure_and_table_of_the_guide() {
             // The ParaView picture is pvpython's (figures/scripts/paraview_render.py), the
             // tutorial's pile `dem2d plot`'s, the Python tutorial's profile its script's
             // (docs/python/pour.py, with matplotlib); the research workflows' figures are `dem2d
-            // study impacts|biaxial-shape|packing|representation`'s (minutes of runs).
+            // study impacts|biaxial-shape|packing|representation|jamming|shear`'s (minutes of runs).
             let others = [
                 "impacts.svg",
                 "biaxial_shape.svg",
                 "force_chains.svg",
                 "packing.svg",
                 "representation_pareto.svg",
+                "jamming.svg",
+                "shear.svg",
                 "tutorial_pile.png",
                 "python_pour.png",
             ];
@@ -133,6 +135,7 @@ fn figures_quick_writes_every_figure_and_table_of_the_guide() {
                 "packing",
                 "representation",
                 "jamming",
+                "shear",
                 "verify",
             ];
             if !others.contains(&name) && !name.contains(char::is_uppercase) {

@@ -1013,6 +1013,7 @@ impl Simulation {
             force: tolerance,
             max_iterations,
             energy: 0.0,
+            stall: 0.0,
         };
         let Inner { world, pool, .. } = inner;
         let relaxed = py

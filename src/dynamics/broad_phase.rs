@@ -176,18 +176,26 @@ impl Grid {
         }
         let size = 2.0 * bodies.bound.iter().copied().fold(0.0f64, f64::max) + margin;
         let (lx, ly) = (cell.size.x, cell.size.y);
-        let nx = ((lx / size).floor() as i64).max(1);
+        let fx = (lx / size).floor().max(1.0);
         // Not periodic in y: the bodies' extent in y, tiled from its bottom.
-        let (y0, ny) = if cell.periodic_y() {
-            (0.0, ((ly / size).floor() as i64).max(1))
+        let (y0, fy) = if cell.periodic_y() {
+            (0.0, (ly / size).floor().max(1.0))
         } else {
             let (lo, hi) = bodies
                 .state
                 .iter()
                 .map(|s| s.pose.position.y)
                 .fold((f64::MAX, f64::MIN), |(l, h), y| (l.min(y), h.max(y)));
-            (lo, (((hi - lo) / size).floor() as i64 + 1).max(1))
+            (lo, ((hi - lo) / size).floor() + 1.0)
         };
+        // A sparse cell (far larger than its bodies' reach) gets at most a few tiles per body,
+        // each larger than the reach: the same pairs, without a tiling larger than memory.
+        let cap = (4 * n).max(64) as f64;
+        let f = (fx * fy / cap).sqrt().max(1.0);
+        let (nx, ny) = (
+            ((fx / f).floor() as i64).max(1),
+            ((fy / f).floor() as i64).max(1),
+        );
         let (wx, wy) = (
             lx / nx as f64,
             if cell.periodic_y() {

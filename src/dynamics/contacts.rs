@@ -285,6 +285,26 @@ impl ContactList {
         }
     }
 
+    /// Whether a pair outside the list could touch now: two bodies approach by at most the sum
+    /// of their displacements since the build, which must stay within the skin (the step's
+    /// rule, there taken from the drift's sums); also true for a list not built for these
+    /// bodies. A body that wrapped across a seam counts its jump, which forces a build.
+    pub(crate) fn outgrown(&self, bodies: &super::Bodies) -> bool {
+        if self.built_at.len() != bodies.len() {
+            return true;
+        }
+        let mut top = [0.0f64; 2];
+        for (s, at) in bodies.state.iter().zip(&self.built_at) {
+            let d = (s.pose.position - at).norm();
+            if d > top[0] {
+                top = [d, top[0]];
+            } else if d > top[1] {
+                top[1] = d;
+            }
+        }
+        top[0] + top[1] > self.skin
+    }
+
     /// Marks the bodies that lay near a seam of `cell` at the build (within `margin`, twice the
     /// largest bounding radius and the skin): only a pair with such a body can meet through a
     /// periodic image before the next build. A body moves less than the skin between builds,

@@ -68,7 +68,17 @@ pub struct Tolerance {
     /// with neither gravity nor walls, a packing whose energy falls this low is unjammed, which
     /// FIRE otherwise approaches only slowly).
     pub energy: f64,
+    /// A change of the potential energy over the last [`STALL_WINDOW`] iterations, as a
+    /// fraction of it, below which the minimisation has stalled and stops, if the residual
+    /// has not fallen by half over them either (0: never) — the form
+    /// of O'Hern et al.'s second criterion (PRE 68 (2003) 011306: the energy's change between
+    /// iterations), for packings whose soft modes FIRE relaxes only slowly (ellipses near
+    /// jamming, where the residual force falls little while the energy hardly changes).
+    pub stall: f64,
 }
+
+/// The iterations over which [`Tolerance::stall`] compares the potential energy.
+pub const STALL_WINDOW: u64 = 1000;
 
 impl Default for Tolerance {
     fn default() -> Self {
@@ -76,6 +86,7 @@ impl Default for Tolerance {
             force: 1e-9,
             max_iterations: 1_000_000,
             energy: 0.0,
+            stall: 0.0,
         }
     }
 }
@@ -91,8 +102,10 @@ pub struct Relaxed {
     pub residual: f64,
     /// The potential energy at the end: the contacts' stored energy plus gravity's (erg).
     pub potential: f64,
-    /// The residual fell below the tolerance.
+    /// The residual fell below the tolerance (or the energy below its floor).
     pub converged: bool,
+    /// The energy stalled ([`Tolerance::stall`]) before the residual fell below the tolerance.
+    pub stalled: bool,
 }
 
 /// Why a world cannot be minimised.
@@ -166,7 +179,7 @@ pub fn residual(world: &World) -> f64 {
 }
 
 /// Minimises the potential energy of `world` by FIRE from its present configuration, until the
-/// residual force falls below `tol.force` or `tol.max_iterations` evaluations; leaves the world
+/// residual force falls below `tol.force`, the energy stalls (`tol.stall`) or `tol.max_iterations` evaluations; leaves the world
 /// at the configuration reached, at rest, with its forces and energies evaluated there.
 pub fn relax(world: &mut World, fire: &Fire, tol: &Tolerance) -> Result<Relaxed, RelaxError> {
     check_frictionless(world)?;
@@ -187,6 +200,7 @@ pub fn relax(world: &mut World, fire: &Fire, tol: &Tolerance) -> Result<Relaxed,
     let dt0 = world.dt;
     let (mut dt, mut alpha, mut downhill) = (fire.dt_start * dt0, fire.alpha_start, 0u32);
     let mut iterations = 0u64;
+    let (mut window_start, mut stalled) = ((f64::INFINITY, f64::INFINITY), false);
     world.evaluate_forces();
     loop {
         let r = residual(world);
@@ -199,7 +213,16 @@ pub fn relax(world: &mut World, fire: &Fire, tol: &Tolerance) -> Result<Relaxed,
         }
         let potential = world.energies.elastic + world.potential_energy();
         let low = tol.energy > 0.0 && potential <= tol.energy;
-        if r < tol.force || low || iterations >= tol.max_iterations {
+        if iterations.is_multiple_of(STALL_WINDOW) {
+            // Neither the energy nor the residual moving: a residual that still falls (by half
+            // over the window) is converging, however little the energy changes.
+            stalled = iterations > 0
+                && (window_start.0 - potential).abs() < tol.stall * potential.abs()
+                && r > 0.5 * window_start.1;
+            window_start = (potential, r);
+        }
+        let converged = r < tol.force || low;
+        if converged || stalled || iterations >= tol.max_iterations {
             for &(k, v, w) in &prescribed {
                 world.bodies.state[k].vel = v;
                 world.bodies.state[k].omega = w;
@@ -210,7 +233,8 @@ pub fn relax(world: &mut World, fire: &Fire, tol: &Tolerance) -> Result<Relaxed,
                 iterations,
                 residual: r,
                 potential: world.energies.elastic + world.energies.potential,
-                converged: r < tol.force || low,
+                converged,
+                stalled: stalled && !converged,
             });
         }
         // The power of the forces on FIRE's velocities.
@@ -252,7 +276,7 @@ pub fn relax(world: &mut World, fire: &Fire, tol: &Tolerance) -> Result<Relaxed,
             }
         }
         move_bodies(world, &v, &w, dt);
-        world.evaluate_forces();
+        world.evaluate_forces_near();
         iterations += 1;
     }
 }

@@ -407,9 +407,11 @@ impl Stepper {
     }
 
     /// Evaluates the forces of the current configuration without advancing (used at t = 0).
-    pub(crate) fn evaluate_forces(&mut self, wd: &mut Parts) {
+    pub(crate) fn evaluate_forces(&mut self, wd: &mut Parts, always_rebuild: bool) {
         self.size_partials(wd);
-        self.rebuild_neighbours(wd);
+        if always_rebuild || wd.contacts.outgrown(wd.bodies) {
+            self.rebuild_neighbours(wd);
+        }
         let slots = self.compute_slots(wd, 0.0);
         self.gather_forces(wd, None);
         if let Some(cell) = wd.cell.as_deref_mut()

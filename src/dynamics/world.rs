@@ -487,10 +487,21 @@ impl World {
         stepper.step(&mut parts)
     }
 
-    /// Evaluates the forces of the current configuration without advancing (used at t = 0).
+    /// Evaluates the forces of the current configuration without advancing (used at t = 0),
+    /// the neighbour list built afresh.
     pub fn evaluate_forces(&mut self) {
         let (stepper, mut parts) = self.parts();
-        stepper.evaluate_forces(&mut parts);
+        stepper.evaluate_forces(&mut parts, true);
+    }
+
+    /// Evaluates the forces of the current configuration without advancing, keeping the
+    /// neighbour list unless a body has moved far enough since it was built that a pair outside
+    /// it could touch (the step's rule): for a sequence of nearby configurations, such as an
+    /// energy minimisation's. The bodies must not have been moved in a way the list cannot see
+    /// (a changed cell size, new bodies): call [`World::evaluate_forces`] after such a change.
+    pub fn evaluate_forces_near(&mut self) {
+        let (stepper, mut parts) = self.parts();
+        stepper.evaluate_forces(&mut parts, false);
     }
 
     /// Fills each active slot's [`super::contacts::ContactExtra`] (depth, stiffness, damping)

@@ -3,6 +3,7 @@
 //! line panels (time series, log–log reports).
 
 use super::run_data::RunData;
+use crate::dynamics::cell::Cell;
 use crate::geometry::{Shape, Vec2};
 use plotters::coord::Shift;
 use plotters::coord::ranged1d::ValueFormatter;
@@ -222,6 +223,9 @@ pub struct SceneOptions {
     /// time shown, without paths or earlier outlines (which would bury a pile and make the file
     /// hundreds of megabytes).
     pub snapshot_above: usize,
+    /// In a periodic cell, also draw the periodic images of the bodies that a seam cuts (those
+    /// that overlap the cell), so that grains at a seam look whole.
+    pub images: bool,
 }
 
 impl Default for SceneOptions {
@@ -235,6 +239,7 @@ impl Default for SceneOptions {
             width: None,
             color: ColorBy::Auto,
             snapshot_above: 100,
+            images: false,
         }
     }
 }
@@ -249,6 +254,49 @@ struct Drawn<'a> {
     /// Per outline frame, per body (empty for categorical colours).
     values: Vec<Vec<f64>>,
     snapshot: bool,
+    /// Draw the periodic images of bodies cut by a seam.
+    images: bool,
+}
+
+/// The offsets of the periodic images of a body of bounding radius `r` at `(x, y)` that
+/// overlap `cell` (its bounding box meets the cell's rectangle), the body itself left out: the
+/// image `(k_x, k_y)` cells over lies at `(x + k_x L_x + k_y s, y + k_y L_y)`, s the Lees–Edwards
+/// offset of the image above (in a cell periodic in x only, k_y = 0 and the rectangle spans
+/// every y).
+fn image_offsets(cell: &Cell, x: f64, y: f64, r: f64) -> Vec<Vec2> {
+    let (lx, ly) = (cell.size.x, cell.size.y);
+    let ky_range: &[f64] = if cell.periodic_y() {
+        &[-1.0, 0.0, 1.0]
+    } else {
+        &[0.0]
+    };
+    let mut out = Vec::new();
+    for &ky in ky_range {
+        for kx in [-1.0, 0.0, 1.0] {
+            if kx == 0.0 && ky == 0.0 {
+                continue;
+            }
+            let o = Vec2::new(kx * lx + ky * cell.offset, ky * ly);
+            let (cx, cy) = (x + o.x, y + o.y);
+            let meets_x = cx + r > 0.0 && cx - r < lx;
+            let meets_y = !cell.periodic_y() || (cy + r > 0.0 && cy - r < ly);
+            if meets_x && meets_y {
+                out.push(o);
+            }
+        }
+    }
+    out
+}
+
+/// The part of the plane a cell's outline covers: its rectangle (`"xy"`), or its two seams
+/// `x = 0`, `x = L_x` (`"x"`: y unbounded).
+fn cell_lines(cell: &Cell, (_, _, y0, y1): (f64, f64, f64, f64)) -> Vec<Vec<(f64, f64)>> {
+    let (lx, ly) = (cell.size.x, cell.size.y);
+    if cell.periodic_y() {
+        vec![vec![(0.0, 0.0), (lx, 0.0), (lx, ly), (0.0, ly), (0.0, 0.0)]]
+    } else {
+        vec![vec![(0.0, y0), (0.0, y1)], vec![(lx, y0), (lx, y1)]]
+    }
 }
 
 /// The frames of `run` to draw under `opts`.
@@ -338,6 +386,7 @@ fn select<'a>(
         path: if snapshot { Vec::new() } else { window },
         values,
         snapshot,
+        images: opts.images && run.case.cell.is_some(),
     })
 }
 
@@ -352,12 +401,35 @@ fn scene_bounds(panels: &[Vec<(Drawn, ColorBy)>]) -> (f64, f64, f64, f64) {
     );
     for (d, _) in panels.iter().flatten() {
         for &i in d.outlines.iter().chain(&d.path) {
+            // (With the periodic images drawn at the outlines.)
+            let cell = d.run.cell_at(i).filter(|_| d.images);
             for (b, init) in d.run.frames[i].bodies.iter().zip(&d.run.case.bodies) {
-                for (x, y) in super::outline::polygon(&init.shape, b.x, b.y, b.angle) {
-                    x0 = x0.min(x);
-                    x1 = x1.max(x);
-                    y0 = y0.min(y);
-                    y1 = y1.max(y);
+                let shifts = match &cell {
+                    Some(c) => image_offsets(c, b.x, b.y, init.shape.bounding_radius()),
+                    None => Vec::new(),
+                };
+                for s in std::iter::once(Vec2::zeros()).chain(shifts) {
+                    for (x, y) in
+                        super::outline::polygon(&init.shape, b.x + s.x, b.y + s.y, b.angle)
+                    {
+                        x0 = x0.min(x);
+                        x1 = x1.max(x);
+                        y0 = y0.min(y);
+                        y1 = y1.max(y);
+                    }
+                }
+            }
+        }
+    }
+    // A periodic cell's rectangle (its x extent in a cell periodic in x only) at every outline.
+    for (d, _) in panels.iter().flatten() {
+        for &i in &d.outlines {
+            if let Some(c) = d.run.cell_at(i) {
+                x0 = x0.min(0.0);
+                x1 = x1.max(c.size.x);
+                if c.periodic_y() {
+                    y0 = y0.min(0.0);
+                    y1 = y1.max(c.size.y);
                 }
             }
         }
@@ -830,9 +902,16 @@ where
         if d.snapshot {
             let f = &run.frames[last];
             let o = d.outlines.len() - 1;
-            let polygons = run.case.bodies.iter().enumerate().map(|(k, init)| {
+            let cell = run.cell_at(last).filter(|_| d.images);
+            let polygons = run.case.bodies.iter().enumerate().flat_map(|(k, init)| {
                 let b = f.bodies[k];
-                (k, outline(&init.shape, b.x, b.y, b.angle))
+                let shifts = match &cell {
+                    Some(c) => image_offsets(c, b.x, b.y, init.shape.bounding_radius()),
+                    None => Vec::new(),
+                };
+                std::iter::once(Vec2::zeros())
+                    .chain(shifts)
+                    .map(move |s| (k, outline(&init.shape, b.x + s.x, b.y + s.y, b.angle)))
             });
             if d.values.is_empty() {
                 chart
@@ -881,14 +960,31 @@ where
             } else {
                 RGBColor(90, 90, 90)
             };
-            let path: Vec<(f64, f64)> = d
-                .path
-                .iter()
-                .map(|&i| (run.frames[i].bodies[k].x, run.frames[i].bodies[k].y))
-                .collect();
-            let series = chart
-                .draw_series(LineSeries::new(path, path_col.mix(0.9).stroke_width(S)))
-                .map_err(err)?;
+            // In a periodic cell the path breaks where the body re-entered the cell (its image
+            // counts changed), instead of crossing it.
+            let mut pieces: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+            let mut images_before = None;
+            for &i in &d.path {
+                let f = &run.frames[i];
+                let images = f.images.get(k).copied();
+                if images_before.is_some() && images != images_before {
+                    pieces.push(Vec::new());
+                }
+                images_before = images;
+                pieces
+                    .last_mut()
+                    .expect("a piece")
+                    .push((f.bodies[k].x, f.bodies[k].y));
+            }
+            let mut series = None;
+            for piece in pieces {
+                series = Some(
+                    chart
+                        .draw_series(LineSeries::new(piece, path_col.mix(0.9).stroke_width(S)))
+                        .map_err(err)?,
+                );
+            }
+            let series = series.expect("one piece at least");
             if let (true, 0, Some(col)) = (several && !d.label.is_empty(), k, key) {
                 series.label(d.label.clone()).legend(move |(x, y)| {
                     PathElement::new(
@@ -913,21 +1009,54 @@ where
                 let style = pick(k, o)
                     .mix(alpha)
                     .stroke_width(if fi == last { 2 * S } else { S });
+                // The body, and its images across the seams that cut it.
+                let shifts = match run.cell_at(fi).filter(|_| d.images) {
+                    Some(c) => image_offsets(&c, b.x, b.y, r),
+                    None => Vec::new(),
+                };
+                for s in std::iter::once(Vec2::zeros()).chain(shifts) {
+                    let (x, y) = (b.x + s.x, b.y + s.y);
+                    chart
+                        .draw_series(std::iter::once(PathElement::new(
+                            outline(&init.shape, x, y, b.angle),
+                            style,
+                        )))
+                        .map_err(err)?;
+                    let tip = (x + 0.8 * r * b.angle.cos(), y + 0.8 * r * b.angle.sin());
+                    chart
+                        .draw_series(std::iter::once(PathElement::new(vec![(x, y), tip], style)))
+                        .map_err(err)?;
+                }
+            }
+        }
+    }
+    // A periodic cell's outline at the last outline drawn (blue, over the bodies), and faint where it was at the
+    // earlier ones when its size changed (an imposed pressure).
+    if let Some((d, _)) = runs.first()
+        && let Some(&last) = d.outlines.last()
+        && let Some(now) = d.run.cell_at(last)
+    {
+        let cell_colour = RGBColor(40, 90, 200);
+        for &o in &d.outlines[..d.outlines.len() - 1] {
+            if let Some(then) = d.run.cell_at(o)
+                && then.size != now.size
+            {
                 chart
-                    .draw_series(std::iter::once(PathElement::new(
-                        outline(&init.shape, b.x, b.y, b.angle),
-                        style,
-                    )))
-                    .map_err(err)?;
-                let tip = (b.x + 0.8 * r * b.angle.cos(), b.y + 0.8 * r * b.angle.sin());
-                chart
-                    .draw_series(std::iter::once(PathElement::new(
-                        vec![(b.x, b.y), tip],
-                        style,
-                    )))
+                    .draw_series(
+                        cell_lines(&then, bounds)
+                            .into_iter()
+                            .map(|l| PathElement::new(l, cell_colour.mix(0.25).stroke_width(S))),
+                    )
                     .map_err(err)?;
             }
         }
+        chart
+            .draw_series(
+                cell_lines(&now, bounds)
+                    .into_iter()
+                    .map(|l| PathElement::new(l, cell_colour.stroke_width(2 * S))),
+            )
+            .map_err(err)?;
     }
     if legend {
         draw_legend(chart, SeriesLabelPosition::UpperRight)?;
@@ -1449,6 +1578,26 @@ mod tests {
     /// Issue 29, item 13: the representation figure's point labels (`3d`, `5d`, `16`, `17d` of
     /// points a few pixels apart) were drawn over each other. Labels are now placed where they
     /// overlap no other label and no marker, or left out.
+    #[test]
+    fn periodic_images_are_those_that_overlap_the_cell_with_the_lees_edwards_offset() {
+        use crate::dynamics::cell::{Cell, Periodic};
+        let mut c = Cell::new(Vec2::new(10.0, 8.0), Periodic::XY, 1.0, None);
+        c.offset = 3.0;
+        // Near the top-right corner: its image one cell left, and the one below (shifted back
+        // by the offset: (9.5 − 3, 7.6 − 8)); the one below-left lies outside.
+        let mut got = image_offsets(&c, 9.5, 7.6, 1.0);
+        got.sort_by(|a, b| a.x.total_cmp(&b.x));
+        assert_eq!(got, vec![Vec2::new(-10.0, 0.0), Vec2::new(-3.0, -8.0)]);
+        // In the middle: none.
+        assert!(image_offsets(&c, 5.0, 4.0, 1.0).is_empty());
+        // Periodic in x only: no image in y.
+        let x = Cell::new(Vec2::new(10.0, 8.0), Periodic::X, 0.0, None);
+        assert_eq!(
+            image_offsets(&x, 9.5, 7.6, 1.0),
+            vec![Vec2::new(-10.0, 0.0)]
+        );
+    }
+
     #[test]
     fn bug_point_labels_were_drawn_over_each_other() {
         // A tight cluster of 12 points (3 pixels apart) and a few apart from it.

@@ -58,6 +58,9 @@ pub struct RunData {
     /// What was left out of files that end part-way through a line or a frame (one note per
     /// file).
     pub incomplete: Vec<String>,
+    /// In a periodic cell, the cell at each row of `cell.csv` by step (its size follows an
+    /// imposed pressure); empty otherwise.
+    pub cells: Vec<(u64, crate::dynamics::cell::Cell)>,
 }
 
 /// What went wrong reading a run directory: the file and why.
@@ -272,6 +275,10 @@ impl RunData {
         if let Some(note) = walls.as_ref().and_then(|w| w.incomplete.clone()) {
             incomplete.push(note);
         }
+        let cells = match &case.cell {
+            Some(c) => super::cell::read_cells(dir, c)?,
+            None => Vec::new(),
+        };
         Ok(RunData {
             dir: dir.to_path_buf(),
             case,
@@ -280,11 +287,22 @@ impl RunData {
             summary,
             walls,
             incomplete,
+            cells,
         })
     }
 }
 
 impl RunData {
+    /// The periodic cell at frame `k`: as `cell.csv` recorded it at the frame's step, else the
+    /// case's (`None` without a cell).
+    pub fn cell_at(&self, k: usize) -> Option<crate::dynamics::cell::Cell> {
+        let step = self.frames[k].step;
+        match self.cells.binary_search_by_key(&step, |c| c.0) {
+            Ok(at) => Some(self.cells[at].1),
+            Err(_) => self.case.cell,
+        }
+    }
+
     /// The case's walls where they were at frame `k`: as `walls.csv` recorded them at its step,
     /// else placed by their motion (fixed; `p₀ + t v` at a constant velocity). The second value
     /// is false when some wall's place is not known (a servo wall in a run without `walls.csv`:

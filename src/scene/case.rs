@@ -311,6 +311,13 @@ impl Case {
                 }
             }
         }
+        if let Some(c) = &cell {
+            // The cell's far corner, as far out as a body may be.
+            placed.push(Placed::Point {
+                path: "cell.size".into(),
+                point: c.size,
+            });
+        }
         check_extent(&placed)?;
         check_walls(&walls, &bodies)?;
         let meets = meeting(&checked, &walls);

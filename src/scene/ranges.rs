@@ -97,6 +97,11 @@ pub enum Placed<'a> {
         path: String,
         point: Vec2,
     },
+    /// A point named by its own path (a periodic cell's far corner, `cell.size`).
+    Point {
+        path: String,
+        point: Vec2,
+    },
 }
 
 /// Checks the size spread and the coordinates of a scene (or a pair): the largest size at most
@@ -134,6 +139,7 @@ pub fn check_extent(items: &[Placed]) -> Result<(), FieldError> {
         let (at, p) = match item {
             Placed::Body { path, position, .. } => (format!("{path}.position"), *position),
             Placed::Wall { path, point } => (format!("{path}.point"), *point),
+            Placed::Point { path, point } => (path.clone(), *point),
         };
         let c = p.x.abs().max(p.y.abs());
         if c > MAX_EXTENT_RATIO * small {

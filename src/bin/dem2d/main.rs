@@ -55,6 +55,13 @@ enum Command {
         /// Packings per aspect ratio (jamming; default 10).
         #[arg(long)]
         packings: Option<usize>,
+        /// Aspect ratios a/b, comma-separated (jamming and shear; default: each study's own
+        /// list).
+        #[arg(long, value_delimiter = ',')]
+        aspects: Option<Vec<f64>>,
+        /// Inertial numbers, comma-separated (shear; default 0.003,0.01,0.03,0.1,0.3).
+        #[arg(long, value_delimiter = ',')]
+        inertial: Option<Vec<f64>>,
         /// Worker threads (default: all cores; the jamming study runs its packings in
         /// parallel).
         #[arg(long)]
@@ -214,6 +221,10 @@ enum Command {
         /// Scene: figure width in pixels (default: 1000, wider for a snapshot of many bodies).
         #[arg(long)]
         width: Option<u32>,
+        /// Scene, in a periodic cell: also draw the periodic images of the bodies a seam cuts,
+        /// so that grains at a seam look whole.
+        #[arg(long)]
+        images: bool,
     },
     /// Generate a pile of disks or ellipses on a jittered lattice in a box, as a case file
     /// (`cases/settle_disks_10k.json` is `--shape disks --n 10000 --seed 1`).
@@ -301,6 +312,7 @@ struct PlotArgs {
     last: bool,
     color: ColorArg,
     width: Option<u32>,
+    images: bool,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -632,14 +644,21 @@ fn plot(run_dir: &std::path::Path, kind: PlotKind, args: PlotArgs) -> Result<(),
             "--width: must be 200 … 20000 pixels, got {w}"
         )));
     }
-    let scene_only = args.every.is_some() || args.last || !matches!(args.color, ColorArg::Auto);
+    let scene_only =
+        args.every.is_some() || args.last || args.images || !matches!(args.color, ColorArg::Auto);
     if scene_only && !matches!(kind, PlotKind::Scene) {
         return Err(Failure::input(
-            "--every, --last and --color apply to --kind scene only".into(),
+            "--every, --last, --color and --images apply to --kind scene only".into(),
         ));
     }
     let run = dem2d::output::run_data::RunData::load(run_dir)
         .map_err(|e| Failure::input(e.to_string()))?;
+    if args.images && run.case.cell.is_none() {
+        return Err(Failure::input(format!(
+            "--images: {} has no periodic cell (`cell` in its case), so no images to draw",
+            run_dir.display()
+        )));
+    }
     match run.summary["status"].as_str() {
         Some("completed" | "at_rest" | "max_steps") => {}
         Some(status) => say(&format!(
@@ -714,6 +733,7 @@ fn plot(run_dir: &std::path::Path, kind: PlotKind, args: PlotArgs) -> Result<(),
                     ColorArg::Rotation => ColorBy::Rotation,
                     ColorArg::Force => ColorBy::Force,
                 },
+                images: args.images,
                 ..SceneOptions::default()
             },
         ),
@@ -842,15 +862,21 @@ fn main() -> ExitCode {
             write_cases,
             grains,
             packings,
+            aspects,
+            inertial,
             threads,
             docs,
             check,
         } => set_threads(*threads).and_then(|()| {
             study::run(
                 *name,
-                *write_cases,
-                *grains,
-                *packings,
+                &study::Options {
+                    write_cases: *write_cases,
+                    grains: *grains,
+                    packings: *packings,
+                    aspects: aspects.clone(),
+                    inertial: inertial.clone(),
+                },
                 docs_mode(*docs, *check),
             )
         }),
@@ -942,6 +968,7 @@ fn main() -> ExitCode {
             last,
             color,
             width,
+            images,
         } => plot(
             run_dir,
             *kind,
@@ -953,6 +980,7 @@ fn main() -> ExitCode {
                 last: *last,
                 color: *color,
                 width: *width,
+                images: *images,
             },
         ),
         Command::Generate {

@@ -58,6 +58,7 @@ pub fn run(args: RelaxArgs) -> Result<(), Failure> {
         force: args.tolerance,
         max_iterations: args.max_iterations,
         energy: 0.0,
+        stall: 0.0,
     };
     let start = std::time::Instant::now();
     let relaxed = relax(&mut world, &Fire::default(), &tol)

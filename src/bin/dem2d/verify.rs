@@ -12,9 +12,11 @@
 //!   mixture.
 //! - `--full` (about half an hour): the biaxial trend on the user guide's samples (2025 grains,
 //!   α = 1, 1.5, 2, 2.5), each α against the next; and the poured frictionless ellipses at
-//!   α = 1.5 against the published maxima of φ_J(α) and the hypostatic plateau of Z_J.
+//!   α = 1.5 against the published maxima of φ_J(α) and the hypostatic plateau of Z_J; jamming
+//!   by FIRE in a periodic cell (64 grains, disks and α = 2) and Lees–Edwards shear of disks at
+//!   I = 0.01 and 0.1 against the published φ_J, Z_J and μ(I), φ(I) ([`periodic_checks`]).
 
-use crate::study::{biaxial_shape, impacts, packing};
+use crate::study::{biaxial_shape, impacts, jamming, packing, shear};
 use dem2d::analysis::{self, Frame};
 use dem2d::run::RunError;
 use dem2d::scene::Case;
@@ -162,6 +164,83 @@ fn packing_checks(ellipses: bool) -> Result<Vec<Check>, RunError> {
     Ok(checks)
 }
 
+/// Periodic cells against the jamming and μ(I) literature (`--full`): isotropic jamming of 64
+/// frictionless bidisperse grains by FIRE (four packings each of disks and of ellipses α = 2,
+/// the bands of the jamming page's published values) and steady Lees–Edwards shear of 256
+/// frictional disks at I = 0.01 and 0.1 against da Cruz et al.'s linear laws (as the shear
+/// page gives them: μ_min ≈ 0.25, b ≈ 1, φ_max ≈ 0.80–0.81, a ≈ 0.3).
+fn periodic_checks() -> Result<Vec<Check>, RunError> {
+    let mut checks = Vec::new();
+    let mean = |x: &[f64]| x.iter().sum::<f64>() / x.len() as f64;
+    for (aspect, phi_band, z_band, z_ref) in [
+        (
+            1.0,
+            (0.83, 0.85),
+            (3.9, 4.1),
+            "Z_J = 4 (O'Hern et al. 2003), 0.1 allowed",
+        ),
+        (
+            2.0,
+            (0.87, 0.90),
+            (5.4, 5.9),
+            "hypostatic 5.5–5.8 for 1.5 ≤ α ≤ 3 (Schreck 2010, VanderWerf 2018)",
+        ),
+    ] {
+        let packings: Vec<jamming::Packing> = (0..4).map(|s| jamming::jam(64, aspect, s)).collect();
+        let phi: Vec<f64> = packings.iter().map(|p| p.phi).collect();
+        let z: Vec<f64> = packings.iter().map(|p| p.z).collect();
+        let (phi, z) = (mean(&phi), mean(&z));
+        checks.push(Check {
+            quantity: format!(
+                "jamming by FIRE, 4 × 64 frictionless bidisperse grains, α = {aspect}: φ_J"
+            ),
+            value: phi,
+            reference: if aspect == 1.0 {
+                "φ_J ≈ 0.84 (O'Hern et al. 2003; 64 grains lie a little below)".into()
+            } else {
+                "φ_J(2) ≈ 0.88 on the published curve (VanderWerf et al. 2018)".into()
+            },
+            tolerance: format!("[{}, {}]", phi_band.0, phi_band.1),
+            pass: (phi_band.0..=phi_band.1).contains(&phi),
+        });
+        checks.push(Check {
+            quantity: format!("jamming by FIRE, 4 × 64 frictionless bidisperse grains, α = {aspect}: Z_J (rattlers out)"),
+            value: z,
+            reference: z_ref.into(),
+            tolerance: format!("[{}, {}]", z_band.0, z_band.1),
+            pass: (z_band.0..=z_band.1).contains(&z),
+        });
+    }
+    for i in [0.01, 0.1] {
+        let f = shear::shear(shear::N, 1.0, i)?;
+        let (mu_lo, mu_hi) = (0.2 + 0.7 * f.inertial, 0.3 + 1.3 * f.inertial);
+        checks.push(Check {
+            quantity: format!(
+                "Lees–Edwards shear, {} disks μ_p = 0.4, I = {:.4}: μ",
+                shear::N,
+                f.inertial
+            ),
+            value: f.mu,
+            reference: "μ_min + b I, μ_min ≈ 0.25, b ≈ 1 (da Cruz et al. 2005)".into(),
+            tolerance: format!("[0.2 + 0.7 I, 0.3 + 1.3 I] = [{mu_lo:.3}, {mu_hi:.3}]"),
+            pass: (mu_lo..=mu_hi).contains(&f.mu),
+        });
+        let (phi_lo, phi_hi) = (0.79 - 0.4 * f.inertial, 0.82 - 0.2 * f.inertial);
+        checks.push(Check {
+            quantity: format!(
+                "Lees–Edwards shear, {} disks μ_p = 0.4, I = {:.4}: φ",
+                shear::N,
+                f.inertial
+            ),
+            value: f.phi,
+            reference: "φ_max − a I, φ_max ≈ 0.80–0.81, a ≈ 0.3 (da Cruz et al. 2005)".into(),
+            tolerance: format!("[0.79 − 0.4 I, 0.82 − 0.2 I] = [{phi_lo:.4}, {phi_hi:.4}]"),
+            pass: (phi_lo..=phi_hi).contains(&f.phi),
+        });
+    }
+    Ok(checks)
+}
+
 /// Runs the checks of `level` and prints them as a Markdown table (the wall time on a line of
 /// its own after it); returns whether all pass, and the table (without the wall time, which is
 /// the machine's and not the code's). A run that blows up is the error.
@@ -189,6 +268,7 @@ pub fn run(level: Level) -> Result<(bool, String), RunError> {
         Level::Full => {
             checks.extend(biaxial_checks(45, &[1.0, 1.5, 2.0, 2.5], 0.1)?);
             checks.extend(packing_checks(true)?);
+            checks.extend(periodic_checks()?);
         }
     }
     let mut md = String::from(

@@ -9,19 +9,27 @@
 //! random (positions and orientations, overlaps allowed) in a square cell periodic in x and y at
 //! φ = [`PHI_START`]; frictionless linear law on the overlap area (the energy-conserving default,
 //! so that the forces derive from the energy minimised). The protocol is O'Hern's: minimise the
-//! energy with FIRE (`dynamics::minimise`); compress affinely by δφ while the energy per grain
-//! is below `U_TOL k_n d²` (d the small diameter), decompress while it is above twice that,
-//! halving δφ at each change of direction, until the energy per grain lies in
-//! `[U_TOL, 2 U_TOL] k_n d²` ([`U_TOL`] = 1e-12): φ_J is the packing fraction there, Z_J the
-//! contacts per grain with rattlers (grains with fewer than 3 contacts, removed repeatedly) left
-//! out. [`PACKINGS`] packings per α (different seeds), in parallel.
+//! energy with FIRE (`dynamics::minimise`), compress or decompress affinely, minimise again,
+//! until the energy per grain lies in `[U_TOL, 2 U_TOL] k_n d²` ([`U_TOL`] = 1e-12, d the small
+//! diameter): φ_J is the packing fraction there, Z_J the contacts per grain with rattlers
+//! (grains with fewer than 3 contacts, removed repeatedly) left out. The search compresses by
+//! 5 % until jammed, then closes in on the band between the highest unjammed and the lowest
+//! jammed φ by the secant of u^(2/5) against φ (the area law's energy grows as (φ − φ_J)^(5/2)
+//! near φ_J), halving the bracket where the secant lands outside it. A minimisation stops at a
+//! residual force of 1e-9, at an energy a thousandth of the band's floor (unjammed), or when
+//! it stalls: its energy changes by less than [`STALL`] of itself over 1000 iterations while
+//! its residual does not halve (O'Hern's second criterion; near jamming FIRE relaxes the soft
+//! modes of ellipse packings only slowly, and the residual stays near 1e-3 for 10⁵ iterations).
+//! A stalled minimisation that lands in the band runs on without the stall criterion (up to
+//! 10⁵ iterations) before the band is checked again and the contacts counted.
+//! [`PACKINGS`] packings per α (different seeds), in parallel.
 
 use super::Table;
 use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
 use dem2d::dynamics::BodyInit;
 use dem2d::dynamics::World;
 use dem2d::dynamics::cell::{Cell, Periodic};
-use dem2d::dynamics::minimise::{Fire, Tolerance, relax};
+use dem2d::dynamics::minimise::{Fire, Relaxed, Tolerance, relax};
 use dem2d::dynamics::partner::Partner;
 use dem2d::geometry::{Pose, Shape, Vec2};
 use dem2d::output::plot::{self, LinePanel, Series};
@@ -42,6 +50,9 @@ pub const R_SMALL: f64 = 0.5;
 pub const PHI_START: f64 = 0.70;
 /// The energy band's lower edge, per grain, in units of `k_n d²`.
 pub const U_TOL: f64 = 1e-12;
+/// A minimisation has stalled when its energy changes by less than this fraction over
+/// `minimise::STALL_WINDOW` iterations.
+pub const STALL: f64 = 1e-3;
 const KN: f64 = 1e3;
 
 /// One jammed packing.
@@ -56,10 +67,10 @@ pub struct Packing {
     pub found: bool,
 }
 
-/// A small deterministic generator (xorshift).
-struct Rng(u64);
+/// A small deterministic generator (xorshift; the shear study's too).
+pub(super) struct Rng(pub(super) u64);
 impl Rng {
-    fn next(&mut self) -> f64 {
+    pub(super) fn next(&mut self) -> f64 {
         self.0 ^= self.0 << 13;
         self.0 ^= self.0 >> 7;
         self.0 ^= self.0 << 17;
@@ -187,40 +198,87 @@ pub fn jam(n: usize, aspect: f64, seed: u64) -> Packing {
     let tol = Tolerance {
         force: 1e-9,
         max_iterations: 100_000,
+        // 1 % over STALL_WINDOW iterations: in the band (u ≈ 1.5e-12) a tenth of O'Hern et
+        // al.'s 1e-16 k_n d² per grain and iteration, and enough to tell far above from in.
+        stall: STALL,
         energy: 1e-3 * U_TOL * unit,
     };
+    let polish = Tolerance { stall: 0.0, ..tol };
     let fire = Fire::default();
-    let (mut dphi, mut up) = (0.05f64, true);
+    // The search for the band: compress by δφ = 5 % until jammed; then keep the highest
+    // unjammed φ (u below the band) and the two lowest jammed ones (u above it) and aim at the
+    // band's middle on the line through the jammed two of u^(2/5) against φ (near φ_J the
+    // area law's energy grows as (φ − φ_J)^(5/2): lens areas as δ^(3/2)), or halfway in
+    // between where no such line lands inside the bracket.
+    let target = (1.5 * U_TOL).powf(0.4);
+    let (mut below, mut above): (Option<f64>, Vec<(f64, f64)>) = (None, Vec::new());
+    let mut width = f64::INFINITY;
     let (mut minimisations, mut iterations) = (0, 0);
     let mut found = false;
-    for _ in 0..400 {
-        let r = relax(&mut w, &fire, &tol).expect("frictionless");
+    for _ in 0..200 {
+        let mut r = relax(&mut w, &fire, &tol).expect("frictionless");
         minimisations += 1;
         iterations += r.iterations;
+        let in_band = |r: &Relaxed| (U_TOL..=2.0 * U_TOL).contains(&(r.potential / unit));
+        if r.stalled && in_band(&r) {
+            // In the band, but stalled: run on to the residual (or the iteration budget) before
+            // counting contacts, so that Z_J is the minimum's.
+            r = relax(&mut w, &fire, &polish).expect("frictionless");
+            minimisations += 1;
+            iterations += r.iterations;
+        }
         let u = r.potential / unit;
+        let now = phi(&w, total);
         if std::env::var_os("DEM2D_JAMMING_TRACE").is_some() {
             eprintln!(
-                "    α = {aspect}, packing {seed}: φ = {:.6}, u = {u:.3e}, {} iterations, residual {:.2e}",
-                phi(&w, total),
-                r.iterations,
-                r.residual
+                "    α = {aspect}, packing {seed}: φ = {now:.9}, u = {u:.3e}, {} iterations, residual {:.2e}",
+                r.iterations, r.residual
             );
         }
         if (U_TOL..=2.0 * U_TOL).contains(&u) {
             found = true;
             break;
         }
-        let go_up = u < U_TOL;
-        if go_up != up {
-            dphi *= 0.5;
-            up = go_up;
+        // The packing changes as it is compressed and decompressed: a point on the other side
+        // of the newest one is stale and goes (the bracket must hold the newest).
+        if u < U_TOL {
+            above.retain(|&(p, _)| p > now);
+            below = Some(below.map_or(now, |b: f64| b.max(now)));
+        } else {
+            below = below.filter(|&b| b < now);
+            above.push((now, u.powf(0.4)));
+            above.sort_by(|a, b| a.0.total_cmp(&b.0));
+            above.truncate(2);
         }
-        if dphi < 1e-12 {
-            break;
-        }
-        // φ → φ(1 ± δφ): lengths by (1 ± δφ)^(−1/2).
-        let f = if up { 1.0 + dphi } else { 1.0 - dphi };
-        scale(&mut w, f.powf(-0.5));
+        let next = match (below, above.first()) {
+            (_, None) => now * 1.05,
+            (None, Some(&(hi, _))) => hi * 0.95,
+            (Some(lo), Some(&(hi, _))) => {
+                if hi - lo < 1e-12 * hi {
+                    break;
+                }
+                let secant = match above[..] {
+                    [(p0, g0), (p1, g1)] if g1 > g0 => {
+                        Some(p0 + (target - g0) * (p1 - p0) / (g1 - g0))
+                    }
+                    _ => None,
+                };
+                // (A secant that has not halved the bracket since the last step is stalling on
+                // one side, as regula falsi does: halve instead.)
+                let shrinking = hi - lo < 0.5 * width;
+                width = hi - lo;
+                match secant {
+                    Some(p)
+                        if shrinking && p > lo + 0.01 * (hi - lo) && p < hi - 0.01 * (hi - lo) =>
+                    {
+                        p
+                    }
+                    _ => 0.5 * (lo + hi),
+                }
+            }
+        };
+        // φ → next: lengths by (next/φ)^(−1/2).
+        scale(&mut w, (next / now).powf(-0.5));
     }
     let (z, rattlers) = coordination(&w);
     Packing {
@@ -255,16 +313,16 @@ fn published(aspect: f64) -> &'static str {
     }
 }
 
-pub fn run(n: usize, packings: usize) -> Result<String, dem2d::run::RunError> {
+pub fn run(n: usize, packings: usize, aspects: &[f64]) -> Result<String, dem2d::run::RunError> {
     let start = Instant::now();
-    let jobs: Vec<(f64, u64)> = ASPECTS
+    let jobs: Vec<(f64, u64)> = aspects
         .iter()
         .flat_map(|&a| (0..packings as u64).map(move |s| (a, s)))
         .collect();
     eprintln!(
         "dem2d study jamming: {} packings of {n} grains ({} aspect ratios)",
         jobs.len(),
-        ASPECTS.len()
+        aspects.len()
     );
     let done: Vec<Packing> = jobs
         .par_iter()
@@ -280,13 +338,15 @@ pub fn run(n: usize, packings: usize) -> Result<String, dem2d::run::RunError> {
         })
         .collect();
     let mut table = Table::new(
-        "| α | φ_J (mean ± sd) | Z_J, rattlers out (mean ± sd) | rattlers | packings in the band | minimisations, FIRE iterations (mean) | published |\n|---|---|---|---|---|---|---|",
+        "| α | φ_J (mean ± sd, in the band) | Z_J, rattlers out (mean ± sd, in the band) | rattlers | packings in the band | minimisations, FIRE iterations (mean) | published |\n|---|---|---|---|---|---|---|",
     );
     let mut rows = Vec::new();
-    for &a in &ASPECTS {
+    for &a in aspects {
         let ps: Vec<&Packing> = done.iter().filter(|p| p.aspect == a).collect();
-        let phis: Vec<f64> = ps.iter().map(|p| p.phi).collect();
-        let zs: Vec<f64> = ps.iter().map(|p| p.z).collect();
+        // The means are over the packings that reached the band (a packing whose bracket
+        // closed on a rearrangement without it is counted, not averaged).
+        let phis: Vec<f64> = ps.iter().filter(|p| p.found).map(|p| p.phi).collect();
+        let zs: Vec<f64> = ps.iter().filter(|p| p.found).map(|p| p.z).collect();
         let (pm, psd) = mean_sd(&phis);
         let (zm, zsd) = mean_sd(&zs);
         let rat = ps.iter().map(|p| p.rattlers).sum::<f64>() / ps.len() as f64;
@@ -300,7 +360,9 @@ pub fn run(n: usize, packings: usize) -> Result<String, dem2d::run::RunError> {
             ps.len(),
             published(a)
         ));
-        rows.push((a, pm, psd, zm, zsd));
+        if found > 0 {
+            rows.push((a, pm, psd, zm, zsd));
+        }
     }
     let wall = start.elapsed().as_secs_f64();
     let mut md = table.text();

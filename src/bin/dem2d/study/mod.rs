@@ -10,6 +10,7 @@ pub mod packing;
 pub mod repose;
 pub mod representation;
 pub mod rolling_fig3;
+pub mod shear;
 pub mod silo;
 
 use dem2d::output::docs_tables::Mode;
@@ -48,6 +49,10 @@ pub enum Study {
     /// Beverloo's law (C, k fitted), ellipses α = 2 and 3, clogging probability of small
     /// outlets; writes figures/silo.svg and figures/silo.md.
     Silo,
+    /// Steady simple shear at imposed pressure in a Lees–Edwards cell: μ(I), φ(I) and the
+    /// ellipses' orientation of 256 (`--grains`) frictional grains (μ = 0.4), α in 1–3
+    /// (`--aspects`), I in 0.003–0.3 (`--inertial`); writes figures/shear.svg and .md.
+    Shear,
 }
 
 impl Study {
@@ -63,6 +68,7 @@ impl Study {
             Study::Representation => "representation",
             Study::Jamming => "jamming",
             Study::Silo => "silo",
+            Study::Shear => "shear",
         }
     }
 }
@@ -116,17 +122,31 @@ pub fn put_case(path: &Path, text: &str) {
     }
 }
 
-/// Runs `study`; `write_cases` also writes its case files into `cases/`; `grains` sets the
-/// sample size of the studies that take one (the others ignore it). With `docs`, the study's
-/// table goes into its marked region of the user guide ([`Study::table_name`]), or (checking) is
-/// compared with it, and so are the case files with `write_cases`: a difference is a failure.
-pub fn run(
-    study: Study,
-    write_cases: bool,
-    grains: Option<usize>,
-    packings: Option<usize>,
-    docs: Option<Mode>,
-) -> Result<(), crate::Failure> {
+/// What a study is asked for beyond its defaults (each study ignores what it does not take).
+#[derive(Clone, Debug, Default)]
+pub struct Options {
+    /// Also write the study's case files into `cases/`.
+    pub write_cases: bool,
+    /// The sample size.
+    pub grains: Option<usize>,
+    /// Packings per aspect ratio.
+    pub packings: Option<usize>,
+    /// The aspect ratios.
+    pub aspects: Option<Vec<f64>>,
+    /// The inertial numbers.
+    pub inertial: Option<Vec<f64>>,
+}
+
+/// Runs `study` with `options`. With `docs`, the study's table goes into its marked region of
+/// the user guide ([`Study::table_name`]), or (checking) is compared with it, and so are the
+/// case files with `write_cases`: a difference is a failure.
+pub fn run(study: Study, options: &Options, docs: Option<Mode>) -> Result<(), crate::Failure> {
+    let Options {
+        write_cases,
+        grains,
+        packings,
+        ..
+    } = *options;
     let checking = docs == Some(Mode::Check);
     CASE_FILES.store(
         match (write_cases, checking) {
@@ -148,6 +168,12 @@ pub fn run(
         Study::Jamming => jamming::run(
             grains.unwrap_or(jamming::N),
             packings.unwrap_or(jamming::PACKINGS),
+            options.aspects.as_deref().unwrap_or(&jamming::ASPECTS),
+        ),
+        Study::Shear => shear::run(
+            grains.unwrap_or(shear::N),
+            options.aspects.as_deref().unwrap_or(&shear::ASPECTS),
+            options.inertial.as_deref().unwrap_or(&shear::INERTIAL),
         ),
         Study::Silo => silo::run(),
     }

@@ -1,0 +1,306 @@
+//! Steady simple shear at imposed pressure in a Lees–Edwards cell: μ(I) and φ(I) of frictional
+//! disks and ellipses (GDR MiDi, Eur. Phys. J. E 14 (2004) 341; for 2D disks da Cruz, Emam,
+//! Prochnow, Roux & Chevoir, PRE 72 (2005) 021309).
+//!
+//! `dem2d study shear` writes `figures/shear.svg` and `figures/shear.md` and prints the table.
+//! Each run: [`N`] grains (`--grains`) with equal-area diameters uniform in [0.8, 1.2] [`D`]
+//! (ellipses `a = r√α`, `b = r/√α`), density [`RHO`], on a square lattice wide enough for the
+//! longest grain, random orientations, in a cell periodic in x and y sheared at γ̇ with the
+//! normal stress σ_yy held at [`P`] (`dynamics::cell`): the cell first shrinks to the pressure,
+//! then shears; the initial velocity is the affine profile `v_x = γ̇ (y − L_y/2)`. The
+//! shear rate is set from the target inertial number, `γ̇ = I √(P/ρ)/d` (d the mean
+//! diameter); the table gives the I measured from the mean σ_yy. Linear law on the overlap
+//! area (the default), stiffness level `κ = k_n/P` = [`KAPPA`], `k_s = k_n/2`, restitution
+//! [`RESTITUTION`], friction [`FRICTION`], no gravity, Δt a fiftieth of the smallest grains'
+//! contact time. Averages over the strain [`STRAIN_SETTLE`] … [`STRAIN_SETTLE`] +
+//! [`STRAIN_MEASURE`]: μ = −⟨σ_xy⟩/⟨σ_yy⟩ (Love–Weber with the kinetic part), φ the grains'
+//! area over the cell's, and for ellipses the nematic order `S = |⟨e^{2iθ}⟩|` and the mean
+//! orientation `θ̄ = ½ arg⟨e^{2iθ}⟩` of the long axes against the flow (x).
+
+use super::Table;
+use super::jamming::Rng;
+use dem2d::contact_law::{ContactSpec, LinearDamping, Scaled};
+use dem2d::dynamics::BodyInit;
+use dem2d::dynamics::World;
+use dem2d::dynamics::cell::{Cell, Periodic, Pressure};
+use dem2d::geometry::{Shape, Vec2};
+use dem2d::output::plot::{self, LinePanel, Series};
+use dem2d::run::{RunError, Simulation};
+use dem2d::scene::Case;
+use rayon::prelude::*;
+use std::fmt::Write as _;
+use std::time::Instant;
+
+/// Grains per cell by default.
+pub const N: usize = 256;
+/// The aspect ratios by default.
+pub const ASPECTS: [f64; 4] = [1.0, 1.5, 2.0, 3.0];
+/// The target inertial numbers by default.
+pub const INERTIAL: [f64; 5] = [0.003, 0.01, 0.03, 0.1, 0.3];
+/// Mean equal-area diameter (cm).
+pub const D: f64 = 1.0;
+/// Density (g/cm³, of a 1 cm slice).
+pub const RHO: f64 = 1.0;
+/// The imposed σ_yy (dyn/cm² per unit thickness).
+pub const P: f64 = 100.0;
+/// Stiffness level k_n/P.
+pub const KAPPA: f64 = 1e4;
+/// Coefficient of restitution.
+pub const RESTITUTION: f64 = 0.1;
+/// Coefficient of friction between grains.
+pub const FRICTION: f64 = 0.4;
+/// Shear strain before the averages start.
+pub const STRAIN_SETTLE: f64 = 0.5;
+/// Shear strain over which the averages run.
+pub const STRAIN_MEASURE: f64 = 1.5;
+
+/// One steady shear run.
+#[derive(Clone, Copy, Debug)]
+pub struct Flow {
+    pub aspect: f64,
+    pub target: f64,
+    pub inertial: f64,
+    pub mu: f64,
+    pub phi: f64,
+    pub order: f64,
+    pub angle: f64,
+    pub steps: u64,
+}
+
+/// The world of a run at `aspect` sheared at `rate`.
+fn world(n: usize, aspect: f64, rate: f64) -> World {
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ aspect.to_bits());
+    let side_count = (n as f64).sqrt().ceil() as usize;
+    let longest = 0.6 * D * aspect.sqrt();
+    let spacing = 2.1 * longest;
+    let side = spacing * side_count as f64;
+    let bodies = (0..n)
+        .map(|k| {
+            let r = 0.5 * D * (0.8 + 0.4 * rng.next());
+            let shape = if aspect == 1.0 {
+                Shape::Circle { r }
+            } else {
+                Shape::Ellipse {
+                    a: r * aspect.sqrt(),
+                    b: r / aspect.sqrt(),
+                }
+            };
+            let position = Vec2::new(
+                spacing * ((k % side_count) as f64 + 0.5),
+                spacing * ((k / side_count) as f64 + 0.5),
+            );
+            BodyInit {
+                material: 0,
+                prescribed: false,
+                shape,
+                position,
+                angle: std::f64::consts::PI * rng.next(),
+                velocity: Vec2::new(rate * (position.y - 0.5 * side), 0.0),
+                omega: 0.0,
+                density: RHO,
+            }
+        })
+        .collect();
+    let kn = KAPPA * P;
+    let law = ContactSpec::linear(
+        Scaled::Absolute(kn),
+        Scaled::Absolute(0.5 * kn),
+        LinearDamping::Restitution(RESTITUTION),
+        FRICTION,
+    );
+    // A fiftieth of the contact time of two of the smallest grains.
+    let m = RHO * std::f64::consts::PI * (0.4 * D) * (0.4 * D);
+    let dt = std::f64::consts::PI * (0.5 * m / kn).sqrt() / 50.0;
+    let cell = Cell::new(
+        Vec2::new(side, side),
+        Periodic::XY,
+        rate,
+        Some(Pressure {
+            target: P,
+            gain: dem2d::dynamics::cell::PRESSURE_RELAXATION,
+        }),
+    );
+    Case::new(bodies, Vec::new(), Vec2::zeros(), law, dt)
+        .with_cell(cell)
+        .build_world()
+}
+
+/// Shears `n` grains of aspect ratio `aspect` at the target inertial number `target`.
+pub fn shear(n: usize, aspect: f64, target: f64) -> Result<Flow, RunError> {
+    let rate = target * (P / RHO).sqrt() / D;
+    let mut w = world(n, aspect, rate);
+    let total_area: f64 = w.bodies.shape.iter().map(Shape::area).sum();
+    let mean_d = w
+        .bodies
+        .shape
+        .iter()
+        .map(|s| 2.0 * s.equal_area_radius())
+        .sum::<f64>()
+        / n as f64;
+    let settle = (STRAIN_SETTLE / (rate * w.dt)).ceil() as u64;
+    let steps = settle + (STRAIN_MEASURE / (rate * w.dt)).ceil() as u64;
+    let sample = (steps / 2000).max(1);
+    let (mut s_xy, mut s_yy, mut phi, mut count) = (0.0, 0.0, 0.0, 0.0);
+    let (mut c2, mut s2, mut samples) = (0.0, 0.0, 0.0);
+    Simulation::new(&mut w).until_step(steps).run_each(|w, _| {
+        if w.step <= settle {
+            return;
+        }
+        let c = w.cell.as_ref().expect("a cell");
+        s_xy += c.shear_stress();
+        s_yy += c.normal_stress();
+        phi += total_area / c.area();
+        count += 1.0;
+        if aspect != 1.0 && w.step % sample == 0 {
+            for s in &w.bodies.state {
+                let t = 2.0 * s.pose.angle();
+                c2 += t.cos();
+                s2 += t.sin();
+                samples += 1.0;
+            }
+        }
+    })?;
+    let (s_xy, s_yy) = (s_xy / count, s_yy / count);
+    let (c2, s2) = (c2 / samples, s2 / samples);
+    Ok(Flow {
+        aspect,
+        target,
+        inertial: rate * mean_d / (s_yy / RHO).sqrt(),
+        mu: -s_xy / s_yy,
+        phi: phi / count,
+        order: if aspect == 1.0 {
+            f64::NAN
+        } else {
+            c2.hypot(s2)
+        },
+        angle: if aspect == 1.0 {
+            f64::NAN
+        } else {
+            0.5 * s2.atan2(c2).to_degrees()
+        },
+        steps,
+    })
+}
+
+/// Least-squares line `y = c0 + c1 x` through `points`.
+fn line_fit(points: &[(f64, f64)]) -> (f64, f64) {
+    let n = points.len() as f64;
+    let (sx, sy) = points
+        .iter()
+        .fold((0.0, 0.0), |(a, b), &(x, y)| (a + x, b + y));
+    let (mx, my) = (sx / n, sy / n);
+    let (sxy, sxx) = points.iter().fold((0.0, 0.0), |(a, b), &(x, y)| {
+        (a + (x - mx) * (y - my), b + (x - mx) * (x - mx))
+    });
+    let slope = sxy / sxx;
+    (my - slope * mx, slope)
+}
+
+/// Runs the study over `aspects` and `targets` (see the module documentation).
+pub fn run(n: usize, aspects: &[f64], targets: &[f64]) -> Result<String, RunError> {
+    let start = Instant::now();
+    let jobs: Vec<(f64, f64)> = aspects
+        .iter()
+        .flat_map(|&a| targets.iter().map(move |&i| (a, i)))
+        .collect();
+    eprintln!(
+        "dem2d study shear: {} runs of {n} grains ({} aspect ratios × {} inertial numbers)",
+        jobs.len(),
+        aspects.len(),
+        targets.len()
+    );
+    let done: Vec<Flow> = jobs
+        .par_iter()
+        .map(|&(a, i)| {
+            let f = shear(n, a, i)?;
+            eprintln!(
+                "  α = {a}, I = {i}: μ = {:.3}, φ = {:.4} ({} steps)",
+                f.mu, f.phi, f.steps
+            );
+            Ok(f)
+        })
+        .collect::<Result<_, RunError>>()?;
+    let mut table = Table::new(
+        "| α | I (target) | I (measured) | μ = −σ_xy/σ_yy | φ | nematic order S | mean angle to the flow (°) | steps |\n|---:|---:|---:|---:|---:|---:|---:|---:|",
+    );
+    for f in &done {
+        let (s, t) = if f.aspect == 1.0 {
+            ("—".to_string(), "—".to_string())
+        } else {
+            (format!("{:.3}", f.order), format!("{:.1}", f.angle))
+        };
+        table.row(format!(
+            "| {} | {} | {:.4} | {:.3} | {:.4} | {s} | {t} | {} |",
+            f.aspect, f.target, f.inertial, f.mu, f.phi, f.steps
+        ));
+    }
+    let mut md = table.text();
+    let _ = writeln!(md);
+    for &a in aspects {
+        let of: Vec<&Flow> = done.iter().filter(|f| f.aspect == a).collect();
+        if of.len() < 2 {
+            continue;
+        }
+        let mu: Vec<(f64, f64)> = of.iter().map(|f| (f.inertial, f.mu)).collect();
+        let phi: Vec<(f64, f64)> = of.iter().map(|f| (f.inertial, f.phi)).collect();
+        let (mu0, b) = line_fit(&mu);
+        let (phi0, a_phi) = line_fit(&phi);
+        let _ = writeln!(
+            md,
+            "- α = {a}: μ ≈ {mu0:.3} + {b:.2} I, φ ≈ {phi0:.4} − {:.3} I (least squares over the {} runs).",
+            -a_phi,
+            of.len()
+        );
+    }
+    let wall = start.elapsed().as_secs_f64();
+    let _ = writeln!(
+        md,
+        "\n{} runs of {n} grains, {wall:.0} s of wall time on {} threads.",
+        done.len(),
+        rayon::current_num_threads()
+    );
+    let series = |phi: bool| -> Vec<Series> {
+        aspects
+            .iter()
+            .enumerate()
+            .map(|(k, &a)| Series {
+                label: format!("α = {a}"),
+                points: done
+                    .iter()
+                    .filter(|f| f.aspect == a)
+                    .map(|f| (f.inertial, if phi { f.phi } else { f.mu }))
+                    .collect(),
+                color: k,
+                line: true,
+                markers: true,
+                ..Default::default()
+            })
+            .collect()
+    };
+    let panels = [
+        LinePanel {
+            title: "Effective friction".into(),
+            x_label: "inertial number I (–)".into(),
+            y_label: "μ = −σ_xy/σ_yy (–)".into(),
+            log_x: true,
+            series: series(false),
+            legend: plot::Legend::Auto,
+            ..Default::default()
+        },
+        LinePanel {
+            title: "Packing fraction".into(),
+            x_label: "inertial number I (–)".into(),
+            y_label: "φ (–)".into(),
+            log_x: true,
+            series: series(true),
+            legend: plot::Legend::Auto,
+            ..Default::default()
+        },
+    ];
+    std::fs::create_dir_all("target/figure-png").expect("target/figure-png");
+    for path in ["figures/shear.svg", "target/figure-png/shear.png"] {
+        plot::line_panels(std::path::Path::new(path), (1200, 480), (1, 2), &panels).expect(path);
+    }
+    std::fs::write("figures/shear.md", &md).expect("figures/shear.md");
+    Ok(md)
+}
