@@ -116,13 +116,11 @@ fn world(d_out: f64, alpha: f64, seed: u64, duration: f64) -> World {
         .build_world()
 }
 
-/// Runs the silo until `until` s, or until it clogs when `stop_at_clog`; returns the
-/// discharges (time, mass), whether it clogged, and the world.
-fn run_silo(
-    mut w: World,
-    until: f64,
-    stop_at_clog: bool,
-) -> Result<(Vec<(f64, f64)>, bool, World), RunError> {
+/// A silo run: its discharges (time, mass), whether it clogged, and the world as it ended.
+type Drained = (Vec<(f64, f64)>, bool, World);
+
+/// Runs the silo until `until` s, or until it clogs when `stop_at_clog`.
+fn run_silo(mut w: World, until: f64, stop_at_clog: bool) -> Result<Drained, RunError> {
     let mut out = Vec::new();
     let mut last_flow: Option<f64> = None;
     let mut clogged = false;
