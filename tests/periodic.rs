@@ -373,6 +373,60 @@ fn a_sheared_cell_at_an_imposed_pressure_flows_with_a_linear_profile() {
     );
 }
 
+/// A cell at rest under an imposed pressure shrinks until its grains touch: the stretch that
+/// closes a contact does the work stored in it (the trapezoidal rule of `Cell::stretch`), so
+/// the elastic, frictionless grains' energy equals the cell's work — and the blow-up watch,
+/// which has no initial energy to allow for, does not take the stored energy for created
+/// energy (it did when the stretch's work was taken with the stress before it alone).
+#[test]
+fn a_cell_at_rest_under_pressure_stores_what_its_stretch_works() {
+    let n = 12;
+    let side = 1.25 * n as f64;
+    let cell = Cell::new(
+        Vec2::new(side, side),
+        Periodic::XY,
+        0.0,
+        Some(Pressure {
+            target: 1000.0,
+            gain: 0.1,
+        }),
+    );
+    let bodies: Vec<BodyInit> = (0..n * n)
+        .map(|k| {
+            let (i, j) = (k % n, k / n);
+            let r = if (i + j) % 2 == 0 { 0.5 } else { 0.35 };
+            body(
+                Shape::Circle { r },
+                Vec2::new(1.25 * i as f64 + 0.6, 1.25 * j as f64 + 0.6),
+                0.0,
+                Vec2::zeros(),
+            )
+        })
+        .collect();
+    let mut w = world(bodies, law(0.0, None), 5e-5, cell);
+    Simulation::new(&mut w)
+        .for_steps(20_000)
+        .run()
+        .expect("no blow-up");
+    let e = w.energies;
+    assert!(e.elastic > 0.0 && e.boundary_work > 0.0, "{e:?}");
+    // What is left is the step's error where a stretch closes a contact part-way through it:
+    // at most half the spring's force over the approach of one step, ½ k (l_y |λ − 1|)² with
+    // the branch vector l_y ≤ 1 cm (the largest diameter) and |λ − 1| ≤ MAX_STRETCH, once per
+    // contact.
+    let contacts = w.contacts.active().count() as f64;
+    let bound = contacts * 0.5 * 1e6 * (1.0 * dem2d::dynamics::cell::MAX_STRETCH).powi(2);
+    let unaccounted = e.total() - e.boundary_work;
+    assert!(
+        unaccounted.abs() < bound && bound < 0.02 * e.elastic,
+        "energy account off by {unaccounted} (bound {bound}; boundary work {}, elastic {}, \
+         kinetic {})",
+        e.boundary_work,
+        e.elastic,
+        e.kinetic
+    );
+}
+
 /// A sheared cell at an imposed pressure continued from its `state.json` ends in the same state,
 /// bit for bit, as the run that was not interrupted (the cell's height, shift and stress and the
 /// bodies' image counts are in the state).

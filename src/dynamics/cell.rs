@@ -90,6 +90,9 @@ pub struct Cell {
     /// The contacts' affine stiffness against a vertical stretch, `(1/A) Σ_c k_n (n_y l_y)²`
     /// (the change of σ_yy per unit vertical strain with the bodies moved affinely).
     pub stiffness_yy: f64,
+    /// `λ − 1` of the stretch of the step under way, whose work's second half waits for the
+    /// forces at its end ([`Cell::measure`]); 0 between steps.
+    pub strained: f64,
 }
 
 /// The relaxation factor of an imposed pressure: the fraction of the stress error the cell's
@@ -126,19 +129,21 @@ impl Cell {
             stress: [0.0; 4],
             elastic_yy: 0.0,
             stiffness_yy: 0.0,
+            strained: 0.0,
         }
     }
 
     /// Records the stress and stiffness of a force evaluation from its sums: `contact` the
-    /// pass's `Σ f ⊗ l`, `stiffness` its `Σ k_n (n_y l_y)²`, `kinetic` the bodies' `Σ m v′v′`
-    /// (xx, xy, yy).
+    /// pass's `Σ f ⊗ l`, `stiffness` its `Σ k_n (n_y l_y)²`, `elastic` its `Σ F_s n_y l_y`,
+    /// `kinetic` the bodies' `Σ m v′v′` (xx, xy, yy); returns the second half of the work of the
+    /// step's stretch (see [`Cell::stretch`]; 0 outside a step).
     pub fn measure(
         &mut self,
         contact: &[f64; 4],
         stiffness: f64,
         elastic: f64,
         kinetic: &[f64; 3],
-    ) {
+    ) -> f64 {
         let a = self.area();
         self.stress = [
             (contact[0] + kinetic[0]) / a,
@@ -148,6 +153,9 @@ impl Cell {
         ];
         self.elastic_yy = elastic / a;
         self.stiffness_yy = stiffness / a;
+        let work = -0.5 * elastic * self.strained;
+        self.strained = 0.0;
+        work
     }
 
     /// `Σ m v′v′` (xx, xy, yy) of `bodies` about the shear's mean flow.
@@ -193,10 +201,13 @@ impl Cell {
 
     /// Under an imposed pressure, the cell's height for the next step from the stress of the
     /// last evaluation; returns the factor `λ` it (and every body's y) is stretched by (1
-    /// without a pressure) and the work the stretch does on the bodies: the change of the
-    /// contacts' stored energy, `−Σ F_s n·δl = −A (λ − 1) (1/A)Σ F_s n_y l_y` to first order (the
-    /// affine stretch changes each branch vector by `δl = l_y (λ − 1) ŷ` and no velocity; the
-    /// shear springs, which integrate relative velocities, do not see it). The relative error `σ_yy − P` is corrected by the fraction
+    /// without a pressure) and the first half of the work the stretch does on the bodies: the
+    /// change of the contacts' stored energy, `−Σ F_s n·δl = −(λ − 1) Σ F_s n_y l_y` (the affine
+    /// stretch changes each branch vector by `δl = l_y (λ − 1) ŷ` and no velocity; the shear
+    /// springs, which integrate relative velocities, do not see it), taken by the trapezoidal
+    /// rule: half with the sum before the stretch here, half with the sum after it when the
+    /// step's forces are measured ([`Cell::measure`]) — exact for linear springs, so that a
+    /// contact the stretch closes gets its stored energy from the account, not from nowhere. The relative error `σ_yy − P` is corrected by the fraction
     /// [`PRESSURE_RELAXATION`] per step against the contacts' affine stiffness:
     /// `λ − 1 = α (σ_yy − P)/K_yy` (the servo walls' rule: `dynamics::boundary`), at most
     /// [`MAX_STRETCH`] either way (and that much, towards the target, without contacts).
@@ -211,8 +222,9 @@ impl Cell {
             MAX_STRETCH.copysign(error)
         };
         let lambda = 1.0 + strain.clamp(-MAX_STRETCH, MAX_STRETCH);
-        let work = -self.area() * self.elastic_yy * (lambda - 1.0);
+        let work = -0.5 * self.area() * self.elastic_yy * (lambda - 1.0);
         self.size.y *= lambda;
+        self.strained = lambda - 1.0;
         (lambda, work)
     }
 

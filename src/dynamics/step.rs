@@ -244,7 +244,8 @@ impl Stepper {
         if let Some(cell) = wd.cell.as_deref_mut()
             && cell.measures_stress()
         {
-            cell.measure(
+            // (With the stretch's second half of work: see `Cell::stretch`.)
+            wd.energies.boundary_work += cell.measure(
                 &slots.stress,
                 slots.stiffness_yy,
                 slots.elastic_yy,
@@ -418,7 +419,7 @@ impl Stepper {
             && cell.measures_stress()
         {
             let kinetic = cell.kinetic_stress(wd.bodies);
-            cell.measure(
+            let _outside_a_step = cell.measure(
                 &slots.stress,
                 slots.stiffness_yy,
                 slots.elastic_yy,

@@ -31,13 +31,19 @@
 //! change from face to end the end lies straight above d at the face's depth, and d is its
 //! closest boundary point while that depth is below the ellipse's radius of curvature there
 //! (≥ b²/a): the depth, the normal and the spring's energy are continuous for any overlap a
-//! DEM contact reaches. A polygon's corner crossing an end while it penetrates has a jump
-//! (from its depth to the end's distance from the nearer edge).
+//! DEM contact reaches.
+//!
+//! A polygon (a rectangle among them) takes its own rule ([`polygon`]): the face while some
+//! vertex across the line lies over the segment, with a flat-sided body's flat overlap cut to the
+//! strip over the segment (a brick half over an end tips over it once its centre passes it);
+//! else the end. Where the contact changes from face to end the depth changes (from the deepest
+//! vertex's to the end's distance from the nearer edge): not continuous there.
 //!
 //! The segment is i (the giver): the normal points from it into the body.
 
+use super::polygon_wall::{self, Strip};
 use super::{Contact, ContactState, LocalFrame, Request, TOUCH_TOL, pow2_floor};
-use super::{circle_wall, ellipse_wall, polygon_wall};
+use super::{circle_wall, ellipse_wall};
 use crate::geometry::{Pose, Segment, Shape, Vec2, Wall};
 
 /// Contact between a segment (i) and a body (j) that is not a clump.
@@ -52,6 +58,9 @@ pub fn contact_segment_body(
     let side = seg.facing(c);
     if let (Shape::Ellipse { a, b }, true) = (*shape, request.area) {
         return ellipse_area(seg, side, a, b, pose, request);
+    }
+    if let Shape::Rectangle { .. } | Shape::Polygon(_) = shape {
+        return polygon(seg, side, shape, pose, request);
     }
     let deepest = deepest_point(shape, pose, side.normal);
     let tau = seg.along(deepest);
@@ -303,4 +312,39 @@ fn ellipse_area(
     };
     let wall = Wall::new(end, normal)?;
     ellipse_wall::contact_wall_ellipse(&wall, a, b, pose, request)
+}
+
+/// A polygon (a rectangle among them) against a segment (`side` the line it meets): the face
+/// while some vertex that lies across the line lies over the segment — the half-plane's contact,
+/// a flat-sided body's flat overlap (its Winkler foundation's area and centre of pressure) cut to
+/// the strip over the segment, so that a brick lying half over an end is carried by the part of
+/// it over the segment and tips over the end once its centre passes it; else the end on the
+/// side of its deepest vertex, a point against the polygon.
+fn polygon(
+    seg: &Segment,
+    side: &Wall,
+    shape: &Shape,
+    pose: &Pose,
+    request: &Request,
+) -> Option<Contact> {
+    let mut corners = [Vec2::zeros(); 4];
+    let (mut over, mut deepest) = (false, (f64::INFINITY, 0.0));
+    for v in shape.vertices(&mut corners) {
+        let x = pose.position + pose.to_world_vector(*v);
+        let (h, tau) = (side.signed_distance(x), seg.along(x));
+        over |= h < 0.0 && (0.0..=seg.length).contains(&tau);
+        if h < deepest.0 {
+            deepest = (h, tau);
+        }
+    }
+    if over {
+        let strip = Strip {
+            a: seg.a,
+            tangent: seg.tangent,
+            length: seg.length,
+        };
+        return polygon_wall::contact_wall_polygon_in(side, Some(&strip), shape, pose, request);
+    }
+    let end = if deepest.1 < 0.0 { seg.a } else { seg.b };
+    contact_point_body(end, shape, pose, request)
 }

@@ -15,8 +15,11 @@
 //! (grains with fewer than 3 contacts, removed repeatedly) left out. The search compresses by
 //! 5 % until jammed, then closes in on the band between the highest unjammed and the lowest
 //! jammed φ by the secant of u^(2/5) against φ (the area law's energy grows as (φ − φ_J)^(5/2)
-//! near φ_J), halving the bracket where the secant lands outside it. A minimisation stops at a
-//! residual force of 1e-9, at an energy a thousandth of the band's floor (unjammed), or when
+//! near φ_J), halving the bracket where the secant lands outside it or stalls; a bracket that
+//! closes (1e-9) without the band has a stale jammed side, dropped for compression by 0.1 %
+//! steps. A minimisation stops at a
+//! residual force of 1e-9, at an energy half the band's floor (unjammed: minimising only
+//! lowers it), or when
 //! it stalls: its energy changes by less than [`STALL`] of itself over 1000 iterations while
 //! its residual does not halve (O'Hern's second criterion; near jamming FIRE relaxes the soft
 //! modes of ellipse packings only slowly, and the residual stays near 1e-3 for 10⁵ iterations).
@@ -198,10 +201,10 @@ pub fn jam(n: usize, aspect: f64, seed: u64) -> Packing {
     let tol = Tolerance {
         force: 1e-9,
         max_iterations: 100_000,
-        // 1 % over STALL_WINDOW iterations: in the band (u ≈ 1.5e-12) a tenth of O'Hern et
-        // al.'s 1e-16 k_n d² per grain and iteration, and enough to tell far above from in.
         stall: STALL,
-        energy: 1e-3 * U_TOL * unit,
+        // Minimising only lowers the energy: once below the band it stays below (unjammed),
+        // however slowly a floppy packing then decays towards zero.
+        energy: 0.5 * U_TOL * unit,
     };
     let polish = Tolerance { stall: 0.0, ..tol };
     let fire = Fire::default();
@@ -212,7 +215,7 @@ pub fn jam(n: usize, aspect: f64, seed: u64) -> Packing {
     // between where no such line lands inside the bracket.
     let target = (1.5 * U_TOL).powf(0.4);
     let (mut below, mut above): (Option<f64>, Vec<(f64, f64)>) = (None, Vec::new());
-    let mut width = f64::INFINITY;
+    let (mut width, mut step) = (f64::INFINITY, 0.05);
     let (mut minimisations, mut iterations) = (0, 0);
     let mut found = false;
     for _ in 0..200 {
@@ -251,12 +254,17 @@ pub fn jam(n: usize, aspect: f64, seed: u64) -> Packing {
             above.truncate(2);
         }
         let next = match (below, above.first()) {
-            (_, None) => now * 1.05,
-            (None, Some(&(hi, _))) => hi * 0.95,
+            (_, None) => now * (1.0 + step),
+            (None, Some(&(hi, _))) => hi * (1.0 - step),
+            (Some(lo), Some(&(hi, _))) if hi - lo < 1e-9 * hi => {
+                // The bracket closed without the band: the jammed side is a configuration the
+                // packing has left (decompressed, it rearranged and now stays unjammed up to
+                // it). Drop it and compress on in small steps.
+                above.clear();
+                step = 1e-3;
+                now * (1.0 + step)
+            }
             (Some(lo), Some(&(hi, _))) => {
-                if hi - lo < 1e-12 * hi {
-                    break;
-                }
                 let secant = match above[..] {
                     [(p0, g0), (p1, g1)] if g1 > g0 => {
                         Some(p0 + (target - g0) * (p1 - p0) / (g1 - g0))

@@ -51,7 +51,7 @@ pub enum Study {
     Silo,
     /// Steady simple shear at imposed pressure in a Lees–Edwards cell: μ(I), φ(I) and the
     /// ellipses' orientation of 256 (`--grains`) frictional grains (μ = 0.4), α in 1–3
-    /// (`--aspects`), I in 0.003–0.3 (`--inertial`); writes figures/shear.svg and .md.
+    /// (`--aspects`), I in 0.01–0.3 (`--inertial`); writes figures/shear.svg and .md.
     Shear,
 }
 
