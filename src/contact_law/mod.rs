@@ -384,6 +384,18 @@ impl ContactSpec {
         self
     }
 
+    /// Whether a contact's force depends on its path, not on the configuration alone (a
+    /// Coulomb slider, rolling resistance): no energy to minimise.
+    pub fn path_dependent(&self) -> bool {
+        self.tangential.friction > 0.0 || self.rolling.is_some()
+    }
+
+    /// Whether the law reads each body's number of contacts (the CDT rolling limiter's share:
+    /// [`rolling`]).
+    pub fn counts_contacts(&self) -> bool {
+        self.rolling.is_some()
+    }
+
     /// Coulomb friction coefficient.
     pub fn friction(&self) -> f64 {
         self.tangential.friction

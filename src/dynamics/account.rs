@@ -1,6 +1,10 @@
 //! The running account of a run: its energies and its diagnostic counters (written by the step,
 //! read by the watch and the outputs).
 
+use super::body::Bodies;
+use super::boundary::Boundary;
+use super::contact_pass::SlotPartial;
+
 /// Energies of the system, per unit thickness.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Energies {
@@ -23,6 +27,47 @@ impl Energies {
     /// the walls' work [`Energies::boundary_work`].
     pub fn total(&self) -> f64 {
         self.kinetic + self.potential + self.elastic + self.dissipated
+    }
+
+    /// A step's energy flows (the step's stage 5), `dt` its length. Verlet applies the forces
+    /// of time level n+1 over the interval centred on it, so their work is taken with the
+    /// velocities at n+1 (after the second kick): the contacts take out the power
+    /// `non_elastic_power` of the non-elastic forces, summed body by body (`Σ_c f·v_rel =
+    /// Σ_k F_k·v_k + M_k ω_k − Σ_walls F_w·v_w`), less the change of the history springs'
+    /// energy (`slots`). A moving wall does the work `F_w·v_w` (see [`super::boundary`]), and
+    /// so does the seam of a Lees–Edwards cell (see [`super::cell`]).
+    pub(crate) fn account_step(
+        &mut self,
+        dt: f64,
+        walls: &[Boundary],
+        bodies: &Bodies,
+        slots: &SlotPartial,
+        non_elastic_power: f64,
+    ) {
+        if walls.iter().any(Boundary::moves) || slots.image_power != 0.0 {
+            let (mut power, mut power_ne) = (slots.image_power, slots.image_power_ne);
+            for ws in walls {
+                power += ws.load.force.dot(&ws.velocity);
+                power_ne += ws.load.force_non_elastic.dot(&ws.velocity);
+            }
+            self.dissipated -= (non_elastic_power - power_ne) * dt + slots.history_energy_change;
+            self.boundary_work += power * dt;
+        } else {
+            self.dissipated -= non_elastic_power * dt + slots.history_energy_change;
+        }
+        // A prescribed body does work on the scene, as a moving wall: the power of its
+        // contacts' forces on the others, `−(F·v + M ω)` with F, M its contacts' force and
+        // moment on it (it has no weight) and v, ω its prescribed motion. Its own contacts'
+        // dissipation is in the bodies' sum, which holds its velocity.
+        if !bodies.prescribed.is_empty() {
+            let b = bodies;
+            let power: f64 = b
+                .prescribed
+                .iter()
+                .map(|&k| -(b.force[k].dot(&b.state[k].vel) + b.torque[k] * b.state[k].omega))
+                .sum();
+            self.boundary_work += power * dt;
+        }
     }
 }
 

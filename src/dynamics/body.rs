@@ -83,6 +83,23 @@ pub struct Bodies {
 }
 
 impl Bodies {
+    /// Adds the image counts of the bodies that re-entered a periodic cell (each crossing: the
+    /// body, the counts to add, the kinetic energy per unit mass it gained); returns the kinetic
+    /// energy they gained.
+    pub(crate) fn re_enter<'a>(
+        &mut self,
+        crossings: impl Iterator<Item = &'a (u32, [i32; 2], f64)>,
+    ) -> f64 {
+        let mut gained = 0.0;
+        for &(k, d, e) in crossings {
+            let im = &mut self.image[k as usize];
+            im[0] += d[0];
+            im[1] += d[1];
+            gained += self.mass[k as usize] * e;
+        }
+        gained
+    }
+
     /// Bodies from their descriptions.
     pub fn new(inits: &[BodyInit]) -> Self {
         let n = inits.len();

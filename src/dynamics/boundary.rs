@@ -409,6 +409,38 @@ impl Boundary {
     }
 }
 
+/// Sets the velocity for the step after step `step` of each wall a servo moves then (a servo
+/// wall, or a program in a servo stage) from the load of the last force evaluation.
+pub(crate) fn update_servos(walls: &mut [Boundary], step: u64, dt: f64) {
+    for k in 0..walls.len() {
+        if let Some(s) = walls[k].servo_at(step, dt) {
+            walls[k].velocity = servo_velocity(&walls[k], &s, walls, dt);
+        }
+    }
+}
+
+/// Drifts the moving boundaries over step `step` (to `time`; see [`Boundary::drift`]); returns
+/// the largest normal displacement of one since the neighbour list was built (`built_at`, each
+/// boundary's point then), which counts like a body's towards the list's rebuild.
+pub(crate) fn drift_walls(
+    walls: &mut [Boundary],
+    built_at: &[Vec2],
+    step: u64,
+    time: f64,
+    dt: f64,
+) -> f64 {
+    let mut disp = 0.0f64;
+    for (k, ws) in walls.iter_mut().enumerate() {
+        if ws.moves() {
+            ws.drift(step, time, dt);
+            if let Some(at) = built_at.get(k) {
+                disp = disp.max(ws.displacement_since(*at));
+            }
+        }
+    }
+    disp
+}
+
 /// The loaded span of a wall (see the module documentation).
 pub fn span_length(wall: &Wall, span: &Span, walls: &[Boundary]) -> f64 {
     match *span {

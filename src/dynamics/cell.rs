@@ -134,16 +134,15 @@ impl Cell {
     }
 
     /// Records the stress and stiffness of a force evaluation from its sums: `contact` the
-    /// pass's `Σ f ⊗ l`, `stiffness` its `Σ k_n (n_y l_y)²`, `elastic` its `Σ F_s n_y l_y`,
-    /// `kinetic` the bodies' `Σ m v′v′` (xx, xy, yy); returns the second half of the work of the
-    /// step's stretch (see [`Cell::stretch`]; 0 outside a step).
-    pub fn measure(
+    /// pass's `Σ f ⊗ l`, `stiffness` its `Σ k_n (n_y l_y)²`, `elastic` its `Σ F_s n_y l_y`
+    /// (`slots`), `kinetic` the bodies' `Σ m v′v′` (xx, xy, yy); returns the second half of the
+    /// work of the step's stretch (see [`Cell::stretch`]; 0 outside a step).
+    pub(crate) fn measure(
         &mut self,
-        contact: &[f64; 4],
-        stiffness: f64,
-        elastic: f64,
+        slots: &super::contact_pass::SlotPartial,
         kinetic: &[f64; 3],
     ) -> f64 {
+        let (contact, stiffness, elastic) = (&slots.stress, slots.stiffness_yy, slots.elastic_yy);
         let a = self.area();
         self.stress = [
             (contact[0] + kinetic[0]) / a,
@@ -162,15 +161,18 @@ impl Cell {
     pub fn kinetic_stress(&self, bodies: &super::body::Bodies) -> [f64; 3] {
         let mut k = [0.0; 3];
         for (s, &m) in bodies.state.iter().zip(&bodies.mass) {
-            let v = Vec2::new(
-                s.vel.x - self.shear_rate * (s.pose.position.y - 0.5 * self.size.y),
-                s.vel.y,
-            );
-            k[0] += m * v.x * v.x;
-            k[1] += m * v.x * v.y;
-            k[2] += m * v.y * v.y;
+            self.add_kinetic_stress(&mut k, m, s.vel, s.pose.position);
         }
         k
+    }
+
+    /// Adds a body's `m v′v′` (xx, xy, yy) to `k`: mass `m`, velocity `vel`, at `position`.
+    #[inline]
+    pub fn add_kinetic_stress(&self, k: &mut [f64; 3], m: f64, vel: Vec2, position: Vec2) {
+        let v = Vec2::new(vel.x - self.mean_flow(position.y), vel.y);
+        k[0] += m * v.x * v.x;
+        k[1] += m * v.x * v.y;
+        k[2] += m * v.y * v.y;
     }
 
     /// Whether the cell measures its stress: a cell periodic in x and y (in an `"x"` cell the
@@ -352,6 +354,21 @@ impl Cell {
             self.shift += ds;
             self.offset = (self.offset + ds).rem_euclid(self.size.x);
         }
+    }
+
+    /// [`Cell::unwrapped`], `position` itself for a body in the cell (`[0, 0]`).
+    #[inline]
+    pub fn unwrapped_at(&self, position: Vec2, images: [i32; 2]) -> Vec2 {
+        match images {
+            [0, 0] => position,
+            images => self.unwrapped(position, images),
+        }
+    }
+
+    /// The x velocity of the shear's mean flow at height `y`.
+    #[inline]
+    pub fn mean_flow(&self, y: f64) -> f64 {
+        self.shear_rate * (y - 0.5 * self.size.y)
     }
 
     /// The unwrapped position of a body at `position` with image counts `images`.

@@ -214,18 +214,9 @@ impl ContactPass {
     /// start), over which the shear displacement is integrated (T16). Sets each wall's load and
     /// returns the sums.
     pub fn run(&mut self, input: PassInput, list: &mut ContactList) -> SlotPartial {
-        let PassInput {
-            bodies,
-            walls,
-            spec,
-            pairs,
-            g,
-            dt,
-            facts,
-            cell,
-        } = input;
-        self.resolve(pairs, walls, &facts, g);
-        self.size(list.slots.len(), walls.len());
+        let (pairs, facts, cell) = (input.pairs, input.facts, input.cell);
+        self.resolve(pairs, input.walls, &facts, input.g);
+        self.size(list.slots.len(), input.walls.len());
         let ContactList {
             slots,
             data,
@@ -237,18 +228,8 @@ impl ContactPass {
             ..
         } = list;
         let stride = *stride;
-        let cx = PassContext {
-            bodies,
-            walls,
-            spec,
-            pairs,
-            g,
-            dt,
-            cell,
-            near_seam,
-            touching,
-        };
-        let nw = walls.len().max(1);
+        let cx = PassContext::of(&input, input.dt, near_seam, touching);
+        let nw = input.walls.len().max(1);
         let (linear, laws) = (&self.linear[..], &self.laws[..]);
         let chunk = Chunk {
             cx: &cx,
@@ -333,7 +314,7 @@ impl ContactPass {
             sum.add(p);
         }
         // Each wall's load: its contacts' sums, chunk by chunk in order.
-        for (w, ws) in walls.iter_mut().enumerate() {
+        for (w, ws) in input.walls.iter_mut().enumerate() {
             let mut load = WallLoad::default();
             for c in self.wall_partials.chunks(nw) {
                 load.add(&c[w]);
@@ -347,17 +328,7 @@ impl ContactPass {
     /// state: every slot evaluated again on a copy — its history untouched, no time elapsing
     /// (Δt = 0) — keeping only the extras.
     pub fn refresh_extras(&mut self, input: PassInput, list: &mut ContactList) {
-        let PassInput {
-            bodies,
-            walls,
-            spec,
-            pairs,
-            g,
-            facts,
-            cell,
-            ..
-        } = input;
-        self.resolve(pairs, walls, &facts, g);
+        self.resolve(input.pairs, input.walls, &input.facts, input.g);
         let ContactList {
             slots,
             extra,
@@ -369,18 +340,8 @@ impl ContactPass {
             ..
         } = list;
         let stride = *stride;
-        let cx = PassContext {
-            bodies,
-            walls,
-            spec,
-            pairs,
-            g,
-            dt: 0.0,
-            cell,
-            near_seam,
-            touching,
-        };
-        let laws = Resolved::new(&self.laws, pairs);
+        let cx = PassContext::of(&input, 0.0, near_seam, touching);
+        let laws = Resolved::new(&self.laws, input.pairs);
         let (cache, history) = (&cache[..], &history[..]);
         slots
             .par_chunks(SLOT_CHUNK)
@@ -454,7 +415,22 @@ pub(crate) struct PassContext<'a> {
     pub touching: &'a [u32],
 }
 
-impl PassContext<'_> {
+impl<'a> PassContext<'a> {
+    /// The context of a pass of `input` over the step `dt`, with the neighbour list's marks.
+    fn of(input: &'a PassInput, dt: f64, near_seam: &'a [bool], touching: &'a [u32]) -> Self {
+        PassContext {
+            bodies: input.bodies,
+            walls: input.walls,
+            spec: input.spec,
+            pairs: input.pairs,
+            g: input.g,
+            dt,
+            cell: input.cell,
+            near_seam,
+            touching,
+        }
+    }
+
     /// The sides of a slot's pair as the narrow phase takes them: the giver as i, the receiver
     /// as j; a giver seen through a periodic image is placed at the image, in `store`.
     #[inline(always)]

@@ -29,6 +29,8 @@
 //! a wall when the wall is within `|c_a| + r_a + skin` of the centroid — every member pair that
 //! can touch before the next build, however the bodies turn.
 
+use super::body::Bodies;
+use super::cell::Cell;
 use super::partner::{Partner, Sides};
 use crate::contact_law::History;
 use crate::geometry::Vec2;
@@ -305,14 +307,20 @@ impl ContactList {
         top[0] + top[1] > self.skin
     }
 
-    /// Marks the bodies that lay near a seam of `cell` at the build (within `margin`, twice the
-    /// largest bounding radius and the skin): only a pair with such a body can meet through a
+    /// Marks the bodies that lay near a seam of `cell` at the build (within a margin of twice
+    /// the largest bounding radius of `bodies` and the skin), unless marked since: only a pair
+    /// with such a body can meet through a
     /// periodic image before the next build. A body moves less than the skin between builds,
     /// so two bodies further from every seam stay in the cell and meet directly; their images
     /// lie at least `2 margin` less what they moved apart, beyond any contact. The contact
     /// pass and the gather look for images only at marked bodies; the others give the same
     /// bits without the search.
-    pub(crate) fn mark_near_seams(&mut self, cell: &crate::dynamics::cell::Cell, margin: f64) {
+    pub(crate) fn mark_near_seams(&mut self, cell: &Cell, bodies: &Bodies) {
+        if self.near_seam.len() == bodies.len() {
+            return;
+        }
+        let max_bound = bodies.bound.iter().copied().fold(0.0f64, f64::max);
+        let margin = 2.0 * (max_bound + self.skin);
         self.near_seam.clear();
         self.near_seam
             .extend(self.built_at.iter().map(|&p| cell.near_seam(p, margin)));
@@ -574,6 +582,54 @@ impl ContactList {
         self.builds += 1;
         lost
     }
+}
+
+/// One body's contact sums from its adjacency `adj` (its slots, in key order, with the sign of
+/// each slot's force on it), its centroid `x` and its body force `f0`: the force `f0 + Σ F`
+/// (T4), the moment `Σ r × F` (T22, `r` from the centroid to the contact point) plus the
+/// contacts' couples, and the same two sums of the forces' non-elastic parts; `cell` the
+/// periodic cell when some contact may lie across a seam. `COUPLES`
+/// false leaves the couples out (a scene whose contacts have none): adding their ±0 would
+/// change no bit, since a sum that starts at +0 is never −0.
+#[inline(always)]
+pub(crate) fn sum_contacts<const COUPLES: bool, const PERIODIC: bool>(
+    adj: &[Adjacent],
+    data: &[ContactData],
+    x: Vec2,
+    f0: Vec2,
+    cell: Option<&Cell>,
+) -> (Vec2, f64, Vec2, f64) {
+    let (mut f, mut m) = (f0, 0.0);
+    let (mut f_ne, mut m_ne) = (Vec2::zeros(), 0.0);
+    // An inactive slot's data hold zero forces: no test needed.
+    for a in adj {
+        let d = &data[a.slot()];
+        let r = match cell {
+            // A contact of this body's periodic image: the lever to its point across the seam.
+            Some(cell) if PERIODIC => cell.shortest(d.point - x),
+            _ => d.point - x,
+        };
+        let sign = a.sign();
+        let fs = d.force * sign;
+        f += fs; // T(4)
+        let fe = d.force_non_elastic * sign;
+        f_ne += fe;
+        if COUPLES {
+            // The contact's couple is on j; its opposite on i.
+            m += cross(r, fs) + d.couple * sign; // T(22)
+            m_ne += cross(r, fe) + d.couple_non_elastic * sign;
+        } else {
+            m += cross(r, fs); // T(22)
+            m_ne += cross(r, fe);
+        }
+    }
+    (f, m, f_ne, m_ne)
+}
+
+/// The z component of `a × b`.
+#[inline]
+fn cross(a: Vec2, b: Vec2) -> f64 {
+    a.x * b.y - a.y * b.x
 }
 
 #[cfg(test)]

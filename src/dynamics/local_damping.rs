@@ -57,6 +57,31 @@ pub fn local_damping(alpha: f64, f: Vec2, m: f64, v: Vec2, omega: f64) -> (Vec2,
     )
 }
 
+/// Cundall's local damping of one body in the second kick: its force and moment `(f, m)` now,
+/// its velocities `(v, ω)` at the half step, the half step `h`, its inverse mass and inertia
+/// `inv` and, in a sheared cell, the mean flow's x velocity at its height: the damping force
+/// and moment against the predicted `v_{n+1}`, `ω_{n+1}` (about the mean flow), none for a
+/// prescribed body (zero inverse mass and inertia).
+#[inline(always)]
+pub(crate) fn of_body(
+    alpha: f64,
+    (f, m): (Vec2, f64),
+    (vel, omega): (Vec2, f64),
+    h: f64,
+    (inv_mass, inv_inertia): (f64, f64),
+    flow: Option<f64>,
+) -> (Vec2, f64) {
+    let mut v = vel + f * (h * inv_mass);
+    if let Some(flow) = flow {
+        v.x -= flow;
+    }
+    let w = omega + m * h * inv_inertia;
+    let (fd, md) = local_damping(alpha, f, m, v, w);
+    let fd = if inv_mass == 0.0 { Vec2::zeros() } else { fd };
+    let md = if inv_inertia == 0.0 { 0.0 } else { md };
+    (fd, md)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -138,8 +138,7 @@ impl std::error::Error for RelaxError {}
 
 /// Checks that `world`'s laws are frictionless (see the module documentation).
 pub fn check_frictionless(world: &World) -> Result<(), RelaxError> {
-    let rough =
-        |s: &crate::contact_law::ContactSpec| s.tangential.friction > 0.0 || s.rolling.is_some();
+    let rough = crate::contact_law::ContactSpec::path_dependent;
     if rough(&world.spec) {
         return Err(RelaxError::Friction("contact".into()));
     }

@@ -31,4 +31,4 @@ pub use materials::{Materials, PairTable};
 pub use partner::{Partner, Sides};
 pub use restart::{RestartError, RestartState};
 pub use step::{Blowup, StepReport};
-pub use world::World;
+pub use world::{Scene, World};

@@ -42,11 +42,11 @@
 
 use super::account::{Diagnostics, Energies};
 use super::body::Bodies;
-use super::boundary::{Boundary, servo_velocity};
+use super::boundary::{Boundary, drift_walls, update_servos};
 use super::cell::Cell;
 use super::contact_pass::{ContactPass, PassInput, SceneFacts, SlotPartial};
-use super::contacts::{Adjacent, ContactData, ContactList};
-use super::local_damping::local_damping;
+use super::contacts::{ContactList, sum_contacts};
+use super::local_damping::of_body;
 use super::materials::PairTable;
 use super::neighbour_list::{self, Builder};
 use super::restart::RestartState;
@@ -220,15 +220,13 @@ impl Stepper {
         *wd.last_increments = inc;
         // Moving walls drift with the bodies; a wall's normal displacement since the list was
         // built counts like a body's.
-        let mut wall_disp = 0.0f64;
-        for (k, ws) in wd.walls.iter_mut().enumerate() {
-            if ws.moves() {
-                ws.drift(next_step, next_time, dt);
-                if let Some(at) = wd.contacts.wall_built_at.get(k) {
-                    wall_disp = wall_disp.max(ws.displacement_since(*at));
-                }
-            }
-        }
+        let wall_disp = drift_walls(
+            wd.walls,
+            &wd.contacts.wall_built_at,
+            next_step,
+            next_time,
+            dt,
+        );
         // 3. Forces at the new positions (the neighbour list first, if a pair outside it could
         // now touch: two bodies approach by at most the sum of their displacements, a body and
         // a wall by the sum of theirs).
@@ -245,53 +243,20 @@ impl Stepper {
             && cell.measures_stress()
         {
             // (With the stretch's second half of work: see `Cell::stretch`.)
-            wd.energies.boundary_work += cell.measure(
-                &slots.stress,
-                slots.stiffness_yy,
-                slots.elastic_yy,
-                &bodies_sum.kinetic_stress,
-            );
+            wd.energies.boundary_work += cell.measure(&slots, &bodies_sum.kinetic_stress);
         }
-        // Energy the contacts took out during this step. Verlet applies the forces of time level
-        // n+1 over the interval centred on it, so their work is taken with the velocities at n+1
-        // (after the second kick): the non-elastic forces' power, summed body by body
-        // (Σ_c f·v_rel = Σ_k F_k·v_k + M_k ω_k − Σ_walls F_w·v_w), less the change of the
-        // history springs' energy. A moving wall does the work F_w·v_w (see `boundary`).
-        let moving_walls = wd.walls.iter().any(Boundary::moves);
-        if moving_walls || slots.image_power != 0.0 {
-            // The Lees–Edwards seam does work like a moving wall (see `cell`).
-            let (mut power, mut power_ne) = (slots.image_power, slots.image_power_ne);
-            for ws in wd.walls.iter() {
-                power += ws.load.force.dot(&ws.velocity);
-                power_ne += ws.load.force_non_elastic.dot(&ws.velocity);
-            }
-            wd.energies.dissipated -=
-                (bodies_sum.non_elastic_power - power_ne) * dt + slots.history_energy_change;
-            wd.energies.boundary_work += power * dt;
-        } else {
-            wd.energies.dissipated -=
-                bodies_sum.non_elastic_power * dt + slots.history_energy_change;
-        }
-        // A prescribed body does work on the scene, as a moving wall: the power of its contacts'
-        // forces on the others, `−(F·v + M ω)` with F, M its contacts' force and moment on it
-        // (it has no weight) and v, ω its prescribed motion. Its own contacts' dissipation is in
-        // the bodies' sum, which holds its velocity.
-        if !wd.bodies.prescribed.is_empty() {
-            let b = &*wd.bodies;
-            let power: f64 = b
-                .prescribed
-                .iter()
-                .map(|&k| -(b.force[k].dot(&b.state[k].vel) + b.torque[k] * b.state[k].omega))
-                .sum();
-            wd.energies.boundary_work += power * dt;
-        }
-        *wd.step = next_step;
-        *wd.time = next_time;
-        if moving_walls {
-            Self::update_servos(wd);
-        }
+        // 5. Account: the energy the contacts took out, the work of the walls and of the
+        // prescribed bodies; the servos' next velocities.
+        let power = bodies_sum.non_elastic_power;
+        wd.energies
+            .account_step(dt, wd.walls, wd.bodies, &slots, power);
         wd.energies.kinetic = bodies_sum.kinetic;
         wd.energies.potential = bodies_sum.potential;
+        *wd.step = next_step;
+        *wd.time = next_time;
+        if wd.walls.iter().any(Boundary::moves) {
+            update_servos(wd.walls, *wd.step, dt);
+        }
         Ok(StepReport {
             increments: inc,
             contacts: slots.contacts,
@@ -319,13 +284,10 @@ impl Stepper {
             torque,
             inv_mass,
             inv_inertia,
-            image,
-            mass,
             ..
         } = &mut *wd.bodies;
         let (built_at, near_seam) = (&wd.contacts.built_at, &wd.contacts.near_seam[..]);
         let fresh = built_at.len() == n;
-        let images = &image[..];
         // A periodic cell's bodies re-enter it: their image counts change (rarely: gathered
         // per chunk and applied after the pass).
         state
@@ -342,7 +304,6 @@ impl Stepper {
                 let (inv_mass, inv_inertia) = (&inv_mass[rows.clone()], &inv_inertia[rows.clone()]);
                 let is_circle = &is_circle[rows.clone()];
                 let built_at = if fresh { &built_at[rows] } else { &[][..] };
-                let _ = images;
                 let mut p = BodyPartial::default();
                 if PERIODIC {
                     crossings.clear();
@@ -395,16 +356,10 @@ impl Stepper {
                 }
                 *part = p;
             });
-        let mut gained = 0.0;
-        if PERIODIC {
-            for &(k, d, e) in self.crossings.iter().flatten() {
-                let im = &mut image[k as usize];
-                im[0] += d[0];
-                im[1] += d[1];
-                gained += mass[k as usize] * e;
-            }
+        match PERIODIC {
+            true => wd.bodies.re_enter(self.crossings.iter().flatten()),
+            false => 0.0,
         }
-        gained
     }
 
     /// Evaluates the forces of the current configuration without advancing (used at t = 0).
@@ -418,24 +373,7 @@ impl Stepper {
         if let Some(cell) = wd.cell.as_deref_mut()
             && cell.measures_stress()
         {
-            let kinetic = cell.kinetic_stress(wd.bodies);
-            let _outside_a_step = cell.measure(
-                &slots.stress,
-                slots.stiffness_yy,
-                slots.elastic_yy,
-                &kinetic,
-            );
-        }
-    }
-
-    /// Sets the velocity for the next step (from the world's step) of each wall a servo moves
-    /// then (a servo wall, or a program in a servo stage) from the load of the last force
-    /// evaluation (see [`super::boundary`]).
-    pub(crate) fn update_servos(wd: &mut Parts) {
-        for k in 0..wd.walls.len() {
-            if let Some(s) = wd.walls[k].servo_at(*wd.step, wd.dt) {
-                wd.walls[k].velocity = servo_velocity(&wd.walls[k], &s, wd.walls, wd.dt);
-            }
+            let _outside_a_step = cell.measure(&slots, &cell.kinetic_stress(wd.bodies));
         }
     }
 
@@ -492,14 +430,10 @@ impl Stepper {
     /// The pass's input for the step just drifted over, `dt` (0 at the start).
     fn pass_input<'a>(&self, wd: &'a mut Parts, dt: f64) -> (PassInput<'a>, &'a mut ContactList) {
         let g = wd.gravity.norm();
-        if let Some(cell) = wd.cell.as_deref()
-            && wd.contacts.near_seam.len() != wd.bodies.len()
-        {
-            let max_bound = wd.bodies.bound.iter().copied().fold(0.0f64, f64::max);
-            let skin = wd.contacts.skin;
-            wd.contacts.mark_near_seams(cell, 2.0 * (max_bound + skin));
+        if let Some(cell) = wd.cell.as_deref() {
+            wd.contacts.mark_near_seams(cell, wd.bodies);
         }
-        if wd.pairs.all().any(|p| p.spec.rolling.is_some()) {
+        if wd.pairs.all().any(|p| p.spec.counts_contacts()) {
             wd.contacts.count_touching(wd.bodies.len());
         }
         (
@@ -621,22 +555,13 @@ impl Stepper {
                     if alpha > 0.0
                         && let Some(h) = kick
                     {
-                        // Cundall's local damping against the predicted v_{n+1}, ω_{n+1} (in a
-                        // sheared cell, about the mean flow); not on a prescribed body.
-                        let mut v = s.vel + f * (h * inv_mass[k]);
-                        if let Some(cell) = cell
-                            && PERIODIC
-                        {
-                            v.x -= cell.shear_rate * (x.y - 0.5 * cell.size.y);
-                        }
-                        let w = s.omega + m * h * inv_inertia[k];
-                        let (fd, md) = local_damping(alpha, f, m, v, w);
-                        let fd = if inv_mass[k] == 0.0 {
-                            Vec2::zeros()
-                        } else {
-                            fd
+                        // Cundall's local damping (in a sheared cell, about the mean flow).
+                        let flow = match cell {
+                            Some(cell) if PERIODIC => Some(cell.mean_flow(x.y)),
+                            _ => None,
                         };
-                        let md = if inv_inertia[k] == 0.0 { 0.0 } else { md };
+                        let inv = (inv_mass[k], inv_inertia[k]);
+                        let (fd, md) = of_body(alpha, (f, m), (s.vel, s.omega), h, inv, flow);
                         f += fd;
                         f_ne += fd;
                         m += md;
@@ -657,20 +582,15 @@ impl Stepper {
                             Some(cell) if PERIODIC => {
                                 // (From the unwrapped position: a body that crossed a seam
                                 // has not moved against gravity by a period.)
-                                let at = match image[g] {
-                                    [0, 0] => x,
-                                    images => cell.unwrapped(x, images),
-                                };
-                                p.potential -= mass[k] * gravity.dot(&at);
+                                p.potential -=
+                                    mass[k] * gravity.dot(&cell.unwrapped_at(x, image[g]));
                                 if cell.measures_stress() {
-                                    // The kinetic stress, about the shear's mean flow.
-                                    let v = Vec2::new(
-                                        s.vel.x - cell.shear_rate * (x.y - 0.5 * cell.size.y),
-                                        s.vel.y,
+                                    cell.add_kinetic_stress(
+                                        &mut p.kinetic_stress,
+                                        mass[k],
+                                        s.vel,
+                                        x,
                                     );
-                                    p.kinetic_stress[0] += mass[k] * v.x * v.x;
-                                    p.kinetic_stress[1] += mass[k] * v.x * v.y;
-                                    p.kinetic_stress[2] += mass[k] * v.y * v.y;
                                 }
                             }
                             _ => p.potential -= mass[k] * gravity.dot(&x),
@@ -693,52 +613,4 @@ impl Stepper {
         }
         sum
     }
-}
-
-/// One body's contact sums from its adjacency `adj` (its slots, in key order, with the sign of
-/// each slot's force on it), its centroid `x` and its body force `f0`: the force `f0 + Σ F`
-/// (T4), the moment `Σ r × F` (T22, `r` from the centroid to the contact point) plus the
-/// contacts' couples, and the same two sums of the forces' non-elastic parts; `cell` the
-/// periodic cell when some contact may lie across a seam. `COUPLES`
-/// false leaves the couples out (a scene whose contacts have none): adding their ±0 would
-/// change no bit, since a sum that starts at +0 is never −0.
-#[inline(always)]
-fn sum_contacts<const COUPLES: bool, const PERIODIC: bool>(
-    adj: &[Adjacent],
-    data: &[ContactData],
-    x: Vec2,
-    f0: Vec2,
-    cell: Option<&Cell>,
-) -> (Vec2, f64, Vec2, f64) {
-    let (mut f, mut m) = (f0, 0.0);
-    let (mut f_ne, mut m_ne) = (Vec2::zeros(), 0.0);
-    // An inactive slot's data hold zero forces: no test needed.
-    for a in adj {
-        let d = &data[a.slot()];
-        let r = match cell {
-            // A contact of this body's periodic image: the lever to its point across the seam.
-            Some(cell) if PERIODIC => cell.shortest(d.point - x),
-            _ => d.point - x,
-        };
-        let sign = a.sign();
-        let fs = d.force * sign;
-        f += fs; // T(4)
-        let fe = d.force_non_elastic * sign;
-        f_ne += fe;
-        if COUPLES {
-            // The contact's couple is on j; its opposite on i.
-            m += cross(r, fs) + d.couple * sign; // T(22)
-            m_ne += cross(r, fe) + d.couple_non_elastic * sign;
-        } else {
-            m += cross(r, fs); // T(22)
-            m_ne += cross(r, fe);
-        }
-    }
-    (f, m, f_ne, m_ne)
-}
-
-/// The z component of `a × b`.
-#[inline]
-fn cross(a: Vec2, b: Vec2) -> f64 {
-    a.x * b.y - a.y * b.x
 }

@@ -3,7 +3,7 @@
 pub use super::account::{Diagnostics, Energies};
 use super::body::{Bodies, BodyInit};
 pub use super::boundary::Boundary;
-use super::boundary::Motion;
+use super::boundary::{Motion, update_servos};
 use super::cell::Cell;
 use super::contacts::{ContactList, REMOVED};
 use super::flow::{Discharge, Flow, SplitMix64, draw_body, draw_position};
@@ -51,6 +51,18 @@ pub struct World {
     stepper: Stepper,
 }
 
+/// What a world is made of: its bodies as they start, its walls, gravity, the contact law of
+/// material 0 (the scene's) and the further materials, and the time step.
+#[derive(Clone, Debug)]
+pub struct Scene<'a> {
+    pub bodies: &'a [BodyInit],
+    pub walls: Vec<Boundary>,
+    pub gravity: Vec2,
+    pub spec: ContactSpec,
+    pub materials: Materials,
+    pub dt: f64,
+}
+
 impl World {
     /// A world at t = 0; the forces of the initial configuration are evaluated at once (the first
     /// half-kick needs them).
@@ -61,39 +73,45 @@ impl World {
         spec: ContactSpec,
         dt: f64,
     ) -> Self {
-        Self::of_materials(bodies, walls, gravity, spec, Materials::default(), dt)
+        Self::of_scene(Scene {
+            bodies,
+            walls,
+            gravity,
+            spec,
+            materials: Materials::default(),
+            dt,
+        })
     }
 
-    /// A world at t = 0 whose bodies and walls are of `materials` besides the scene's law
-    /// `spec` (material 0; see [`super::materials`]).
+    /// The world of `scene` at t = 0, its forces evaluated.
     ///
     /// # Panics
     /// If a pair of materials has no law ([`PairTable::new`]).
-    pub fn of_materials(
-        bodies: &[BodyInit],
-        walls: Vec<Boundary>,
-        gravity: Vec2,
-        spec: ContactSpec,
-        materials: Materials,
-        dt: f64,
-    ) -> Self {
-        let mut w = World::unevaluated(bodies, walls, gravity, spec, materials, dt);
-        w.evaluate_forces();
-        Stepper::update_servos(&mut w.parts().1);
-        w.energies.kinetic = w.kinetic_energy();
-        w.energies.potential = w.potential_energy();
+    pub fn of_scene(scene: Scene) -> Self {
+        let mut w = World::unevaluated(scene);
+        w.start();
         w
     }
 
+    /// The forces of the configuration as it stands, the servos' velocities for the first step
+    /// and the energies: what a world starts from.
+    fn start(&mut self) {
+        self.evaluate_forces();
+        update_servos(&mut self.walls, self.step, self.dt);
+        self.energies.kinetic = self.kinetic_energy();
+        self.energies.potential = self.potential_energy();
+    }
+
     /// The scene at t = 0 with nothing evaluated: no contacts, no forces, no energies.
-    fn unevaluated(
-        bodies: &[BodyInit],
-        walls: Vec<Boundary>,
-        gravity: Vec2,
-        spec: ContactSpec,
-        materials: Materials,
-        dt: f64,
-    ) -> Self {
+    fn unevaluated(scene: Scene) -> Self {
+        let Scene {
+            bodies,
+            walls,
+            gravity,
+            spec,
+            materials,
+            dt,
+        } = scene;
         World {
             bodies: Bodies::new(bodies),
             pairs: PairTable::new(&spec, &materials, &walls),
@@ -119,22 +137,14 @@ impl World {
         }
     }
 
-    /// A world resumed from a restart taken of a world of the same scene (`bodies`, `walls`,
-    /// `gravity`, `spec`, `materials`, `dt` as the case gives them; the bodies' poses and
-    /// velocities are the restart's): it steps to the same bits as the world the restart was
-    /// taken from ([`World::restart_state`]). Refused when the restart does not fit the scene.
-    pub fn resume(
-        bodies: &[BodyInit],
-        walls: Vec<Boundary>,
-        gravity: Vec2,
-        spec: ContactSpec,
-        materials: Materials,
-        dt: f64,
-        saved: &RestartState,
-    ) -> Result<Self, RestartError> {
-        let shapes: Vec<_> = bodies.iter().map(|b| b.shape).collect();
-        let pairs = PairTable::new(&spec, &materials, &walls);
-        saved.check(bodies, &walls, dt, kept(&shapes, &pairs))?;
+    /// A world resumed from a restart taken of a world of the same `scene` (as the case gives
+    /// it; the bodies' poses and velocities are the restart's): it steps to the same bits as
+    /// the world the restart was taken from ([`World::restart_state`]). Refused when the
+    /// restart does not fit the scene.
+    pub fn resume(scene: Scene, saved: &RestartState) -> Result<Self, RestartError> {
+        let shapes: Vec<_> = scene.bodies.iter().map(|b| b.shape).collect();
+        let pairs = PairTable::new(&scene.spec, &scene.materials, &scene.walls);
+        saved.check(scene.bodies, &scene.walls, scene.dt, kept(&shapes, &pairs))?;
         let mut w = World {
             time: saved.time,
             step: saved.step,
@@ -142,7 +152,7 @@ impl World {
             diagnostics: saved.diagnostics,
             last_increments: saved.last_increments,
             cell: saved.cell,
-            ..World::unevaluated(bodies, walls, gravity, spec, materials, dt)
+            ..World::unevaluated(scene)
         };
         if saved.cell.is_some() {
             w.bodies.image = saved.bodies.iter().map(|r| r.image).collect();
@@ -277,10 +287,7 @@ impl World {
         }
         self.cell = Some(cell);
         self.contacts = ContactList::default();
-        self.evaluate_forces();
-        Stepper::update_servos(&mut self.parts().1);
-        self.energies.kinetic = self.kinetic_energy();
-        self.energies.potential = self.potential_energy();
+        self.start();
         (self, moved)
     }
 

@@ -12,77 +12,37 @@
 //!   of the load (`analysis.csv` gives the packing's stress).
 
 use super::run_data::ReadError;
-use super::trace::{FrameFile, LineFile, WriteError};
+use super::trace::{FrameRows, LineFile, Written};
 use crate::dynamics::World;
 use crate::dynamics::cell::Cell;
 use crate::geometry::Vec2;
-use crate::run::time::time_text;
 use std::path::Path;
 
 pub const CELL_HEADER: &str = "step,t,lx,ly,offset,shift,sxx,sxy,syx,syy,stiffness_yy";
 
-/// The writer of `cell.csv`; as an observer of a run, at the trajectory's frames.
-pub struct CellWriter {
-    out: LineFile,
-    last_step: Option<u64>,
-    every: u64,
-}
+/// The row of `cell.csv` ([`CELL_HEADER`]): the world's cell (nothing without a cell).
+pub struct CellRow;
 
-impl CellWriter {
-    /// Creates `dir/cell.csv` with its header; as an observer it writes every `every` steps.
-    pub fn create(dir: &Path, every: u64) -> Result<Self, WriteError> {
-        let mut out = LineFile::create(&dir.join("cell.csv"))?;
-        out.line(format_args!("{CELL_HEADER}"))?;
-        out.flush()?;
-        Ok(CellWriter {
-            out,
-            last_step: None,
-            every: every.max(1),
-        })
-    }
-
-    /// The row of the world's cell now, labelled `step` (once per label; nothing without a
-    /// cell).
-    pub fn write(&mut self, world: &World, step: u64) -> Result<(), WriteError> {
+impl FrameRows for CellRow {
+    const FILE: &str = "cell.csv";
+    const HEADER: &str = CELL_HEADER;
+    fn rows(&self, out: &mut LineFile, world: &World, step: u64, t: &str) -> Written {
         let Some(c) = &world.cell else {
             return Ok(());
         };
-        if self.last_step == Some(step) {
-            return Ok(());
-        }
-        self.last_step = Some(step);
-        let t = time_text(step, world.dt);
         if c.measures_stress() {
             let [sxx, sxy, syx, syy] = c.stress;
-            self.out.line(format_args!(
+            out.line(format_args!(
                 "{step},{t},{},{},{},{},{sxx},{sxy},{syx},{syy},{}",
                 c.size.x, c.size.y, c.offset, c.shift, c.stiffness_yy
             ))
         } else {
             // An `"x"` cell measures no stress: empty fields.
-            self.out.line(format_args!(
+            out.line(format_args!(
                 "{step},{t},{},{},{},{},,,,,",
                 c.size.x, c.size.y, c.offset, c.shift
             ))
         }
-    }
-
-    pub fn flush(&mut self) -> Result<(), WriteError> {
-        self.out.flush()
-    }
-}
-
-impl FrameFile for CellWriter {
-    fn every(&self) -> u64 {
-        self.every
-    }
-
-    fn write_frame(&mut self, world: &World, step: u64) -> Result<(), WriteError> {
-        self.write(world, step)
-    }
-
-    fn flush_frames(&mut self) -> Result<(), WriteError> {
-        self.flush()
     }
 }
 

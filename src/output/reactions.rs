@@ -13,43 +13,18 @@
 //!
 //! The forces are those of the frame's step (the last force evaluation).
 
-use super::trace::{FrameFile, LineFile, WriteError};
+use super::trace::{FrameRows, LineFile, Written};
 use crate::dynamics::World;
-use crate::run::time::time_text;
-use std::path::Path;
 
 pub const REACTIONS_HEADER: &str = "step,t,body,x,y,angle,fx,fy,moment,power";
 
-/// The writer of `reactions.csv`; as an observer of a run, at the trajectory's frames (the
-/// first, every `every` steps, the last).
-pub struct ReactionsWriter {
-    out: LineFile,
-    last_step: Option<u64>,
-    every: u64,
-}
+/// The rows of `reactions.csv`, one per prescribed body ([`REACTIONS_HEADER`]).
+pub struct Reactions;
 
-impl ReactionsWriter {
-    /// Creates `dir/reactions.csv` with its header; as an observer it writes every `every`
-    /// steps.
-    pub fn create(dir: &Path, every: u64) -> Result<Self, WriteError> {
-        let mut out = LineFile::create(&dir.join("reactions.csv"))?;
-        out.line(format_args!("{REACTIONS_HEADER}"))?;
-        out.flush()?;
-        Ok(ReactionsWriter {
-            out,
-            last_step: None,
-            every: every.max(1),
-        })
-    }
-
-    /// One row per prescribed body for the world's current state, labelled `step` (once per
-    /// label).
-    pub fn write(&mut self, world: &World, step: u64) -> Result<(), WriteError> {
-        if self.last_step == Some(step) {
-            return Ok(());
-        }
-        self.last_step = Some(step);
-        let t = time_text(step, world.dt);
+impl FrameRows for Reactions {
+    const FILE: &str = "reactions.csv";
+    const HEADER: &str = REACTIONS_HEADER;
+    fn rows(&self, out: &mut LineFile, world: &World, step: u64, t: &str) -> Written {
         let b = &world.bodies;
         for &k in &b.prescribed {
             let s = &b.state[k];
@@ -59,7 +34,7 @@ impl ReactionsWriter {
                 b.torque[k] + 0.0,
             );
             let power = -(f.dot(&s.vel) + m * s.omega) + 0.0; // (no `-0`)
-            self.out.line(format_args!(
+            out.line(format_args!(
                 "{step},{t},{},{},{},{},{},{},{},{}",
                 b.id[k],
                 s.pose.position.x,
@@ -72,23 +47,5 @@ impl ReactionsWriter {
             ))?;
         }
         Ok(())
-    }
-
-    pub fn flush(&mut self) -> Result<(), WriteError> {
-        self.out.flush()
-    }
-}
-
-impl FrameFile for ReactionsWriter {
-    fn every(&self) -> u64 {
-        self.every
-    }
-
-    fn write_frame(&mut self, world: &World, step: u64) -> Result<(), WriteError> {
-        self.write(world, step)
-    }
-
-    fn flush_frames(&mut self) -> Result<(), WriteError> {
-        self.flush()
     }
 }

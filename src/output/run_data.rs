@@ -93,6 +93,21 @@ pub fn whole_lines(text: &str) -> (&str, bool) {
     }
 }
 
+/// The numbers of a CSV line; an empty field is a value not written on that row
+/// (increments.csv's unbalanced ratio off the output steps, what a row of walls.csv does not
+/// carry): NaN.
+pub(crate) fn fields(line: &str) -> Result<Vec<f64>, std::num::ParseFloatError> {
+    line.split(',')
+        .map(|f| {
+            if f.is_empty() {
+                Ok(f64::NAN)
+            } else {
+                f.parse::<f64>()
+            }
+        })
+        .collect()
+}
+
 /// Parses CSV rows of numbers with the expected header; a last line without its newline is
 /// left out (the second value says so).
 pub(crate) fn rows(file: &Path, header: &str) -> Result<(Vec<Vec<f64>>, bool), ReadError> {
@@ -120,19 +135,7 @@ pub(crate) fn rows(file: &Path, header: &str) -> Result<(Vec<Vec<f64>>, bool), R
     let width = header.split(',').count();
     let mut out = Vec::new();
     for (k, line) in lines.enumerate() {
-        // An empty field is a value not written on that row (increments.csv's unbalanced ratio
-        // off the output steps): NaN.
-        let v: Result<Vec<f64>, _> = line
-            .split(',')
-            .map(|f| {
-                if f.is_empty() {
-                    Ok(f64::NAN)
-                } else {
-                    f.parse::<f64>()
-                }
-            })
-            .collect();
-        let v = v.map_err(|e| bad(k + 2, format!("not a number: {e}")))?;
+        let v = fields(line).map_err(|e| bad(k + 2, format!("not a number: {e}")))?;
         if v.len() != width {
             return Err(bad(k + 2, format!("{} fields, expected {width}", v.len())));
         }

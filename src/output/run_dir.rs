@@ -46,16 +46,16 @@
 use crate::dynamics::timestep::estimate_critical_dt_of;
 use crate::dynamics::{RestartState, World};
 use crate::output::analysis::AnalysisOutput;
-use crate::output::cell::CellWriter;
+use crate::output::cell::CellRow;
 use crate::output::discharge::DischargeWriter;
 use crate::output::progress::ProgressLines;
-use crate::output::reactions::ReactionsWriter;
+use crate::output::reactions::Reactions;
 use crate::output::run_data::BodyState;
 use crate::output::state::StateWriter;
 use crate::output::summary::{DeepCounts, EnergyReport, Status, Summary, write_summary};
-use crate::output::trace::{IncrementsWriter, TrajectoryWriter, WriteError};
+use crate::output::trace::{Frames, IncrementsWriter, Trajectory, TrajectoryWriter, WriteError};
 use crate::output::vtk::VtkWriter;
-use crate::output::walls::WallsWriter;
+use crate::output::walls::Walls;
 use crate::output::write_atomically;
 use crate::run::time::time_value;
 use crate::run::{CriticalStepSampler, RunProgress, Simulation, Stop, watch};
@@ -439,9 +439,9 @@ pub fn continued(p: &RunProgress, case: &Case) -> RunProgress {
 struct Writers {
     incs: IncrementsWriter,
     traj: TrajectoryWriter,
-    walls: Option<WallsWriter>,
-    cells: Option<CellWriter>,
-    reactions: Option<ReactionsWriter>,
+    walls: Option<Frames<Walls>>,
+    cells: Option<Frames<CellRow>>,
+    reactions: Option<Frames<Reactions>>,
     discharge: Option<DischargeWriter>,
     sampler: CriticalStepSampler,
     analysis: Option<AnalysisOutput>,
@@ -540,54 +540,53 @@ impl RunDir {
             .map(|v| StateWriter::new(dir, v, case.duration));
         let every = case.output_every;
         let cell = world.cell.is_some();
-        let writers =
-            TrajectoryWriter::create(&dir.join("trajectory.csv"), every, cell).and_then(|traj| {
-                let incs = IncrementsWriter::create(&dir.join("increments.csv"), every)?;
-                let walls = match world.walls.is_empty() {
-                    true => None,
-                    false => Some(WallsWriter::create(dir, every)?),
-                };
-                let cells = match cell {
-                    true => Some(CellWriter::create(dir, every)?),
-                    false => None,
-                };
-                let reactions = match world.bodies.prescribed.is_empty() {
-                    true => None,
-                    false => Some(ReactionsWriter::create(dir, every)?),
-                };
-                let discharge = match world.flow.as_ref().is_some_and(|f| !f.outflows.is_empty()) {
-                    true => Some(DischargeWriter::create(dir, every)?),
-                    false => None,
-                };
-                let vtk = match opts.vtk_every {
-                    Some(n) => Some(VtkWriter::create(dir, world, n)?),
-                    None => None,
-                };
-                let analysis = match opts.analysis || opts.contacts {
-                    true => Some(AnalysisOutput::create(
-                        dir,
-                        opts.analysis,
-                        opts.contacts,
-                        opts.analysis_window
-                            .map(|[x0, x1, y0, y1]| crate::analysis::Window { x0, x1, y0, y1 }),
-                        cell,
-                        every,
-                    )?),
-                    false => None,
-                };
-                Ok(Writers {
-                    incs,
-                    traj,
-                    walls,
-                    cells,
-                    reactions,
-                    discharge,
-                    sampler: CriticalStepSampler { every },
-                    analysis,
-                    vtk,
-                    lines: ProgressLines::new(&case.name, opts.progress),
-                })
-            });
+        let writers = Frames::create(dir, every, Trajectory { cell }).and_then(|traj| {
+            let incs = IncrementsWriter::create(&dir.join("increments.csv"), every)?;
+            let walls = match world.walls.is_empty() {
+                true => None,
+                false => Some(Frames::create(dir, every, Walls)?),
+            };
+            let cells = match cell {
+                true => Some(Frames::create(dir, every, CellRow)?),
+                false => None,
+            };
+            let reactions = match world.bodies.prescribed.is_empty() {
+                true => None,
+                false => Some(Frames::create(dir, every, Reactions)?),
+            };
+            let discharge = match world.flow.as_ref().is_some_and(|f| !f.outflows.is_empty()) {
+                true => Some(DischargeWriter::create(dir, every)?),
+                false => None,
+            };
+            let vtk = match opts.vtk_every {
+                Some(n) => Some(VtkWriter::create(dir, world, n)?),
+                None => None,
+            };
+            let analysis = match opts.analysis || opts.contacts {
+                true => Some(AnalysisOutput::create(
+                    dir,
+                    opts.analysis,
+                    opts.contacts,
+                    opts.analysis_window
+                        .map(|[x0, x1, y0, y1]| crate::analysis::Window { x0, x1, y0, y1 }),
+                    cell,
+                    every,
+                )?),
+                false => None,
+            };
+            Ok(Writers {
+                incs,
+                traj,
+                walls,
+                cells,
+                reactions,
+                discharge,
+                sampler: CriticalStepSampler { every },
+                analysis,
+                vtk,
+                lines: ProgressLines::new(&case.name, opts.progress),
+            })
+        });
         Ok(RunDir {
             dir: dir.clone(),
             _lock: lock,

@@ -31,8 +31,11 @@ impl fmt::Display for WriteError {
 
 impl std::error::Error for WriteError {}
 
+/// What a write returns: nothing, or the write that failed.
+pub type Written = Result<(), WriteError>;
+
 /// A text file written in whole lines (see the module documentation).
-pub(crate) struct LineFile {
+pub struct LineFile {
     file: File,
     path: PathBuf,
     buf: Vec<u8>,
@@ -94,58 +97,118 @@ impl LineFile {
     }
 }
 
-/// The header of `trajectory.csv`.
-pub const TRAJECTORY_HEADER: &str = "step,t,body,x,y,angle,vx,vy,omega";
-/// The header of `trajectory.csv` in a periodic cell: the image counts after the rest (see
-/// `dynamics::cell`).
-pub const TRAJECTORY_HEADER_CELL: &str = "step,t,body,x,y,angle,vx,vy,omega,ix,iy";
+/// What one frame of a [`Frames`] file holds.
+pub trait FrameRows {
+    /// The file's name in the run's directory.
+    const FILE: &'static str;
+    /// The file's header line.
+    const HEADER: &'static str;
+    /// The header line of this writer's file ([`FrameRows::HEADER`] unless it depends on the
+    /// run).
+    fn header(&self) -> &'static str {
+        Self::HEADER
+    }
+    /// Writes the rows of `world` for the frame labelled `step`, at time `t` (as written).
+    fn rows(&self, out: &mut LineFile, world: &World, step: u64, t: &str)
+    -> Result<(), WriteError>;
+}
 
-/// `trajectory.csv`: `step,t,body,x,y,angle,vx,vy,omega` ([`TRAJECTORY_HEADER`]), full
-/// round-trip precision; in a periodic cell the positions are the wrapped ones and each row
-/// ends with the body's image counts `ix,iy` ([`TRAJECTORY_HEADER_CELL`]: the unwrapped
-/// position is `x + ix L_x + iy S`, `y + iy L_y`, with S the cell's total Lees–Edwards shift).
-/// As an observer: the first state (on disk at once, so that a run killed at any later moment
-/// leaves a whole frame), every `every` steps, and the state the run ended in.
-pub struct TrajectoryWriter {
+/// A file with one block of rows per output frame, `R`'s — as an observer of a run, the start
+/// (on disk at once, so that a run killed at any later moment leaves a whole frame), every
+/// `every` steps (a blown-up state excepted: it is written once, as the last frame) and the
+/// state the run ended in (`trajectory.csv`, `walls.csv`, `cell.csv`, `reactions.csv`).
+pub struct Frames<R> {
     out: LineFile,
     last_step: Option<u64>,
     every: u64,
+    rows: R,
 }
 
-impl TrajectoryWriter {
-    /// Creates the file (with its header, with the image counts when `cell`: a periodic cell);
-    /// as an observer it writes every `every` steps.
-    pub fn create(path: &Path, every: u64, cell: bool) -> Result<Self, WriteError> {
-        let mut out = LineFile::create(path)?;
-        let header = if cell {
-            TRAJECTORY_HEADER_CELL
-        } else {
-            TRAJECTORY_HEADER
-        };
-        out.line(format_args!("{header}"))?;
-        // A run killed before its first full buffer still leaves a readable (empty) table.
+impl<R: FrameRows> Frames<R> {
+    /// Creates `R`'s file in `dir` with its header line, on disk at once (a run killed before
+    /// its first full buffer still leaves a readable, empty table); as an observer it writes
+    /// every `every` steps.
+    pub fn create(dir: &Path, every: u64, rows: R) -> Result<Self, WriteError> {
+        let mut out = LineFile::create(&dir.join(R::FILE))?;
+        out.line(format_args!("{}", rows.header()))?;
         out.flush()?;
-        Ok(TrajectoryWriter {
+        Ok(Frames {
             out,
             last_step: None,
             every: every.max(1),
+            rows,
         })
     }
 
-    /// One row per body for the world's current state (once per step).
+    /// The frame of the world's current state (once per step).
     pub fn write(&mut self, world: &World) -> Result<(), WriteError> {
         self.write_labelled(world, world.step)
     }
 
-    /// One row per body for the world's current state, labelled as step `step` (once per
-    /// label). A step that failed part-way leaves the world at a state of that step, not of the
-    /// last completed one.
+    /// The frame of the world's current state, labelled as step `step` (once per label). A step
+    /// that failed part-way leaves the world at a state of that step, not of the last completed
+    /// one.
     pub fn write_labelled(&mut self, world: &World, step: u64) -> Result<(), WriteError> {
         if self.last_step == Some(step) {
             return Ok(());
         }
         self.last_step = Some(step);
         let t = time_text(step, world.dt);
+        self.rows.rows(&mut self.out, world, step, &t)
+    }
+
+    pub fn flush(&mut self) -> Result<(), WriteError> {
+        self.out.flush()
+    }
+}
+
+impl<R: FrameRows> Observer for Frames<R> {
+    fn start(&mut self, world: &mut World, _: &Plan) -> Result<(), ObserverError> {
+        self.write(world)?;
+        Ok(self.flush()?)
+    }
+
+    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+        if !info.blowup && info.step.is_multiple_of(self.every) {
+            self.write_labelled(world, info.step)?;
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
+        self.write_labelled(world, end.step)?;
+        Ok(self.flush()?)
+    }
+}
+
+/// The header of `trajectory.csv`.
+pub const TRAJECTORY_HEADER: &str = "step,t,body,x,y,angle,vx,vy,omega";
+/// The header of `trajectory.csv` in a periodic cell: the image counts after the rest (see
+/// `dynamics::cell`).
+pub const TRAJECTORY_HEADER_CELL: &str = "step,t,body,x,y,angle,vx,vy,omega,ix,iy";
+
+/// The rows of `trajectory.csv`: `step,t,body,x,y,angle,vx,vy,omega` ([`TRAJECTORY_HEADER`]),
+/// one per body, full round-trip precision; in a periodic cell (`cell`) the positions are the
+/// wrapped ones and each row ends with the body's image counts `ix,iy`
+/// ([`TRAJECTORY_HEADER_CELL`]: the unwrapped position is `x + ix L_x + iy S`, `y + iy L_y`,
+/// with S the cell's total Lees–Edwards shift).
+pub struct Trajectory {
+    pub cell: bool,
+}
+
+/// The writer of `trajectory.csv` (see [`Trajectory`] and [`Frames`]).
+pub type TrajectoryWriter = Frames<Trajectory>;
+
+impl FrameRows for Trajectory {
+    const FILE: &str = "trajectory.csv";
+    const HEADER: &str = TRAJECTORY_HEADER;
+    fn header(&self) -> &'static str {
+        match self.cell {
+            true => TRAJECTORY_HEADER_CELL,
+            false => TRAJECTORY_HEADER,
+        }
+    }
+    fn rows(&self, out: &mut LineFile, world: &World, step: u64, t: &str) -> Written {
         let b = &world.bodies;
         for k in 0..b.len() {
             let p = &b.state[k].pose;
@@ -153,7 +216,7 @@ impl TrajectoryWriter {
                 Some([ix, iy]) => format!(",{ix},{iy}"),
                 None => String::new(),
             };
-            self.out.line(format_args!(
+            out.line(format_args!(
                 "{},{},{},{},{},{},{},{},{}{}",
                 step,
                 t,
@@ -168,61 +231,6 @@ impl TrajectoryWriter {
             ))?;
         }
         Ok(())
-    }
-
-    pub fn flush(&mut self) -> Result<(), WriteError> {
-        self.out.flush()
-    }
-}
-
-impl Observer for TrajectoryWriter {
-    fn start(&mut self, world: &mut World, _: &Plan) -> Result<(), ObserverError> {
-        self.write(world)?;
-        Ok(self.flush()?)
-    }
-
-    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
-        // A blown-up state is written once, as the last row.
-        if !info.blowup && info.step.is_multiple_of(self.every) {
-            self.write(world)?;
-        }
-        Ok(())
-    }
-
-    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
-        self.write_labelled(world, end.step)?;
-        Ok(self.flush()?)
-    }
-}
-
-/// A file with one block of rows per output frame — the start, every [`FrameFile::every`]
-/// steps (a blown-up state excepted) and the end — written as an observer of a run
-/// (`cell.csv`, `walls.csv`, `reactions.csv`).
-pub trait FrameFile {
-    /// Steps between frames.
-    fn every(&self) -> u64;
-    /// Writes the frame of `world` at `step` (a second call for the same step writes nothing).
-    fn write_frame(&mut self, world: &World, step: u64) -> Result<(), WriteError>;
-    /// Flushes what is written.
-    fn flush_frames(&mut self) -> Result<(), WriteError>;
-}
-
-impl<T: FrameFile> Observer for T {
-    fn start(&mut self, world: &mut World, _: &Plan) -> Result<(), ObserverError> {
-        self.write_frame(world, world.step)?;
-        Ok(self.flush_frames()?)
-    }
-
-    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
-        if !info.blowup && info.step.is_multiple_of(self.every()) {
-            self.write_frame(world, info.step)?;
-        }
-        Ok(())
-    }
-
-    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
-        self.write_frame(world, end.step)?;
-        Ok(self.flush_frames()?)
     }
 }
 

@@ -18,11 +18,10 @@
 //! Runs written before these columns have `step,t,wall,x,y,nx,ny` only; [`read_walls`] reads both.
 
 use super::run_data::ReadError;
-use super::trace::{FrameFile, LineFile, WriteError};
+use super::trace::{FrameRows, LineFile, Written};
 use crate::dynamics::World;
 use crate::dynamics::boundary::{Boundary, span_length};
 use crate::geometry::Vec2;
-use crate::run::time::time_text;
 use std::path::Path;
 
 pub const WALLS_HEADER: &str = "step,t,wall,x,y,nx,ny,vx,vy,fn,ft,contacts,span,sn,st";
@@ -78,40 +77,19 @@ fn num(x: f64) -> String {
     }
 }
 
-/// The writer of `walls.csv`; as an observer of a run, at the trajectory's frames (the first,
-/// every `every` steps, the last).
-pub struct WallsWriter {
-    out: LineFile,
-    last_step: Option<u64>,
-    every: u64,
-}
+/// The rows of `walls.csv`, one per wall ([`WALLS_HEADER`]).
+pub struct Walls;
 
-impl WallsWriter {
-    /// Creates `dir/walls.csv` with its header; as an observer it writes every `every` steps.
-    pub fn create(dir: &Path, every: u64) -> Result<Self, WriteError> {
-        let mut out = LineFile::create(&dir.join("walls.csv"))?;
-        out.line(format_args!("{WALLS_HEADER}"))?;
-        out.flush()?;
-        Ok(WallsWriter {
-            out,
-            last_step: None,
-            every: every.max(1),
-        })
-    }
-
-    /// One row per wall for the world's current state, labelled `step` (once per label).
-    pub fn write(&mut self, world: &World, step: u64) -> Result<(), WriteError> {
-        if self.last_step == Some(step) {
-            return Ok(());
-        }
-        self.last_step = Some(step);
-        let t = time_text(step, world.dt);
+impl FrameRows for Walls {
+    const FILE: &str = "walls.csv";
+    const HEADER: &str = WALLS_HEADER;
+    fn rows(&self, out: &mut LineFile, world: &World, step: u64, t: &str) -> Written {
         for (k, w) in world.walls.iter().enumerate() {
             let (p, n, v) = (w.line().point, w.line().normal, w.velocity);
             let f = w.load.force;
             let (fn_, ft) = (f.dot(&n), f.x * -n.y + f.y * n.x);
             let span = loaded_span(k, &world.walls).unwrap_or(f64::NAN);
-            self.out.line(format_args!(
+            out.line(format_args!(
                 "{step},{t},{k},{},{},{},{},{},{},{},{},{},{},{},{}",
                 p.x,
                 p.y,
@@ -128,24 +106,6 @@ impl WallsWriter {
             ))?;
         }
         Ok(())
-    }
-
-    pub fn flush(&mut self) -> Result<(), WriteError> {
-        self.out.flush()
-    }
-}
-
-impl FrameFile for WallsWriter {
-    fn every(&self) -> u64 {
-        self.every
-    }
-
-    fn write_frame(&mut self, world: &World, step: u64) -> Result<(), WriteError> {
-        self.write(world, step)
-    }
-
-    fn flush_frames(&mut self) -> Result<(), WriteError> {
-        self.flush()
     }
 }
 
@@ -207,17 +167,8 @@ pub fn read_walls(dir: &Path, n_walls: usize) -> Result<Option<WallFrames>, Read
     };
     let mut out = WallFrames::default();
     for (k, line) in lines.enumerate() {
-        let f: Result<Vec<f64>, _> = line
-            .split(',')
-            .map(|v| {
-                if v.is_empty() {
-                    Ok(f64::NAN)
-                } else {
-                    v.parse::<f64>()
-                }
-            })
-            .collect();
-        let f = f.map_err(|e| bad(k + 2, &format!("not a number: {e}")))?;
+        let f =
+            super::run_data::fields(line).map_err(|e| bad(k + 2, &format!("not a number: {e}")))?;
         if f.len() != width {
             return Err(bad(k + 2, &format!("{} fields, expected {width}", f.len())));
         }

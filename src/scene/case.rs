@@ -386,14 +386,7 @@ impl Case {
     /// The world this case describes, at t = 0 (the forces of the initial configuration
     /// evaluated).
     pub fn build_world(&self) -> crate::dynamics::World {
-        let world = crate::dynamics::World::of_materials(
-            &self.bodies,
-            self.walls.clone(),
-            self.gravity,
-            self.contact,
-            self.materials.clone(),
-            self.dt,
-        );
+        let world = crate::dynamics::World::of_scene(self.scene());
         let mut world = match self.cell {
             Some(cell) => world.with_cell(cell).0,
             None => world,
@@ -423,20 +416,24 @@ impl Case {
         &self,
         state: &crate::dynamics::RestartState,
     ) -> Result<crate::dynamics::World, crate::dynamics::RestartError> {
-        let mut world = crate::dynamics::World::resume(
-            &self.bodies,
-            self.walls.clone(),
-            self.gravity,
-            self.contact,
-            self.materials.clone(),
-            self.dt,
-            state,
-        )?;
+        let mut world = crate::dynamics::World::resume(self.scene(), state)?;
         world.local_damping = self.local_damping;
         Ok(match &self.flow {
             Some(flow) => world.with_flow(flow.clone(), state.flow.as_ref()),
             None => world,
         })
+    }
+
+    /// What the case's world is made of.
+    pub fn scene(&self) -> crate::dynamics::Scene<'_> {
+        crate::dynamics::Scene {
+            bodies: &self.bodies,
+            walls: self.walls.clone(),
+            gravity: self.gravity,
+            spec: self.contact,
+            materials: self.materials.clone(),
+            dt: self.dt,
+        }
     }
 
     /// The same case stepped with `dt`.

@@ -376,6 +376,27 @@ impl PileSpec {
     }
 }
 
+/// A shape as a case file gives it (`"shape"` of a body).
+pub fn shape_json(shape: &Shape) -> Value {
+    match *shape {
+        Shape::Circle { r } => json!({"type": "circle", "r": r}),
+        Shape::Ellipse { a, b } => json!({"type": "ellipse", "a": a, "b": b}),
+        Shape::Rectangle { w, h } => json!({"type": "rectangle", "w": w, "h": h}),
+        // The centred vertices: the body's position is the centroid's.
+        Shape::Polygon(p) => json!({
+            "type": "polygon",
+            "vertices": p.vertices.iter().map(|v| [v.x, v.y]).collect::<Vec<_>>(),
+        }),
+        // The centred members: the body's position is the union's centroid.
+        Shape::Clump(c) => json!({
+            "type": "clump",
+            "disks": c.centres.iter().zip(c.radii.iter())
+                .map(|(v, r)| json!({"center": [v.x, v.y], "r": r}))
+                .collect::<Vec<_>>(),
+        }),
+    }
+}
+
 /// Case-file text: the fields `head` in this order, one per line, then `bodies`, one per line.
 pub fn case_text_from(head: &[(&str, Value)], bodies: &[BodyInit]) -> String {
     // Fields in reading order, one per line; bodies one per line.
@@ -385,23 +406,7 @@ pub fn case_text_from(head: &[(&str, Value)], bodies: &[BodyInit]) -> String {
     }
     text.push_str("  \"bodies\": [\n");
     for (k, b) in bodies.iter().enumerate() {
-        let shape = match b.shape {
-            Shape::Circle { r } => json!({"type": "circle", "r": r}),
-            Shape::Ellipse { a, b } => json!({"type": "ellipse", "a": a, "b": b}),
-            Shape::Rectangle { w, h } => json!({"type": "rectangle", "w": w, "h": h}),
-            // The centred vertices: the body's position is the centroid's.
-            Shape::Polygon(p) => json!({
-                "type": "polygon",
-                "vertices": p.vertices.iter().map(|v| [v.x, v.y]).collect::<Vec<_>>(),
-            }),
-            // The centred members: the body's position is the union's centroid.
-            Shape::Clump(c) => json!({
-                "type": "clump",
-                "disks": c.centres.iter().zip(c.radii.iter())
-                    .map(|(v, r)| json!({"center": [v.x, v.y], "r": r}))
-                    .collect::<Vec<_>>(),
-            }),
-        };
+        let shape = shape_json(&b.shape);
         let body = json!({
             "shape": shape,
             "position": [b.position.x, b.position.y],

@@ -81,14 +81,6 @@ impl Rng {
     }
 }
 
-fn area(shape: &Shape) -> f64 {
-    match *shape {
-        Shape::Circle { r } => std::f64::consts::PI * r * r,
-        Shape::Ellipse { a, b } => std::f64::consts::PI * a * b,
-        _ => unreachable!("the study makes circles and ellipses"),
-    }
-}
-
 /// The world of packing `seed` at aspect ratio `aspect`, its grains placed at random.
 fn world(n: usize, aspect: f64, seed: u64) -> World {
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ seed.wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 1);
@@ -105,7 +97,7 @@ fn world(n: usize, aspect: f64, seed: u64) -> World {
             }
         })
         .collect();
-    let total: f64 = shapes.iter().map(area).sum();
+    let total: f64 = shapes.iter().map(dem2d::geometry::mass::area).sum();
     let side = (total / PHI_START).sqrt();
     let bodies = shapes
         .into_iter()
@@ -195,7 +187,7 @@ fn coordination(w: &World) -> (f64, f64) {
 /// Jams packing `seed` at `aspect` (see the module documentation).
 pub fn jam(n: usize, aspect: f64, seed: u64) -> Packing {
     let mut w = world(n, aspect, seed);
-    let total: f64 = w.bodies.shape.iter().map(area).sum();
+    let total: f64 = w.bodies.shape.iter().map(dem2d::geometry::mass::area).sum();
     let d = 2.0 * R_SMALL;
     let unit = n as f64 * KN * d * d;
     let tol = Tolerance {

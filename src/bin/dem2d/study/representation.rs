@@ -109,29 +109,12 @@ impl Rep {
     }
 }
 
-fn shape_json(s: Shape) -> Value {
-    match s {
-        Shape::Ellipse { a, b } => json!({"type": "ellipse", "a": a, "b": b}),
-        Shape::Polygon(p) => json!({
-            "type": "polygon",
-            "vertices": p.vertices.iter().map(|v| [v.x, v.y]).collect::<Vec<_>>(),
-        }),
-        Shape::Clump(c) => json!({
-            "type": "clump",
-            "disks": c.centres.iter().zip(c.radii.iter())
-                .map(|(v, r)| json!({"center": [v.x, v.y], "r": r}))
-                .collect::<Vec<_>>(),
-        }),
-        other => panic!("not an ellipse representation: {other:?}"),
-    }
-}
-
 /// The case file `path` with every body's shape replaced by `shape`, and `edit` applied.
 fn case_from(path: &str, shape: Shape, edit: impl Fn(&mut Value)) -> Case {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
     let mut v: Value = serde_json::from_str(&text).expect("JSON");
     for b in v["bodies"].as_array_mut().expect("bodies") {
-        b["shape"] = shape_json(shape);
+        b["shape"] = dem2d::scene::generate::shape_json(&shape);
     }
     edit(&mut v);
     Case::from_json(&v.to_string()).unwrap_or_else(|e| panic!("{path}: {e}"))
@@ -491,7 +474,10 @@ pub fn run(grains: usize) -> Result<String, RunError> {
     for &rep in &reps[..=PILE_NS.len()] {
         let pile = packing::pour_shaped(alpha, 0.5, grains, false, &|s| match s {
             Shape::Ellipse { a, b } => rep.shape(a, b, false),
-            other => other,
+            Shape::Circle { .. }
+            | Shape::Rectangle { .. }
+            | Shape::Polygon(_)
+            | Shape::Clump(_) => s,
         })?;
         eprintln!(
             "pile {}: φ = {:.4}, Z = {:.2}, {:.0} s",
