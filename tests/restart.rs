@@ -483,7 +483,6 @@ fn a_ten_thousand_body_state_is_written_and_read_back() {
         &file.value,
         file.case.duration,
         &w,
-        &file.case.bodies,
         &RunProgress {
             initial_total: 0.0,
             quiescence_streak: 0,

@@ -39,6 +39,8 @@ __all__ = [
     "clump",
     "body",
     "wall",
+    "insert",
+    "outflow",
     "__version__",
 ]
 
@@ -91,6 +93,27 @@ def wall(point, normal, **keys):
     """A wall through `point` with unit `normal` pointing into the free side; `keys` are the
     case file's other wall keys (friction, velocity, servo, contact overrides)."""
     return {"point": [point[0], point[1]], "normal": [normal[0], normal[1]], **keys}
+
+
+def insert(region, size, rate=None, count=None, keep=None, **keys):
+    """An inserter (the case file's `insert[]`): bodies poured into `region` = (x0, x1, y0, y1)
+    (cm) of equal-area radius `size` (a number, or a distribution such as
+    `{"uniform": [lo, hi]}`), at `rate` bodies/s, or `count` at once, or keeping `keep` free
+    bodies in the scene; `keys` are its other keys (shape, aspect, angle, velocity, seed, …).
+    This and `outflow` with `body` and `wall` are the scene builder: a box, a silo or a periodic
+    cell poured from above is a case dict (docs: reference/case-file.md)."""
+    d = {"region": [region[0], region[1], region[2], region[3]], "size": size}
+    for key, value in (("rate", rate), ("count", count), ("keep", keep)):
+        if value is not None:
+            d[key] = value
+    d.update(keys)
+    return d
+
+
+def outflow(region):
+    """An outflow region (the case file's `outflow[]`): the bodies whose centroids enter
+    `region` = (x0, x1, y0, y1) (cm) are removed and logged to `discharge.csv`."""
+    return {"region": [region[0], region[1], region[2], region[3]]}
 
 
 # Reading a run directory.

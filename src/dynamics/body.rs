@@ -74,6 +74,12 @@ pub struct Bodies {
     pub image: Vec<[i32; 2]>,
     /// The prescribed bodies, in order.
     pub prescribed: Vec<usize>,
+    /// Each body's identity: its index in the case's `bodies`, or for a body inserted during
+    /// the run the next number after every identity given before (see
+    /// [`super::flow`]). Never reused: a removed body's number stays unused, so that the
+    /// outputs of a run whose bodies come and go name each body by one number throughout. It
+    /// equals the index until a body is removed.
+    pub id: Vec<u64>,
 }
 
 impl Bodies {
@@ -114,39 +120,82 @@ impl Bodies {
             torque: Vec::with_capacity(n),
             image: Vec::new(),
             prescribed: Vec::new(),
+            id: Vec::with_capacity(n),
         };
         for (k, init) in inits.iter().enumerate() {
-            let m = init.density * area(&init.shape);
-            let i = m * inertia_per_mass(&init.shape);
-            b.shape.push(init.shape);
-            b.density.push(init.density);
-            b.material.push(init.material);
-            if init.prescribed {
-                b.prescribed.push(k);
-                b.mass.push(0.0);
-                b.inv_mass.push(0.0);
-                b.inertia.push(0.0);
-                b.inv_inertia.push(0.0);
-            } else {
-                b.mass.push(m);
-                b.inv_mass.push(1.0 / m);
-                b.inertia.push(i);
-                b.inv_inertia.push(1.0 / i);
-            }
-            b.bound.push(init.shape.bounding_radius());
-            let area_radius = (area(&init.shape) / std::f64::consts::PI).sqrt();
-            b.area_radius.push(area_radius);
-            b.inv_area_radius.push(1.0 / area_radius);
-            b.is_circle.push(init.shape.is_circle());
-            b.state.push(BodyState {
-                pose: Pose::new(init.position, init.angle),
-                vel: init.velocity,
-                omega: init.omega,
-            });
-            b.force.push(Vec2::zeros());
-            b.torque.push(0.0);
+            b.push(init, k as u64);
         }
         b
+    }
+
+    /// Appends the body `init` with identity `id` (its force and moment zero; in a periodic
+    /// cell the caller gives it its image counts).
+    pub fn push(&mut self, init: &BodyInit, id: u64) {
+        let k = self.len();
+        let m = init.density * area(&init.shape);
+        let i = m * inertia_per_mass(&init.shape);
+        self.shape.push(init.shape);
+        self.density.push(init.density);
+        self.material.push(init.material);
+        if init.prescribed {
+            self.prescribed.push(k);
+            self.mass.push(0.0);
+            self.inv_mass.push(0.0);
+            self.inertia.push(0.0);
+            self.inv_inertia.push(0.0);
+        } else {
+            self.mass.push(m);
+            self.inv_mass.push(1.0 / m);
+            self.inertia.push(i);
+            self.inv_inertia.push(1.0 / i);
+        }
+        self.bound.push(init.shape.bounding_radius());
+        let area_radius = (area(&init.shape) / std::f64::consts::PI).sqrt();
+        self.area_radius.push(area_radius);
+        self.inv_area_radius.push(1.0 / area_radius);
+        self.is_circle.push(init.shape.is_circle());
+        self.state.push(BodyState {
+            pose: Pose::new(init.position, init.angle),
+            vel: init.velocity,
+            omega: init.omega,
+        });
+        self.force.push(Vec2::zeros());
+        self.torque.push(0.0);
+        self.id.push(id);
+    }
+
+    /// Keeps the bodies `k` with `keep[k]`, in their order (the others' rows removed from
+    /// every vector; the prescribed bodies' indices renumbered).
+    pub fn retain(&mut self, keep: &[bool]) {
+        fn cut<T>(v: &mut Vec<T>, keep: &[bool]) {
+            if v.is_empty() {
+                return;
+            }
+            let mut k = 0;
+            v.retain(|_| {
+                k += 1;
+                keep[k - 1]
+            });
+        }
+        cut(&mut self.shape, keep);
+        cut(&mut self.density, keep);
+        cut(&mut self.material, keep);
+        cut(&mut self.mass, keep);
+        cut(&mut self.inv_mass, keep);
+        cut(&mut self.inertia, keep);
+        cut(&mut self.inv_inertia, keep);
+        cut(&mut self.bound, keep);
+        cut(&mut self.area_radius, keep);
+        cut(&mut self.inv_area_radius, keep);
+        cut(&mut self.state, keep);
+        cut(&mut self.is_circle, keep);
+        cut(&mut self.force, keep);
+        cut(&mut self.torque, keep);
+        cut(&mut self.image, keep);
+        cut(&mut self.id, keep);
+        self.prescribed = (0..self.len())
+            .filter(|&k| self.inv_mass[k] == 0.0)
+            .collect();
     }
 
     /// Number of bodies.

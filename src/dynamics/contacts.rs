@@ -53,6 +53,9 @@ fn shift_up<T: Copy>(v: &mut Vec<T>, lead: usize, total: usize, filler: T) {
     v.copy_within(0..len, lead);
 }
 
+/// A removed body's entry in the map [`ContactList::drop_bodies`] takes.
+pub(crate) const REMOVED: u32 = u32::MAX;
+
 /// One slot of the neighbour list: a candidate pair and what is carried from step to step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Slot {
@@ -356,13 +359,88 @@ impl ContactList {
         !self.slots.iter().any(|c| c.active)
     }
 
+    /// Takes removed bodies out of the list (between steps): `map[k]` is body k's new index,
+    /// or [`REMOVED`]. The slots of the pairs of two remaining bodies, or of a remaining body
+    /// and a wall, keep their history, cache and contact data, renumbered (a removal keeps the
+    /// bodies' order, so the keys stay sorted); the others go, and the history springs' energy
+    /// of the active ones among them is returned (lost, as when a contact opens). Each body's
+    /// adjacency is made again for the `n` remaining bodies; what the list was built from
+    /// keeps the remaining bodies' rows.
+    pub(crate) fn drop_bodies(&mut self, map: &[u32], n: usize, cached: bool) -> f64 {
+        let stride = self.stride;
+        let cached = cached && self.cache.len() == self.slots.len();
+        let mut lost = 0.0;
+        let mut w = 0;
+        for k in 0..self.slots.len() {
+            let mut s = self.slots[k];
+            let i = map[s.i as usize];
+            let j = match s.partner() {
+                Partner::Body(j) => map[j],
+                Partner::Wall(_) => s.j,
+            };
+            if i == REMOVED || j == REMOVED {
+                if s.active {
+                    lost += s.history_energy;
+                }
+                continue;
+            }
+            s.i = i;
+            s.j = j;
+            self.slots[w] = s;
+            self.data[w] = self.data[k];
+            self.extra[w] = self.extra[k];
+            if cached {
+                self.cache[w] = self.cache[k];
+            }
+            self.history
+                .copy_within(k * stride..(k + 1) * stride, w * stride);
+            w += 1;
+        }
+        self.slots.truncate(w);
+        self.data.truncate(w);
+        self.extra.truncate(w);
+        if cached {
+            self.cache.truncate(w);
+        }
+        self.history.truncate(w * stride);
+        let mut k = 0;
+        self.built_at.retain(|_| {
+            k += 1;
+            map.get(k - 1).is_some_and(|&m| m != REMOVED)
+        });
+        self.near_seam.clear();
+        self.touching.clear();
+        // The same keys: every slot stays where it is; only the adjacency is made anew.
+        self.keys.clear();
+        self.keys.extend(self.slots.iter().map(Slot::key));
+        let builds = self.builds;
+        self.rebuild_from_keys_with(n, cached, stride, true);
+        self.builds = builds;
+        lost
+    }
+
     /// Replaces the slots by `keys` (sorted, unique), carrying every continuing slot with its
     /// history (and its pair cache when `cached`, its further history values, `stride` of them
     /// per slot); rebuilds each body's adjacency for `n` bodies. Returns the history springs'
     /// energy of contacts that were active but are no longer candidates (lost, as when a contact
     /// opens).
     pub(crate) fn rebuild_from_keys(&mut self, n: usize, cached: bool, stride: usize) -> f64 {
+        self.rebuild_from_keys_with(n, cached, stride, false)
+    }
+
+    /// [`ContactList::rebuild_from_keys`]; `carry_data`: each continuing slot keeps its contact
+    /// data too (a new slot's are zero), for a list rebuilt between steps — when bodies are
+    /// inserted ([`crate::dynamics::World::insert_bodies`]) — whose data are read before the
+    /// next step computes them again.
+    pub(crate) fn rebuild_from_keys_with(
+        &mut self,
+        n: usize,
+        cached: bool,
+        stride: usize,
+        carry_data: bool,
+    ) -> f64 {
         let (old_len, new_len) = (self.slots.len(), self.keys.len());
+        let carry_data = carry_data && self.data.len() == old_len;
         self.near_seam.clear();
         let carry_cache = cached && self.cache.len() == old_len;
         let carry_history =
@@ -405,6 +483,9 @@ impl ContactList {
         if carry_history {
             shift_up(&mut self.history, lead * stride, total * stride, 0.0);
         }
+        if carry_data {
+            shift_up(&mut self.data, lead, total, ContactData::default());
+        }
         let mut old = 0;
         for (k, &(i, j, sub)) in self.keys.iter().enumerate() {
             while old < old_len && self.slots[lead + old].key() < (i, j, sub) {
@@ -419,6 +500,9 @@ impl ContactList {
                     let from = (lead + old) * stride;
                     self.history.copy_within(from..from + stride, k * stride);
                 }
+                if carry_data {
+                    self.data[k] = self.data[lead + old];
+                }
                 old += 1;
             } else {
                 self.slots[k] = Slot::with_sub(i, j, sub);
@@ -428,7 +512,13 @@ impl ContactList {
                 if carry_history {
                     self.history[k * stride..(k + 1) * stride].fill(0.0);
                 }
+                if carry_data {
+                    self.data[k] = ContactData::default();
+                }
             }
+        }
+        if carry_data {
+            self.data.truncate(new_len);
         }
         self.slots.truncate(new_len);
         // Carried values are in place above (the resizes drop the shifted tail); a list that

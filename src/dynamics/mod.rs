@@ -11,6 +11,7 @@ pub mod broad_phase;
 pub mod cell;
 pub mod contact_pass;
 pub mod contacts;
+pub mod flow;
 pub mod kinematics;
 pub mod local_damping;
 pub mod materials;
@@ -25,6 +26,7 @@ pub mod world;
 
 pub use body::{Bodies, BodyInit, BodyState};
 pub use boundary::{Boundary, Motion, Servo, Span};
+pub use flow::Flow;
 pub use materials::{Materials, PairTable};
 pub use partner::{Partner, Sides};
 pub use restart::{RestartError, RestartState};

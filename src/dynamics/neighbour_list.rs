@@ -23,6 +23,9 @@ pub(crate) struct Builder {
     grid: Grid,
     /// The grid's body pairs.
     pairs: Vec<(u32, u32)>,
+    /// The next build keeps the continuing slots' contact data (a list rebuilt between steps,
+    /// whose data are read before the next step computes them: after an insertion).
+    pub carry_data: bool,
 }
 
 impl Builder {
@@ -34,7 +37,9 @@ impl Builder {
     /// Rebuilds `list` from the current positions (body pairs from the grid, then each body's
     /// walls after its body partners: key order), carrying histories over; `clumps`: some body
     /// is a clump (its pairs get a slot per member pair); `cell`: the periodic cell, whose
-    /// pairs across its seams are found through their nearest images. Two prescribed bodies, or
+    /// pairs across its seams are found through their nearest images (with
+    /// [`Builder::carry_data`], the continuing slots keep their contact data). Two prescribed
+    /// bodies, or
     /// a prescribed body and a wall, get no slot: neither side can move the other (and their m*
     /// is infinite). Returns the history springs' energy of the contacts that dropped out of the
     /// list.
@@ -88,7 +93,7 @@ impl Builder {
             }
         }
         let Kept { cached, history } = kept(&bodies.shape, pairs);
-        let lost = list.rebuild_from_keys(n, cached, history - 1);
+        let lost = list.rebuild_from_keys_with(n, cached, history - 1, self.carry_data);
         list.built_at.clear();
         reserve_for(&mut list.built_at, n);
         list.built_at

@@ -29,6 +29,7 @@ use super::body::BodyInit;
 use super::boundary::{Boundary, WallLoad};
 use super::cell::Cell;
 use super::contacts::{ContactData, Slot};
+use super::flow::FlowRestart;
 use super::partner::Partner;
 use crate::contact_law::{HISTORY_LEN, History};
 use crate::geometry::Vec2;
@@ -104,6 +105,11 @@ pub struct RestartState {
     /// The periodic cell as it is now (its height, Lees–Edwards shift and last stress), if the
     /// scene has one.
     pub cell: Option<Cell>,
+    /// Each body's identity ([`super::body::Bodies::id`]), and the next one to give.
+    pub ids: Vec<u64>,
+    pub next_id: u64,
+    /// Where the scene's insertion and outflow stand, if it has any ([`super::flow`]).
+    pub flow: Option<FlowRestart>,
 }
 
 /// A restart that does not fit the scene it is resumed with: where (a path below the state,
@@ -162,6 +168,19 @@ impl RestartState {
             }
         };
         count("bodies", self.bodies.len(), n, "bodies")?;
+        count("ids", self.ids.len(), n, "bodies")?;
+        let mut seen = std::collections::HashSet::new();
+        for (k, &id) in self.ids.iter().enumerate() {
+            if id >= self.next_id || !seen.insert(id) {
+                return Err(RestartError::new(
+                    format!("ids[{k}]"),
+                    format!(
+                        "{id}: identities must be distinct and below next_id = {}",
+                        self.next_id
+                    ),
+                ));
+            }
+        }
         count("walls", self.walls.len(), nw, "walls")?;
         count("neighbour_list.built_at", self.built_at.len(), n, "bodies")?;
         count(

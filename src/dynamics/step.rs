@@ -391,7 +391,14 @@ impl Stepper {
     /// [`neighbour_list`]); the history springs' energy of contacts that dropped out is
     /// dissipated.
     pub(crate) fn rebuild_neighbours(&mut self, wd: &mut Parts) {
+        self.rebuild_neighbours_with(wd, false);
+    }
+
+    /// [`Stepper::rebuild_neighbours`]; `carry_data`: the continuing slots keep their contact
+    /// data (a rebuild between steps, after bodies were inserted).
+    pub(crate) fn rebuild_neighbours_with(&mut self, wd: &mut Parts, carry_data: bool) {
         self.facts = SceneFacts::of(wd.bodies);
+        self.builder.carry_data = carry_data;
         let lost = self.builder.rebuild(
             wd.bodies,
             wd.walls,
@@ -400,8 +407,17 @@ impl Stepper {
             wd.cell.as_deref(),
             wd.contacts,
         );
+        self.builder.carry_data = false;
         wd.energies.dissipated += lost;
         self.size_partials(wd);
+    }
+
+    /// Each body's force and moment gathered again from the contact data as they stand (no
+    /// kick): after bodies were removed between steps, the others' forces without the removed
+    /// bodies' contacts.
+    pub(crate) fn regather_forces(&mut self, wd: &mut Parts) {
+        self.size_partials(wd);
+        self.gather_forces(wd, None);
     }
 
     /// Restores the neighbour list of a restart (see [`neighbour_list::restore`]).

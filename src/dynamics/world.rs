@@ -5,7 +5,9 @@ use super::body::{Bodies, BodyInit};
 pub use super::boundary::Boundary;
 use super::boundary::{Motion, update_servos};
 use super::cell::Cell;
-use super::contacts::ContactList;
+use super::contacts::{ContactList, REMOVED};
+use super::flow::{Discharge, Flow, SplitMix64, draw_body, draw_position};
+use super::flow::{FlowRestart, Target};
 use super::materials::{Materials, PairTable};
 use super::neighbour_list::kept;
 use super::restart::{
@@ -38,6 +40,10 @@ pub struct World {
     pub last_increments: [f64; 3],
     /// The periodic cell the scene repeats in, if any (see [`super::cell`]).
     pub cell: Option<Cell>,
+    /// The scene's insertion and outflow regions, if any (see [`super::flow`]).
+    pub flow: Option<Flow>,
+    /// The identity the next inserted body gets ([`Bodies::id`]).
+    pub next_id: u64,
     /// Cundall's local non-viscous damping coefficient α in [0, 1) (0: off; see
     /// [`super::step`]'s stage 4).
     pub local_damping: f64,
@@ -124,6 +130,8 @@ impl World {
             },
             last_increments: [0.0; 3],
             cell: None,
+            flow: None,
+            next_id: bodies.len() as u64,
             local_damping: 0.0,
             stepper: Stepper::default(),
         }
@@ -149,6 +157,8 @@ impl World {
         if saved.cell.is_some() {
             w.bodies.image = saved.bodies.iter().map(|r| r.image).collect();
         }
+        w.bodies.id.clone_from(&saved.ids);
+        w.next_id = saved.next_id;
         for (k, r) in saved.bodies.iter().enumerate() {
             let b = &mut w.bodies;
             b.state[k].pose = Pose::with_frame(r.position, r.angle, r.frame);
@@ -229,6 +239,9 @@ impl World {
             diagnostics: self.diagnostics,
             last_increments: self.last_increments,
             cell: self.cell,
+            ids: b.id.clone(),
+            next_id: self.next_id,
+            flow: self.flow.as_ref().map(Flow::restart),
         }
     }
 
@@ -276,6 +289,200 @@ impl World {
         self.contacts = ContactList::default();
         self.start();
         (self, moved)
+    }
+
+    /// The world with insertion and outflow regions (see [`super::flow`]); `saved`: where the
+    /// flow of the run this world was resumed from stood.
+    pub fn with_flow(mut self, flow: Flow, saved: Option<&FlowRestart>) -> Self {
+        self.flow = Some(match saved {
+            Some(s) => flow.resumed(s),
+            None => flow,
+        });
+        self
+    }
+
+    /// Applies the flow between steps, once per step (see [`super::flow`]): removes the free
+    /// bodies whose centroids lie in an outflow region, logging them, then inserts the bodies
+    /// the inserters are behind by. Nothing without a flow.
+    pub fn apply_flow(&mut self) {
+        let Some(mut flow) = self.flow.take() else {
+            return;
+        };
+        if flow.applied_step != Some(self.step) {
+            flow.applied_step = Some(self.step);
+            self.outflow(&mut flow);
+            self.inflow(&mut flow);
+        }
+        self.flow = Some(flow);
+    }
+
+    /// The outflow part of [`World::apply_flow`].
+    fn outflow(&mut self, flow: &mut Flow) {
+        if flow.outflows.is_empty() {
+            return;
+        }
+        let b = &self.bodies;
+        let out: Vec<usize> = (0..b.len())
+            .filter(|&k| {
+                !b.is_prescribed(k)
+                    && flow
+                        .outflows
+                        .iter()
+                        .any(|r| r.contains(b.state[k].pose.position))
+            })
+            .collect();
+        if out.is_empty() {
+            return;
+        }
+        for &k in &out {
+            flow.log.push(Discharge {
+                step: self.step,
+                time: self.time,
+                id: b.id[k],
+                mass: b.mass[k],
+            });
+            flow.discharged += 1;
+            flow.discharged_mass += b.mass[k];
+        }
+        self.remove_bodies(&out);
+    }
+
+    /// The insertion part of [`World::apply_flow`].
+    fn inflow(&mut self, flow: &mut Flow) {
+        let t = self.time;
+        let free = self.bodies.len() - self.bodies.prescribed.len();
+        let mut new: Vec<BodyInit> = Vec::new();
+        for (ins, st) in flow.inserters.iter().zip(flow.state.iter_mut()) {
+            if t < ins.start || t < st.next_try {
+                continue;
+            }
+            let target = match ins.target {
+                Target::Rate { rate, count } => {
+                    let n = ((t - ins.start) * rate).floor() as u64;
+                    count.map_or(n, |c| n.min(c))
+                }
+                Target::Count(c) => c,
+                Target::Keep { keep, count } => {
+                    let now = (free + new.len()) as u64;
+                    let want = st.inserted + keep.saturating_sub(now);
+                    count.map_or(want, |c| want.min(c))
+                }
+            };
+            let mut rng = SplitMix64(st.rng);
+            while st.inserted < target {
+                let c = draw_body(ins, &mut rng);
+                let bound = c.shape.bounding_radius();
+                let placed = (0..ins.attempts)
+                    .map(|_| draw_position(&ins.region, bound, &mut rng))
+                    .find(|&p| self.clear_of_all(p, bound, &new));
+                match placed {
+                    Some(p) => {
+                        new.push(BodyInit {
+                            shape: c.shape,
+                            position: p,
+                            angle: c.angle,
+                            velocity: ins.velocity,
+                            omega: ins.omega,
+                            density: ins.density,
+                            material: ins.material,
+                            prescribed: false,
+                        });
+                        st.inserted += 1;
+                    }
+                    None => {
+                        st.next_try = t + ins.retry;
+                        break;
+                    }
+                }
+            }
+            st.rng = rng.0;
+        }
+        if !new.is_empty() {
+            self.insert_bodies(&new);
+        }
+    }
+
+    /// Whether a bounding circle of radius `bound` about `p` is clear of every body's (those
+    /// of the world and `more`) and of every wall: the bodies' distances by brute force (the
+    /// nearest periodic image in a cell).
+    fn clear_of_all(&self, p: Vec2, bound: f64, more: &[BodyInit]) -> bool {
+        let apart = |x: Vec2, r: f64| {
+            let d = match &self.cell {
+                Some(c) => c.shortest(p - x),
+                None => p - x,
+            };
+            d.norm_squared() > (bound + r) * (bound + r)
+        };
+        let b = &self.bodies;
+        (0..b.len()).all(|k| apart(b.state[k].pose.position, b.bound[k]))
+            && more
+                .iter()
+                .all(|m| apart(m.position, m.shape.bounding_radius()))
+            && self.walls.iter().all(|w| w.signed_distance(p) > bound)
+    }
+
+    /// Adds bodies between steps, each with the next identity ([`World::next_id`]): their
+    /// force is their weight (they touch nothing: the caller has placed them clear of every
+    /// other body), their energy of motion and position is booked as work done on the scene
+    /// (see [`super::flow`]), and the neighbour list is made again (carrying every contact).
+    pub fn insert_bodies(&mut self, inits: &[BodyInit]) {
+        for init in inits {
+            let k = self.bodies.len();
+            self.bodies.push(init, self.next_id);
+            self.next_id += 1;
+            if self.cell.is_some() {
+                self.bodies.image.push([0, 0]);
+            }
+            let b = &mut self.bodies;
+            b.force[k] = self.gravity * b.mass[k];
+            let s = &b.state[k];
+            let kinetic =
+                0.5 * b.mass[k] * s.vel.norm_squared() + 0.5 * b.inertia[k] * s.omega * s.omega;
+            let potential = -b.mass[k] * self.gravity.dot(&s.pose.position);
+            self.energies.kinetic += kinetic;
+            self.energies.potential += potential;
+            self.energies.boundary_work += kinetic + potential;
+        }
+        let (stepper, mut parts) = self.parts();
+        stepper.rebuild_neighbours_with(&mut parts, true);
+    }
+
+    /// Removes the bodies `out` (indices, increasing) between steps: the others keep their
+    /// order, identities and contacts (renumbered), and their forces are gathered again
+    /// without the removed bodies' contacts; the removed bodies' energy of motion and position
+    /// is booked as work the scene did on its boundary (see [`super::flow`]).
+    pub fn remove_bodies(&mut self, out: &[usize]) {
+        let n = self.bodies.len();
+        let mut keep = vec![true; n];
+        for &k in out {
+            keep[k] = false;
+            let b = &self.bodies;
+            let s = &b.state[k];
+            let x = match &self.cell {
+                Some(c) => c.unwrapped(s.pose.position, b.image[k]),
+                None => s.pose.position,
+            };
+            let kinetic =
+                0.5 * b.mass[k] * s.vel.norm_squared() + 0.5 * b.inertia[k] * s.omega * s.omega;
+            let potential = -b.mass[k] * self.gravity.dot(&x);
+            self.energies.kinetic -= kinetic;
+            self.energies.potential -= potential;
+            self.energies.boundary_work -= kinetic + potential;
+        }
+        let mut map = vec![REMOVED; n];
+        let mut next = 0;
+        for k in 0..n {
+            if keep[k] {
+                map[k] = next;
+                next += 1;
+            }
+        }
+        self.bodies.retain(&keep);
+        let cached = !self.contacts.cache.is_empty();
+        let lost = self.contacts.drop_bodies(&map, self.bodies.len(), cached);
+        self.energies.dissipated += lost;
+        let (stepper, mut parts) = self.parts();
+        stepper.regather_forces(&mut parts);
     }
 
     /// Advances the world by one time step (see [`super::step`] for the stages). Never inlined
@@ -406,7 +613,8 @@ impl World {
             + held(&b.state)
             + held(&b.is_circle)
             + held(&b.force)
-            + held(&b.torque);
+            + held(&b.torque)
+            + held(&b.id);
         [
             ("bodies", bodies),
             (

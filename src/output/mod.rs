@@ -3,6 +3,7 @@
 pub mod analysis;
 pub mod cell;
 pub mod contacts;
+pub mod discharge;
 pub mod docs_tables;
 pub mod forces;
 pub mod outline;

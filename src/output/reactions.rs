@@ -35,7 +35,8 @@ impl FrameRows for Reactions {
             );
             let power = -(f.dot(&s.vel) + m * s.omega) + 0.0; // (no `-0`)
             out.line(format_args!(
-                "{step},{t},{k},{},{},{},{},{},{},{}",
+                "{step},{t},{},{},{},{},{},{},{},{}",
+                b.id[k],
                 s.pose.position.x,
                 s.pose.position.y,
                 s.pose.angle(),

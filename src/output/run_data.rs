@@ -153,6 +153,16 @@ impl RunData {
             message: e.to_string(),
         })?;
         let traj_file = dir.join("trajectory.csv");
+        if case.flow.is_some() {
+            return Err(ReadError {
+                file: case_file,
+                message: "the case inserts or removes bodies (`insert`, `outflow`): its frames \
+                          hold different bodies, which these plots and reports do not draw; \
+                          read trajectory.csv by its `body` column (each body's identity) and \
+                          discharge.csv"
+                    .to_string(),
+            });
+        }
         let cell = case.cell.is_some();
         let header = if cell {
             super::trace::TRAJECTORY_HEADER_CELL

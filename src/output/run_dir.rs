@@ -47,6 +47,7 @@ use crate::dynamics::timestep::estimate_critical_dt_of;
 use crate::dynamics::{RestartState, World};
 use crate::output::analysis::AnalysisOutput;
 use crate::output::cell::CellRow;
+use crate::output::discharge::DischargeWriter;
 use crate::output::progress::ProgressLines;
 use crate::output::reactions::Reactions;
 use crate::output::run_data::BodyState;
@@ -101,7 +102,7 @@ pub struct RunOptions {
 
 /// The files a run writes (and `dem2d plot`'s default outputs, drawn from them): what is
 /// removed from a directory before a run replaces an earlier one. The summary comes first.
-pub const OUTPUT_FILES: [&str; 16] = [
+pub const OUTPUT_FILES: [&str; 17] = [
     "summary.json",
     "summary.json.tmp",
     "case.json",
@@ -118,6 +119,7 @@ pub const OUTPUT_FILES: [&str; 16] = [
     "walls.csv",
     "cell.csv",
     "reactions.csv",
+    "discharge.csv",
 ];
 
 /// The result of a run that started (its directory was prepared and its first summary written).
@@ -440,6 +442,7 @@ struct Writers {
     walls: Option<Frames<Walls>>,
     cells: Option<Frames<CellRow>>,
     reactions: Option<Frames<Reactions>>,
+    discharge: Option<DischargeWriter>,
     sampler: CriticalStepSampler,
     analysis: Option<AnalysisOutput>,
     vtk: Option<VtkWriter>,
@@ -534,7 +537,7 @@ impl RunDir {
         let state = value
             .as_ref()
             .ok()
-            .map(|v| StateWriter::new(dir, v, case.duration, &case.bodies));
+            .map(|v| StateWriter::new(dir, v, case.duration));
         let every = case.output_every;
         let cell = world.cell.is_some();
         let writers = Frames::create(dir, every, Trajectory { cell }).and_then(|traj| {
@@ -550,6 +553,10 @@ impl RunDir {
             let reactions = match world.bodies.prescribed.is_empty() {
                 true => None,
                 false => Some(Frames::create(dir, every, Reactions)?),
+            };
+            let discharge = match world.flow.as_ref().is_some_and(|f| !f.outflows.is_empty()) {
+                true => Some(DischargeWriter::create(dir, every)?),
+                false => None,
             };
             let vtk = match opts.vtk_every {
                 Some(n) => Some(VtkWriter::create(dir, world, n)?),
@@ -573,6 +580,7 @@ impl RunDir {
                 walls,
                 cells,
                 reactions,
+                discharge,
                 sampler: CriticalStepSampler { every },
                 analysis,
                 vtk,
@@ -627,6 +635,9 @@ impl RunDir {
             sim = sim.observe(c);
         }
         if let Some(x) = w.reactions.as_mut() {
+            sim = sim.observe(x);
+        }
+        if let Some(x) = w.discharge.as_mut() {
             sim = sim.observe(x);
         }
         sim = sim.observe(&mut w.sampler);

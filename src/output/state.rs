@@ -20,9 +20,9 @@ use super::trace::WriteError;
 use crate::contact_law::History;
 use crate::dynamics::restart::{RestartState, state_name};
 use crate::dynamics::{BodyInit, World};
-use crate::geometry::Vec2;
+use crate::geometry::{Shape, Vec2};
 use crate::run::{End, Observer, ObserverError, RunError, RunProgress, StepInfo};
-use serde_json::Value;
+use serde_json::{Value, json};
 use std::fmt::Write as _;
 use std::io;
 use std::path::{Path, PathBuf};
@@ -64,8 +64,14 @@ fn compact(v: &Value) -> String {
 
 /// The text of a state file: `case` the run's case as read (its JSON), `duration` the run's
 /// duration (the case's, or the one the command line gave), `state` the world's state, `run`
-/// the run's progress, `bodies` the case's bodies (for which of them are circles: a circle's
-/// frame is written), `status` how the run ended.
+/// the run's progress, `bodies` the world's bodies as they are (for which of them are circles:
+/// a circle's frame is written; and the fields of a body inserted during the run), `status`
+/// how the run ended.
+///
+/// Each body is listed with the fields the case gave it, found by its identity
+/// ([`crate::dynamics::Bodies::id`]: the case's `bodies[id]`, or where a state file's `ids`
+/// put it); a body inserted during the run ([`crate::dynamics::flow`]) with its shape, its
+/// material's name and its density (unless its material gives it).
 pub fn state_text(
     case: &Value,
     duration: f64,
@@ -101,10 +107,30 @@ pub fn state_text(
     }
     // The bodies: the case's, at their current pose and velocity.
     out.push_str("  \"bodies\": [\n");
-    let empty = Value::Object(Default::default());
     let listed = case.get("bodies").and_then(Value::as_array);
+    // Where each identity is listed in the case (a state file's `ids`; else its index).
+    let listed_ids: Option<Vec<u64>> = case
+        .get("state")
+        .and_then(|s| s.get("ids"))
+        .and_then(Value::as_array)
+        .map(|a| a.iter().filter_map(Value::as_u64).collect());
+    let place: std::collections::HashMap<u64, usize> = match &listed_ids {
+        Some(ids) => ids.iter().enumerate().map(|(k, &id)| (id, k)).collect(),
+        None => (0..listed.map_or(0, Vec::len))
+            .map(|k| (k as u64, k))
+            .collect(),
+    };
     for (k, b) in state.bodies.iter().enumerate() {
-        let given = listed.and_then(|l| l.get(k)).unwrap_or(&empty);
+        let id = state.ids.get(k).copied().unwrap_or(k as u64);
+        let given = match place
+            .get(&id)
+            .and_then(|&at| listed.and_then(|l| l.get(at)))
+        {
+            Some(v) => v.clone(),
+            None => bodies
+                .get(k)
+                .map_or(Value::Null, |b| inserted_body(case, b)),
+        };
         let mut line = String::from("{");
         if let Some(shape) = given.get("shape") {
             let _ = write!(line, "\"shape\": {}, ", compact(shape));
@@ -135,16 +161,48 @@ pub fn state_text(
     }
     out.push_str("  ],\n");
     out.push_str("  \"state\": {\n");
-    write_state_block(&mut out, state, run, bodies, status);
+    let circles: Vec<bool> = bodies.iter().map(|b| b.shape.is_circle()).collect();
+    write_state_block(&mut out, state, run, &circles, status);
     out.push_str("  }\n}\n");
     out
+}
+
+/// The fields of a body inserted during the run: its shape, its material (by name: material
+/// k is the case's k-th in `materials`, as the reader numbers them) and its density unless its
+/// material gives one.
+fn inserted_body(case: &Value, b: &BodyInit) -> Value {
+    let shape = match b.shape {
+        Shape::Circle { r } => json!({"type": "circle", "r": r}),
+        Shape::Ellipse { a, b } => json!({"type": "ellipse", "a": a, "b": b}),
+        Shape::Rectangle { w, h } => json!({"type": "rectangle", "w": w, "h": h}),
+        // (Inserters make none of these.)
+        Shape::Polygon(_) | Shape::Clump(_) => Value::Null,
+    };
+    let mut fields = serde_json::Map::new();
+    fields.insert("shape".into(), shape);
+    let material = match b.material {
+        0 => None,
+        m => case
+            .get("materials")
+            .and_then(Value::as_object)
+            .and_then(|o| o.iter().nth(m as usize - 1)),
+    };
+    if let Some((name, given)) = material {
+        fields.insert("material".into(), Value::from(name.as_str()));
+        if given.get("density").is_none() {
+            fields.insert("density".into(), json!(b.density));
+        }
+    } else {
+        fields.insert("density".into(), json!(b.density));
+    }
+    Value::Object(fields)
 }
 
 fn write_state_block(
     out: &mut String,
     s: &RestartState,
     run: Option<&RunProgress>,
-    bodies: &[BodyInit],
+    circles: &[bool],
     status: &str,
 ) {
     let _ = writeln!(out, "    \"status\": {},", compact(&Value::from(status)));
@@ -191,6 +249,38 @@ fn write_state_block(
             num(c.stiffness_yy)
         );
     }
+    if s.flow.is_some() || s.ids.iter().enumerate().any(|(k, &id)| id != k as u64) {
+        let ids: Vec<String> = s.ids.iter().map(u64::to_string).collect();
+        let _ = writeln!(out, "    \"next_id\": {},", s.next_id);
+        let _ = writeln!(out, "    \"ids\": [{}],", ids.join(", "));
+    }
+    if let Some(f) = &s.flow {
+        let inserters: Vec<String> = f
+            .inserters
+            .iter()
+            .map(|i| {
+                let next = if i.next_try.is_finite() {
+                    format!(", \"next_try\": {}", num(i.next_try))
+                } else {
+                    String::new()
+                };
+                format!(
+                    "{{\"rng\": \"{:#x}\", \"inserted\": {}{next}}}",
+                    i.rng, i.inserted
+                )
+            })
+            .collect();
+        let applied = f
+            .applied_step
+            .map_or(String::new(), |s| format!("\"applied_step\": {s}, "));
+        let _ = writeln!(
+            out,
+            "    \"flow\": {{{applied}\"discharged\": {}, \"discharged_mass\": {}, \"inserters\": [{}]}},",
+            f.discharged,
+            num(f.discharged_mass),
+            inserters.join(", ")
+        );
+    }
     out.push_str("    \"walls\": [");
     for (k, w) in s.walls.iter().enumerate() {
         let l = &w.load;
@@ -230,7 +320,7 @@ fn write_state_block(
             vec2(b.force),
             num(b.torque)
         );
-        if bodies.get(k).is_some_and(|i| i.shape.is_circle()) {
+        if circles.get(k) == Some(&true) {
             let _ = write!(out, ", \"frame\": [{}, {}]", num(b.frame.0), num(b.frame.1));
         }
         if s.cell.is_some() {
@@ -349,7 +439,6 @@ pub fn write_state(
     case: &Value,
     duration: f64,
     world: &World,
-    bodies: &[BodyInit],
     run: &RunProgress,
     status: &str,
 ) -> io::Result<()> {
@@ -358,10 +447,27 @@ pub fn write_state(
         duration,
         &world.restart_state(),
         Some(run),
-        bodies,
+        &current_bodies(world),
         status,
     );
     super::write_atomically(dir, "state.json", &text)
+}
+
+/// The world's bodies as they are now (shape, material, density: what a state file lists).
+pub fn current_bodies(world: &World) -> Vec<BodyInit> {
+    let b = &world.bodies;
+    (0..b.len())
+        .map(|k| BodyInit {
+            shape: b.shape[k],
+            position: b.state[k].pose.position,
+            angle: b.state[k].pose.angle(),
+            velocity: b.state[k].vel,
+            omega: b.state[k].omega,
+            density: b.density[k],
+            material: b.material[k],
+            prescribed: b.is_prescribed(k),
+        })
+        .collect()
 }
 
 /// The writer of a run's `state.json` (an observer): when the run ends, however it ends but by a
@@ -371,17 +477,15 @@ pub struct StateWriter {
     dir: PathBuf,
     case: Value,
     duration: f64,
-    bodies: Vec<BodyInit>,
 }
 
 impl StateWriter {
-    /// Into `dir`, for the run of `case` (its JSON) of `duration` with the case's `bodies`.
-    pub fn new(dir: &Path, case: &Value, duration: f64, bodies: &[BodyInit]) -> Self {
+    /// Into `dir`, for the run of `case` (its JSON) of `duration`.
+    pub fn new(dir: &Path, case: &Value, duration: f64) -> Self {
         StateWriter {
             dir: dir.to_path_buf(),
             case: case.clone(),
             duration,
-            bodies: bodies.to_vec(),
         }
     }
 
@@ -397,7 +501,6 @@ impl StateWriter {
             &self.case,
             self.duration,
             world,
-            &self.bodies,
             run,
             status.as_str(),
         )

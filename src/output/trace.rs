@@ -220,7 +220,7 @@ impl FrameRows for Trajectory {
                 "{},{},{},{},{},{},{},{},{}{}",
                 step,
                 t,
-                k,
+                b.id[k],
                 p.position.x,
                 p.position.y,
                 p.angle(),

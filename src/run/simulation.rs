@@ -193,6 +193,8 @@ impl<'a> Simulation<'a> {
         {
             self.progress.quiescence_streak = 0;
         }
+        // Insertion and outflow at the start (at most once a step: see `dynamics::flow`).
+        self.world.apply_flow();
         let plan = Plan { first, last };
         let started = self
             .observers
@@ -248,6 +250,10 @@ impl<'a> Simulation<'a> {
                 Ok(r) => r,
                 Err(b) => return Err(RunError::Blowup(BlowupReport::within_step(&b, world))),
             };
+            // Bodies in and out between steps (a world without a flow: nothing).
+            if world.flow.is_some() {
+                world.apply_flow();
+            }
             let s = world.step;
             progress.contact_sum += report.contacts as u64;
             if progress.first_contact_step.is_none() && report.contacts > 0 {

@@ -32,7 +32,7 @@ use crate::contact_law::{Check, ContactSpec, Keys, NormalForce, ParamError};
 use crate::dynamics::boundary::{BoundaryKind, Program, Stage, StageMotion};
 use crate::dynamics::cell::{Cell, PRESSURE_RELAXATION, Periodic, Pressure};
 use crate::dynamics::neighbour_list::SKIN_FRACTION;
-use crate::dynamics::{BodyInit, Boundary, Materials, Motion, Servo, Span};
+use crate::dynamics::{BodyInit, Boundary, Flow, Materials, Motion, Servo, Span};
 use crate::geometry::Vec2;
 use serde_json::{Map, Value};
 
@@ -67,6 +67,8 @@ pub struct Case {
     /// The periodic cell the scene repeats in (`"cell": {"size": [L_x, L_y], "periodic": "x" |
     /// "xy", "shear_rate": γ̇, "pressure": P, "pressure_gain": α}`; see `dynamics::cell`).
     pub cell: Option<Cell>,
+    /// Insertion and outflow regions (`insert`, `outflow`; see [`crate::dynamics::flow`]).
+    pub flow: Option<Flow>,
     /// Cundall's local non-viscous damping coefficient α (`"damping": {"local": α}`, in [0, 1);
     /// 0, the default: off; see `dynamics::local_damping`).
     pub local_damping: f64,
@@ -224,8 +226,11 @@ impl Case {
         let items = list.as_array().ok_or_else(|| {
             FieldError::new("bodies", format!("must be an array, got {}", type_of(list)))
         })?;
-        if items.is_empty() {
-            return Err(FieldError::new("bodies", "must list at least one body"));
+        if items.is_empty() && !o.has("insert") {
+            return Err(FieldError::new(
+                "bodies",
+                "must list at least one body (or the case must `insert` some)",
+            ));
         }
         let mut bodies = Vec::with_capacity(items.len());
         for (k, item) in items.iter().enumerate() {
@@ -259,6 +264,8 @@ impl Case {
             None => None,
             Some(v) => Some(parse_cell(v, &walls, &bodies, gravity)?),
         };
+        let (insert, outflow) = (o.get("insert"), o.get("outflow"));
+        let flow = super::flow::parse_flow(insert, outflow, &named, &bodies)?;
         let local_damping = match o.get("damping") {
             None => 0.0,
             Some(v) => parse_damping(v)?,
@@ -266,12 +273,21 @@ impl Case {
         // A state file's block (read by `scene::state`, which continues the run from it).
         let _ = o.get("state");
         o.finish()?;
+        // The inserters' bodies are checked as the case's are (sizes, materials, ranges).
+        let templates = flow
+            .as_ref()
+            .map(super::flow::templates)
+            .unwrap_or_default();
+        let checked: Vec<BodyInit> = bodies.iter().chain(&templates).copied().collect();
         check_steps(duration, dt)?;
-        let mut placed: Vec<Placed> = bodies
+        let mut placed: Vec<Placed> = checked
             .iter()
             .enumerate()
             .map(|(k, b)| Placed::Body {
-                path: index("bodies", k),
+                path: match k.checked_sub(bodies.len()) {
+                    None => index("bodies", k),
+                    Some(i) => join(&index("insert", i), "size"),
+                },
                 shape: &b.shape,
                 position: b.position,
             })
@@ -304,9 +320,9 @@ impl Case {
         }
         check_extent(&placed)?;
         check_walls(&walls, &bodies)?;
-        let meets = meeting(&bodies, &walls);
+        let meets = meeting(&checked, &walls);
         check_mixing(&named, (&contact, &contact_map), &meets)?;
-        check_contact_ranges(&contact, &named, &meets, &walls, &bodies, gravity)?;
+        check_contact_ranges(&contact, &named, &meets, &walls, &checked, gravity)?;
         Ok(Case {
             name,
             description,
@@ -324,6 +340,7 @@ impl Case {
             walls,
             bodies,
             cell,
+            flow,
             local_damping,
         })
     }
@@ -355,6 +372,7 @@ impl Case {
             walls,
             bodies,
             cell: None,
+            flow: None,
             local_damping: 0.0,
         }
     }
@@ -374,7 +392,10 @@ impl Case {
             None => world,
         };
         world.local_damping = self.local_damping;
-        world
+        match &self.flow {
+            Some(flow) => world.with_flow(flow.clone(), None),
+            None => world,
+        }
     }
 
     /// How many bodies lie outside the case's periodic cell (they are brought into it when the
@@ -397,7 +418,10 @@ impl Case {
     ) -> Result<crate::dynamics::World, crate::dynamics::RestartError> {
         let mut world = crate::dynamics::World::resume(self.scene(), state)?;
         world.local_damping = self.local_damping;
-        Ok(world)
+        Ok(match &self.flow {
+            Some(flow) => world.with_flow(flow.clone(), state.flow.as_ref()),
+            None => world,
+        })
     }
 
     /// What the case's world is made of.

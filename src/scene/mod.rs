@@ -4,6 +4,7 @@
 pub mod body;
 pub mod case;
 pub mod fields;
+pub mod flow;
 pub mod generate;
 pub mod materials;
 pub mod ranges;

@@ -16,6 +16,7 @@ use crate::dynamics::World;
 use crate::dynamics::account::{Diagnostics, Energies};
 use crate::dynamics::boundary::WallLoad;
 use crate::dynamics::contacts::{ContactData, Slot};
+use crate::dynamics::flow::{FlowRestart, InserterState};
 use crate::dynamics::partner::{MAX_INDEX, Partner};
 use crate::dynamics::restart::{
     BodyRestart, ProgramRestart, RestartState, SlotRestart, WallRestart, state_from_name,
@@ -601,7 +602,30 @@ pub fn parse_state(
         l.finish()?;
         Ok((builds, wall_built_at, built_at))
     })?;
+    let n = bodies.len();
+    let ids = o
+        .opt_with("ids", |v, p| {
+            array(v, p)?
+                .iter()
+                .enumerate()
+                .map(|(k, x)| whole(x, &index(p, k)))
+                .collect::<Result<Vec<_>, _>>()
+        })?
+        .unwrap_or_else(|| (0..n as u64).collect());
+    let next_id = o.opt_with("next_id", whole)?.unwrap_or(n as u64);
+    let flow = o.opt_with("flow", |v, p| parse_flow(v, p, case))?;
     o.finish()?;
+    if case.flow.is_some() != flow.is_some() {
+        return Err(FieldError::new(
+            "state.flow",
+            if flow.is_some() {
+                "the state has a flow, but the case has no `insert` or `outflow`"
+            } else {
+                "is missing: the case has `insert` or `outflow`, and a continued run needs where \
+                 they stood"
+            },
+        ));
+    }
     let state = RestartState {
         step,
         time,
@@ -615,8 +639,63 @@ pub fn parse_state(
         diagnostics,
         last_increments,
         cell,
+        ids,
+        next_id,
+        flow,
     };
     Ok((state, run))
+}
+
+/// A state's `flow` block: where each inserter of the case stands (its generator, count and
+/// next try), the step of the last application and the bodies removed so far.
+fn parse_flow(v: &Value, path: &str, case: &Case) -> Result<FlowRestart, FieldError> {
+    let mut o = Obj::new(v, path)?;
+    let inserters = o.req_with("inserters", |v, p| {
+        array(v, p)?
+            .iter()
+            .enumerate()
+            .map(|(k, x)| {
+                let at = index(p, k);
+                let mut i = Obj::new(x, &at)?;
+                let rng = i.req_with("rng", |v, p| {
+                    v.as_str()
+                        .and_then(|t| t.strip_prefix("0x"))
+                        .and_then(|t| u64::from_str_radix(t, 16).ok())
+                        .ok_or_else(|| {
+                            FieldError::new(p, "must be a generator state such as \"0x1f\"")
+                        })
+                })?;
+                let inserted = i.req_with("inserted", whole)?;
+                let next_try = i.opt_with("next_try", float)?.unwrap_or(f64::NEG_INFINITY);
+                i.finish()?;
+                Ok(InserterState {
+                    rng,
+                    inserted,
+                    next_try,
+                })
+            })
+            .collect::<Result<Vec<_>, FieldError>>()
+    })?;
+    let want = case.flow.as_ref().map_or(0, |f| f.inserters.len());
+    if inserters.len() != want {
+        return Err(FieldError::new(
+            join(path, "inserters"),
+            format!(
+                "has {} entries, but the case has {want} inserters",
+                inserters.len()
+            ),
+        ));
+    }
+    let applied_step = o.opt_with("applied_step", whole)?;
+    let discharged = o.req_with("discharged", whole)?;
+    let discharged_mass = o.req_with("discharged_mass", float)?;
+    o.finish()?;
+    Ok(FlowRestart {
+        inserters,
+        applied_step,
+        discharged,
+        discharged_mass,
+    })
 }
 
 fn parse_contact(v: &Value, path: &str) -> Result<SlotRestart, FieldError> {

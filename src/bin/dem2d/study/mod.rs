@@ -11,6 +11,7 @@ pub mod repose;
 pub mod representation;
 pub mod rolling_fig3;
 pub mod shear;
+pub mod silo;
 
 use dem2d::output::docs_tables::Mode;
 use std::path::Path;
@@ -44,6 +45,10 @@ pub enum Study {
     /// by FIRE, 10 (`--packings`) packings per aspect ratio (1–3): φ_J and Z_J against the
     /// published values; writes figures/jamming.svg and figures/jamming.md.
     Jamming,
+    /// Discharge of a flat-bottomed 2D silo (600 grains kept, outlet D): W(D) for disks against
+    /// Beverloo's law (C, k fitted), ellipses α = 2 and 3, clogging probability of small
+    /// outlets; writes figures/silo.svg and figures/silo.md.
+    Silo,
     /// Steady simple shear at imposed pressure in a Lees–Edwards cell: μ(I), φ(I) and the
     /// ellipses' orientation of 256 (`--grains`) frictional grains (μ = 0.4), α in 1–3
     /// (`--aspects`), I in 0.01–0.3 (`--inertial`); writes figures/shear.svg and .md.
@@ -62,6 +67,7 @@ impl Study {
             Study::Packing => "packing",
             Study::Representation => "representation",
             Study::Jamming => "jamming",
+            Study::Silo => "silo",
             Study::Shear => "shear",
         }
     }
@@ -169,6 +175,7 @@ pub fn run(study: Study, options: &Options, docs: Option<Mode>) -> Result<(), cr
             options.aspects.as_deref().unwrap_or(&shear::ASPECTS),
             options.inertial.as_deref().unwrap_or(&shear::INERTIAL),
         ),
+        Study::Silo => silo::run(),
     }
     // A run that blows up ends the study with its report.
     .map_err(|e| crate::Failure::failed(format!("dem2d study: {e}")))?;

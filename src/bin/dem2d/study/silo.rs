@@ -1,0 +1,469 @@
+//! Discharge of a flat-bottomed 2D silo through an outlet of width D: the rate W(D) of disks
+//! against Beverloo's law, of ellipses (α = 2, 3), and the probability that a small outlet
+//! clogs.
+//!
+//! `dem2d study silo` prints the tables, writes `figures/silo.svg` and `figures/silo.md`.
+//! The silo: side walls (half-planes) [`WIDTH`] cm apart; a flat floor at y = 0 of two segment
+//! walls from the side walls to the outlet's edges at x = ±D/2 (their ends are points: the
+//! outlet's edges are sharp); below it an outflow region (y < −2 cm) that removes
+//! the grains, and an insertion region at the top that keeps [`N`] grains in the silo (each
+//! discharged grain is replaced: the usual trick for a steady flow). The grains: equal-area
+//! radius uniform in [0.45, 0.55] cm (mean diameter d = 1 cm; the spread keeps disks from
+//! crystallising), disks or ellipses of aspect ratio α with `a = r√α, b = r/√α`, density 2.5,
+//! linear law on the overlap area with k_n/ρg = 2000 cm, restitution 0.5, friction 0.5 (walls
+//! and floor alike), Δt = 1e-4 s. They are poured at t = 0 into the silo (the first inserter
+//! places [`FILL`] at once in the box, the second tops up to [`N`] from above), flow from the start, and the rate is the
+//! mass discharged between [`T0`] and [`T1`] divided by the interval.
+//!
+//! Beverloo's law in 2D, `W = C ρ_b √g (D − k d)^{3/2}`, with ρ_b = ρ φ the bulk density (φ the
+//! packing fraction in the column, measured): fitted by least squares on `W^{2/3}` against D
+//! (a line: slope `(C ρ_b √g)^{2/3}`, root `k d`) over the disks' outlets D/d ≥ 3.
+//! For elongated grains Pongó et al. (PRE 103, 062905, 2021) find `W ∝ exp(κ D)` below
+//! D/d ≈ 3 rather than a power law: the ellipses' rates are fitted both ways (Beverloo over the
+//! outlets that flowed, the exponential through the three smallest of them).
+//!
+//! Clogging: for small outlets, [`TRIALS`] runs with different seeds (different fillings); a
+//! run clogs when no grain leaves for [`CLOG_WAIT`] s once the grains are down ([`SETTLED`])
+//! (an arch spans the outlet; without vibration it never breaks). The probability that the outlet clogs within
+//! [`T_CLOG`] s of the start is the fraction of runs that did.
+
+use dem2d::analysis::{self, Frame, Window};
+use dem2d::dynamics::World;
+use dem2d::output::plot::{self, LinePanel, Series};
+use dem2d::run::{RunError, Simulation, Stop};
+use dem2d::scene::Case;
+use rayon::prelude::*;
+use std::fmt::Write as _;
+use std::time::Instant;
+
+/// Grains kept in the silo.
+pub const N: usize = 600;
+/// Grains placed at t = 0 in the lower 50 cm (the rest come from the top; the region holds all
+/// of them placed at random, so that none is left to come later on top of the N kept).
+pub const FILL: usize = 250;
+/// Silo width (cm; 30 d).
+pub const WIDTH: f64 = 30.0;
+/// The rate is measured over [T0, T1] (s).
+pub const T0: f64 = 0.8;
+pub const T1: f64 = 2.0;
+/// Clogging trials per outlet, their duration (s) and the wait without discharge that counts
+/// as a clog (s).
+pub const TRIALS: u64 = 6;
+pub const T_CLOG: f64 = 2.0;
+pub const CLOG_WAIT: f64 = 0.25;
+/// By this time (s) the poured grains have reached the floor (a fall of 50 cm takes 0.32 s).
+pub const SETTLED: f64 = 0.5;
+const DENSITY: f64 = 2.5;
+const DT: f64 = 1e-4;
+const G: f64 = 981.0;
+
+/// The case of a silo of outlet `d_out` (cm) with grains of aspect `alpha`, filled with seed
+/// `seed`, run for `duration` s.
+pub fn case_text(d_out: f64, alpha: f64, seed: u64, duration: f64) -> String {
+    let half = 0.5 * WIDTH;
+    let shape = if alpha == 1.0 {
+        "\"shape\": \"circle\"".to_string()
+    } else {
+        format!("\"shape\": \"ellipse\", \"aspect\": {alpha}")
+    };
+    format!(
+        r#"{{ "version": 1, "name": "silo_D{d_out}_a{alpha}_s{seed}", "units": "cm",
+  "description": "dem2d study silo: a flat-bottomed silo {WIDTH} cm wide (a floor of two segments), outlet {d_out} cm",
+  "gravity": [0, -{G}], "dt": {DT}, "duration": {duration}, "output_every": 1000,
+  "contact": {{ "model": "linear", "kn_over_rho_g": 2000, "restitution": 0.5, "friction": 0.5 }},
+  "walls": [ {{ "point": [-{half}, 0], "normal": [1, 0] }}, {{ "point": [{half}, 0], "normal": [-1, 0] }},
+             {{ "segment": [[-{half}, 0], [-{e}, 0]] }}, {{ "segment": [[{e}, 0], [{half}, 0]] }} ],
+  "bodies": [],
+  "insert": [ {{ "region": [-{half}, {half}, 2, 50], "count": {FILL}, {shape}, "size": {{"uniform": [0.45, 0.55]}},
+                "density": {DENSITY}, "seed": {seed} }},
+              {{ "region": [-{half}, {half}, 22, 40], "keep": {N}, {shape}, "size": {{"uniform": [0.45, 0.55]}},
+                "density": {DENSITY}, "velocity": [0, -100], "retry": 0.002, "seed": {} }} ],
+  "outflow": [ {{ "region": [-{half}, {half}, -200, -2] }} ] }}
+"#,
+        seed + 1000,
+        e = 0.5 * d_out
+    )
+}
+
+/// One discharge run.
+#[derive(Clone, Debug)]
+pub struct Discharge {
+    pub d_out: f64,
+    pub alpha: f64,
+    /// Mass rate over [T0, T1] (g/s per cm of thickness), and grains per second.
+    pub rate: f64,
+    pub grains_per_s: f64,
+    /// Packing fraction in the column (a window 10 cm wide, 4–12 cm above the floor) at T1.
+    pub phi: f64,
+    /// It paused (no discharge for CLOG_WAIT s after SETTLED: an arch) before T1.
+    pub clogged: bool,
+    /// Grains above the floor at T1 (the inserter keeps N in the scene: fewer in the silo
+    /// means the top-up lags the discharge).
+    pub in_silo: usize,
+    pub wall_seconds: f64,
+}
+
+impl Discharge {
+    /// A steady flow: no pause, and the silo held at least 90 % of its grains.
+    pub fn steady(&self) -> bool {
+        !self.clogged && self.in_silo * 10 >= N * 9
+    }
+}
+
+fn world(d_out: f64, alpha: f64, seed: u64, duration: f64) -> World {
+    Case::from_json(&case_text(d_out, alpha, seed, duration))
+        .expect("a valid silo case")
+        .build_world()
+}
+
+/// A silo run: its discharges (time, mass), whether it clogged, and the world as it ended.
+type Drained = (Vec<(f64, f64)>, bool, World);
+
+/// Runs the silo until `until` s, or until it clogs when `stop_at_clog`.
+fn run_silo(mut w: World, until: f64, stop_at_clog: bool) -> Result<Drained, RunError> {
+    let mut out = Vec::new();
+    let mut last_flow: Option<f64> = None;
+    let mut clogged = false;
+    let stop = Simulation::new(&mut w)
+        .until_time(until)
+        .run_until(|w, _| {
+            let log = w.flow.as_mut().expect("a flow").take_log();
+            for d in &log {
+                out.push((d.time, d.mass));
+            }
+            if !log.is_empty() {
+                last_flow = Some(w.time);
+            }
+            // Nothing for CLOG_WAIT once the grains are down (by SETTLED; or since the last
+            // grain left): an arch holds.
+            let since = last_flow.unwrap_or(SETTLED);
+            if w.time > SETTLED && w.time - since > CLOG_WAIT {
+                clogged = true;
+            }
+            stop_at_clog && clogged
+        })?;
+    debug_assert!(matches!(stop, Stop::Completed | Stop::Asked));
+    Ok((out, clogged, w))
+}
+
+/// The packing fraction in the column: a window 10 cm wide, 4 to 12 cm above the floor.
+fn column_phi(w: &mut World) -> f64 {
+    w.refresh_contact_extras();
+    let frame = Frame::from_world(w);
+    let m = analysis::measure(
+        &frame,
+        Some(Window {
+            x0: -5.0,
+            x1: 5.0,
+            y0: 4.0,
+            y1: 12.0,
+        }),
+    );
+    m.packing_fraction
+}
+
+/// The discharge rate of one outlet.
+pub fn discharge(d_out: f64, alpha: f64) -> Result<Discharge, RunError> {
+    let start = Instant::now();
+    let (log, clogged, mut w) = run_silo(world(d_out, alpha, 1, T1), T1, false)?;
+    let mass: f64 = log
+        .iter()
+        .filter(|(t, _)| *t > T0 && *t <= T1)
+        .map(|(_, m)| m)
+        .sum();
+    let count = log.iter().filter(|(t, _)| *t > T0 && *t <= T1).count();
+    let phi = column_phi(&mut w);
+    let in_silo = (0..w.bodies.len())
+        .filter(|&k| w.bodies.state[k].pose.position.y > 0.0)
+        .count();
+    Ok(Discharge {
+        d_out,
+        alpha,
+        rate: mass / (T1 - T0) + 0.0,
+        grains_per_s: count as f64 / (T1 - T0),
+        phi,
+        clogged,
+        in_silo,
+        wall_seconds: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// Whether a silo of outlet `d_out` filled with `seed` clogs within T_CLOG, and the grains
+/// discharged before.
+pub fn clogs(d_out: f64, alpha: f64, seed: u64) -> Result<(bool, usize), RunError> {
+    let (log, clogged, _) = run_silo(world(d_out, alpha, seed, T_CLOG), T_CLOG, true)?;
+    Ok((clogged, log.len()))
+}
+
+/// Least squares line `y = a + b x`: (a, b).
+fn line_fit(points: &[(f64, f64)]) -> (f64, f64) {
+    let n = points.len() as f64;
+    let (sx, sy) = points
+        .iter()
+        .fold((0.0, 0.0), |(a, b), &(x, y)| (a + x, b + y));
+    let (mx, my) = (sx / n, sy / n);
+    let (sxx, sxy) = points.iter().fold((0.0, 0.0), |(a, b), &(x, y)| {
+        (a + (x - mx) * (x - mx), b + (x - mx) * (y - my))
+    });
+    let b = sxy / sxx;
+    (my - b * mx, b)
+}
+
+/// Beverloo's `C` and `k` (D and d in cm, d = 1) from rates `(D, W)` with bulk density `rho_b`:
+/// `W^{2/3} = (C ρ_b √g)^{2/3} (D − k d)`.
+pub fn beverloo_fit(points: &[(f64, f64)], rho_b: f64) -> (f64, f64) {
+    let p: Vec<(f64, f64)> = points
+        .iter()
+        .map(|&(d, w)| (d, w.powf(2.0 / 3.0)))
+        .collect();
+    let (a, b) = line_fit(&p);
+    let k = -a / b;
+    let c = b.powf(1.5) / (rho_b * G.sqrt());
+    (c, k)
+}
+
+/// Runs the study on `threads` worker threads (its runs in parallel).
+pub fn run() -> Result<String, RunError> {
+    let start = Instant::now();
+    let disk_outlets = [3.0, 4.0, 5.0, 6.0, 8.0, 10.0];
+    let ellipse_outlets = [4.0, 5.0, 6.0, 8.0, 10.0];
+    let clog_outlets = [2.5, 3.0, 3.5, 4.0, 4.5];
+    let mut jobs: Vec<(f64, f64)> = disk_outlets.iter().map(|&d| (d, 1.0)).collect();
+    for alpha in [2.0, 3.0] {
+        jobs.extend(ellipse_outlets.iter().map(|&d| (d, alpha)));
+    }
+    let rates: Vec<Discharge> = jobs
+        .par_iter()
+        .map(|&(d, a)| {
+            let r = discharge(d, a);
+            if let Ok(r) = &r {
+                eprintln!(
+                    "α = {a}, D = {d}: W = {:.1} g/s ({:.1} grains/s), φ = {:.3}, {} in the silo{}, {:.0} s",
+                    r.rate,
+                    r.grains_per_s,
+                    r.phi,
+                    r.in_silo,
+                    if r.clogged { ", clogged" } else { "" },
+                    r.wall_seconds
+                );
+            }
+            r
+        })
+        .collect::<Result<_, _>>()?;
+    let clog_jobs: Vec<(f64, u64)> = clog_outlets
+        .iter()
+        .flat_map(|&d| (0..TRIALS).map(move |s| (d, 100 + s)))
+        .collect();
+    let trials: Vec<(f64, bool, usize)> = clog_jobs
+        .par_iter()
+        .map(|&(d, seed)| clogs(d, 1.0, seed).map(|(c, n)| (d, c, n)))
+        .collect::<Result<_, _>>()?;
+    let wall = start.elapsed().as_secs_f64();
+
+    // Beverloo on the disks.
+    let disks: Vec<&Discharge> = rates.iter().filter(|r| r.alpha == 1.0).collect();
+    let steady: Vec<&&Discharge> = disks.iter().filter(|r| r.steady()).collect();
+    let phi = steady.iter().map(|r| r.phi).sum::<f64>() / steady.len() as f64;
+    let rho_b = DENSITY * phi;
+    let points: Vec<(f64, f64)> = steady.iter().map(|r| (r.d_out, r.rate)).collect();
+    let (c, k) = beverloo_fit(&points, rho_b);
+    // Ellipses: Beverloo over D ≥ 4 d, exp(κ D) over D ≤ 3 d.
+    let mut ellipse_fits = Vec::new();
+    for alpha in [2.0, 3.0] {
+        let of: Vec<&Discharge> = rates
+            .iter()
+            .filter(|r| r.alpha == alpha && r.steady())
+            .collect();
+        let big: Vec<(f64, f64)> = of
+            .iter()
+            .filter(|r| r.d_out >= 4.0)
+            .map(|r| (r.d_out, r.rate))
+            .collect();
+        let phi_a = of.iter().map(|r| r.phi).sum::<f64>() / of.len().max(1) as f64;
+        let (ca, ka) = beverloo_fit(&big, DENSITY * phi_a);
+        // The exponential over the smallest outlets that flowed (the three smallest).
+        let small: Vec<(f64, f64)> = of.iter().take(3).map(|r| (r.d_out, r.rate.ln())).collect();
+        let kappa = if small.len() >= 2 {
+            line_fit(&small).1
+        } else {
+            f64::NAN
+        };
+        ellipse_fits.push((alpha, phi_a, ca, ka, kappa));
+    }
+
+    let mut md = String::from(
+        "| grains | D/d | W (g/s) | grains/s | φ column | in the silo at the end | Beverloo fit (g/s) | steady |\n|---|---:|---:|---:|---:|---:|---:|---|\n",
+    );
+    let bev = |c: f64, k: f64, rho: f64, d: f64| c * rho * G.sqrt() * (d - k).max(0.0).powf(1.5);
+    for r in &rates {
+        let (cc, kk, rho) = if r.alpha == 1.0 {
+            (c, k, rho_b)
+        } else {
+            let f = ellipse_fits
+                .iter()
+                .find(|f| f.0 == r.alpha)
+                .expect("fitted");
+            (f.2, f.3, DENSITY * f.1)
+        };
+        writeln!(
+            md,
+            "| {} | {} | {:.1} | {:.1} | {:.3} | {} | {:.1} | {} |",
+            if r.alpha == 1.0 {
+                "disks".to_string()
+            } else {
+                format!("ellipses α = {}", r.alpha)
+            },
+            r.d_out,
+            r.rate,
+            r.grains_per_s,
+            r.phi,
+            r.in_silo,
+            bev(cc, kk, rho, r.d_out),
+            if r.steady() {
+                "yes"
+            } else if r.clogged {
+                "no: a pause ≥ 0.25 s (an arch)"
+            } else {
+                "no: the silo emptied"
+            }
+        )
+        .expect("string");
+    }
+    writeln!(
+        md,
+        "\n**Beverloo fits** (`W = C ρ_b √g (D − k d)^{{3/2}}`, ρ_b = ρ φ, least squares on \
+         W^{{2/3}}, over the steady runs): disks C = {c:.3}, k = {k:.2} (φ = {phi:.3}); the \
+         literature's k for disks lies between 1 and 2, and C is of order 1."
+    )
+    .expect("string");
+    for (alpha, phi_a, ca, ka, kappa) in &ellipse_fits {
+        writeln!(
+            md,
+            "Ellipses α = {alpha} (the steady runs): C = {ca:.3}, k = {ka:.2} \
+             (φ = {phi_a:.3}); exp(κD) through the three smallest steady ones: κ = {kappa:.2} \
+             per d."
+        )
+        .expect("string");
+    }
+    md.push_str("\n| D/d (disks) | clogged within 2 s | probability | grains discharged before the clog (mean) |\n|---:|---:|---:|---:|\n");
+    for &d in &clog_outlets {
+        let of: Vec<&(f64, bool, usize)> = trials.iter().filter(|t| t.0 == d).collect();
+        let n = of.iter().filter(|t| t.1).count();
+        let mean = of.iter().filter(|t| t.1).map(|t| t.2 as f64).sum::<f64>() / n.max(1) as f64;
+        writeln!(
+            md,
+            "| {d} | {n} of {} | {:.2} | {} |",
+            of.len(),
+            n as f64 / of.len() as f64,
+            if n > 0 {
+                format!("{mean:.0}")
+            } else {
+                "–".into()
+            }
+        )
+        .expect("string");
+    }
+    writeln!(
+        md,
+        "\n{N} grains (equal-area radius 0.45–0.55 cm, d = 1 cm) kept in a silo {WIDTH} cm wide \
+         with a flat floor of two segment walls, rates over t = {T0}–{T1} s, {TRIALS} \
+         fillings per outlet for clogging; {} runs in all, wall time {:.0} s on {} threads. \
+         Written by `dem2d study silo`.",
+        jobs.len() + clog_jobs.len(),
+        wall,
+        rayon::current_num_threads()
+    )
+    .expect("string");
+
+    // The figure.
+    let mut rate_series = Vec::new();
+    let mut log_series = Vec::new();
+    for (c_i, alpha) in [1.0, 2.0, 3.0].iter().enumerate() {
+        let pts: Vec<(f64, f64)> = rates
+            .iter()
+            .filter(|r| r.alpha == *alpha && r.steady())
+            .map(|r| (r.d_out, r.rate))
+            .collect();
+        let label = if *alpha == 1.0 {
+            "disks".to_string()
+        } else {
+            format!("ellipses α = {alpha}")
+        };
+        rate_series.push(Series {
+            label: label.clone(),
+            points: pts.clone(),
+            color: c_i,
+            markers: true,
+            ..Default::default()
+        });
+        log_series.push(Series {
+            label,
+            points: pts,
+            color: c_i,
+            markers: true,
+            line: true,
+            ..Default::default()
+        });
+    }
+    let fit_pts: Vec<(f64, f64)> = (0..=70)
+        .map(|i| 3.0 + 7.0 * i as f64 / 70.0)
+        .map(|d| (d, bev(c, k, rho_b, d)))
+        .collect();
+    rate_series.push(Series::line(
+        format!("Beverloo fit, disks: C = {c:.2}, k = {k:.2}"),
+        fit_pts,
+        0,
+    ));
+    let clog_pts: Vec<(f64, f64)> = clog_outlets
+        .iter()
+        .map(|&d| {
+            let of: Vec<_> = trials.iter().filter(|t| t.0 == d).collect();
+            (
+                d,
+                of.iter().filter(|t| t.1).count() as f64 / of.len() as f64,
+            )
+        })
+        .collect();
+    let panels = [
+        LinePanel {
+            title: "Discharge rate".into(),
+            x_label: "outlet D/d (–)".into(),
+            y_label: "W (g/s per cm)".into(),
+            series: rate_series,
+            legend: plot::Legend::UpperLeft,
+            ..Default::default()
+        },
+        LinePanel {
+            title: "Discharge rate, log scale".into(),
+            x_label: "outlet D/d (–)".into(),
+            y_label: "W (g/s per cm)".into(),
+            log_y: true,
+            series: log_series,
+            legend: plot::Legend::LowerRight,
+            ..Default::default()
+        },
+        LinePanel {
+            title: "Clogging within 2 s (disks)".into(),
+            x_label: "outlet D/d (–)".into(),
+            y_label: "probability (–)".into(),
+            series: vec![Series {
+                label: format!("{TRIALS} fillings per outlet"),
+                points: clog_pts,
+                color: 0,
+                line: true,
+                markers: true,
+                ..Default::default()
+            }],
+            y_range: Some((-0.05, 1.1)),
+            legend: plot::Legend::LowerLeft,
+            ..Default::default()
+        },
+    ];
+    std::fs::create_dir_all("target/figure-png").expect("target/figure-png");
+    for path in ["figures/silo.svg", "target/figure-png/silo.png"] {
+        plot::line_panels(std::path::Path::new(path), (1500, 480), (1, 3), &panels).expect(path);
+    }
+    std::fs::write("figures/silo.md", &md).expect("figures/silo.md");
+    print!("{md}");
+    Ok(md)
+}
