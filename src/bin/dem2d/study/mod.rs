@@ -73,6 +73,20 @@ impl Study {
     }
 }
 
+/// The least-squares line `y = a + b x` through `points`: (a, b).
+pub fn line_fit(points: &[(f64, f64)]) -> (f64, f64) {
+    let n = points.len() as f64;
+    let (sx, sy) = points
+        .iter()
+        .fold((0.0, 0.0), |(a, b), &(x, y)| (a + x, b + y));
+    let (mx, my) = (sx / n, sy / n);
+    let (sxx, sxy) = points.iter().fold((0.0, 0.0), |(a, b), &(x, y)| {
+        (a + (x - mx) * (x - mx), b + (x - mx) * (y - my))
+    });
+    let b = sxy / sxx;
+    (my - b * mx, b)
+}
+
 /// A Markdown table printed row by row as a study computes it (a long study shows its progress
 /// on standard output), and kept for the user guide.
 pub struct Table(String);

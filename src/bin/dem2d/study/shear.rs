@@ -17,8 +17,8 @@
 //! area over the cell's, and for ellipses the nematic order `S = |⟨e^{2iθ}⟩|` and the mean
 //! orientation `θ̄ = ½ arg⟨e^{2iθ}⟩` of the long axes against the flow (x).
 
-use super::Table;
 use super::jamming::Rng;
+use super::{Table, line_fit};
 use dem2d::contact_law::{ContactSpec, LinearDamping, Scaled};
 use dem2d::dynamics::BodyInit;
 use dem2d::dynamics::World;
@@ -185,20 +185,6 @@ pub fn shear(n: usize, aspect: f64, target: f64) -> Result<Flow, RunError> {
         },
         steps,
     })
-}
-
-/// Least-squares line `y = c0 + c1 x` through `points`.
-fn line_fit(points: &[(f64, f64)]) -> (f64, f64) {
-    let n = points.len() as f64;
-    let (sx, sy) = points
-        .iter()
-        .fold((0.0, 0.0), |(a, b), &(x, y)| (a + x, b + y));
-    let (mx, my) = (sx / n, sy / n);
-    let (sxy, sxx) = points.iter().fold((0.0, 0.0), |(a, b), &(x, y)| {
-        (a + (x - mx) * (y - my), b + (x - mx) * (x - mx))
-    });
-    let slope = sxy / sxx;
-    (my - slope * mx, slope)
 }
 
 /// Runs the study over `aspects` and `targets` (see the module documentation).

@@ -27,6 +27,7 @@
 //! (an arch spans the outlet; without vibration it never breaks). The probability that the outlet clogs within
 //! [`T_CLOG`] s of the start is the fraction of runs that did.
 
+use super::line_fit;
 use dem2d::analysis::{self, Frame, Window};
 use dem2d::dynamics::World;
 use dem2d::output::plot::{self, LinePanel, Series};
@@ -193,20 +194,6 @@ pub fn discharge(d_out: f64, alpha: f64) -> Result<Discharge, RunError> {
 pub fn clogs(d_out: f64, alpha: f64, seed: u64) -> Result<(bool, usize), RunError> {
     let (log, clogged, _) = run_silo(world(d_out, alpha, seed, T_CLOG), T_CLOG, true)?;
     Ok((clogged, log.len()))
-}
-
-/// Least squares line `y = a + b x`: (a, b).
-fn line_fit(points: &[(f64, f64)]) -> (f64, f64) {
-    let n = points.len() as f64;
-    let (sx, sy) = points
-        .iter()
-        .fold((0.0, 0.0), |(a, b), &(x, y)| (a + x, b + y));
-    let (mx, my) = (sx / n, sy / n);
-    let (sxx, sxy) = points.iter().fold((0.0, 0.0), |(a, b), &(x, y)| {
-        (a + (x - mx) * (x - mx), b + (x - mx) * (y - my))
-    });
-    let b = sxy / sxx;
-    (my - b * mx, b)
 }
 
 /// Beverloo's `C` and `k` (D and d in cm, d = 1) from rates `(D, W)` with bulk density `rho_b`:
