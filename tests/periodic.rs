@@ -124,6 +124,39 @@ fn packing(rng: &mut Rng, cell: &Cell) -> Vec<BodyInit> {
         .collect()
 }
 
+/// An n × n square lattice of disks (radii 0.5 and 0.35 alternating, spacing 1.25 cm) in an "xy"
+/// cell sheared at `rate` and held at the normal stress `p`, each disk with `velocity()`.
+fn pressed_lattice(
+    n: usize,
+    rate: f64,
+    p: f64,
+    mut velocity: impl FnMut() -> Vec2,
+) -> (Cell, Vec<BodyInit>) {
+    let side = 1.25 * n as f64;
+    let cell = Cell::new(
+        Vec2::new(side, side),
+        Periodic::XY,
+        rate,
+        Some(Pressure {
+            target: p,
+            gain: 0.1,
+        }),
+    );
+    let bodies = (0..n * n)
+        .map(|k| {
+            let (i, j) = (k % n, k / n);
+            let r = if (i + j) % 2 == 0 { 0.5 } else { 0.35 };
+            body(
+                Shape::Circle { r },
+                Vec2::new(1.25 * i as f64 + 0.6, 1.25 * j as f64 + 0.6),
+                0.0,
+                velocity(),
+            )
+        })
+        .collect();
+    (cell, bodies)
+}
+
 /// The contacts of the neighbour list equal those of a brute-force search over every image, at
 /// Lees–Edwards offsets 0, L_x/2 and just below L_x — and no pair is listed twice (the first
 /// ESPResSo implementation listed pairs twice at offset 0).
@@ -303,28 +336,8 @@ fn a_sheared_cell_at_an_imposed_pressure_flows_with_a_linear_profile() {
     let n = 12;
     let mut rng = Rng(7);
     let (rate, p) = (4.0, 1000.0);
-    let side = 1.25 * n as f64;
-    let cell = Cell::new(
-        Vec2::new(side, side),
-        Periodic::XY,
-        rate,
-        Some(Pressure {
-            target: p,
-            gain: 0.1,
-        }),
-    );
-    let bodies: Vec<BodyInit> = (0..n * n)
-        .map(|k| {
-            let (i, j) = (k % n, k / n);
-            let r = if (i + j) % 2 == 0 { 0.5 } else { 0.35 };
-            body(
-                Shape::Circle { r },
-                Vec2::new(1.25 * i as f64 + 0.6, 1.25 * j as f64 + 0.6),
-                0.0,
-                Vec2::new(rng.next() - 0.5, rng.next() - 0.5),
-            )
-        })
-        .collect();
+    let (cell, bodies) =
+        pressed_lattice(n, rate, p, || Vec2::new(rng.next() - 0.5, rng.next() - 0.5));
     let mut w = world(bodies, law(0.4, Some(0.5)), 5e-5, cell);
     let bins = 6;
     let (mut sum, mut count) = (vec![0.0; bins], vec![0usize; bins]);
@@ -381,28 +394,7 @@ fn a_sheared_cell_at_an_imposed_pressure_flows_with_a_linear_profile() {
 #[test]
 fn a_cell_at_rest_under_pressure_stores_what_its_stretch_works() {
     let n = 12;
-    let side = 1.25 * n as f64;
-    let cell = Cell::new(
-        Vec2::new(side, side),
-        Periodic::XY,
-        0.0,
-        Some(Pressure {
-            target: 1000.0,
-            gain: 0.1,
-        }),
-    );
-    let bodies: Vec<BodyInit> = (0..n * n)
-        .map(|k| {
-            let (i, j) = (k % n, k / n);
-            let r = if (i + j) % 2 == 0 { 0.5 } else { 0.35 };
-            body(
-                Shape::Circle { r },
-                Vec2::new(1.25 * i as f64 + 0.6, 1.25 * j as f64 + 0.6),
-                0.0,
-                Vec2::zeros(),
-            )
-        })
-        .collect();
+    let (cell, bodies) = pressed_lattice(n, 0.0, 1000.0, Vec2::zeros);
     let mut w = world(bodies, law(0.0, None), 5e-5, cell);
     Simulation::new(&mut w)
         .for_steps(20_000)
