@@ -16,17 +16,7 @@ use dem2d::scene::Case;
 use std::collections::BTreeSet;
 
 mod common;
-
-/// A small deterministic generator (xorshift).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+use common::Rng;
 
 fn law(friction: f64, restitution: Option<f64>) -> ContactSpec {
     let damping = match restitution {

@@ -16,6 +16,9 @@ use dem2d::geometry::{Polygon, Pose, Segment, Shape, Vec2};
 use dem2d::narrow_phase::{Object, PairCache, Request, contact, contact_with};
 use dem2d::scene::Case;
 
+mod common;
+use common::Rng;
+
 fn case(contact: &str, walls: &str, bodies: &str, gravity: f64) -> World {
     case_dt(contact, walls, bodies, gravity, 1e-5)
 }
@@ -367,17 +370,6 @@ fn sample(shape: &Shape, pose: &Pose, n: usize) -> Vec<Vec2> {
         .iter()
         .map(|p| pose.position + pose.to_world_vector(*p))
         .collect()
-}
-
-/// A small deterministic generator (xorshift), uniform in [0, 1).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 #[test]

@@ -122,3 +122,14 @@ pub fn worst_energy_error(mut sim: Simulation) -> f64 {
         .unwrap();
     worst
 }
+
+/// A small deterministic generator (xorshift), uniform in [0, 1): the tests' random scenes.
+pub struct Rng(pub u64);
+impl Rng {
+    pub fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
