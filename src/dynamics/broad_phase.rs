@@ -17,6 +17,43 @@
 use super::body::Bodies;
 use super::cell::Cell;
 use crate::geometry::Vec2;
+use rayon::prelude::*;
+
+/// Bodies per parallel chunk of the 3×3 scan (each chunk lists its bodies' pairs apart; the
+/// lists are joined in body order, so the result does not depend on the chunks).
+const SCAN_CHUNK: usize = 4096;
+
+/// A pair of bodies `(i, j)`, `i < j`.
+type Pair = (u32, u32);
+
+/// Runs `scan(i, list)` (which appends body i's pairs, sorted) for every body, chunk by chunk
+/// in parallel, each chunk into its own list of `parts`, and joins the lists in body order into
+/// `out`: the same list as one loop over the bodies would make.
+fn scan_in_chunks(
+    n: usize,
+    parts: &mut Vec<Vec<Pair>>,
+    out: &mut Vec<Pair>,
+    scan: impl Fn(usize, &mut Vec<Pair>) + Sync,
+) {
+    let chunks = n.div_ceil(SCAN_CHUNK);
+    if parts.len() < chunks {
+        parts.resize(chunks, Vec::new());
+    }
+    parts[..chunks]
+        .par_iter_mut()
+        .enumerate()
+        .for_each(|(c, part)| {
+            part.clear();
+            for i in c * SCAN_CHUNK..((c + 1) * SCAN_CHUNK).min(n) {
+                scan(i, part);
+            }
+        });
+    let total = parts[..chunks].iter().map(Vec::len).sum();
+    super::contacts::reserve_for(out, total);
+    for part in &parts[..chunks] {
+        out.extend_from_slice(part);
+    }
+}
 
 /// Reusable buffers of the grid (no allocation once warmed up).
 #[derive(Clone, Debug, Default)]
@@ -26,6 +63,8 @@ pub struct Grid {
     start: Vec<u32>,
     fill: Vec<u32>,
     order: Vec<u32>,
+    /// Each scan chunk's pairs (see [`scan_in_chunks`]).
+    parts: Vec<Vec<Pair>>,
 }
 
 /// How a cell maps to its bucket (see the module documentation).
@@ -63,6 +102,7 @@ impl Grid {
                 + self.fill.capacity()
                 + self.order.capacity())
                 * 4
+            + self.parts.iter().map(|p| p.capacity() * 8).sum::<usize>()
     }
 
     /// Appends to `out` (after clearing it) every pair `(i, j)`, `i < j`, with
@@ -126,8 +166,9 @@ impl Grid {
             self.order[self.fill[b as usize] as usize] = k as u32;
             self.fill[b as usize] += 1;
         }
-        for i in 0..n {
-            let (cx, cy) = self.cell[i];
+        let (cell, order, start) = (&self.cell, &self.order, &self.start);
+        scan_in_chunks(n, &mut self.parts, out, |i, out| {
+            let (cx, cy) = cell[i];
             let pi = bodies.state[i].pose.position;
             let ri = bodies.bound[i] + margin;
             let first = out.len();
@@ -135,9 +176,9 @@ impl Grid {
                 for dy in -1..=1i64 {
                     let (nx, ny) = (cx.saturating_add(dx), cy.saturating_add(dy));
                     let b = layout.of(nx, ny, mask) as usize;
-                    for &j in &self.order[self.start[b] as usize..self.start[b + 1] as usize] {
+                    for &j in &order[start[b] as usize..start[b + 1] as usize] {
                         let j = j as usize;
-                        if j <= i || self.cell[j] != (nx, ny) {
+                        if j <= i || cell[j] != (nx, ny) {
                             continue;
                         }
                         let r = ri + bodies.bound[j];
@@ -149,7 +190,7 @@ impl Grid {
             }
             // Each body's partners in increasing order: the whole list is then sorted.
             out[first..].sort_unstable();
-        }
+        });
         // Saturated cells (coordinates beyond ±9e18 cells) can list a pair twice.
         out.dedup();
     }
@@ -229,13 +270,15 @@ impl Grid {
             self.fill[b] += 1;
         }
         let wrap = |i: i64, m: i64| i.rem_euclid(m);
-        let mut seen: Vec<(i64, i64)> = Vec::with_capacity(12);
-        for i in 0..n {
-            let (cx, cy) = self.cell[i];
+        let (cells, order, start) = (&self.cell, &self.order, &self.start);
+        scan_in_chunks(n, &mut self.parts, out, |i, out| {
+            let (cx, cy) = cells[i];
             let pi = bodies.state[i].pose.position;
             let ri = bodies.bound[i] + margin;
             let first = out.len();
-            seen.clear();
+            // (At most 4 cells in each of the three rows.)
+            let mut seen = [(0i64, 0i64); 12];
+            let mut seen_len = 0;
             for dy in -1..=1i64 {
                 let mut ty = cy + dy;
                 // The columns to scan in the row `ty`: around cx, or (across a Lees–Edwards
@@ -257,12 +300,13 @@ impl Grid {
                 }
                 for &tx in &columns[..count] {
                     let key = (wrap(tx, nx), ty);
-                    if seen.contains(&key) {
+                    if seen[..seen_len].contains(&key) {
                         continue;
                     }
-                    seen.push(key);
+                    seen[seen_len] = key;
+                    seen_len += 1;
                     let b = index(key.0, key.1);
-                    for &j in &self.order[self.start[b] as usize..self.start[b + 1] as usize] {
+                    for &j in &order[start[b] as usize..start[b + 1] as usize] {
                         let j = j as usize;
                         if j <= i {
                             continue;
@@ -290,7 +334,7 @@ impl Grid {
                 }
             }
             out.truncate(kept);
-        }
+        });
     }
 }
 
