@@ -19,21 +19,23 @@ use super::cell::Cell;
 use crate::geometry::Vec2;
 use rayon::prelude::*;
 
-/// Bodies per parallel chunk of the 3×3 scan (each chunk lists its bodies' pairs apart; the
-/// lists are joined in body order, so the result does not depend on the chunks).
+/// Bodies per parallel chunk of a list build's per-body loops (each chunk lists its bodies'
+/// entries apart; the lists are joined in body order, so the result does not depend on the
+/// chunks).
 const SCAN_CHUNK: usize = 4096;
 
 /// A pair of bodies `(i, j)`, `i < j`.
 type Pair = (u32, u32);
 
-/// Runs `scan(i, list)` (which appends body i's pairs, sorted) for every body, chunk by chunk
-/// in parallel, each chunk into its own list of `parts`, and joins the lists in body order into
-/// `out`: the same list as one loop over the bodies would make.
-fn scan_in_chunks(
+/// Runs `each(bodies, list)` (which appends the entries of a range of bodies, in order) over
+/// the bodies `0..n` chunk by chunk in parallel, each chunk into its own list of `parts`, and
+/// joins the lists in body order into `out` (after what it holds): the same list as one loop
+/// over the bodies would make.
+pub(crate) fn in_body_chunks<T: Copy + Send>(
     n: usize,
-    parts: &mut Vec<Vec<Pair>>,
-    out: &mut Vec<Pair>,
-    scan: impl Fn(usize, &mut Vec<Pair>) + Sync,
+    parts: &mut Vec<Vec<T>>,
+    out: &mut Vec<T>,
+    each: impl Fn(std::ops::Range<usize>, &mut Vec<T>) + Sync,
 ) {
     let chunks = n.div_ceil(SCAN_CHUNK);
     if parts.len() < chunks {
@@ -44,11 +46,9 @@ fn scan_in_chunks(
         .enumerate()
         .for_each(|(c, part)| {
             part.clear();
-            for i in c * SCAN_CHUNK..((c + 1) * SCAN_CHUNK).min(n) {
-                scan(i, part);
-            }
+            each(c * SCAN_CHUNK..((c + 1) * SCAN_CHUNK).min(n), part);
         });
-    let total = parts[..chunks].iter().map(Vec::len).sum();
+    let total = out.len() + parts[..chunks].iter().map(Vec::len).sum::<usize>();
     super::contacts::reserve_for(out, total);
     for part in &parts[..chunks] {
         out.extend_from_slice(part);
@@ -63,7 +63,7 @@ pub struct Grid {
     start: Vec<u32>,
     fill: Vec<u32>,
     order: Vec<u32>,
-    /// Each scan chunk's pairs (see [`scan_in_chunks`]).
+    /// Each scan chunk's pairs (see [`in_body_chunks`]).
     parts: Vec<Vec<Pair>>,
 }
 
@@ -167,7 +167,7 @@ impl Grid {
             self.fill[b as usize] += 1;
         }
         let (cell, order, start) = (&self.cell, &self.order, &self.start);
-        scan_in_chunks(n, &mut self.parts, out, |i, out| {
+        in_body_chunks(n, &mut self.parts, out, |range, out| range.for_each(|i| {
             let (cx, cy) = cell[i];
             let pi = bodies.state[i].pose.position;
             let ri = bodies.bound[i] + margin;
@@ -190,7 +190,7 @@ impl Grid {
             }
             // Each body's partners in increasing order: the whole list is then sorted.
             out[first..].sort_unstable();
-        });
+        }));
         // Saturated cells (coordinates beyond ±9e18 cells) can list a pair twice.
         out.dedup();
     }
@@ -271,7 +271,7 @@ impl Grid {
         }
         let wrap = |i: i64, m: i64| i.rem_euclid(m);
         let (cells, order, start) = (&self.cell, &self.order, &self.start);
-        scan_in_chunks(n, &mut self.parts, out, |i, out| {
+        in_body_chunks(n, &mut self.parts, out, |range, out| range.for_each(|i| {
             let (cx, cy) = cells[i];
             let pi = bodies.state[i].pose.position;
             let ri = bodies.bound[i] + margin;
@@ -334,7 +334,7 @@ impl Grid {
                 }
             }
             out.truncate(kept);
-        });
+        }));
     }
 }
 
