@@ -167,30 +167,32 @@ impl Grid {
             self.fill[b as usize] += 1;
         }
         let (cell, order, start) = (&self.cell, &self.order, &self.start);
-        in_body_chunks(n, &mut self.parts, out, |range, out| range.for_each(|i| {
-            let (cx, cy) = cell[i];
-            let pi = bodies.state[i].pose.position;
-            let ri = bodies.bound[i] + margin;
-            let first = out.len();
-            for dx in -1..=1i64 {
-                for dy in -1..=1i64 {
-                    let (nx, ny) = (cx.saturating_add(dx), cy.saturating_add(dy));
-                    let b = layout.of(nx, ny, mask) as usize;
-                    for &j in &order[start[b] as usize..start[b + 1] as usize] {
-                        let j = j as usize;
-                        if j <= i || cell[j] != (nx, ny) {
-                            continue;
-                        }
-                        let r = ri + bodies.bound[j];
-                        if (bodies.state[j].pose.position - pi).norm_squared() <= r * r {
-                            out.push((i as u32, j as u32));
+        in_body_chunks(n, &mut self.parts, out, |range, out| {
+            range.for_each(|i| {
+                let (cx, cy) = cell[i];
+                let pi = bodies.state[i].pose.position;
+                let ri = bodies.bound[i] + margin;
+                let first = out.len();
+                for dx in -1..=1i64 {
+                    for dy in -1..=1i64 {
+                        let (nx, ny) = (cx.saturating_add(dx), cy.saturating_add(dy));
+                        let b = layout.of(nx, ny, mask) as usize;
+                        for &j in &order[start[b] as usize..start[b + 1] as usize] {
+                            let j = j as usize;
+                            if j <= i || cell[j] != (nx, ny) {
+                                continue;
+                            }
+                            let r = ri + bodies.bound[j];
+                            if (bodies.state[j].pose.position - pi).norm_squared() <= r * r {
+                                out.push((i as u32, j as u32));
+                            }
                         }
                     }
                 }
-            }
-            // Each body's partners in increasing order: the whole list is then sorted.
-            out[first..].sort_unstable();
-        }));
+                // Each body's partners in increasing order: the whole list is then sorted.
+                out[first..].sort_unstable();
+            })
+        });
         // Saturated cells (coordinates beyond ±9e18 cells) can list a pair twice.
         out.dedup();
     }
@@ -271,70 +273,72 @@ impl Grid {
         }
         let wrap = |i: i64, m: i64| i.rem_euclid(m);
         let (cells, order, start) = (&self.cell, &self.order, &self.start);
-        in_body_chunks(n, &mut self.parts, out, |range, out| range.for_each(|i| {
-            let (cx, cy) = cells[i];
-            let pi = bodies.state[i].pose.position;
-            let ri = bodies.bound[i] + margin;
-            let first = out.len();
-            // (At most 4 cells in each of the three rows.)
-            let mut seen = [(0i64, 0i64); 12];
-            let mut seen_len = 0;
-            for dy in -1..=1i64 {
-                let mut ty = cy + dy;
-                // The columns to scan in the row `ty`: around cx, or (across a Lees–Edwards
-                // seam) around the column of the shifted position.
-                let mut columns = [cx - 1, cx, cx + 1, cx + 1];
-                let mut count = 3;
-                if cell.periodic_y() && (ty < 0 || ty >= ny) {
-                    // The row beyond the top is the bottom row of the image above, shifted by
-                    // +offset: its bodies at x are seen at x + offset, so this body at x looks
-                    // at x − offset there (and + offset across the bottom).
-                    let shift = if ty >= ny { -cell.offset } else { cell.offset };
-                    let x = pi.x + shift;
-                    let c = (x / wx).floor() as i64;
-                    columns = [c - 1, c, c + 1, c + 2];
-                    count = 4;
-                    ty = wrap(ty, ny);
-                } else if ty < 0 || ty >= ny {
-                    continue;
-                }
-                for &tx in &columns[..count] {
-                    let key = (wrap(tx, nx), ty);
-                    if seen[..seen_len].contains(&key) {
+        in_body_chunks(n, &mut self.parts, out, |range, out| {
+            range.for_each(|i| {
+                let (cx, cy) = cells[i];
+                let pi = bodies.state[i].pose.position;
+                let ri = bodies.bound[i] + margin;
+                let first = out.len();
+                // (At most 4 cells in each of the three rows.)
+                let mut seen = [(0i64, 0i64); 12];
+                let mut seen_len = 0;
+                for dy in -1..=1i64 {
+                    let mut ty = cy + dy;
+                    // The columns to scan in the row `ty`: around cx, or (across a Lees–Edwards
+                    // seam) around the column of the shifted position.
+                    let mut columns = [cx - 1, cx, cx + 1, cx + 1];
+                    let mut count = 3;
+                    if cell.periodic_y() && (ty < 0 || ty >= ny) {
+                        // The row beyond the top is the bottom row of the image above, shifted by
+                        // +offset: its bodies at x are seen at x + offset, so this body at x looks
+                        // at x − offset there (and + offset across the bottom).
+                        let shift = if ty >= ny { -cell.offset } else { cell.offset };
+                        let x = pi.x + shift;
+                        let c = (x / wx).floor() as i64;
+                        columns = [c - 1, c, c + 1, c + 2];
+                        count = 4;
+                        ty = wrap(ty, ny);
+                    } else if ty < 0 || ty >= ny {
                         continue;
                     }
-                    seen[seen_len] = key;
-                    seen_len += 1;
-                    let b = index(key.0, key.1);
-                    for &j in &order[start[b] as usize..start[b + 1] as usize] {
-                        let j = j as usize;
-                        if j <= i {
+                    for &tx in &columns[..count] {
+                        let key = (wrap(tx, nx), ty);
+                        if seen[..seen_len].contains(&key) {
                             continue;
                         }
-                        let pj = bodies.state[j].pose.position;
-                        let at = pj
-                            + cell
-                                .nearest_image(pj, pi)
-                                .map_or(Vec2::zeros(), |m| m.offset);
-                        let r = ri + bodies.bound[j];
-                        if (at - pi).norm_squared() <= r * r {
-                            out.push((i as u32, j as u32));
+                        seen[seen_len] = key;
+                        seen_len += 1;
+                        let b = index(key.0, key.1);
+                        for &j in &order[start[b] as usize..start[b + 1] as usize] {
+                            let j = j as usize;
+                            if j <= i {
+                                continue;
+                            }
+                            let pj = bodies.state[j].pose.position;
+                            let at = pj
+                                + cell
+                                    .nearest_image(pj, pi)
+                                    .map_or(Vec2::zeros(), |m| m.offset);
+                            let r = ri + bodies.bound[j];
+                            if (at - pi).norm_squared() <= r * r {
+                                out.push((i as u32, j as u32));
+                            }
                         }
                     }
                 }
-            }
-            out[first..].sort_unstable();
-            // (A tiling of two rows reaches the other row from both sides, shifted apart
-            // across a Lees–Edwards seam: a body there may be found twice.)
-            let mut kept = first;
-            for r in first..out.len() {
-                if r == first || out[r] != out[kept - 1] {
-                    out[kept] = out[r];
-                    kept += 1;
+                out[first..].sort_unstable();
+                // (A tiling of two rows reaches the other row from both sides, shifted apart
+                // across a Lees–Edwards seam: a body there may be found twice.)
+                let mut kept = first;
+                for r in first..out.len() {
+                    if r == first || out[r] != out[kept - 1] {
+                        out[kept] = out[r];
+                        kept += 1;
+                    }
                 }
-            }
-            out.truncate(kept);
-        }));
+                out.truncate(kept);
+            })
+        });
     }
 }
 

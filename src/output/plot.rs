@@ -1552,7 +1552,14 @@ where
                         .zip(&s.y_errors)
                         .filter(|(q, e)| shown(q) && e.is_finite())
                         .map(|(&(x, y), &e)| {
-                            ErrorBar::new_vertical(x, y - e, y, y + e, col.stroke_width(2 * S), 10 * S)
+                            ErrorBar::new_vertical(
+                                x,
+                                y - e,
+                                y,
+                                y + e,
+                                col.stroke_width(2 * S),
+                                10 * S,
+                            )
                         }),
                 )
                 .map_err(err)?;
