@@ -144,12 +144,7 @@ pub fn run(write: bool) -> Result<String, RunError> {
         })
         .collect();
     let (_, _, width0, height0) = stresses(&w);
-    let box_ = [
-        w.walls[2].line().point.x,
-        w.walls[3].line().point.x,
-        w.walls[0].line().point.y,
-        w.walls[1].line().point.y,
-    ];
+    let box_ = super::biaxial_shape::box_of(&w);
     let v = round6(0.5 * STRAIN_RATE * height0);
     let shear = case_json(
         "biaxial_disks",
@@ -175,27 +170,15 @@ pub fn run(write: bool) -> Result<String, RunError> {
          |---:|---:|---:|---:|---:|---:|",
     );
     let steps_per_percent = (0.01 / STRAIN_RATE / case.dt).round() as u64;
-    let (mut sum, mut count) = ([0.0; 2], 0.0);
-    let mut lines = CommandProgress::new(case.name.clone());
-    Simulation::new(&mut w)
-        .observe(&mut lines)
-        .until_step(case.steps())
-        .run_each(|w, _| {
-            let (ax, lat, width, height) = stresses(w);
-            sum[0] += ax;
-            sum[1] += lat;
-            count += 1.0;
-            if w.step % steps_per_percent == 0 {
-                let (ax, lat) = (sum[0] / count, sum[1] / count);
-                let strain = 1.0 - height / height0;
-                md.row(format!(
-                    "| {strain:.3} | {ax:.4e} | {lat:.4e} | {:+.2e} | {:.3} | {:.4} |",
-                    lat / SIGMA_C - 1.0,
-                    (ax - lat) / (ax + lat),
-                    1.0 - width * height / area0
-                ));
-                (sum, count) = ([0.0; 2], 0.0);
-            }
-        })?;
+    super::biaxial_shape::run_shear(&mut w, &case, steps_per_percent, |w, ax, lat| {
+        let (_, _, width, height) = stresses(w);
+        let strain = 1.0 - height / height0;
+        md.row(format!(
+            "| {strain:.3} | {ax:.4e} | {lat:.4e} | {:+.2e} | {:.3} | {:.4} |",
+            lat / SIGMA_C - 1.0,
+            (ax - lat) / (ax + lat),
+            1.0 - width * height / area0
+        ));
+    })?;
     Ok(md.text())
 }
