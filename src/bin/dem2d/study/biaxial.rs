@@ -20,7 +20,7 @@ use dem2d::geometry::{Shape, Vec2};
 use dem2d::output::progress::CommandProgress;
 use dem2d::run::{RunError, Simulation};
 use dem2d::scene::Case;
-use dem2d::scene::generate::case_text_from;
+use dem2d::scene::generate::{Xorshift, case_text_from};
 use dem2d::scene::servo_box::box_walls;
 use serde_json::{Value, json};
 
@@ -86,13 +86,8 @@ fn stresses(w: &World) -> (f64, f64, f64, f64) {
 
 pub fn run(write: bool) -> Result<String, RunError> {
     // A loose lattice, 2.6 cm apart, radii uniform in 0.8–1.2 (a fixed sequence).
-    let mut seed = 7u64;
-    let mut uniform = || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = Xorshift(7);
+    let mut uniform = || rng.uniform();
     let s = 2.6;
     let bodies: Vec<BodyInit> = (0..N_SIDE * N_SIDE)
         .map(|k| BodyInit {

@@ -442,21 +442,7 @@ pub fn run(grains: usize, write: bool) -> Result<String, RunError> {
             ..Default::default()
         },
     ];
-    plot::line_panels(
-        std::path::Path::new("figures/biaxial_shape.svg"),
-        (1200, 480),
-        (1, 2),
-        &panels,
-    )
-    .expect("figures/biaxial_shape.svg");
-    std::fs::create_dir_all("target/figure-png").expect("target/figure-png");
-    plot::line_panels(
-        std::path::Path::new("target/figure-png/biaxial_shape.png"),
-        (1200, 480),
-        (1, 2),
-        &panels,
-    )
-    .expect("biaxial_shape.png");
+    super::write_figure("biaxial_shape", (1200, 480), (1, 2), &panels);
     std::fs::write("figures/biaxial_shape.md", &md).expect("figures/biaxial_shape.md");
     let chains = force_chains(&[&results[0], &results[results.len() - 1]]);
     std::fs::write("figures/force_chains.svg", &chains).expect("figures/force_chains.svg");
