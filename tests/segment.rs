@@ -14,6 +14,7 @@
 use dem2d::dynamics::World;
 use dem2d::geometry::{Polygon, Pose, Segment, Shape, Vec2};
 use dem2d::narrow_phase::{Object, PairCache, Request, contact, contact_with};
+use dem2d::run::Simulation;
 use dem2d::scene::Case;
 
 mod common;
@@ -64,10 +65,13 @@ fn bits(w: &World) -> Vec<u64> {
 /// bit, and that some contact was made.
 fn same_bits(mut a: World, mut b: World, steps: usize, what: &str) {
     let mut touched = 0;
+    let mut sa = Simulation::new(&mut a).for_steps(1);
+    let mut sb = Simulation::new(&mut b).for_steps(1);
     for k in 0..steps {
-        a.step().unwrap();
-        b.step().unwrap();
-        assert_eq!(bits(&a), bits(&b), "{what}: differs at step {k}");
+        sa.run().unwrap();
+        sb.run().unwrap();
+        let (a, b) = (sa.world(), sb.world());
+        assert_eq!(bits(a), bits(b), "{what}: differs at step {k}");
         touched += a.contacts.slots.iter().filter(|s| s.active).count();
     }
     assert!(
@@ -184,22 +188,24 @@ fn a_disk_thrown_head_on_at_an_end_rebounds_along_the_line_of_centres_at_the_spr
         );
         let mut was = false;
         let mut normal_error = 0.0f64;
-        for _ in 0..20_000 {
-            w.step().unwrap();
-            let c = &w.contacts;
-            let active = c.slots.iter().any(|s| s.active);
-            if active {
-                // The force on the disk: along the line from the end to its centre.
-                let f = c.data[0].force;
-                let x = w.bodies.state[0].pose.position;
-                let along = x / x.norm();
-                normal_error = normal_error.max((f.x * along.y - f.y * along.x).abs() / f.norm());
-            }
-            if was && !active {
-                break;
-            }
-            was |= active;
-        }
+        Simulation::new(&mut w)
+            .for_steps(20_000)
+            .run_until(|w, _| {
+                let c = &w.contacts;
+                let active = c.slots.iter().any(|s| s.active);
+                if active {
+                    // The force on the disk: along the line from the end to its centre.
+                    let f = c.data[0].force;
+                    let x = w.bodies.state[0].pose.position;
+                    let along = x / x.norm();
+                    normal_error =
+                        normal_error.max((f.x * along.y - f.y * along.x).abs() / f.norm());
+                }
+                let left = was && !active;
+                was |= active;
+                left
+            })
+            .unwrap();
         assert!(was, "{nf}: no contact");
         let vel = w.bodies.state[0].vel;
         eprintln!(
@@ -254,20 +260,21 @@ fn a_frictionless_disk_sliding_off_an_end_keeps_its_height_then_leaves_where_the
         );
         let mut worst_height = 0.0f64;
         let mut left = None;
-        for _ in 0..400_000 {
-            w.step().unwrap();
-            let s = &w.bodies.state[0];
-            let x = s.pose.position;
-            let active = w.contacts.slots.iter().any(|s| s.active);
-            if x.x < -0.05 {
-                // Over the segment: it slides at its height.
-                worst_height = worst_height.max((x.y - (r - rest)).abs());
-            }
-            if x.x > 0.0 && !active && left.is_none() {
-                left = Some(x);
-                break;
-            }
-        }
+        Simulation::new(&mut w)
+            .for_steps(400_000)
+            .run_until(|w, _| {
+                let x = w.bodies.state[0].pose.position;
+                let active = w.contacts.slots.iter().any(|s| s.active);
+                if x.x < -0.05 {
+                    // Over the segment: it slides at its height.
+                    worst_height = worst_height.max((x.y - (r - rest)).abs());
+                }
+                if x.x > 0.0 && !active {
+                    left = Some(x);
+                }
+                left.is_some()
+            })
+            .unwrap();
         let at = left.expect("never left the end");
         let cos = at.y / at.norm();
         let want = (2.0 + v0 * v0 / (g * r)) / 3.0;
@@ -514,23 +521,25 @@ fn funnel_drift(nf: &str, shapes: &[&str], dt: f64) -> (f64, usize, usize) {
         .map(|k| w.bodies.mass[k] * 980.0 * (w.bodies.state[k].pose.position.y + 3.0))
         .sum();
     let (mut worst, mut ends, mut faces) = (0.0f64, 0, 0);
-    for _ in 0..(1.5 / dt).round() as usize {
-        w.step().unwrap();
-        if !w.contacts.slots.iter().any(|s| s.active) {
-            worst = worst.max((total(&w) - e0).abs());
-        }
-        for (slot, d) in w.contacts.slots.iter().zip(&w.contacts.data) {
-            if let Some(seg) = slot.sides().wall().and_then(|k| w.walls[k].segment())
-                && slot.active
-            {
-                if d.point == seg.a || d.point == seg.b {
-                    ends += 1;
-                } else {
-                    faces += 1;
+    Simulation::new(&mut w)
+        .for_steps((1.5 / dt).round() as u64)
+        .run_each(|w, _| {
+            if !w.contacts.slots.iter().any(|s| s.active) {
+                worst = worst.max((total(w) - e0).abs());
+            }
+            for (slot, d) in w.contacts.slots.iter().zip(&w.contacts.data) {
+                if let Some(seg) = slot.sides().wall().and_then(|k| w.walls[k].segment())
+                    && slot.active
+                {
+                    if d.point == seg.a || d.point == seg.b {
+                        ends += 1;
+                    } else {
+                        faces += 1;
+                    }
                 }
             }
-        }
-    }
+        })
+        .unwrap();
     (worst / scale, faces, ends)
 }
 
@@ -749,10 +758,16 @@ fn a_moving_segment_lifting_bodies_does_the_work_of_the_half_plane_that_lifts_th
             bodies,
             -980.0,
         );
+        let mut a = Simulation::new(&mut seg).for_steps(1);
+        let mut b = Simulation::new(&mut half).for_steps(1);
         for k in 0..30_000 {
-            seg.step().unwrap();
-            half.step().unwrap();
-            assert_eq!(bits(&seg), bits(&half), "{nf}: differs at step {k}");
+            a.run().unwrap();
+            b.run().unwrap();
+            assert_eq!(
+                bits(a.world()),
+                bits(b.world()),
+                "{nf}: differs at step {k}"
+            );
         }
         assert!(seg.energies.boundary_work > 0.0);
         assert_eq!(seg.energies, half.energies, "{nf}");
@@ -771,10 +786,12 @@ fn sweep_residual(dt: f64) -> (f64, f64) {
     w.evaluate_forces();
     let e0 = w.energies.total();
     let mut worst = 0.0f64;
-    for _ in 0..(0.5 / dt).round() as usize {
-        w.step().unwrap();
-        worst = worst.max((w.energies.total() - e0 - w.energies.boundary_work).abs());
-    }
+    Simulation::new(&mut w)
+        .for_steps((0.5 / dt).round() as u64)
+        .run_each(|w, _| {
+            worst = worst.max((w.energies.total() - e0 - w.energies.boundary_work).abs())
+        })
+        .unwrap();
     (worst / w.energies.boundary_work, w.energies.boundary_work)
 }
 
@@ -817,9 +834,15 @@ fn square_on_an_end(x_c: f64, t: f64, kn_over_rho_g: f64) -> f64 {
         &bodies,
         -980.0,
     );
-    for _ in 0..(t / w.dt).round() as usize {
-        w.step().unwrap();
-    }
+    let steps = (t / w.dt).round() as u64;
+    // Without the blow-up watch, as the test always ran: the watch stops one of its runs at
+    // step 515, finding 1.9e-2 erg created against the 1.9e-3 erg the initial state and gravity
+    // supply (an open question about an end's contact with a face, not this test's).
+    Simulation::new(&mut w)
+        .without_watch()
+        .for_steps(steps)
+        .run()
+        .unwrap();
     w.bodies.state[0].pose.angle()
 }
 

@@ -439,12 +439,12 @@ pub struct Law {
 }
 
 /// The stiffness and damping of a contact's modes, for the critical time step: along the
-/// normal, the tangent, and in relative rotation (the rolling spring).
+/// normal, the tangent, and in relative rotation (the couple's spring: the rolling part's).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Modes {
     pub normal: (f64, f64),
     pub tangential: (f64, f64),
-    pub rolling: (f64, f64),
+    pub rotation: (f64, f64),
 }
 
 /// What a law reads of a contact besides its overlap, velocities and step: the contact pass
@@ -519,26 +519,26 @@ impl Law {
         out
     }
 
-    /// The modes of a contact at the spring overlap `depth` (R* `r_eff`, m* `m_eff`, rolling
-    /// kinematics `rk`), each part's stiffness and dashpot as [`Law::force`] reports them
+    /// The modes of a contact with the kinematics `k` (its spring overlap `k.depth`, R*, m* and
+    /// rolling kinematics), each part's stiffness and dashpot as [`Law::force`] reports them
     /// (`ρ = 1`: the caller scales the normal mode for the geometry it assumes).
-    pub fn modes(&self, depth: f64, r_eff: f64, m_eff: f64, rk: &RollingKinematics) -> Modes {
-        let s = self.normal.spring(depth, r_eff);
-        let eta_n = self.damping.normal(&s, m_eff);
+    pub fn modes(&self, k: &Kinematics) -> Modes {
+        let s = self.normal.spring(k.depth, k.r_eff);
+        let eta_n = self.damping.normal(&s, k.m_eff);
         let kt = self.tangential.stiffness(&s);
         let tangential = if self.tangential.friction > 0.0 {
             (kt, self.damping.tangential(eta_n))
         } else {
             (0.0, 0.0)
         };
-        let rolling = match &self.rolling {
-            Some(r) => r.mode(rk, kt, self.damping.ratio(&s, m_eff)),
+        let rotation = match &self.rolling {
+            Some(r) => r.mode(&k.rolling, kt, self.damping.ratio(&s, k.m_eff)),
             None => (0.0, 0.0),
         };
         Modes {
             normal: (s.tangent * s.k, eta_n),
             tangential,
-            rolling,
+            rotation,
         }
     }
 

@@ -105,6 +105,36 @@ pub fn of_contact(
     }
 }
 
+/// The kinematics the a-priori critical step assumes ([`super::timestep`]) for a contact of body
+/// `a` with body `b` (two bodies like `a`: R* = r/2), or with a wall (`b` `None`: R* = r), at
+/// the overlap `depth` and at rest: R* and the rolling radius from `a`'s bounding radius r, the
+/// rolling inertia about a point on its bounding circle (halved for two bodies), m* of the two.
+pub fn worst_case(bodies: &Bodies, a: usize, b: Option<usize>, depth: f64) -> Kinematics {
+    let m_eff = match b {
+        Some(b) => 1.0 / (bodies.inv_mass[a] + bodies.inv_mass[b]),
+        None => bodies.mass[a],
+    };
+    let r = bodies.bound[a];
+    let r_eff = if b.is_some() { 0.5 * r } else { r };
+    let pivot = bodies.inertia[a] + bodies.mass[a] * r * r;
+    Kinematics {
+        depth,
+        energy_depth: depth,
+        vn: 0.0,
+        vt: 0.0,
+        m_eff,
+        r_eff,
+        dt: 0.0,
+        area: None,
+        spin: 0.0,
+        rolling: RollingKinematics {
+            radius: r_eff,
+            inertia: if b.is_some() { 0.5 * pivot } else { pivot },
+            spin_inertia: bodies.inertia[a],
+        },
+    }
+}
+
 /// The relative motion at a contact point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Relative {

@@ -12,10 +12,11 @@
 use super::body::Bodies;
 use super::cell::Cell;
 use super::contacts::Contact;
+use super::kinematics;
 use super::materials::{Materials, PairTable};
 use super::world::{Boundary, World};
 use crate::contact_law::params::pair_density;
-use crate::contact_law::{ContactSpec, NormalForce, PairSpec, RollingKinematics};
+use crate::contact_law::{ContactSpec, NormalForce, PairSpec};
 use crate::geometry::Shape;
 use crate::geometry::overlap_area::DiskLens;
 
@@ -175,29 +176,17 @@ pub fn estimate_critical_dt_of(
         }
     }
     for (s, w_n, w_t, a, b) in cases {
-        let m_eff = match b {
-            Some(b) => 1.0 / (bodies.inv_mass[a] + bodies.inv_mass[b]),
-            None => bodies.mass[a],
-        };
         let rho = pair_density(bodies.density[a], b.map(|b| bodies.density[b]));
-        // R* and the rolling radius of two such bodies (or body and wall), from the body's
-        // bounding radius; the rolling inertia about a point on its bounding circle.
-        let r = bodies.bound[a];
-        let r_eff = if b.is_some() { 0.5 * r } else { r };
-        let pivot = bodies.inertia[a] + bodies.mass[a] * r * r;
-        let rk = RollingKinematics {
-            radius: r_eff,
-            inertia: if b.is_some() { 0.5 * pivot } else { pivot },
-            spin_inertia: bodies.inertia[a],
-        };
         // Each part's stiffness and dashpot (Hertz's at an overlap of 1 % of the smallest
-        // inscribed radius).
-        let modes = s.resolve(rho, g).modes(delta, r_eff, m_eff, &rk);
+        // inscribed radius), for the worst case's kinematics.
+        let modes = s
+            .resolve(rho, g)
+            .modes(&kinematics::worst_case(bodies, a, b, delta));
         let (kn, eta_n) = modes.normal;
         let (kt, eta_t) = modes.tangential;
-        // The rolling spring turns the bodies about their centroids: inverse inertia Σ 1/I.
+        // A couple's spring turns the bodies about their centroids: inverse inertia Σ 1/I.
         let w_r = bodies.inv_inertia[a] + b.map_or(0.0, |b| bodies.inv_inertia[b]);
-        dt = dt.min(critical_dt(modes.rolling.0, modes.rolling.1, w_r));
+        dt = dt.min(critical_dt(modes.rotation.0, modes.rotation.1, w_r));
         // A normal spring stiffer by the factor f: stiffness f k_n and dashpot √f η (the area
         // law's ρ η; more damping only lowers the limit).
         let f = stiffness_factor(bodies, s.spec.normal_force(), b.is_none());
@@ -250,7 +239,7 @@ fn network_dt(b: &Bodies, contacts: &[Contact], cell: Option<&Cell>) -> f64 {
         let sides = c.sides();
         let (recv, give) = (sides.receiver, sides.giving_body());
         let (d, e) = (&c.data, &c.extra);
-        // The rolling spring: a relative rotation, no translation.
+        // A couple's spring (`kr`, `cr`): a relative rotation, no translation.
         if e.kr > 0.0 {
             let a = (recv, [0.0, 0.0, scale[recv][2]]);
             let (g, two) = match give {

@@ -226,6 +226,11 @@ mod tests {
     use super::*;
     use crate::geometry::conic::ConicClass;
 
+    /// The conic `a x² + 2h xy + b y² + 2g x + 2f y + c = 0` from `[a, h, b, g, f, c]`.
+    fn conic([a, h, b, g, f, c]: [f64; 6]) -> Conic {
+        Conic { a, h, b, g, f, c }
+    }
+
     /// det of the P(9) member by cofactors, to check P(10) against.
     fn det(m: &Conic) -> f64 {
         m.det()
@@ -257,78 +262,36 @@ mod tests {
     #[test]
     fn splits_every_real_degenerate_class() {
         // Crossing lines x = y and x = -y: x² − y² = 0.
-        let m = Conic {
-            a: 1.0,
-            h: 0.0,
-            b: -1.0,
-            g: 0.0,
-            f: 0.0,
-            c: 0.0,
-        };
+        let m = conic([1.0, 0.0, -1.0, 0.0, 0.0, 0.0]);
         assert_eq!(m.classify(1e-12), ConicClass::CrossingLines);
         let [l1, l2] = split_degenerate(&m).unwrap();
         for l in [l1, l2] {
             assert!((l[0].abs() - l[1].abs()).abs() < 1e-15 && l[2] == 0.0);
         }
         // Parallel lines y = ±1: y² − 1 = 0.
-        let m = Conic {
-            a: 0.0,
-            h: 0.0,
-            b: 1.0,
-            g: 0.0,
-            f: 0.0,
-            c: -1.0,
-        };
+        let m = conic([0.0, 0.0, 1.0, 0.0, 0.0, -1.0]);
         assert_eq!(m.classify(1e-12), ConicClass::ParallelLines);
         let [l1, l2] = split_degenerate(&m).unwrap();
         let mut offsets = [-l1[2] / l1[1], -l2[2] / l2[1]];
         offsets.sort_by(f64::total_cmp);
         assert_eq!(offsets, [-1.0, 1.0]);
         // Double line (y − 2)² = 0.
-        let m = Conic {
-            a: 0.0,
-            h: 0.0,
-            b: 1.0,
-            g: 0.0,
-            f: -2.0,
-            c: 4.0,
-        };
+        let m = conic([0.0, 0.0, 1.0, 0.0, -2.0, 4.0]);
         assert_eq!(m.classify(1e-12), ConicClass::DoubleLine);
         let [l1, _] = split_degenerate(&m).unwrap();
         assert_eq!(-l1[2] / l1[1], 2.0);
         // One finite line plus the line at infinity: 2x − 3 = 0 (no quadratic part).
-        let m = Conic {
-            a: 0.0,
-            h: 0.0,
-            b: 0.0,
-            g: 1.0,
-            f: 0.0,
-            c: -3.0,
-        };
+        let m = conic([0.0, 0.0, 0.0, 1.0, 0.0, -3.0]);
         let [l1, l2] = split_degenerate(&m).unwrap();
         let finite = if l1[0].abs() > 0.0 { l1 } else { l2 };
         let infinite = if l1[0].abs() > 0.0 { l2 } else { l1 };
         assert_eq!(-finite[2] / finite[0], 1.5);
         assert!(infinite[0] == 0.0 && infinite[1] == 0.0 && infinite[2] != 0.0);
         // Imaginary cases: point-ellipse x² + y² = 0, imaginary parallel lines y² + 1 = 0.
-        let m = Conic {
-            a: 1.0,
-            h: 0.0,
-            b: 1.0,
-            g: 0.0,
-            f: 0.0,
-            c: 0.0,
-        };
+        let m = conic([1.0, 0.0, 1.0, 0.0, 0.0, 0.0]);
         assert_eq!(m.classify(1e-12), ConicClass::PointEllipse);
         assert!(split_degenerate(&m).is_none());
-        let m = Conic {
-            a: 0.0,
-            h: 0.0,
-            b: 1.0,
-            g: 0.0,
-            f: 0.0,
-            c: 1.0,
-        };
+        let m = conic([0.0, 0.0, 1.0, 0.0, 0.0, 1.0]);
         assert_eq!(m.classify(1e-12), ConicClass::ImaginaryParallelLines);
         assert!(split_degenerate(&m).is_none());
     }

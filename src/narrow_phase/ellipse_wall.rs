@@ -38,12 +38,7 @@ pub fn contact_wall_ellipse(
     let disc = beta * beta - alpha * (mqm - 1.0);
     let sigma = -beta / alpha;
     let mid = [mx + sigma * tx, my + sigma * ty];
-    let frame = LocalFrame {
-        origin: pose.position,
-        cos: pose.cos_sin().0,
-        sin: pose.cos_sin().1,
-        scale,
-    };
+    let frame = LocalFrame::of(pose, scale);
     // Classified by the depth, which is exact here; the half-chord only places the crossings
     // (at the tip of a thin ellipse it is tiny for a sizeable depth: half² ≈ 2(b²/a)δ).
     let half = disc.max(0.0).sqrt() / alpha;

@@ -503,6 +503,18 @@ pub(crate) struct LocalFrame {
 }
 
 impl LocalFrame {
+    /// The frame of `pose` (its centroid and axes), lengths scaled by `scale`.
+    #[inline]
+    pub fn of(pose: &Pose, scale: f64) -> LocalFrame {
+        let (cos, sin) = pose.cos_sin();
+        LocalFrame {
+            origin: pose.position,
+            cos,
+            sin,
+            scale,
+        }
+    }
+
     #[inline]
     pub fn vector(&self, v: [f64; 2]) -> Vec2 {
         Vec2::new(
@@ -545,6 +557,27 @@ impl LocalFrame {
             area: None,
             flat: None,
         }
+    }
+
+    /// The record of a containment ([`ContactState::Contained`]): the chord collapsed onto the
+    /// point `inner` (local), the unit normal `n` and the depth.
+    #[inline]
+    pub fn contained(
+        &self,
+        inner: [f64; 2],
+        n: [f64; 2],
+        depth: f64,
+        request: &Request,
+    ) -> Contact {
+        self.contact(
+            ContactState::Contained,
+            inner,
+            inner,
+            inner,
+            n,
+            depth,
+            request,
+        )
     }
 
     /// An [`OverlapArea`] from local quantities (lengths in units of `scale`): `grad` is

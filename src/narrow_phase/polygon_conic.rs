@@ -130,12 +130,7 @@ pub fn contact_polygon_conic(
             }
         }
     }
-    let frame = LocalFrame {
-        origin: pj.position,
-        cos: cj,
-        sin: sj,
-        scale,
-    };
+    let frame = LocalFrame::of(pj, scale);
     // Caps beyond a chord through m towards u: the polygon's by clipping its vertices, the
     // conic's (centred at the origin here) in closed form.
     let poly_cap = |m: [f64; 2], u: [f64; 2]| polygon_cap(&q, m, u);
@@ -244,15 +239,7 @@ pub fn contact_polygon_conic(
             let (nrm, dpt) = orient(toward, depth);
             let poly_inner = poly.area() * inv * inv <= std::f64::consts::PI * a * b;
             let inner = if poly_inner { [c.x, c.y] } else { [0.0, 0.0] };
-            Some(frame.contact(
-                ContactState::Contained,
-                inner,
-                inner,
-                inner,
-                nrm,
-                dpt,
-                request,
-            ))
+            Some(frame.contained(inner, nrm, dpt, request))
         }
     }
 }

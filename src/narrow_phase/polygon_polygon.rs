@@ -128,12 +128,7 @@ pub fn contact_polygon_polygon(
     if sat.0 < -tol {
         return None;
     }
-    let frame = LocalFrame {
-        origin: pi.position,
-        cos: ci,
-        sin: si,
-        scale,
-    };
+    let frame = LocalFrame::of(pi, scale);
     // Only i's faces that j reaches past clip anything: the others' half-planes hold all of j
     // (and so every point clipping makes on j's edges). Which they are follows from j's support
     // along each face normal, walked as above; a margin keeps a face whose line j touches to
@@ -208,15 +203,7 @@ pub fn contact_polygon_polygon(
         let (n, dpt) = orient([toward[0] / l, toward[1] / l], depth);
         // No overlap area: it no longer changes, and the contact falls back to the spring on
         // the depth (as every pair kind's containment does).
-        return Some(frame.contact(
-            ContactState::Contained,
-            inner,
-            inner,
-            inner,
-            n,
-            dpt,
-            request,
-        ));
+        return Some(frame.contained(inner, n, dpt, request));
     }
     // Walk once around, starting on a non-shared edge; a change between I and J is a crossing,
     // at the midpoint of the shared run between them (the common vertex when there is none).

@@ -58,13 +58,7 @@ pub fn contact_wall_polygon_in(
     if depth < -tol {
         return None;
     }
-    let (c, sn) = pose.cos_sin();
-    let frame = LocalFrame {
-        origin: pose.position,
-        cos: c,
-        sin: sn,
-        scale,
-    };
+    let frame = LocalFrame::of(pose, scale);
     let mut cross = [[0.0f64; 2]; 2];
     let mut nc = 0;
     // The part of the polygon beyond the wall line, as a polygon (for its area).

@@ -139,13 +139,7 @@ pub fn contact_point_body(
     if depth < -TOUCH_TOL {
         return None;
     }
-    let (cos, sin) = pose.cos_sin();
-    let frame = LocalFrame {
-        origin: pose.position,
-        cos,
-        sin,
-        scale,
-    };
+    let frame = LocalFrame::of(pose, scale);
     let state = if depth <= TOUCH_TOL {
         ContactState::Touching
     } else {

@@ -9,6 +9,17 @@ use crate::run::{End, Observer, ObserverError, Plan, StepInfo};
 use std::io::{IsTerminal, Write};
 use std::time::{Duration, Instant};
 
+/// Prints a progress line on stderr: rewritten in place on a terminal (`tty`), a whole line in
+/// a log. Progress is a courtesy: a closed or full stderr must not stop the run.
+fn print_line(tty: bool, text: &str) {
+    let mut err = std::io::stderr().lock();
+    let _ = if tty {
+        write!(err, "\r{text}   ")
+    } else {
+        writeln!(err, "{text}")
+    };
+}
+
 /// Throttled progress reporting; silent until `quiet_for` has passed since creation.
 pub struct Progress {
     enabled: bool,
@@ -50,13 +61,7 @@ impl Progress {
     pub fn show(&mut self, line: &str) {
         self.last = Instant::now();
         self.shown = true;
-        // Progress is a courtesy: a closed or full stderr must not stop the run.
-        let mut err = std::io::stderr().lock();
-        let _ = if self.tty {
-            write!(err, "\r{line}   ")
-        } else {
-            writeln!(err, "{line}")
-        };
+        print_line(self.tty, line);
     }
 
     /// Ends the in-place line on a terminal, if one was shown.
@@ -238,13 +243,7 @@ impl Observer for CommandProgress {
                 unbalanced: world.unbalanced_ratios().0,
             });
             self.shown = true;
-            // A courtesy: a closed or full stderr must not stop the work.
-            let mut err = std::io::stderr().lock();
-            let _ = if self.tty {
-                write!(err, "\r{text}   ")
-            } else {
-                writeln!(err, "{text}")
-            };
+            print_line(self.tty, &text);
         }
         Ok(())
     }

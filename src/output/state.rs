@@ -96,12 +96,7 @@ pub fn state_text(
     if let Some(obj) = case.as_object() {
         for (key, v) in obj {
             if !CASE_ORDER.contains(&key.as_str()) && key != "bodies" && key != "state" {
-                let _ = writeln!(
-                    out,
-                    "  {}: {},",
-                    compact(&Value::from(key.as_str())),
-                    compact(v)
-                );
+                let _ = writeln!(out, "  {},", member(key, v));
             }
         }
     }
@@ -146,12 +141,7 @@ pub fn state_text(
         if let Some(obj) = given.as_object() {
             for (key, v) in obj {
                 if !["shape", "position", "angle", "velocity", "omega"].contains(&key.as_str()) {
-                    let _ = write!(
-                        line,
-                        ", {}: {}",
-                        compact(&Value::from(key.as_str())),
-                        compact(v)
-                    );
+                    let _ = write!(line, ", {}", member(key, v));
                 }
             }
         }
@@ -165,6 +155,11 @@ pub fn state_text(
     write_state_block(&mut out, state, run, &circles, status);
     out.push_str("  }\n}\n");
     out
+}
+
+/// One member of an object, `"key": value`, in compact JSON.
+fn member(key: &str, v: &Value) -> String {
+    format!("{}: {}", compact(&Value::from(key)), compact(v))
 }
 
 /// The fields of a body inserted during the run: its shape, its material (by name: material
@@ -282,12 +277,11 @@ fn write_state_block(
         );
     }
     out.push_str("    \"walls\": [");
-    for (k, w) in s.walls.iter().enumerate() {
+    write_lines(out, &s.walls, |out, _, w| {
         let l = &w.load;
         let _ = write!(
             out,
-            "{}\n      {{\"point\": {}, \"velocity\": {}, \"load\": {{\"force\": {}, \"force_non_elastic\": {}, \"stiffness\": {}, \"contacts\": {}}}",
-            if k > 0 { "," } else { "" },
+            "{{\"point\": {}, \"velocity\": {}, \"load\": {{\"force\": {}, \"force_non_elastic\": {}, \"stiffness\": {}, \"contacts\": {}}}",
             vec2(w.point),
             vec2(w.velocity),
             vec2(l.force),
@@ -305,18 +299,12 @@ fn write_state_block(
             );
         }
         out.push('}');
-    }
-    out.push_str(if s.walls.is_empty() {
-        "],\n"
-    } else {
-        "\n    ],\n"
     });
-    out.push_str("    \"bodies\": [");
-    for (k, b) in s.bodies.iter().enumerate() {
+    out.push_str(",\n    \"bodies\": [");
+    write_lines(out, &s.bodies, |out, k, b| {
         let _ = write!(
             out,
-            "{}\n      {{\"force\": {}, \"torque\": {}",
-            if k > 0 { "," } else { "" },
+            "{{\"force\": {}, \"torque\": {}",
             vec2(b.force),
             num(b.torque)
         );
@@ -327,21 +315,11 @@ fn write_state_block(
             let _ = write!(out, ", \"image\": [{}, {}]", b.image[0], b.image[1]);
         }
         out.push('}');
-    }
-    out.push_str(if s.bodies.is_empty() {
-        "],\n"
-    } else {
-        "\n    ],\n"
     });
-    out.push_str("    \"contacts\": [");
-    for (k, c) in s.slots.iter().enumerate() {
+    out.push_str(",\n    \"contacts\": [");
+    write_lines(out, &s.slots, |out, _, c| {
         let slot = &c.slot;
-        let _ = write!(
-            out,
-            "{}\n      {{\"i\": {}, ",
-            if k > 0 { "," } else { "" },
-            slot.i
-        );
+        let _ = write!(out, "{{\"i\": {}, ", slot.i);
         match slot.sides().wall() {
             Some(w) => {
                 let _ = write!(out, "\"wall\": {w}");
@@ -385,12 +363,8 @@ fn write_state_block(
             let _ = write!(out, ", \"warm\": [{}, {}, {}, {}]", w[0], w[1], w[2], w[3]);
         }
         out.push('}');
-    }
-    out.push_str(if s.slots.is_empty() {
-        "],\n"
-    } else {
-        "\n    ],\n"
     });
+    out.push_str(",\n");
     let _ = write!(
         out,
         "    \"neighbour_list\": {{\"builds\": {}, \"wall_built_at\": [{}], \"built_at\": [",
@@ -401,14 +375,18 @@ fn write_state_block(
             .collect::<Vec<_>>()
             .join(", ")
     );
-    for (k, p) in s.built_at.iter().enumerate() {
-        let _ = write!(out, "{}\n      {}", if k > 0 { "," } else { "" }, vec2(*p));
+    write_lines(out, &s.built_at, |out, _, p| out.push_str(&vec2(*p)));
+    out.push_str("}\n");
+}
+
+/// The items of an array of the state block (its `[` written), one a line (`item` writes
+/// the k-th), and its `]`.
+fn write_lines<T>(out: &mut String, items: &[T], mut item: impl FnMut(&mut String, usize, &T)) {
+    for (k, x) in items.iter().enumerate() {
+        out.push_str(if k > 0 { ",\n      " } else { "\n      " });
+        item(out, k, x);
     }
-    out.push_str(if s.built_at.is_empty() {
-        "]}\n"
-    } else {
-        "\n    ]}\n"
-    });
+    out.push_str(if items.is_empty() { "]" } else { "\n    ]" });
 }
 
 fn write_run(out: &mut String, r: &RunProgress) {

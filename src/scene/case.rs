@@ -23,8 +23,8 @@
 
 use super::body::{WallGeometry, parse_body_with, parse_wall_or_segment_with};
 use super::fields::{
-    FieldError, Obj, index, join, non_negative, number, positive, scale, type_of, unknown_field,
-    vec2,
+    FieldError, Obj, count, index, join, non_negative, number, positive, scale, type_of,
+    unknown_field, vec2,
 };
 use super::materials::{Named, body_density, check_mixing, meeting, read_materials, read_pairs};
 use super::ranges::{Placed, SpecContext, check_extent, check_spec, check_steps};
@@ -608,16 +608,6 @@ fn string(v: &Value, path: &str) -> Result<String, FieldError> {
 fn boolean(v: &Value, path: &str) -> Result<bool, FieldError> {
     v.as_bool()
         .ok_or_else(|| FieldError::new(path, format!("must be true or false, got {}", type_of(v))))
-}
-
-fn count(v: &Value, path: &str) -> Result<u64, FieldError> {
-    match v.as_u64() {
-        Some(n) if n >= 1 => Ok(n),
-        _ => Err(FieldError::new(
-            path,
-            format!("must be a whole number ≥ 1, got {v}"),
-        )),
-    }
 }
 
 /// A wall's contact overrides: every contact key given on the wall replaces the scene's, with

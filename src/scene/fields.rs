@@ -269,6 +269,17 @@ pub fn positive(v: &Value, path: &str) -> Result<f64, FieldError> {
     }
 }
 
+/// A count: a whole number ≥ 1.
+pub fn count(v: &Value, path: &str) -> Result<u64, FieldError> {
+    match v.as_u64() {
+        Some(n) if n >= 1 => Ok(n),
+        _ => Err(FieldError::new(
+            path,
+            format!("must be a whole number ≥ 1, got {v}"),
+        )),
+    }
+}
+
 /// A scale — a size, density, time step, stiffness or modulus: positive, within
 /// [`MIN_SCALE`] … [`MAX_MAGNITUDE`].
 pub fn scale(v: &Value, path: &str) -> Result<f64, FieldError> {
@@ -402,15 +413,23 @@ pub fn unknown_field(given: &str, valid: &[&str]) -> String {
     } else {
         "unknown field".to_string()
     };
+    suggest(&what, given, &valid, "the valid keys here")
+}
+
+/// The message `what` about the unknown name `given`, with the name of `valid` it may have
+/// meant and the list of them (`whose`: what they are); `what` alone when there are none.
+pub fn suggest(what: &str, given: &str, valid: &[&str], whose: &str) -> String {
+    if valid.is_empty() {
+        return what.to_string();
+    }
     let list = valid
         .iter()
         .map(|k| format!("`{k}`"))
         .collect::<Vec<_>>()
         .join(", ");
-    match did_you_mean(given, &valid) {
-        Some(k) => format!("{what}: did you mean `{k}`? (the valid keys here: {list})"),
-        None if valid.is_empty() => what,
-        None => format!("{what} (the valid keys here: {list})"),
+    match did_you_mean(given, valid) {
+        Some(k) => format!("{what}: did you mean `{k}`? ({whose}: {list})"),
+        None => format!("{what} ({whose}: {list})"),
     }
 }
 
@@ -452,6 +471,19 @@ fn schema_path(path: &str) -> String {
         }
     }
     out
+}
+
+/// Reads the object `v` at `path` with `f`, then rejects the fields `f` did not take
+/// ([`Obj::finish`]).
+pub fn object<T>(
+    v: &Value,
+    path: &str,
+    f: impl FnOnce(&mut Obj) -> Result<T, FieldError>,
+) -> Result<T, FieldError> {
+    let mut o = Obj::new(v, path)?;
+    let r = f(&mut o)?;
+    o.finish()?;
+    Ok(r)
 }
 
 /// An object being read: fields are taken one by one, and [`Obj::finish`] rejects the rest.

@@ -10,7 +10,7 @@
 //! A distribution (`size`, `aspect`) is a number, `{"uniform": [lo, hi]}` or
 //! `{"choice": [v, …], "weights": [w, …]}` (weights optional: equal).
 
-use super::fields::{FieldError, Obj, index, join, number, positive, scale, type_of, vec2};
+use super::fields::{FieldError, Obj, count, index, join, number, positive, scale, type_of, vec2};
 use super::materials::{Named, body_density};
 use crate::dynamics::BodyInit;
 use crate::dynamics::flow::{Distribution, Flow, InsertShape, Inserter, Region, Target};
@@ -130,24 +130,14 @@ fn list(
         .collect()
 }
 
-fn whole(v: &Value, path: &str) -> Result<u64, FieldError> {
-    match v.as_u64() {
-        Some(n) if n >= 1 => Ok(n),
-        _ => Err(FieldError::new(
-            path,
-            format!("must be a whole number ≥ 1, got {v}"),
-        )),
-    }
-}
-
 /// One inserter `insert[k]` (at `path`).
 fn inserter(v: &Value, path: &str, named: &Named) -> Result<Inserter, FieldError> {
     let mut o = Obj::new(v, path)?;
     let region = o.req_with("region", region)?;
     let rate = o.opt_with("rate", positive)?;
-    let count = o.opt_with("count", whole)?;
-    let keep = o.opt_with("keep", whole)?;
-    let target = match (rate, count, keep) {
+    let given = o.opt_with("count", count)?;
+    let keep = o.opt_with("keep", count)?;
+    let target = match (rate, given, keep) {
         (Some(_), _, Some(_)) => {
             return Err(FieldError::new(
                 join(path, "keep"),
@@ -210,7 +200,7 @@ fn inserter(v: &Value, path: &str, named: &Named) -> Result<Inserter, FieldError
         .unwrap_or(0);
     let density = body_density(named, material, own_density, path)?;
     let attempts = o
-        .opt_with("attempts", whole)?
+        .opt_with("attempts", count)?
         .map_or(ATTEMPTS, |a| a.min(u32::MAX as u64) as u32);
     let retry = o.opt_with("retry", positive)?.unwrap_or(RETRY);
     let seed = o.opt_with("seed", |v, p| {

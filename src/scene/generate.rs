@@ -119,6 +119,20 @@ impl SplitMix64 {
     }
 }
 
+/// Marsaglia's xorshift generator (shifts 13, 7, 17; the state must not be 0), uniform in
+/// [0, 1) with 53 bits: the servo box's lattice and the studies' scenes.
+#[derive(Clone, Debug)]
+pub struct Xorshift(pub u64);
+
+impl Xorshift {
+    pub fn uniform(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// Rounds to 1e-6 (the case file then holds exactly the values the run uses, in short text).
 fn round6(x: f64) -> f64 {
     (x * 1e6).round() / 1e6
@@ -220,6 +234,47 @@ impl PileSpec {
         0.4 * (self.spacing() - 2.0 * self.max_bound()) / 2.0
     }
 
+    /// What differs from the piles of `cases/`, each as the name's suffix and the command's
+    /// option (the run's quiescence, duration and Δt: the command's alone).
+    fn departures(&self) -> Vec<(String, String)> {
+        let mut d = Vec::new();
+        if self.shape == PileShape::Ellipses && self.aspect != 1.5 {
+            d.push((
+                format!("_a{}", self.aspect),
+                format!(" --aspect {}", self.aspect),
+            ));
+        }
+        if self.sizes == PileSizes::Bidisperse {
+            d.push(("_bi".into(), " --sizes bidisperse".into()));
+        }
+        if self.friction != FRICTION {
+            let mu = self.friction;
+            d.push((format!("_mu{mu}"), format!(" --friction {mu}")));
+        }
+        if self.normal_force != NormalForce::Area {
+            let law = self.normal_force.as_str();
+            d.push((format!("_{law}"), format!(" --normal-force {law}")));
+        }
+        for (key, given, default) in [
+            ("quiescence", self.quiescence, QUIESCENCE),
+            ("duration", self.duration, DURATION),
+            ("dt", self.dt, DT),
+        ] {
+            if given != default {
+                d.push((String::new(), format!(" --{key} {given}")));
+            }
+        }
+        d
+    }
+
+    /// The shape's name in piles' names and on the command line.
+    fn shape_name(&self) -> &'static str {
+        match self.shape {
+            PileShape::Disks => "disks",
+            PileShape::Ellipses => "ellipses",
+        }
+    }
+
     /// The pile's name: `settle_disks_10k`, `settle_ellipses_1234`, …, with what differs from
     /// the piles of `cases/` (`_a2`, `_bi`, `_mu0`, `_depth`).
     pub fn name(&self) -> String {
@@ -227,57 +282,19 @@ impl PileSpec {
             n if n >= 1000 && n % 1000 == 0 => format!("{}k", n / 1000),
             n => n.to_string(),
         };
-        let mut kind = match self.shape {
-            PileShape::Disks => "disks".to_string(),
-            PileShape::Ellipses => "ellipses".to_string(),
-        };
-        if self.shape == PileShape::Ellipses && self.aspect != 1.5 {
-            kind += &format!("_a{}", self.aspect);
-        }
-        if self.sizes == PileSizes::Bidisperse {
-            kind += "_bi";
-        }
-        if self.friction != FRICTION {
-            kind += &format!("_mu{}", self.friction);
-        }
-        if self.normal_force != NormalForce::Area {
-            kind += &format!("_{}", self.normal_force.as_str());
-        }
-        format!("settle_{kind}_{count}")
+        let suffixes: String = self.departures().into_iter().map(|d| d.0).collect();
+        format!("settle_{}{suffixes}_{count}", self.shape_name())
     }
 
     /// The command line that writes this pile.
     pub fn command(&self) -> String {
-        let kind = match self.shape {
-            PileShape::Disks => "disks",
-            PileShape::Ellipses => "ellipses",
-        };
-        let mut c = format!(
-            "dem2d generate --shape {kind} --n {} --seed {}",
-            self.n, self.seed
-        );
-        if self.shape == PileShape::Ellipses && self.aspect != 1.5 {
-            c += &format!(" --aspect {}", self.aspect);
-        }
-        if self.sizes == PileSizes::Bidisperse {
-            c += " --sizes bidisperse";
-        }
-        if self.friction != FRICTION {
-            c += &format!(" --friction {}", self.friction);
-        }
-        if self.normal_force != NormalForce::Area {
-            c += &format!(" --normal-force {}", self.normal_force.as_str());
-        }
-        if self.quiescence != QUIESCENCE {
-            c += &format!(" --quiescence {}", self.quiescence);
-        }
-        if self.duration != DURATION {
-            c += &format!(" --duration {}", self.duration);
-        }
-        if self.dt != DT {
-            c += &format!(" --dt {}", self.dt);
-        }
-        c
+        let options: String = self.departures().into_iter().map(|d| d.1).collect();
+        format!(
+            "dem2d generate --shape {} --n {} --seed {}{options}",
+            self.shape_name(),
+            self.n,
+            self.seed
+        )
     }
 
     /// The pile as case-file text (`"version": 1`), one body per line.
@@ -340,40 +357,55 @@ impl PileSpec {
         bodies: &[BodyInit],
     ) -> String {
         let eta = round6(self.eta());
-        let head: [(&str, Value); 12] = [
-            ("version", json!(1)),
-            ("name", json!(name)),
-            ("description", json!(description)),
-            ("units", json!("cm")),
-            ("gravity", json!([0.0, -G])),
-            ("dt", json!(self.dt)),
-            ("duration", json!(self.duration)),
-            ("quiescence", json!(self.quiescence)),
-            ("quiescence_window", json!(QUIESCENCE_WINDOW)),
-            ("output_every", json!(10000)),
-            (
-                "contact",
-                json!({
-                    "model": "linear",
-                    "normal_force": self.normal_force.as_str(),
-                    "kn_over_rho_g": KN_OVER_RHO_G,
-                    "ks_over_rho_g": KN_OVER_RHO_G,
-                    "eta_n": eta,
-                    "eta_s": eta,
-                    "friction": self.friction,
-                }),
-            ),
-            (
-                "walls",
-                json!([
-                    {"point": [0.0, 0.0], "normal": [0.0, 1.0]},
-                    {"point": [0.0, 0.0], "normal": [1.0, 0.0]},
-                    {"point": [width, 0.0], "normal": [-1.0, 0.0]},
-                ]),
-            ),
-        ];
-        case_text_from(&head, bodies)
+        let contact = json!({
+            "model": "linear",
+            "normal_force": self.normal_force.as_str(),
+            "kn_over_rho_g": KN_OVER_RHO_G,
+            "ks_over_rho_g": KN_OVER_RHO_G,
+            "eta_n": eta,
+            "eta_s": eta,
+            "friction": self.friction,
+        });
+        let right = json!({"point": [width, 0.0], "normal": [-1.0, 0.0]});
+        let run = [self.dt, self.duration, self.quiescence];
+        settling_case_text(name, description, run, contact, right, bodies)
     }
+}
+
+/// The text of a case settling under gravity in a box (a floor, a left wall at x = 0 and the
+/// wall `right`; `dem2d generate`'s fields in their order): `name`, `description`, the
+/// step, duration and rest criterion `run` (Δt, duration, quiescence), the `contact` law,
+/// holding `bodies`.
+fn settling_case_text(
+    name: &str,
+    description: &str,
+    [dt, duration, quiescence]: [f64; 3],
+    contact: Value,
+    right: Value,
+    bodies: &[BodyInit],
+) -> String {
+    let head: [(&str, Value); 12] = [
+        ("version", json!(1)),
+        ("name", json!(name)),
+        ("description", json!(description)),
+        ("units", json!("cm")),
+        ("gravity", json!([0.0, -G])),
+        ("dt", json!(dt)),
+        ("duration", json!(duration)),
+        ("quiescence", json!(quiescence)),
+        ("quiescence_window", json!(QUIESCENCE_WINDOW)),
+        ("output_every", json!(10000)),
+        ("contact", contact),
+        (
+            "walls",
+            json!([
+                {"point": [0.0, 0.0], "normal": [0.0, 1.0]},
+                {"point": [0.0, 0.0], "normal": [1.0, 0.0]},
+                right,
+            ]),
+        ),
+    ];
+    case_text_from(&head, bodies)
 }
 
 /// A shape as a case file gives it (`"shape"` of a body).
@@ -498,27 +530,13 @@ impl ColumnSpec {
             bodies.len(),
             self.width
         );
-        let head: [(&str, Value); 12] = [
-            ("version", json!(1)),
-            ("name", json!(name)),
-            ("description", json!(description)),
-            ("units", json!("cm")),
-            ("gravity", json!([0.0, -G])),
-            ("dt", json!(DT)),
-            ("duration", json!(6.0)),
-            ("quiescence", json!(QUIESCENCE)),
-            ("quiescence_window", json!(QUIESCENCE_WINDOW)),
-            ("output_every", json!(10000)),
-            ("contact", contact),
-            (
-                "walls",
-                json!([
-                    {"point": [0.0, 0.0], "normal": [0.0, 1.0]},
-                    {"point": [0.0, 0.0], "normal": [1.0, 0.0]},
-                    gate,
-                ]),
-            ),
-        ];
-        case_text_from(&head, bodies)
+        settling_case_text(
+            name,
+            &description,
+            [DT, 6.0, QUIESCENCE],
+            contact,
+            gate,
+            bodies,
+        )
     }
 }

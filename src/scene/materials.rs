@@ -11,7 +11,7 @@
 
 use super::case::{layered, parse_contact};
 use super::fields::unknown_field;
-use super::fields::{FieldError, Obj, did_you_mean, index, join, note_key, scale, type_of};
+use super::fields::{FieldError, Obj, index, join, note_key, scale, suggest, type_of};
 use crate::contact_law::{ContactSpec, Given, MixError};
 use crate::dynamics::{BodyInit, Boundary, Materials};
 use serde_json::{Map, Value};
@@ -81,17 +81,8 @@ impl Named {
             );
         }
         let names: Vec<&str> = self.names.iter().map(String::as_str).collect();
-        let list = names
-            .iter()
-            .map(|n| format!("`{n}`"))
-            .collect::<Vec<_>>()
-            .join(", ");
-        match did_you_mean(name, &names) {
-            Some(n) => format!(
-                "unknown material `{name}`: did you mean `{n}`? (the case's materials: {list})"
-            ),
-            None => format!("unknown material `{name}` (the case's materials: {list})"),
-        }
+        let what = format!("unknown material `{name}`");
+        suggest(&what, name, &names, "the case's materials")
     }
 }
 

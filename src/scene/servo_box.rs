@@ -10,7 +10,7 @@
 //! adds the couples of its shear forces to the sample's mean stress, so that the wall's normal
 //! load over its span is no longer the principal stress).
 
-use super::generate::case_text_from;
+use super::generate::{Xorshift, case_text_from};
 use crate::contact_law::damping_ratio_linear;
 use crate::dynamics::BodyInit;
 use crate::geometry::{Shape, Vec2};
@@ -63,13 +63,8 @@ pub struct ServoBox {
 impl ServoBox {
     /// The bodies on the starting lattice (spacing: the largest grain's length plus 10 %).
     pub fn bodies(&self) -> Vec<BodyInit> {
-        let mut state = self.seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-        let mut uniform = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = Xorshift(self.seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
+        let mut uniform = move || rng.uniform();
         let s = self.spacing();
         let n = self.n_side;
         (0..n * n)

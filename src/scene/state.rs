@@ -9,7 +9,7 @@
 //! listed once each in key order, and the time `step × dt` (a continued run keeps the time step).
 
 use super::case::Case;
-use super::fields::{FieldError, Obj, index, join, parse_json, type_of};
+use super::fields::{FieldError, Obj, index, join, object, parse_json, type_of};
 use crate::contact_law::{HISTORY_LEN, History};
 use crate::dynamics::Motion;
 use crate::dynamics::World;
@@ -378,27 +378,25 @@ pub fn parse_state(
     let step = o.req_with("step", whole)?;
     let time = o.req_with("time", float)?;
     let energies = o.req_with("energies", |v, p| {
-        let mut e = Obj::new(v, p)?;
-        let r = Energies {
-            kinetic: e.req_with("kinetic", float)?,
-            potential: e.req_with("potential", float)?,
-            elastic: e.req_with("elastic", float)?,
-            dissipated: e.req_with("dissipated", float)?,
-            boundary_work: e.req_with("boundary_work", float)?,
-        };
-        e.finish()?;
-        Ok(r)
+        object(v, p, |e| {
+            Ok(Energies {
+                kinetic: e.req_with("kinetic", float)?,
+                potential: e.req_with("potential", float)?,
+                elastic: e.req_with("elastic", float)?,
+                dissipated: e.req_with("dissipated", float)?,
+                boundary_work: e.req_with("boundary_work", float)?,
+            })
+        })
     })?;
     let diagnostics = o.req_with("diagnostics", |v, p| {
-        let mut d = Obj::new(v, p)?;
-        let r = Diagnostics {
-            max_depth_ratio: d.req_with("max_depth_ratio", float)?,
-            deep_contacts: d.req_with("deep_contacts", whole)?,
-            contained_contacts: d.req_with("contained_contacts", whole)?,
-            dt_critical_observed: d.req_with("dt_critical_observed", float_or_infinity)?,
-        };
-        d.finish()?;
-        Ok(r)
+        object(v, p, |d| {
+            Ok(Diagnostics {
+                max_depth_ratio: d.req_with("max_depth_ratio", float)?,
+                deep_contacts: d.req_with("deep_contacts", whole)?,
+                contained_contacts: d.req_with("contained_contacts", whole)?,
+                dt_critical_observed: d.req_with("dt_critical_observed", float_or_infinity)?,
+            })
+        })
     })?;
     let last_increments = o.req_with("last_increments", floats::<3>)?;
     let mut run = o.opt_with("run", parse_run)?;
@@ -416,31 +414,30 @@ pub fn parse_state(
                 let point = w.req_with("point", pair)?;
                 let velocity = w.req_with("velocity", pair)?;
                 let load = w.req_with("load", |v, p| {
-                    let mut l = Obj::new(v, p)?;
-                    let load = WallLoad {
-                        force: l.req_with("force", pair)?,
-                        force_non_elastic: l.req_with("force_non_elastic", pair)?,
-                        stiffness: l.req_with("stiffness", float)?,
-                        contacts: l.req_with("contacts", |v, p| {
-                            u32::try_from(whole(v, p)?)
-                                .map_err(|_| FieldError::new(p, "must be a whole number below 2³²"))
-                        })?,
-                    };
-                    l.finish()?;
-                    Ok(load)
+                    object(v, p, |l| {
+                        Ok(WallLoad {
+                            force: l.req_with("force", pair)?,
+                            force_non_elastic: l.req_with("force_non_elastic", pair)?,
+                            stiffness: l.req_with("stiffness", float)?,
+                            contacts: l.req_with("contacts", |v, p| {
+                                u32::try_from(whole(v, p)?).map_err(|_| {
+                                    FieldError::new(p, "must be a whole number below 2³²")
+                                })
+                            })?,
+                        })
+                    })
                 })?;
                 let program = w.opt_with("program", |v, p| {
-                    let mut o = Obj::new(v, p)?;
-                    let r = ProgramRestart {
-                        stage: o.req_with("stage", |v, p| {
-                            usize::try_from(whole(v, p)?)
-                                .map_err(|_| FieldError::new(p, "is beyond the largest stage"))
-                        })?,
-                        start: o.req_with("start", pair)?,
-                        start_time: o.req_with("start_time", float)?,
-                    };
-                    o.finish()?;
-                    Ok(r)
+                    object(v, p, |o| {
+                        Ok(ProgramRestart {
+                            stage: o.req_with("stage", |v, p| {
+                                usize::try_from(whole(v, p)?)
+                                    .map_err(|_| FieldError::new(p, "is beyond the largest stage"))
+                            })?,
+                            start: o.req_with("start", pair)?,
+                            start_time: o.req_with("start_time", float)?,
+                        })
+                    })
                 })?;
                 let at = index(p, k);
                 match (case.walls.get(k).map(|w| &w.motion), &program) {
@@ -588,19 +585,19 @@ pub fn parse_state(
             .collect::<Result<Vec<_>, _>>()
     })?;
     let (builds, wall_built_at, built_at) = o.req_with("neighbour_list", |v, p| {
-        let mut l = Obj::new(v, p)?;
-        let builds = l.req_with("builds", whole)?;
-        let points = |v: &Value, p: &str| -> Result<Vec<Vec2>, FieldError> {
-            array(v, p)?
-                .iter()
-                .enumerate()
-                .map(|(k, x)| pair(x, &index(p, k)))
-                .collect()
-        };
-        let wall_built_at = l.req_with("wall_built_at", points)?;
-        let built_at = l.req_with("built_at", points)?;
-        l.finish()?;
-        Ok((builds, wall_built_at, built_at))
+        object(v, p, |l| {
+            let builds = l.req_with("builds", whole)?;
+            let points = |v: &Value, p: &str| -> Result<Vec<Vec2>, FieldError> {
+                array(v, p)?
+                    .iter()
+                    .enumerate()
+                    .map(|(k, x)| pair(x, &index(p, k)))
+                    .collect()
+            };
+            let wall_built_at = l.req_with("wall_built_at", points)?;
+            let built_at = l.req_with("built_at", points)?;
+            Ok((builds, wall_built_at, built_at))
+        })
     })?;
     let n = bodies.len();
     let ids = o
@@ -795,21 +792,20 @@ fn parse_run(v: &Value, path: &str) -> Result<RunProgress, FieldError> {
     })?;
     let contact_sum = r.req_with("contact_sum", whole)?;
     let watch = r.req_with("watch", |v, p| {
-        let mut w = Obj::new(v, p)?;
-        let watch = BlowupWatch {
-            kinetic0: w.req_with("kinetic0", float)?,
-            elastic0: w.req_with("elastic0", float)?,
-            potential0: w.req_with("potential0", float)?,
-            total0: w.req_with("total0", float)?,
-            gravity_supplied: w.req_with("gravity_supplied", float)?,
-            boundary_supplied: w.req_with("boundary_supplied", float)?,
-            // Absent from states written before it was kept: the state's own dissipation
-            // (set by the caller, which has it).
-            dissipated_max: w.opt_with("dissipated_max", float)?.unwrap_or(f64::NAN),
-            depth_limit: w.req_with("depth_limit", float)?,
-        };
-        w.finish()?;
-        Ok(watch)
+        object(v, p, |w| {
+            Ok(BlowupWatch {
+                kinetic0: w.req_with("kinetic0", float)?,
+                elastic0: w.req_with("elastic0", float)?,
+                potential0: w.req_with("potential0", float)?,
+                total0: w.req_with("total0", float)?,
+                gravity_supplied: w.req_with("gravity_supplied", float)?,
+                boundary_supplied: w.req_with("boundary_supplied", float)?,
+                // Absent from states written before it was kept: the state's own dissipation
+                // (set by the caller, which has it).
+                dissipated_max: w.opt_with("dissipated_max", float)?.unwrap_or(f64::NAN),
+                depth_limit: w.req_with("depth_limit", float)?,
+            })
+        })
     })?;
     r.finish()?;
     Ok(RunProgress {

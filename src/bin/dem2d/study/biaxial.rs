@@ -20,7 +20,7 @@ use dem2d::geometry::{Shape, Vec2};
 use dem2d::output::progress::CommandProgress;
 use dem2d::run::{RunError, Simulation};
 use dem2d::scene::Case;
-use dem2d::scene::generate::case_text_from;
+use dem2d::scene::generate::{Xorshift, case_text_from};
 use dem2d::scene::servo_box::box_walls;
 use serde_json::{Value, json};
 
@@ -86,13 +86,8 @@ fn stresses(w: &World) -> (f64, f64, f64, f64) {
 
 pub fn run(write: bool) -> Result<String, RunError> {
     // A loose lattice, 2.6 cm apart, radii uniform in 0.8–1.2 (a fixed sequence).
-    let mut seed = 7u64;
-    let mut uniform = || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = Xorshift(7);
+    let mut uniform = || rng.uniform();
     let s = 2.6;
     let bodies: Vec<BodyInit> = (0..N_SIDE * N_SIDE)
         .map(|k| BodyInit {
@@ -144,12 +139,7 @@ pub fn run(write: bool) -> Result<String, RunError> {
         })
         .collect();
     let (_, _, width0, height0) = stresses(&w);
-    let box_ = [
-        w.walls[2].line().point.x,
-        w.walls[3].line().point.x,
-        w.walls[0].line().point.y,
-        w.walls[1].line().point.y,
-    ];
+    let box_ = super::biaxial_shape::box_of(&w);
     let v = round6(0.5 * STRAIN_RATE * height0);
     let shear = case_json(
         "biaxial_disks",
@@ -175,27 +165,15 @@ pub fn run(write: bool) -> Result<String, RunError> {
          |---:|---:|---:|---:|---:|---:|",
     );
     let steps_per_percent = (0.01 / STRAIN_RATE / case.dt).round() as u64;
-    let (mut sum, mut count) = ([0.0; 2], 0.0);
-    let mut lines = CommandProgress::new(case.name.clone());
-    Simulation::new(&mut w)
-        .observe(&mut lines)
-        .until_step(case.steps())
-        .run_each(|w, _| {
-            let (ax, lat, width, height) = stresses(w);
-            sum[0] += ax;
-            sum[1] += lat;
-            count += 1.0;
-            if w.step % steps_per_percent == 0 {
-                let (ax, lat) = (sum[0] / count, sum[1] / count);
-                let strain = 1.0 - height / height0;
-                md.row(format!(
-                    "| {strain:.3} | {ax:.4e} | {lat:.4e} | {:+.2e} | {:.3} | {:.4} |",
-                    lat / SIGMA_C - 1.0,
-                    (ax - lat) / (ax + lat),
-                    1.0 - width * height / area0
-                ));
-                (sum, count) = ([0.0; 2], 0.0);
-            }
-        })?;
+    super::biaxial_shape::run_shear(&mut w, &case, steps_per_percent, |w, ax, lat| {
+        let (_, _, width, height) = stresses(w);
+        let strain = 1.0 - height / height0;
+        md.row(format!(
+            "| {strain:.3} | {ax:.4e} | {lat:.4e} | {:+.2e} | {:.3} | {:.4} |",
+            lat / SIGMA_C - 1.0,
+            (ax - lat) / (ax + lat),
+            1.0 - width * height / area0
+        ));
+    })?;
     Ok(md.text())
 }

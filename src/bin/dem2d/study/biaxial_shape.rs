@@ -74,6 +74,43 @@ pub fn compact(w: &mut World, max_time: f64) -> Result<u64, RunError> {
     Ok(steps)
 }
 
+/// The box `[x0, x1, y0, y1]` of a servo box's walls (bottom, top, left, right) now.
+pub fn box_of(w: &World) -> [f64; 4] {
+    [
+        w.walls[2].line().point.x,
+        w.walls[3].line().point.x,
+        w.walls[0].line().point.y,
+        w.walls[1].line().point.y,
+    ]
+}
+
+/// Runs the shear stage of a servo box (`case`'s world `w`) to the case's end; every `every` steps
+/// calls `each` with the world and the axial and lateral wall stresses averaged over those
+/// steps (see [`wall_state`]).
+pub fn run_shear(
+    w: &mut World,
+    case: &Case,
+    every: u64,
+    mut each: impl FnMut(&mut World, f64, f64),
+) -> Result<(), RunError> {
+    let (mut sum, mut count) = ([0.0; 2], 0.0);
+    let mut lines = CommandProgress::new(case.name.clone());
+    Simulation::new(w)
+        .observe(&mut lines)
+        .until_step(case.steps())
+        .run_each(|w, _| {
+            let (_, _, ax, lat) = wall_state(w);
+            sum[0] += ax;
+            sum[1] += lat;
+            count += 1.0;
+            if w.step % every == 0 {
+                each(w, sum[0] / count, sum[1] / count);
+                (sum, count) = ([0.0; 2], 0.0);
+            }
+        })?;
+    Ok(())
+}
+
 /// One biaxial test.
 #[derive(Clone, Debug, Default)]
 pub struct Outcome {
@@ -137,12 +174,7 @@ pub fn run_one(
         })
         .collect();
     let (_, height0, _, _) = wall_state(&w);
-    let box_ = [
-        w.walls[2].line().point.x,
-        w.walls[3].line().point.x,
-        w.walls[0].line().point.y,
-        w.walls[1].line().point.y,
-    ];
+    let box_ = box_of(&w);
     let v = 0.5 * STRAIN_RATE * height0;
     let shear = ServoBox {
         friction: MU,
@@ -177,32 +209,19 @@ pub fn run_one(
         initial,
         ..Default::default()
     };
-    let (mut sum, mut count) = ([0.0; 2], 0.0);
     let mut frames = Vec::new();
-    let mut lines = CommandProgress::new(case.name.clone());
-    Simulation::new(&mut w)
-        .observe(&mut lines)
-        .until_step(case.steps())
-        .run_each(|w, _| {
-            let (_, _, ax, lat) = wall_state(w);
-            sum[0] += ax;
-            sum[1] += lat;
-            count += 1.0;
-            if w.step % every == 0 {
-                let (ax, lat) = (sum[0] / count, sum[1] / count);
-                let (width, height, _, _) = wall_state(w);
-                out.curve.push((
-                    1.0 - height / height0,
-                    (ax - lat) / (ax + lat),
-                    1.0 - width * height / area0,
-                ));
-                w.refresh_contact_extras();
-                let frame = Frame::from_world(w);
-                out.measures.push(analysis::measure(&frame, None));
-                frames.push(frame);
-                (sum, count) = ([0.0; 2], 0.0);
-            }
-        })?;
+    run_shear(&mut w, &case, every, |w, ax, lat| {
+        let (width, height, _, _) = wall_state(w);
+        out.curve.push((
+            1.0 - height / height0,
+            (ax - lat) / (ax + lat),
+            1.0 - width * height / area0,
+        ));
+        w.refresh_contact_extras();
+        let frame = Frame::from_world(w);
+        out.measures.push(analysis::measure(&frame, None));
+        frames.push(frame);
+    })?;
     steps += case.steps();
     let (k, &(e1, q, _)) = out
         .curve
@@ -423,21 +442,7 @@ pub fn run(grains: usize, write: bool) -> Result<String, RunError> {
             ..Default::default()
         },
     ];
-    plot::line_panels(
-        std::path::Path::new("figures/biaxial_shape.svg"),
-        (1200, 480),
-        (1, 2),
-        &panels,
-    )
-    .expect("figures/biaxial_shape.svg");
-    std::fs::create_dir_all("target/figure-png").expect("target/figure-png");
-    plot::line_panels(
-        std::path::Path::new("target/figure-png/biaxial_shape.png"),
-        (1200, 480),
-        (1, 2),
-        &panels,
-    )
-    .expect("biaxial_shape.png");
+    super::write_figure("biaxial_shape", (1200, 480), (1, 2), &panels);
     std::fs::write("figures/biaxial_shape.md", &md).expect("figures/biaxial_shape.md");
     let chains = force_chains(&[&results[0], &results[results.len() - 1]]);
     std::fs::write("figures/force_chains.svg", &chains).expect("figures/force_chains.svg");

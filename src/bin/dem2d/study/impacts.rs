@@ -7,7 +7,7 @@
 //! `target/figure-png/`), `figures/impacts.md`.
 
 use crate::impact::{self, Impact};
-use dem2d::output::plot::{self, LinePanel, Series};
+use dem2d::output::plot::{LinePanel, Series};
 use dem2d::run::RunError;
 use std::fmt::Write as _;
 use std::time::Instant;
@@ -156,12 +156,7 @@ pub fn run() -> Result<String, RunError> {
             ..Default::default()
         })
         .collect();
-    let svg = std::path::Path::new("figures/impacts.svg");
-    plot::line_panels(svg, (1500, 480), (1, 3), &panels).expect("figures/impacts.svg");
-    let png_dir = std::path::Path::new("target/figure-png");
-    std::fs::create_dir_all(png_dir).expect("target/figure-png");
-    plot::line_panels(&png_dir.join("impacts.png"), (1500, 480), (1, 3), &panels)
-        .expect("impacts.png");
+    super::write_figure("impacts", (1500, 480), (1, 3), &panels);
     let mut md = table(&rows);
     writeln!(
         md,

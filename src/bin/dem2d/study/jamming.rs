@@ -37,6 +37,7 @@ use dem2d::dynamics::partner::Partner;
 use dem2d::geometry::{Pose, Shape, Vec2};
 use dem2d::output::plot::{self, LinePanel, Series};
 use dem2d::scene::Case;
+use dem2d::scene::generate::Xorshift;
 use rayon::prelude::*;
 use std::fmt::Write as _;
 use std::time::Instant;
@@ -70,20 +71,9 @@ pub struct Packing {
     pub found: bool,
 }
 
-/// A small deterministic generator (xorshift; the shear study's too).
-pub(super) struct Rng(pub(super) u64);
-impl Rng {
-    pub(super) fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// The world of packing `seed` at aspect ratio `aspect`, its grains placed at random.
 fn world(n: usize, aspect: f64, seed: u64) -> World {
-    let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ seed.wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 1);
+    let mut rng = Xorshift(0x9E37_79B9_7F4A_7C15 ^ seed.wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 1);
     let shapes: Vec<Shape> = (0..n)
         .map(|k| {
             let r = if k % 2 == 0 { R_SMALL } else { 1.4 * R_SMALL };
@@ -105,8 +95,8 @@ fn world(n: usize, aspect: f64, seed: u64) -> World {
             material: 0,
             prescribed: false,
             shape,
-            position: Vec2::new(side * rng.next(), side * rng.next()),
-            angle: std::f64::consts::PI * rng.next(),
+            position: Vec2::new(side * rng.uniform(), side * rng.uniform()),
+            angle: std::f64::consts::PI * rng.uniform(),
             velocity: Vec2::zeros(),
             omega: 0.0,
             density: 1.0,
@@ -386,36 +376,34 @@ pub fn run(n: usize, packings: usize, aspects: &[f64]) -> Result<String, dem2d::
             ..Default::default()
         }]
     };
+    // φ_J and Z_J against α, each with its references.
+    let panel = |title: &str, y_label: &str, k: usize, hlines: [(f64, &str); 2]| LinePanel {
+        title: title.into(),
+        x_label: "aspect ratio α = a/b (–)".into(),
+        y_label: y_label.into(),
+        series: series(k),
+        hlines: hlines.map(|(y, label)| (y, label.to_string())).into(),
+        legend: plot::Legend::Auto,
+        ..Default::default()
+    };
     let panels = [
-        LinePanel {
-            title: "Jamming packing fraction".into(),
-            x_label: "aspect ratio α = a/b (–)".into(),
-            y_label: "φ_J (–)".into(),
-            series: series(0),
-            hlines: vec![
-                (0.84, "bidisperse disks ≈ 0.84 (O'Hern 2003)".into()),
-                (0.894, "ellipses' peak 0.891–0.897 (VanderWerf 2018)".into()),
+        panel(
+            "Jamming packing fraction",
+            "φ_J (–)",
+            0,
+            [
+                (0.84, "bidisperse disks ≈ 0.84 (O'Hern 2003)"),
+                (0.894, "ellipses' peak 0.891–0.897 (VanderWerf 2018)"),
             ],
-            legend: plot::Legend::Auto,
-            ..Default::default()
-        },
-        LinePanel {
-            title: "Contacts per grain at jamming".into(),
-            x_label: "aspect ratio α = a/b (–)".into(),
-            y_label: "Z_J, rattlers out (–)".into(),
-            series: series(1),
-            hlines: vec![
-                (4.0, "isostatic disks: 4".into()),
-                (6.0, "isostatic ellipses: 6".into()),
-            ],
-            legend: plot::Legend::Auto,
-            ..Default::default()
-        },
+        ),
+        panel(
+            "Contacts per grain at jamming",
+            "Z_J, rattlers out (–)",
+            1,
+            [(4.0, "isostatic disks: 4"), (6.0, "isostatic ellipses: 6")],
+        ),
     ];
-    std::fs::create_dir_all("target/figure-png").expect("target/figure-png");
-    for path in ["figures/jamming.svg", "target/figure-png/jamming.png"] {
-        plot::line_panels(std::path::Path::new(path), (1200, 480), (1, 2), &panels).expect(path);
-    }
+    super::write_figure("jamming", (1200, 480), (1, 2), &panels);
     std::fs::write("figures/jamming.md", &md).expect("figures/jamming.md");
     Ok(md)
 }

@@ -14,6 +14,7 @@ pub mod shear;
 pub mod silo;
 
 use dem2d::output::docs_tables::Mode;
+use dem2d::output::plot::{self, LinePanel};
 use std::path::Path;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU8, Ordering};
@@ -108,6 +109,18 @@ impl Table {
     /// The whole table.
     pub fn text(self) -> String {
         self.0
+    }
+}
+
+/// Draws a study's figure `panels` (`size` in pixels, a `grid` of rows × columns) into
+/// `figures/NAME.svg`, and as a PNG into `target/figure-png/NAME.png` (to look at).
+pub fn write_figure(name: &str, size: (u32, u32), grid: (usize, usize), panels: &[LinePanel]) {
+    std::fs::create_dir_all("target/figure-png").expect("target/figure-png");
+    for path in [
+        format!("figures/{name}.svg"),
+        format!("target/figure-png/{name}.png"),
+    ] {
+        plot::line_panels(Path::new(&path), size, grid, panels).expect(&path);
     }
 }
 

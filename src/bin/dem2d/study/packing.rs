@@ -24,7 +24,7 @@ use dem2d::output::plot::{self, LinePanel, Series};
 use dem2d::output::progress::CommandProgress;
 use dem2d::run::{RunError, Simulation, Stop};
 use dem2d::scene::Case;
-use dem2d::scene::generate::{DENSITY, PileShape, PileSizes, PileSpec, R_SMALL};
+use dem2d::scene::generate::{DENSITY, PileShape, PileSizes, PileSpec, R_SMALL, Xorshift};
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -65,13 +65,8 @@ pub fn width_for(n: usize) -> f64 {
 }
 
 fn bodies(aspect: f64, seed: u64, spacing: f64, n: usize, width: f64) -> Vec<BodyInit> {
-    let mut state = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-    let mut uniform = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = Xorshift(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
+    let mut uniform = move || rng.uniform();
     let cols = (width / spacing).floor() as usize;
     let x0 = 0.5 * (width - cols as f64 * spacing);
     let r6 = |x: f64| (x * 1e6).round() / 1e6;
@@ -297,10 +292,7 @@ pub fn run(n: usize, write: bool) -> Result<String, RunError> {
             ..Default::default()
         },
     ];
-    for path in ["figures/packing.svg", "target/figure-png/packing.png"] {
-        std::fs::create_dir_all("target/figure-png").expect("target/figure-png");
-        plot::line_panels(std::path::Path::new(path), (1200, 480), (1, 2), &panels).expect(path);
-    }
+    super::write_figure("packing", (1200, 480), (1, 2), &panels);
     std::fs::write("figures/packing.md", &md).expect("figures/packing.md");
     print!("{md}");
     Ok(md)

@@ -656,13 +656,7 @@ pub fn run(grains: usize) -> Result<String, RunError> {
         drop_panel("mu05", "P Fig. 2 drop, floor μ = 0.5"),
         pile_panel,
     ];
-    for path in [
-        "figures/representation_pareto.svg",
-        "target/figure-png/representation_pareto.png",
-    ] {
-        std::fs::create_dir_all("target/figure-png").expect("target/figure-png");
-        plot::line_panels(std::path::Path::new(path), (1500, 620), (1, 3), &panels).expect(path);
-    }
+    super::write_figure("representation_pareto", (1500, 620), (1, 3), &panels);
     std::fs::write("figures/representation.md", &md).expect("figures/representation.md");
     print!("{md}");
     Ok(md)

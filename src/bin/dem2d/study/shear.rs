@@ -17,7 +17,6 @@
 //! area over the cell's, and for ellipses the nematic order `S = |⟨e^{2iθ}⟩|` and the mean
 //! orientation `θ̄ = ½ arg⟨e^{2iθ}⟩` of the long axes against the flow (x).
 
-use super::jamming::Rng;
 use super::{Table, line_fit};
 use dem2d::contact_law::{ContactSpec, LinearDamping, Scaled};
 use dem2d::dynamics::BodyInit;
@@ -27,6 +26,7 @@ use dem2d::geometry::{Shape, Vec2};
 use dem2d::output::plot::{self, LinePanel, Series};
 use dem2d::run::{RunError, Simulation};
 use dem2d::scene::Case;
+use dem2d::scene::generate::Xorshift;
 use rayon::prelude::*;
 use std::fmt::Write as _;
 use std::time::Instant;
@@ -69,14 +69,14 @@ pub struct Flow {
 
 /// The world of a run at `aspect` sheared at `rate`.
 fn world(n: usize, aspect: f64, rate: f64) -> World {
-    let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ aspect.to_bits());
+    let mut rng = Xorshift(0x9E37_79B9_7F4A_7C15 ^ aspect.to_bits());
     let side_count = (n as f64).sqrt().ceil() as usize;
     let longest = 0.6 * D * aspect.sqrt();
     let spacing = 2.1 * longest;
     let side = spacing * side_count as f64;
     let bodies = (0..n)
         .map(|k| {
-            let r = 0.5 * D * (0.8 + 0.4 * rng.next());
+            let r = 0.5 * D * (0.8 + 0.4 * rng.uniform());
             let shape = if aspect == 1.0 {
                 Shape::Circle { r }
             } else {
@@ -94,7 +94,7 @@ fn world(n: usize, aspect: f64, rate: f64) -> World {
                 prescribed: false,
                 shape,
                 position,
-                angle: std::f64::consts::PI * rng.next(),
+                angle: std::f64::consts::PI * rng.uniform(),
                 velocity: Vec2::new(rate * (position.y - 0.5 * side), 0.0),
                 omega: 0.0,
                 density: RHO,
@@ -288,10 +288,7 @@ pub fn run(n: usize, aspects: &[f64], targets: &[f64]) -> Result<String, RunErro
             ..Default::default()
         },
     ];
-    std::fs::create_dir_all("target/figure-png").expect("target/figure-png");
-    for path in ["figures/shear.svg", "target/figure-png/shear.png"] {
-        plot::line_panels(std::path::Path::new(path), (1200, 480), (1, 2), &panels).expect(path);
-    }
+    super::write_figure("shear", (1200, 480), (1, 2), &panels);
     std::fs::write("figures/shear.md", &md).expect("figures/shear.md");
     Ok(md)
 }

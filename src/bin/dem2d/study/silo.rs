@@ -446,10 +446,7 @@ pub fn run() -> Result<String, RunError> {
             ..Default::default()
         },
     ];
-    std::fs::create_dir_all("target/figure-png").expect("target/figure-png");
-    for path in ["figures/silo.svg", "target/figure-png/silo.png"] {
-        plot::line_panels(std::path::Path::new(path), (1500, 480), (1, 3), &panels).expect(path);
-    }
+    super::write_figure("silo", (1500, 480), (1, 3), &panels);
     std::fs::write("figures/silo.md", &md).expect("figures/silo.md");
     print!("{md}");
     Ok(md)
