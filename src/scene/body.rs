@@ -127,26 +127,6 @@ fn clump(v: &Value, path: &str) -> Result<Clump, FieldError> {
     })
 }
 
-/// A wall's inner object `{"point": [x, y], "normal": [nx, ny]}` (the normal need not be unit;
-/// it points into the free side). `extra` reads any further fields (case files add contact
-/// parameters) before unknown ones are rejected.
-pub fn parse_wall_with<T>(
-    v: &Value,
-    path: &str,
-    extra: impl FnOnce(&mut Obj) -> Result<T, FieldError>,
-) -> Result<(Wall, T), FieldError> {
-    let mut o = Obj::new(v, path)?;
-    let point = o.req_with("point", vec2)?;
-    let normal = Vec2::from(o.req_with("normal", vec2)?);
-    // `Wall::new` takes a normal of any non-zero length (a tiny one such as [1e-200, 1e-200],
-    // whose squared length underflows, too) and keeps its direction exactly.
-    let wall = Wall::new(Vec2::from(point), normal)
-        .ok_or_else(|| FieldError::new(o.field_path("normal"), "must be a non-zero vector"))?;
-    let t = extra(&mut o)?;
-    o.finish()?;
-    Ok((wall, t))
-}
-
 /// What a wall object describes: a half-plane or a segment.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum WallGeometry {
@@ -154,31 +134,39 @@ pub enum WallGeometry {
     Segment(Segment),
 }
 
-/// A wall's inner object: a half-plane `{"point": [x, y], "normal": [nx, ny]}` (as
-/// [`parse_wall_with`]) or a segment `{"segment": [[x0, y0], [x1, y1]]}` (its two ends, cm; not
-/// both). `extra` reads any further fields before unknown ones are rejected.
+/// A wall's inner object: a half-plane `{"point": [x, y], "normal": [nx, ny]}` (the normal need
+/// not be unit; it points into the free side) or a segment `{"segment": [[x0, y0], [x1, y1]]}`
+/// (its two ends, cm; not both). `extra` reads any further fields (case files add contact
+/// parameters) before unknown ones are rejected.
 pub fn parse_wall_or_segment_with<T>(
     v: &Value,
     path: &str,
     extra: impl FnOnce(&mut Obj) -> Result<T, FieldError>,
 ) -> Result<(WallGeometry, T), FieldError> {
     let mut o = Obj::new(v, path)?;
-    if !o.has("segment") {
-        return parse_wall_with(v, path, extra).map(|(w, t)| (WallGeometry::HalfPlane(w), t));
-    }
-    for key in ["point", "normal"] {
-        if o.has(key) {
-            return Err(FieldError::new(
-                o.field_path(key),
-                "give a wall's `segment` (its two ends) or its `point` and `normal` (a \
-                 half-plane), not both",
-            ));
+    let geometry = if o.has("segment") {
+        for key in ["point", "normal"] {
+            if o.has(key) {
+                return Err(FieldError::new(
+                    o.field_path(key),
+                    "give a wall's `segment` (its two ends) or its `point` and `normal` (a \
+                     half-plane), not both",
+                ));
+            }
         }
-    }
-    let segment = o.req_with("segment", parse_segment)?;
+        WallGeometry::Segment(o.req_with("segment", parse_segment)?)
+    } else {
+        let point = o.req_with("point", vec2)?;
+        let normal = Vec2::from(o.req_with("normal", vec2)?);
+        // `Wall::new` takes a normal of any non-zero length (a tiny one such as [1e-200, 1e-200],
+        // whose squared length underflows, too) and keeps its direction exactly.
+        let wall = Wall::new(Vec2::from(point), normal)
+            .ok_or_else(|| FieldError::new(o.field_path("normal"), "must be a non-zero vector"))?;
+        WallGeometry::HalfPlane(wall)
+    };
     let t = extra(&mut o)?;
     o.finish()?;
-    Ok((WallGeometry::Segment(segment), t))
+    Ok((geometry, t))
 }
 
 /// A segment's two ends `[[x0, y0], [x1, y1]]` (finite, distinct).
