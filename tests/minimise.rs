@@ -202,3 +202,80 @@ fn a_frictionless_poured_ellipse_pile_relaxes_to_rest() {
         "after relaxing the pile moves at {after} cm/s (poured: {poured} cm/s)"
     );
 }
+
+/// `dem2d relax --energy`: eight pairs of disks (r = 0.5 cm, overlapping by 0.1 cm; no gravity,
+/// no walls, a periodic cell) start with the energy 8 · ½ k_n δ² = 4e4 erg and have no jammed
+/// state. Relaxed fully they separate (status `relaxed`, energy 0); with an energy floor of
+/// 100 erg the minimiser stops at the floor, sooner, as unjammed (at or below the floor, its
+/// residual still above the tolerance); with too few iterations it is not at rest (exit code 1,
+/// `max_iterations`); a negative floor is refused.
+#[test]
+fn relax_stops_at_an_energy_floor_as_unjammed() {
+    let dir = common::scratch("unjammed");
+    let mut bodies = Vec::new();
+    for k in 0..8 {
+        let (x, y) = (2.5 + 5.0 * (k % 4) as f64, 5.0 + 10.0 * (k / 4) as f64);
+        for dx in [-0.45, 0.45] {
+            bodies.push(serde_json::json!({
+                "shape": {"type": "circle", "r": 0.5},
+                "position": [x + dx, y]
+            }));
+        }
+    }
+    let case = serde_json::json!({
+        "version": 1, "name": "unjammed", "units": "cm", "gravity": [0, 0],
+        "dt": 1e-5, "duration": 0.01,
+        "cell": {"size": [20.0, 20.0], "periodic": "xy"},
+        "contact": {"model": "linear", "kn": 1e6, "restitution": 0.5, "friction": 0},
+        "bodies": bodies,
+    });
+    let file = dir.join("case.json");
+    std::fs::write(&file, case.to_string()).unwrap();
+    let relax = |out: &str, extra: &[&str]| {
+        let out = dir.join(out);
+        let mut args = vec![
+            "relax",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.push("--quiet");
+        args.extend_from_slice(extra);
+        let (code, _, err) = common::dem2d(&args);
+        let text = std::fs::read_to_string(out.join("relax.json")).unwrap();
+        let summary: serde_json::Value = serde_json::from_str(&text).unwrap();
+        (code, summary, err)
+    };
+    let field = |s: &serde_json::Value, k: &str| s[k].as_f64().unwrap();
+    let (code, full, err) = relax("full", &[]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(full["status"], "relaxed", "{full}");
+    assert_eq!(field(&full, "potential"), 0.0, "{full}");
+    let (code, s, err) = relax("floor", &["--energy", "100"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(s["status"], "unjammed", "{s}");
+    assert!(
+        field(&s, "potential") <= 100.0 && field(&s, "potential") > 0.0,
+        "{s}"
+    );
+    assert!(field(&s, "residual") > 1e-9, "{s}");
+    assert!(
+        field(&s, "iterations") < field(&full, "iterations"),
+        "{s} {full}"
+    );
+    let (code, s, _) = relax("limit", &["--max-iterations", "3"]);
+    assert_eq!(code, 1);
+    assert_eq!(s["status"], "max_iterations", "{s}");
+    assert!(field(&s, "potential") > 100.0, "{s}");
+    let bad = dir.join("bad");
+    let (code, _, err) = common::dem2d(&[
+        "relax",
+        file.to_str().unwrap(),
+        "--out",
+        bad.to_str().unwrap(),
+        "--energy=-1",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--energy"), "{err}");
+    assert!(!bad.exists());
+}

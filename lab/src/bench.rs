@@ -12,7 +12,7 @@
 
 use dem2d::contact_law::NormalForce;
 use dem2d::dynamics::timestep::estimate_critical_dt;
-use dem2d::dynamics::{BodyInit, World};
+use dem2d::dynamics::{BodyInit, StageTimes, World};
 use dem2d::output::progress::CommandProgress;
 use dem2d::run::Simulation;
 use dem2d::scene::Case;
@@ -76,6 +76,10 @@ pub struct BenchRow {
     pub breakdown: Vec<(&'static str, f64)>,
     /// The final state is bit-identical to the first thread count's.
     pub identical: bool,
+    /// Shares of the timed steps' wall time spent in neighbour-list builds and in the rest of
+    /// the step's serial code (see `dem2d::dynamics::StageTimes`), summed over the blocks.
+    pub list_share: f64,
+    pub rest_share: f64,
 }
 
 /// An error of the bench command, as text.
@@ -296,6 +300,7 @@ pub fn run(
                         cpus: Vec::with_capacity(reps),
                         contacts: 0,
                         allocations: 0,
+                        times: StageTimes::default(),
                     });
                 }
             }
@@ -305,6 +310,7 @@ pub fn run(
                 pools[run.pool].install(|| -> Result<(), BenchError> {
                     let allocs = allocations();
                     let (start, cpu) = (Instant::now(), process_cpu_seconds());
+                    let times = run.w.stage_times();
                     let contacts = &mut run.contacts;
                     Simulation::new(&mut run.w)
                         .for_steps(opts.steps)
@@ -312,6 +318,11 @@ pub fn run(
                         .map_err(|e| BenchError(e.to_string()))?;
                     run.walls.push(start.elapsed().as_secs_f64());
                     run.cpus.push(process_cpu_seconds() - cpu);
+                    let now = run.w.stage_times();
+                    let t = &mut run.times;
+                    t.list_builds += now.list_builds - times.list_builds;
+                    t.rest += now.rest - times.rest;
+                    t.drift += now.total() - times.total();
                     run.allocations += allocations() - allocs;
                     Ok(())
                 })?;
@@ -364,6 +375,8 @@ struct LawRun {
     cpus: Vec<f64>,
     contacts: u64,
     allocations: usize,
+    /// The timed blocks' stage times (list builds, rest; all stages in `drift`).
+    times: StageTimes,
 }
 
 impl LawRun {
@@ -408,6 +421,8 @@ impl LawRun {
                 .iter()
                 .map(|&(part, bytes)| (part, bytes as f64 / n as f64))
                 .collect(),
+            list_share: self.times.list_builds / self.times.drift,
+            rest_share: self.times.rest / self.times.drift,
             identical: {
                 let hash = state_hash(w);
                 match references.iter().find(|(k, _)| *k == key) {
@@ -436,7 +451,7 @@ fn process_cpu_seconds() -> f64 {
 /// The rows as a Markdown table, with the speed-up over one thread where measured.
 pub fn markdown(rows: &[BenchRow]) -> String {
     let mut t = String::from(
-        "| pile | bodies | normal force | threads | steps × median wall (s) | particle-steps/s (M) | per CPU-second (M) | speed-up | contacts per body | slots per body | list builds per 1000 steps | ns per contact | heap bytes per body | allocations per step | same trajectory as 1 thread |\n|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
+        "| pile | bodies | normal force | threads | steps × median wall (s) | particle-steps/s (M) | per CPU-second (M) | speed-up | contacts per body | slots per body | list builds per 1000 steps | ns per contact | heap bytes per body | allocations per step | list builds (% of step) | other serial (% of step) | same trajectory as 1 thread |\n|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
     );
     for r in rows {
         let one = rows
@@ -457,7 +472,7 @@ pub fn markdown(rows: &[BenchRow]) -> String {
         };
         writeln!(
             t,
-            "| {kind} | {} | {} | {} | {} × {:.2} | {:.2} | {:.2} | {speedup} | {:.2} | {:.2} | {:.1} | {:.0} | {:.0} | {:.2} | {} |",
+            "| {kind} | {} | {} | {} | {} × {:.2} | {:.2} | {:.2} | {speedup} | {:.2} | {:.2} | {:.1} | {:.0} | {:.0} | {:.2} | {:.1} | {:.1} | {} |",
             r.n,
             r.normal_force.as_str(),
             r.threads,
@@ -471,6 +486,8 @@ pub fn markdown(rows: &[BenchRow]) -> String {
             r.ns_per_contact,
             r.bytes_per_body,
             r.allocations_per_step,
+            100.0 * r.list_share,
+            100.0 * r.rest_share,
             if r.identical { "yes" } else { "**no**" }
         )
         .expect("string");

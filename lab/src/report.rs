@@ -948,6 +948,7 @@ fn speed_vs_error(opts: &FigureOptions) -> Result<SpeedVsError, ReportError> {
         markers: true,
         hollow: false,
         point_labels: Vec::new(),
+        y_errors: Vec::new(),
     };
     // Two decades of headroom above the data for the legends.
     let all = apex_pts
@@ -1113,6 +1114,7 @@ fn stability(opts: &FigureOptions) -> Result<(String, String, Vec<LinePanel>), R
             markers: true,
             hollow: false,
             point_labels: Vec::new(),
+            y_errors: Vec::new(),
         }],
         vlines: vlines.clone(),
         ..Default::default()
@@ -1135,6 +1137,7 @@ fn stability(opts: &FigureOptions) -> Result<(String, String, Vec<LinePanel>), R
                 markers: true,
                 hollow: false,
                 point_labels: Vec::new(),
+                y_errors: Vec::new(),
             },
             Series {
                 label: "never at rest in 0.5 s".into(),
@@ -1144,6 +1147,7 @@ fn stability(opts: &FigureOptions) -> Result<(String, String, Vec<LinePanel>), R
                 markers: true,
                 hollow: true,
                 point_labels: Vec::new(),
+                y_errors: Vec::new(),
             },
         ],
         hlines: vec![(q, format!("threshold {q:e}"))],

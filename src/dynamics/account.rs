@@ -4,6 +4,8 @@
 use super::body::Bodies;
 use super::boundary::Boundary;
 use super::contact_pass::SlotPartial;
+use std::fmt;
+use std::time::Instant;
 
 /// Energies of the system, per unit thickness.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -83,4 +85,76 @@ pub struct Diagnostics {
     /// Smallest critical time step of the contact network sampled so far (∞ before any contact;
     /// see [`World::network_critical_dt`]).
     pub dt_critical_observed: f64,
+}
+
+/// A non-finite state: the step and the body where it was found.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Blowup {
+    pub step: u64,
+    pub time: f64,
+    pub body: usize,
+    pub what: &'static str,
+}
+
+impl fmt::Display for Blowup {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "non-finite {} of body {} at step {} (t = {}): the simulation blew up (is dt far above dt_critical?)",
+            self.what, self.body, self.step, self.time
+        )
+    }
+}
+
+impl std::error::Error for Blowup {}
+
+/// What one step measured.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StepReport {
+    /// Mean over bodies of |Δx|, |Δy|, |Δθ| during the step (P's quiescence measure).
+    pub increments: [f64; 3],
+    /// Number of contacts after the step.
+    pub contacts: usize,
+}
+
+/// Wall-clock seconds a world's steps have spent in each stage (see [`super::step`]): where the
+/// time goes, and what runs serially. The kick–drift, contact and gather passes run in parallel
+/// (each but for a sum over its chunks); list builds and the rest (the sums of the partials,
+/// the walls, the account) run on one thread. A diagnostic: no result depends on it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StageTimes {
+    /// Kick and drift (stages 1–2).
+    pub drift: f64,
+    /// Neighbour-list builds.
+    pub list_builds: f64,
+    /// The contact pass (stage 3).
+    pub contacts: f64,
+    /// Gathering each body's forces and the second kick (stage 4).
+    pub gather: f64,
+    /// Everything else: the partial sums, the walls' drift and servos, the account.
+    pub rest: f64,
+}
+
+impl StageTimes {
+    /// The seconds of all stages.
+    pub fn total(&self) -> f64 {
+        self.drift + self.list_builds + self.contacts + self.gather + self.rest
+    }
+}
+
+/// A lap timer over the stages of one step: each [`Lap::to`] adds the time since the last to a
+/// stage.
+pub(crate) struct Lap(Instant);
+
+impl Lap {
+    pub fn start() -> Self {
+        Lap(Instant::now())
+    }
+
+    /// Adds the seconds since the last lap to `stage`.
+    pub fn to(&mut self, stage: &mut f64) {
+        let now = Instant::now();
+        *stage += (now - self.0).as_secs_f64();
+        self.0 = now;
+    }
 }

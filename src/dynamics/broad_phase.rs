@@ -17,6 +17,43 @@
 use super::body::Bodies;
 use super::cell::Cell;
 use crate::geometry::Vec2;
+use rayon::prelude::*;
+
+/// Bodies per parallel chunk of a list build's per-body loops (each chunk lists its bodies'
+/// entries apart; the lists are joined in body order, so the result does not depend on the
+/// chunks).
+const SCAN_CHUNK: usize = 4096;
+
+/// A pair of bodies `(i, j)`, `i < j`.
+type Pair = (u32, u32);
+
+/// Runs `each(bodies, list)` (which appends the entries of a range of bodies, in order) over
+/// the bodies `0..n` chunk by chunk in parallel, each chunk into its own list of `parts`, and
+/// joins the lists in body order into `out` (after what it holds): the same list as one loop
+/// over the bodies would make.
+pub(crate) fn in_body_chunks<T: Copy + Send>(
+    n: usize,
+    parts: &mut Vec<Vec<T>>,
+    out: &mut Vec<T>,
+    each: impl Fn(std::ops::Range<usize>, &mut Vec<T>) + Sync,
+) {
+    let chunks = n.div_ceil(SCAN_CHUNK);
+    if parts.len() < chunks {
+        parts.resize(chunks, Vec::new());
+    }
+    parts[..chunks]
+        .par_iter_mut()
+        .enumerate()
+        .for_each(|(c, part)| {
+            part.clear();
+            each(c * SCAN_CHUNK..((c + 1) * SCAN_CHUNK).min(n), part);
+        });
+    let total = out.len() + parts[..chunks].iter().map(Vec::len).sum::<usize>();
+    super::contacts::reserve_for(out, total);
+    for part in &parts[..chunks] {
+        out.extend_from_slice(part);
+    }
+}
 
 /// Reusable buffers of the grid (no allocation once warmed up).
 #[derive(Clone, Debug, Default)]
@@ -26,6 +63,8 @@ pub struct Grid {
     start: Vec<u32>,
     fill: Vec<u32>,
     order: Vec<u32>,
+    /// Each scan chunk's pairs (see [`in_body_chunks`]).
+    parts: Vec<Vec<Pair>>,
 }
 
 /// How a cell maps to its bucket (see the module documentation).
@@ -63,6 +102,7 @@ impl Grid {
                 + self.fill.capacity()
                 + self.order.capacity())
                 * 4
+            + self.parts.iter().map(|p| p.capacity() * 8).sum::<usize>()
     }
 
     /// Appends to `out` (after clearing it) every pair `(i, j)`, `i < j`, with
@@ -126,30 +166,33 @@ impl Grid {
             self.order[self.fill[b as usize] as usize] = k as u32;
             self.fill[b as usize] += 1;
         }
-        for i in 0..n {
-            let (cx, cy) = self.cell[i];
-            let pi = bodies.state[i].pose.position;
-            let ri = bodies.bound[i] + margin;
-            let first = out.len();
-            for dx in -1..=1i64 {
-                for dy in -1..=1i64 {
-                    let (nx, ny) = (cx.saturating_add(dx), cy.saturating_add(dy));
-                    let b = layout.of(nx, ny, mask) as usize;
-                    for &j in &self.order[self.start[b] as usize..self.start[b + 1] as usize] {
-                        let j = j as usize;
-                        if j <= i || self.cell[j] != (nx, ny) {
-                            continue;
-                        }
-                        let r = ri + bodies.bound[j];
-                        if (bodies.state[j].pose.position - pi).norm_squared() <= r * r {
-                            out.push((i as u32, j as u32));
+        let (cell, order, start) = (&self.cell, &self.order, &self.start);
+        in_body_chunks(n, &mut self.parts, out, |range, out| {
+            range.for_each(|i| {
+                let (cx, cy) = cell[i];
+                let pi = bodies.state[i].pose.position;
+                let ri = bodies.bound[i] + margin;
+                let first = out.len();
+                for dx in -1..=1i64 {
+                    for dy in -1..=1i64 {
+                        let (nx, ny) = (cx.saturating_add(dx), cy.saturating_add(dy));
+                        let b = layout.of(nx, ny, mask) as usize;
+                        for &j in &order[start[b] as usize..start[b + 1] as usize] {
+                            let j = j as usize;
+                            if j <= i || cell[j] != (nx, ny) {
+                                continue;
+                            }
+                            let r = ri + bodies.bound[j];
+                            if (bodies.state[j].pose.position - pi).norm_squared() <= r * r {
+                                out.push((i as u32, j as u32));
+                            }
                         }
                     }
                 }
-            }
-            // Each body's partners in increasing order: the whole list is then sorted.
-            out[first..].sort_unstable();
-        }
+                // Each body's partners in increasing order: the whole list is then sorted.
+                out[first..].sort_unstable();
+            })
+        });
         // Saturated cells (coordinates beyond ±9e18 cells) can list a pair twice.
         out.dedup();
     }
@@ -229,68 +272,73 @@ impl Grid {
             self.fill[b] += 1;
         }
         let wrap = |i: i64, m: i64| i.rem_euclid(m);
-        let mut seen: Vec<(i64, i64)> = Vec::with_capacity(12);
-        for i in 0..n {
-            let (cx, cy) = self.cell[i];
-            let pi = bodies.state[i].pose.position;
-            let ri = bodies.bound[i] + margin;
-            let first = out.len();
-            seen.clear();
-            for dy in -1..=1i64 {
-                let mut ty = cy + dy;
-                // The columns to scan in the row `ty`: around cx, or (across a Lees–Edwards
-                // seam) around the column of the shifted position.
-                let mut columns = [cx - 1, cx, cx + 1, cx + 1];
-                let mut count = 3;
-                if cell.periodic_y() && (ty < 0 || ty >= ny) {
-                    // The row beyond the top is the bottom row of the image above, shifted by
-                    // +offset: its bodies at x are seen at x + offset, so this body at x looks
-                    // at x − offset there (and + offset across the bottom).
-                    let shift = if ty >= ny { -cell.offset } else { cell.offset };
-                    let x = pi.x + shift;
-                    let c = (x / wx).floor() as i64;
-                    columns = [c - 1, c, c + 1, c + 2];
-                    count = 4;
-                    ty = wrap(ty, ny);
-                } else if ty < 0 || ty >= ny {
-                    continue;
-                }
-                for &tx in &columns[..count] {
-                    let key = (wrap(tx, nx), ty);
-                    if seen.contains(&key) {
+        let (cells, order, start) = (&self.cell, &self.order, &self.start);
+        in_body_chunks(n, &mut self.parts, out, |range, out| {
+            range.for_each(|i| {
+                let (cx, cy) = cells[i];
+                let pi = bodies.state[i].pose.position;
+                let ri = bodies.bound[i] + margin;
+                let first = out.len();
+                // (At most 4 cells in each of the three rows.)
+                let mut seen = [(0i64, 0i64); 12];
+                let mut seen_len = 0;
+                for dy in -1..=1i64 {
+                    let mut ty = cy + dy;
+                    // The columns to scan in the row `ty`: around cx, or (across a Lees–Edwards
+                    // seam) around the column of the shifted position.
+                    let mut columns = [cx - 1, cx, cx + 1, cx + 1];
+                    let mut count = 3;
+                    if cell.periodic_y() && (ty < 0 || ty >= ny) {
+                        // The row beyond the top is the bottom row of the image above, shifted by
+                        // +offset: its bodies at x are seen at x + offset, so this body at x looks
+                        // at x − offset there (and + offset across the bottom).
+                        let shift = if ty >= ny { -cell.offset } else { cell.offset };
+                        let x = pi.x + shift;
+                        let c = (x / wx).floor() as i64;
+                        columns = [c - 1, c, c + 1, c + 2];
+                        count = 4;
+                        ty = wrap(ty, ny);
+                    } else if ty < 0 || ty >= ny {
                         continue;
                     }
-                    seen.push(key);
-                    let b = index(key.0, key.1);
-                    for &j in &self.order[self.start[b] as usize..self.start[b + 1] as usize] {
-                        let j = j as usize;
-                        if j <= i {
+                    for &tx in &columns[..count] {
+                        let key = (wrap(tx, nx), ty);
+                        if seen[..seen_len].contains(&key) {
                             continue;
                         }
-                        let pj = bodies.state[j].pose.position;
-                        let at = pj
-                            + cell
-                                .nearest_image(pj, pi)
-                                .map_or(Vec2::zeros(), |m| m.offset);
-                        let r = ri + bodies.bound[j];
-                        if (at - pi).norm_squared() <= r * r {
-                            out.push((i as u32, j as u32));
+                        seen[seen_len] = key;
+                        seen_len += 1;
+                        let b = index(key.0, key.1);
+                        for &j in &order[start[b] as usize..start[b + 1] as usize] {
+                            let j = j as usize;
+                            if j <= i {
+                                continue;
+                            }
+                            let pj = bodies.state[j].pose.position;
+                            let at = pj
+                                + cell
+                                    .nearest_image(pj, pi)
+                                    .map_or(Vec2::zeros(), |m| m.offset);
+                            let r = ri + bodies.bound[j];
+                            if (at - pi).norm_squared() <= r * r {
+                                out.push((i as u32, j as u32));
+                            }
                         }
                     }
                 }
-            }
-            out[first..].sort_unstable();
-            // (A tiling of two rows reaches the other row from both sides, shifted apart
-            // across a Lees–Edwards seam: a body there may be found twice.)
-            let mut kept = first;
-            for r in first..out.len() {
-                if r == first || out[r] != out[kept - 1] {
-                    out[kept] = out[r];
-                    kept += 1;
+                out[first..].sort_unstable();
+                // (A tiling of two rows reaches the other row from both sides, shifted apart
+                // across a Lees–Edwards seam: a body there may be found twice.)
+                let mut kept = first;
+                for r in first..out.len() {
+                    if r == first || out[r] != out[kept - 1] {
+                        out[kept] = out[r];
+                        kept += 1;
+                    }
                 }
-            }
-            out.truncate(kept);
-        }
+                out.truncate(kept);
+            })
+        });
     }
 }
 

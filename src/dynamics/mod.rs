@@ -24,11 +24,11 @@ pub mod step;
 pub mod timestep;
 pub mod world;
 
+pub use account::{Blowup, StageTimes, StepReport};
 pub use body::{Bodies, BodyInit, BodyState};
 pub use boundary::{Boundary, Motion, Servo, Span};
 pub use flow::Flow;
 pub use materials::{Materials, PairTable};
 pub use partner::{Partner, Sides};
 pub use restart::{RestartError, RestartState};
-pub use step::{Blowup, StepReport};
 pub use world::{Scene, World};

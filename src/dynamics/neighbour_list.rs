@@ -4,7 +4,7 @@
 
 use super::body::Bodies;
 use super::boundary::Boundary;
-use super::broad_phase::Grid;
+use super::broad_phase::{Grid, in_body_chunks};
 use super::cell::Cell;
 use super::contacts::{ContactList, reserve_for};
 use super::materials::PairTable;
@@ -23,6 +23,8 @@ pub(crate) struct Builder {
     grid: Grid,
     /// The grid's body pairs.
     pairs: Vec<(u32, u32)>,
+    /// Each chunk of bodies' slot keys (see [`in_body_chunks`]).
+    key_parts: Vec<Vec<(u32, u32, u32)>>,
     /// The next build keeps the continuing slots' contact data (a list rebuilt between steps,
     /// whose data are read before the next step computes them: after an insertion).
     pub carry_data: bool,
@@ -31,7 +33,8 @@ pub(crate) struct Builder {
 impl Builder {
     /// Heap bytes of the grid, and of the build's scratch.
     pub fn heap_bytes(&self) -> (usize, usize) {
-        (self.grid.heap_bytes(), self.pairs.capacity() * 8)
+        let parts: usize = self.key_parts.iter().map(|p| p.capacity() * 12).sum();
+        (self.grid.heap_bytes(), self.pairs.capacity() * 8 + parts)
     }
 
     /// Rebuilds `list` from the current positions (body pairs from the grid, then each body's
@@ -62,36 +65,35 @@ impl Builder {
             None => self.grid.pairs(bodies, skin, &mut self.pairs),
         }
         list.keys.clear();
-        reserve_for(&mut list.keys, self.pairs.len() + n);
-        let mut next = 0;
-        let held = !bodies.prescribed.is_empty();
-        for i in 0..n {
-            let held_i = held && bodies.is_prescribed(i);
-            while next < self.pairs.len() && self.pairs[next].0 as usize == i {
-                let (a, b) = self.pairs[next];
-                if held_i && bodies.is_prescribed(b as usize) {
-                    // (Neither moves.)
-                } else if clumps {
-                    members::pair_keys(bodies, a, b, skin, &mut list.keys);
-                } else {
-                    list.keys.push((a, b, 0));
+        let (held, pairs_of) = (!bodies.prescribed.is_empty(), &self.pairs[..]);
+        in_body_chunks(n, &mut self.key_parts, &mut list.keys, |range, keys| {
+            let mut next = pairs_of.partition_point(|p| (p.0 as usize) < range.start);
+            for i in range {
+                let held_i = held && bodies.is_prescribed(i);
+                while next < pairs_of.len() && pairs_of[next].0 as usize == i {
+                    let (a, b) = pairs_of[next];
+                    if held_i && bodies.is_prescribed(b as usize) {
+                        // (Neither moves.)
+                    } else if clumps {
+                        members::pair_keys(bodies, a, b, skin, keys);
+                    } else {
+                        keys.push((a, b, 0));
+                    }
+                    next += 1;
                 }
-                next += 1;
-            }
-            let (x, r) = (bodies.state[i].pose.position, bodies.bound[i]);
-            let walls = if held_i { &[][..] } else { walls };
-            for (w, ws) in walls.iter().enumerate() {
-                let wj = Partner::Wall(w).key();
-                if let Some(d) = ws.near(x, r + skin) {
-                    match bodies.shape[i].clump() {
-                        None => list.keys.push((i as u32, wj, 0)),
-                        Some(c) => {
-                            members::boundary_keys(&c, i as u32, wj, d, skin, &mut list.keys)
+                let (x, r) = (bodies.state[i].pose.position, bodies.bound[i]);
+                let walls = if held_i { &[][..] } else { walls };
+                for (w, ws) in walls.iter().enumerate() {
+                    let wj = Partner::Wall(w).key();
+                    if let Some(d) = ws.near(x, r + skin) {
+                        match bodies.shape[i].clump() {
+                            None => keys.push((i as u32, wj, 0)),
+                            Some(c) => members::boundary_keys(&c, i as u32, wj, d, skin, keys),
                         }
                     }
                 }
             }
-        }
+        });
         let Kept { cached, history } = kept(&bodies.shape, pairs);
         let lost = list.rebuild_from_keys_with(n, cached, history - 1, self.carry_data);
         list.built_at.clear();

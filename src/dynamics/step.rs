@@ -40,7 +40,7 @@
 //! scheduled, so a run gives the same bits on one thread or many. Circles skip their sine and
 //! cosine.
 
-use super::account::{Diagnostics, Energies};
+use super::account::{Blowup, Diagnostics, Energies, Lap, StageTimes, StepReport};
 use super::body::Bodies;
 use super::boundary::{Boundary, drift_walls, update_servos};
 use super::cell::Cell;
@@ -53,41 +53,10 @@ use super::restart::RestartState;
 use crate::contact_law::ContactSpec;
 use crate::geometry::{Pose, Vec2};
 use rayon::prelude::*;
-use std::fmt;
 
 /// Bodies per parallel chunk. A fixed size: every sum is formed chunk by chunk and then over the
 /// chunks in order, so that results are the same bit for bit whatever the number of threads.
 pub(crate) const BODY_CHUNK: usize = 512;
-
-/// A non-finite state: the step and the body where it was found.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Blowup {
-    pub step: u64,
-    pub time: f64,
-    pub body: usize,
-    pub what: &'static str,
-}
-
-impl fmt::Display for Blowup {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "non-finite {} of body {} at step {} (t = {}): the simulation blew up (is dt far above dt_critical?)",
-            self.what, self.body, self.step, self.time
-        )
-    }
-}
-
-impl std::error::Error for Blowup {}
-
-/// What one step measured.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct StepReport {
-    /// Mean over bodies of |Δx|, |Δy|, |Δθ| during the step (P's quiescence measure).
-    pub increments: [f64; 3],
-    /// Number of contacts after the step.
-    pub contacts: usize,
-}
 
 /// Per-chunk results of the body passes.
 #[derive(Clone, Copy, Debug, Default)]
@@ -145,6 +114,8 @@ pub struct Stepper {
     crossings: Vec<Vec<(u32, [i32; 2], f64)>>,
     /// The scene's facts, noted whenever the neighbour list is made.
     facts: SceneFacts,
+    /// Where the steps' time went.
+    pub(crate) times: StageTimes,
 }
 
 impl Stepper {
@@ -174,6 +145,7 @@ impl Stepper {
         let n = wd.bodies.len();
         let next_step = *wd.step + 1;
         let next_time = next_step as f64 * dt;
+        let mut lap = Lap::start();
         self.size_partials(wd);
         // 1.–2. Kick to the half step and drift, chunk by chunk (in a periodic cell: the cell
         // first — its height under an imposed pressure, the Lees–Edwards shift — to level n+1,
@@ -191,6 +163,7 @@ impl Stepper {
                 self.kick_drift::<false>(wd, None, 1.0);
             }
         }
+        lap.to(&mut self.times.drift);
         let blowup = |body, what| Blowup {
             step: next_step,
             time: next_time,
@@ -231,11 +204,15 @@ impl Stepper {
         // now touch: two bodies approach by at most the sum of their displacements, a body and
         // a wall by the sum of theirs).
         if wd.contacts.built_at.len() != n || disp[0] + disp[1].max(wall_disp) > wd.contacts.skin {
+            lap.to(&mut self.times.rest);
             self.rebuild_neighbours(wd);
+            lap.to(&mut self.times.list_builds);
         }
         let slots = self.compute_slots(wd, dt);
+        lap.to(&mut self.times.contacts);
         // 4. Kick to the full step, gathering each body's forces.
         let bodies_sum = self.gather_forces(wd, Some(h));
+        lap.to(&mut self.times.gather);
         if let Some(body) = bodies_sum.bad {
             return Err(blowup(body, "velocity"));
         }
@@ -257,6 +234,7 @@ impl Stepper {
         if wd.walls.iter().any(Boundary::moves) {
             update_servos(wd.walls, *wd.step, dt);
         }
+        lap.to(&mut self.times.rest);
         Ok(StepReport {
             increments: inc,
             contacts: slots.contacts,

@@ -1,5 +1,6 @@
 //! The world: bodies, walls, gravity, the contact law, time, and the running energy account.
 
+use super::account::{Blowup, StageTimes, StepReport};
 pub use super::account::{Diagnostics, Energies};
 use super::body::{Bodies, BodyInit};
 pub use super::boundary::Boundary;
@@ -13,7 +14,7 @@ use super::neighbour_list::kept;
 use super::restart::{
     BodyRestart, ProgramRestart, RestartError, RestartState, SlotRestart, WallRestart,
 };
-use super::step::{Blowup, Parts, StepReport, Stepper};
+use super::step::{Parts, Stepper};
 use crate::contact_law::{ContactSpec, HISTORY_LEN};
 use crate::geometry::{Pose, Vec2};
 use crate::narrow_phase::PairCache;
@@ -492,6 +493,12 @@ impl World {
     pub fn step(&mut self) -> Result<StepReport, Blowup> {
         let (stepper, mut parts) = self.parts();
         stepper.step(&mut parts)
+    }
+
+    /// Wall-clock seconds this world's steps have spent in each stage so far (see
+    /// [`StageTimes`]).
+    pub fn stage_times(&self) -> StageTimes {
+        self.stepper.times
     }
 
     /// Evaluates the forces of the current configuration without advancing (used at t = 0),

@@ -1145,6 +1145,8 @@ pub struct Series {
     pub hollow: bool,
     /// Text drawn beside each point (empty: none); index k labels `points[k]`.
     pub point_labels: Vec<String>,
+    /// Vertical error bars (empty: none): `points[k]` ± `y_errors[k]`.
+    pub y_errors: Vec<f64>,
 }
 
 impl Series {
@@ -1372,10 +1374,16 @@ where
         .iter()
         .flat_map(|s| s.points.iter().map(|q| q.0))
         .chain(p.vlines.iter().map(|v| v.0));
+    // (Each point's error bar included.)
     let ys = p
         .series
         .iter()
-        .flat_map(|s| s.points.iter().map(|q| q.1))
+        .flat_map(|s| {
+            s.points.iter().enumerate().flat_map(|(k, q)| {
+                let e = s.y_errors.get(k).copied().unwrap_or(0.0);
+                [q.1 - e, q.1 + e]
+            })
+        })
         .chain(p.hlines.iter().map(|h| h.0));
     let (x0, x1) = p.x_range.unwrap_or_else(|| data_range(xs, p.log_x));
     let (y0, y1) = p.y_range.unwrap_or_else(|| data_range(ys, p.log_y));
@@ -1535,6 +1543,26 @@ where
                     .label(s.label.clone())
                     .legend(move |(x, y)| Circle::new((x + 9 * S as i32, y), 4 * S, style));
             }
+        }
+        if !s.y_errors.is_empty() {
+            chart
+                .draw_series(
+                    s.points
+                        .iter()
+                        .zip(&s.y_errors)
+                        .filter(|(q, e)| shown(q) && e.is_finite())
+                        .map(|(&(x, y), &e)| {
+                            ErrorBar::new_vertical(
+                                x,
+                                y - e,
+                                y,
+                                y + e,
+                                col.stroke_width(2 * S),
+                                10 * S,
+                            )
+                        }),
+                )
+                .map_err(err)?;
         }
         if !s.point_labels.is_empty() {
             let font = ("sans-serif", 12 * S).into_font().color(&col);

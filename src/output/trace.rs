@@ -7,8 +7,8 @@
 //! the file. Times are written as `step × dt` computed in decimal from `dt` as written
 //! ([`time_text`]): `0.009`, not the float product `0.009000000000000001`.
 
+use crate::dynamics::StepReport;
 use crate::dynamics::World;
-use crate::dynamics::step::StepReport;
 use crate::run::time::time_text;
 use crate::run::{End, Observer, ObserverError, Plan, StepInfo};
 use std::fmt;

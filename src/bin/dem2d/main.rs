@@ -148,6 +148,16 @@ enum Command {
         /// The most force evaluations.
         #[arg(long, default_value_t = 1_000_000)]
         max_iterations: u64,
+        /// A potential energy (erg) at or below which the bodies count as at rest too (status
+        /// "unjammed": with neither gravity nor walls, a packing this close to zero energy is
+        /// unjammed, and FIRE only approaches zero slowly); 0: none.
+        #[arg(long, default_value_t = 0.0)]
+        energy: f64,
+        /// Stop when the potential energy changes by less than this fraction over 1000
+        /// iterations while the residual force does not halve (status "stalled", exit code 1:
+        /// O'Hern et al.'s second criterion, for packings FIRE relaxes slowly); 0: never.
+        #[arg(long, default_value_t = 0.0)]
+        stall: f64,
         /// Replace an earlier relaxation's files in OUT.
         #[arg(long)]
         overwrite: bool,
@@ -911,6 +921,8 @@ fn main() -> ExitCode {
             out,
             tolerance,
             max_iterations,
+            energy,
+            stall,
             overwrite,
             quiet,
             threads,
@@ -920,6 +932,8 @@ fn main() -> ExitCode {
                 out,
                 tolerance: *tolerance,
                 max_iterations: *max_iterations,
+                energy: *energy,
+                stall: *stall,
                 overwrite: *overwrite,
                 quiet: *quiet,
             })

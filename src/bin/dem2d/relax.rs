@@ -17,6 +17,9 @@ pub struct RelaxArgs<'a> {
     pub out: &'a Path,
     pub tolerance: f64,
     pub max_iterations: u64,
+    /// The energy floor (erg; 0: none) and the stall fraction (0: none) of [`Tolerance`].
+    pub energy: f64,
+    pub stall: f64,
     pub overwrite: bool,
     pub quiet: bool,
 }
@@ -28,6 +31,13 @@ pub fn run(args: RelaxArgs) -> Result<(), Failure> {
             "--tolerance: must be a positive number, got {}",
             args.tolerance
         )));
+    }
+    for (option, value) in [("--energy", args.energy), ("--stall", args.stall)] {
+        if !(value.is_finite() && value >= 0.0) {
+            return Err(Failure::input(format!(
+                "{option}: must be a number ≥ 0, got {value}"
+            )));
+        }
     }
     let text = read_input(&name)?;
     let file = dem2d::scene::CaseFile::from_json(&text)
@@ -57,17 +67,20 @@ pub fn run(args: RelaxArgs) -> Result<(), Failure> {
     let tol = Tolerance {
         force: args.tolerance,
         max_iterations: args.max_iterations,
-        energy: 0.0,
-        stall: 0.0,
+        energy: args.energy,
+        stall: args.stall,
     };
     let start = std::time::Instant::now();
     let relaxed = relax(&mut world, &Fire::default(), &tol)
         .map_err(|e| Failure::failed(format!("{name}: {e}")))?;
     let seconds = start.elapsed().as_secs_f64();
-    let status = if relaxed.converged {
-        "relaxed"
-    } else {
-        "max_iterations"
+    // (At rest by the residual; else below the energy floor — an unjammed packing; else the
+    // energy stalled, or the iterations ran out: not at rest.)
+    let status = match relaxed {
+        r if r.converged && r.residual <= args.tolerance => "relaxed",
+        r if r.converged => "unjammed",
+        r if r.stalled => "stalled",
+        _ => "max_iterations",
     };
     let state = state_text(
         &file.value,
@@ -83,6 +96,7 @@ pub fn run(args: RelaxArgs) -> Result<(), Failure> {
         "iterations": relaxed.iterations,
         "residual": relaxed.residual,
         "tolerance": args.tolerance,
+        "energy_floor": args.energy,
         "potential": relaxed.potential,
         "elastic": world.energies.elastic,
         "gravity_potential": world.energies.potential,
@@ -114,8 +128,8 @@ pub fn run(args: RelaxArgs) -> Result<(), Failure> {
         Ok(())
     } else {
         Err(Failure::failed(format!(
-            "{name}: not at rest after {} iterations (residual force {:.3e} > {:e}); the state \
-             reached is in {}",
+            "{name}: not at rest ({status}) after {} iterations (residual force {:.3e} > {:e}); \
+             the state reached is in {}",
             relaxed.iterations,
             relaxed.residual,
             args.tolerance,

@@ -373,6 +373,10 @@ pub fn run(n: usize, packings: usize, aspects: &[f64]) -> Result<String, dem2d::
             color: 0,
             line: true,
             markers: true,
+            y_errors: rows
+                .iter()
+                .map(|r| if k == 0 { r.2 } else { r.4 })
+                .collect(),
             ..Default::default()
         }]
     };
