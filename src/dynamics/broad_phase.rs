@@ -123,8 +123,6 @@ impl Grid {
         let mask = (buckets - 1) as u64;
         self.cell.clear();
         self.bucket.clear();
-        self.start.clear();
-        self.start.resize(buckets + 1, 0);
         let (mut lo, mut hi) = ((i64::MAX, i64::MAX), (i64::MIN, i64::MIN));
         for p in bodies.state.iter().map(|s| &s.pose) {
             // `as` saturates: far-away or non-finite coordinates still land in some cell.
@@ -150,22 +148,9 @@ impl Grid {
         } else {
             Buckets::Hashed
         };
-        for &(cx, cy) in &self.cell {
-            let b = layout.of(cx, cy, mask);
-            self.bucket.push(b);
-            self.start[b as usize + 1] += 1;
-        }
-        for k in 0..buckets {
-            self.start[k + 1] += self.start[k];
-        }
-        self.order.clear();
-        self.order.resize(n, 0);
-        self.fill.clear();
-        self.fill.extend_from_slice(&self.start[..buckets]);
-        for (k, &b) in self.bucket.iter().enumerate() {
-            self.order[self.fill[b as usize] as usize] = k as u32;
-            self.fill[b as usize] += 1;
-        }
+        self.bucket
+            .extend(self.cell.iter().map(|&(cx, cy)| layout.of(cx, cy, mask)));
+        self.sort_by_bucket(buckets);
         let (cell, order, start) = (&self.cell, &self.order, &self.start);
         in_body_chunks(n, &mut self.parts, out, |range, out| {
             range.for_each(|i| {
@@ -199,6 +184,27 @@ impl Grid {
 }
 
 impl Grid {
+    /// Sorts the bodies by their `bucket` (a counting sort): `order[start[b]..start[b + 1]]`
+    /// are the bodies of bucket `b`, in increasing number.
+    fn sort_by_bucket(&mut self, buckets: usize) {
+        self.start.clear();
+        self.start.resize(buckets + 1, 0);
+        for &b in &self.bucket {
+            self.start[b as usize + 1] += 1;
+        }
+        for k in 0..buckets {
+            self.start[k + 1] += self.start[k];
+        }
+        self.order.clear();
+        self.order.resize(self.bucket.len(), 0);
+        self.fill.clear();
+        self.fill.extend_from_slice(&self.start[..buckets]);
+        for (k, &b) in self.bucket.iter().enumerate() {
+            self.order[self.fill[b as usize] as usize] = k as u32;
+            self.fill[b as usize] += 1;
+        }
+    }
+
     /// [`Grid::pairs`] in a periodic cell: the pairs whose bounding circles come within
     /// `margin` through the giver's nearest image (every body inside the cell). The cell is
     /// tiled by `n_x × n_y` cells at least as large as the reach, and a body's neighbours are in
@@ -249,28 +255,16 @@ impl Grid {
         );
         let cells = (nx * ny) as usize;
         self.cell.clear();
-        self.start.clear();
-        self.start.resize(cells + 1, 0);
+        self.bucket.clear();
         let index = |ix: i64, iy: i64| (iy * nx + ix) as usize;
         for s in &bodies.state {
             let p = s.pose.position;
             let ix = ((p.x / wx).floor() as i64).clamp(0, nx - 1);
             let iy = (((p.y - y0) / wy).floor() as i64).clamp(0, ny - 1);
             self.cell.push((ix, iy));
-            self.start[index(ix, iy) + 1] += 1;
+            self.bucket.push(index(ix, iy) as u32);
         }
-        for k in 0..cells {
-            self.start[k + 1] += self.start[k];
-        }
-        self.order.clear();
-        self.order.resize(n, 0);
-        self.fill.clear();
-        self.fill.extend_from_slice(&self.start[..cells]);
-        for (k, &(ix, iy)) in self.cell.iter().enumerate() {
-            let b = index(ix, iy);
-            self.order[self.fill[b] as usize] = k as u32;
-            self.fill[b] += 1;
-        }
+        self.sort_by_bucket(cells);
         let wrap = |i: i64, m: i64| i.rem_euclid(m);
         let (cells, order, start) = (&self.cell, &self.order, &self.start);
         in_body_chunks(n, &mut self.parts, out, |range, out| {

@@ -153,6 +153,30 @@ pub(crate) struct PassInput<'a> {
     pub cell: Option<&'a Cell>,
 }
 
+/// Runs `f` on each of `chunks` (chunks of [`SLOT_CHUNK`] slots, in order) with its chunk of
+/// the pair caches and of the further history values, where the scene keeps them.
+fn with_kept<T: Send>(
+    chunks: impl IndexedParallelIterator<Item = T>,
+    cache: &mut [PairCache],
+    history: &mut [f64],
+    stride: usize,
+    f: impl Fn(T, Option<&mut [PairCache]>, Option<(&mut [f64], usize)>) + Sync + Send,
+) {
+    match (cache.is_empty(), history.is_empty()) {
+        (true, true) => chunks.for_each(|c| f(c, None, None)),
+        (false, true) => chunks
+            .zip(cache.par_chunks_mut(SLOT_CHUNK))
+            .for_each(|(c, cache)| f(c, Some(cache), None)),
+        (true, false) => chunks
+            .zip(history.par_chunks_mut(SLOT_CHUNK * stride))
+            .for_each(|(c, more)| f(c, None, Some((more, stride)))),
+        (false, false) => chunks
+            .zip(cache.par_chunks_mut(SLOT_CHUNK))
+            .zip(history.par_chunks_mut(SLOT_CHUNK * stride))
+            .for_each(|((c, cache), more)| f(c, Some(cache), Some((more, stride)))),
+    }
+}
+
 impl ContactPass {
     /// Heap bytes of the pass's scratch.
     pub fn heap_bytes(&self) -> usize {
@@ -224,6 +248,7 @@ impl ContactPass {
             history,
             stride,
             near_seam,
+            near_slots,
             touching,
             ..
         } = list;
@@ -249,29 +274,35 @@ impl ContactPass {
         // the runs of slots with a body near a seam. The others meet no image: the
         // wall-bounded copy, the same bits (the sums run through the chunk in order either way).
         let measures = cell.is_some_and(Cell::measures_stress);
-        let near_seam = cx.near_seam;
-        let near = |s: &Slot| match s.partner() {
-            Partner::Body(k) => near_seam[k] || near_seam[s.i as usize],
-            Partner::Wall(_) => false,
-        };
-        let run = |slots: &mut [Slot],
-                   data: &mut [ContactData],
-                   loads: &mut [WallLoad],
-                   mut cache: Option<&mut [PairCache]>,
-                   mut more: Option<(&mut [f64], usize)>| {
-            let mut p = SlotPartial::default();
-            loads.fill(WallLoad::default());
-            if cell.is_none() {
-                chunk.run::<false>(slots, data, loads, cache, more, &mut p);
-            } else if measures {
-                chunk.run::<true>(slots, data, loads, cache, more, &mut p);
-            } else {
+        if cell.is_none() || measures {
+            with_kept(
+                chunks,
+                cache,
+                history,
+                stride,
+                |(((s, d), p), l), cache, more| {
+                    l.fill(WallLoad::default());
+                    *p = SlotPartial::default();
+                    match cell {
+                        None => chunk.run::<false>(s, d, l, cache, more, p),
+                        Some(_) => chunk.run::<true>(s, d, l, cache, more, p),
+                    }
+                },
+            );
+        } else {
+            let near_slots = &near_slots[..];
+            let chunks = chunks.enumerate();
+            with_kept(chunks, cache, history, stride, |c, mut cache, mut more| {
+                let (c, (((slots, data), p), loads)) = c;
+                loads.fill(WallLoad::default());
+                *p = SlotPartial::default();
+                let near = &near_slots[c * SLOT_CHUNK..c * SLOT_CHUNK + slots.len()];
                 let mut a = 0;
                 while a < slots.len() {
-                    let here = near(&slots[a]);
-                    let b = slots[a..]
+                    let here = near[a];
+                    let b = near[a..]
                         .iter()
-                        .position(|s| near(s) != here)
+                        .position(|&s| s != here)
                         .map_or(slots.len(), |k| a + k);
                     let cache = cache.as_deref_mut().map(|c| &mut c[a..b]);
                     let more = more
@@ -279,35 +310,13 @@ impl ContactPass {
                         .map(|(h, stride)| (&mut h[a * *stride..b * *stride], *stride));
                     let (s, d) = (&mut slots[a..b], &mut data[a..b]);
                     if here {
-                        chunk.run::<true>(s, d, loads, cache, more, &mut p);
+                        chunk.run::<true>(s, d, loads, cache, more, p);
                     } else {
-                        chunk.run::<false>(s, d, loads, cache, more, &mut p);
+                        chunk.run::<false>(s, d, loads, cache, more, p);
                     }
                     a = b;
                 }
-            }
-            p
-        };
-        match (cache.is_empty(), history.is_empty()) {
-            (true, true) => chunks.for_each(|(((slots, data), part), loads)| {
-                *part = run(slots, data, loads, None, None)
-            }),
-            (false, true) => chunks.zip(cache.par_chunks_mut(SLOT_CHUNK)).for_each(
-                |((((slots, data), part), loads), cache)| {
-                    *part = run(slots, data, loads, Some(cache), None)
-                },
-            ),
-            (true, false) => chunks
-                .zip(history.par_chunks_mut(SLOT_CHUNK * stride))
-                .for_each(|((((slots, data), part), loads), more)| {
-                    *part = run(slots, data, loads, None, Some((more, stride)))
-                }),
-            (false, false) => chunks
-                .zip(cache.par_chunks_mut(SLOT_CHUNK))
-                .zip(history.par_chunks_mut(SLOT_CHUNK * stride))
-                .for_each(|(((((slots, data), part), loads), cache), more)| {
-                    *part = run(slots, data, loads, Some(cache), Some((more, stride)))
-                }),
+            });
         }
         let mut sum = SlotPartial::default();
         for p in &self.partials {

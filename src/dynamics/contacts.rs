@@ -248,6 +248,9 @@ pub struct ContactList {
     /// In a periodic cell, whether each body lay near a seam when the list was built
     /// ([`ContactList::mark_near_seams`]); empty until marked.
     pub(crate) near_seam: Vec<bool>,
+    /// Whether each slot's pair has a body near a seam (marked with `near_seam`): the contact
+    /// pass reads these flags in slot order rather than two bodies' flags at random.
+    pub(crate) near_slots: Vec<bool>,
     /// With rolling resistance, each body's contacts as the slots' flags stand (the last
     /// pass's: [`ContactList::count_touching`]); empty otherwise.
     pub(crate) touching: Vec<u32>,
@@ -322,8 +325,16 @@ impl ContactList {
         let max_bound = bodies.bound.iter().copied().fold(0.0f64, f64::max);
         let margin = 2.0 * (max_bound + self.skin);
         self.near_seam.clear();
+        self.near_slots.clear();
         self.near_seam
             .extend(self.built_at.iter().map(|&p| cell.near_seam(p, margin)));
+        let near = &self.near_seam;
+        self.near_slots.clear();
+        self.near_slots
+            .extend(self.slots.iter().map(|s| match s.partner() {
+                Partner::Body(k) => near[k] || near[s.i as usize],
+                Partner::Wall(_) => false,
+            }));
     }
 
     /// The contacts of this step (the active slots), in key order.
@@ -409,6 +420,7 @@ impl ContactList {
             map.get(k - 1).is_some_and(|&m| m != REMOVED)
         });
         self.near_seam.clear();
+        self.near_slots.clear();
         self.touching.clear();
         // The same keys: every slot stays where it is; only the adjacency is made anew.
         self.keys.clear();
@@ -442,6 +454,7 @@ impl ContactList {
         let (old_len, new_len) = (self.slots.len(), self.keys.len());
         let carry_data = carry_data && self.data.len() == old_len;
         self.near_seam.clear();
+        self.near_slots.clear();
         let carry_cache = cached && self.cache.len() == old_len;
         let carry_history =
             stride > 0 && self.stride == stride && self.history.len() == old_len * stride;
