@@ -32,7 +32,6 @@ use dem2d::scene::Case;
 
 use crate::verify::Check;
 
-
 const G: f64 = 980.0;
 
 fn spec(kn: f64, damping: LinearDamping, friction: f64, nf: NormalForce) -> ContactSpec {
