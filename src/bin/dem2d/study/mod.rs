@@ -53,7 +53,8 @@ pub enum Study {
     Silo,
     /// Steady simple shear at imposed pressure in a Lees–Edwards cell: μ(I), φ(I) and the
     /// ellipses' orientation of 256 (`--grains`) frictional grains (μ = 0.4), α in 1–3
-    /// (`--aspects`), I in 0.01–0.3 (`--inertial`); writes figures/shear.svg and .md.
+    /// (`--aspects`), I in 0.01–0.3 and disks at 0.001 too (`--inertial`); writes
+    /// figures/shear.svg and .md.
     Shear,
 }
 
@@ -214,7 +215,7 @@ pub fn run(study: Study, options: &Options, docs: Option<Mode>) -> Result<(), cr
         Study::Shear => shear::run(
             grains.unwrap_or(shear::N),
             options.aspects.as_deref().unwrap_or(&shear::ASPECTS),
-            options.inertial.as_deref().unwrap_or(&shear::INERTIAL),
+            options.inertial.as_deref(),
         ),
         Study::Silo => silo::run(),
     }
