@@ -24,8 +24,10 @@
 //! A contact that lasts moves little from one step to the next. Given last step's two crossings
 //! ([`Warm`], kept in the pair's [`super::PairCache`]), the kernel first refines them by
 //! Newton's method on the two boundary equations `Q_i(p) = 1`, `Q_j(p) = 1` — a few flops per
-//! iteration, two iterations from a guess of the last step, both crossings side by side — and
-//! applies the chord definition to them, all in body i's own frame (no line of centres, so no
+//! iteration, two iterations (rarely more) from a guess of the last step, both crossings as the
+//! two lanes of one SIMD register ([`newton_crossings`]) — and applies the chord definition to
+//! them (both caps of the area law in two lanes too: they are minor and short there, see
+//! [`crate::geometry::overlap_area::minor_caps_sum`]), all in body i's own frame (no line of centres, so no
 //! square root or division before the first Newton step; see [`warm_crossings`]). It accepts the result
 //! only when it is certain to be the one the pencil would give, to rounding: Newton converged
 //! to two distinct points, the boundaries cross there at an angle (|sin| ≥ [`WARM_MIN_SINE`],
@@ -42,10 +44,11 @@ use super::{
 use crate::geometry::Pose;
 use crate::geometry::conic::EllipseForm;
 use crate::geometry::cubic::{one_real_root, solve_cubic};
-use crate::geometry::overlap_area::ellipse_cap_inverse;
+use crate::geometry::overlap_area::{ellipse_cap_inverse, minor_caps_sum};
 use crate::geometry::pencil::{
     LineCut, Pencil, cut_line, mixed_invariant_from_inverse_squares, split_degenerate,
 };
+use wide::f64x2;
 
 /// Half-chords² (in units of the larger semi-axis squared) below which a line counts as nearly
 /// tangent and is judged by the depth along its normal. The line itself carries the rounding of
@@ -167,12 +170,19 @@ fn support(a: f64, b: f64, cos: f64, sin: f64, ux: f64, uy: f64) -> f64 {
 }
 
 /// Refines two crossings of the boundaries `Q_i(p) = 1` (i centred at the origin) and
-/// `Q_j(p − c) = 1` (j centred at `c`: `(d, 0)` in P's local frame) by Newton's method. `None` unless both converge to distinct, well
-/// conditioned points (see the module documentation).
+/// `Q_j(p − c) = 1` (j centred at `c`: `(d, 0)` in P's local frame) by Newton's method. `None`
+/// unless both converge to distinct, well conditioned points (see the module documentation).
 ///
-/// The two crossings are independent Newton iterations; they are advanced side by side, so
-/// that the processor overlaps their dependent chains (each iteration's division waits on the
-/// last), each stopping on its own test exactly as it would alone.
+/// The two crossings are independent Newton iterations, run as the two lanes of one SIMD
+/// register (`wide::f64x2`: each lane's arithmetic is IEEE's, the same bits as scalar code), with
+/// no branch inside an iteration. Both lanes take the same steps: at least two — a warm start
+/// is last step's crossing rounded to `f32` ([`super::PairCache`]), ~3e-8 of the size off,
+/// which the first step brings to ~1e-15 and the second below rounding — then more until both
+/// steps are below 1e-9 of the size (after such a step, quadratic convergence puts the error
+/// below rounding), six at most. A lane whose step is already that small takes the next ones
+/// anyway: they are of the size of rounding and leave it at the root. The crossing angle is
+/// checked once, at the last iterate (where the result's conditioning is decided), not at every
+/// one: a NaN or a wild jump on the way is caught by the tests at the end.
 ///
 /// Inlined: its callers have just computed the forms, which then stay in registers.
 #[inline(always)]
@@ -182,60 +192,59 @@ fn newton_crossings(
     c: [f64; 2],
     guess: [[f64; 2]; 2],
 ) -> Option<[[f64; 2]; 2]> {
-    // Half the gradient of the form, `(A x + B y, B x + C y)`, and half the residual below:
-    // the Newton step of `Q − 1 = 0` with both halved is the same step, bit for bit (halving
-    // is exact), for two fewer roundings' worth of doubling on each iteration's chain.
-    let half_grad = |f: &EllipseForm, x: f64, y: f64| {
-        [f.a_coef * x + f.b_coef * y, f.b_coef * x + f.c_coef * y]
+    let splat = f64x2::splat;
+    let (ai, bi, ci) = (splat(fi.a_coef), splat(fi.b_coef), splat(fi.c_coef));
+    let (aj, bj, cj) = (splat(fj.a_coef), splat(fj.b_coef), splat(fj.c_coef));
+    let (cx, cy) = (splat(c[0]), splat(c[1]));
+    let (half, one) = (splat(0.5), splat(1.0));
+    let x0 = f64x2::new([guess[0][0], guess[1][0]]);
+    let y0 = f64x2::new([guess[0][1], guess[1][1]]);
+    // One Newton step from (x, y) in both lanes: the step, `det²` and `|g₁|²|g₂|²`. With the
+    // gradients and residuals both halved (exact), the step is the same; the half residual is
+    // `½(p·∇Q − 1) = ½(p·g − 1)` for the half gradient g (Q is a quadratic form).
+    let step = |x: f64x2, y: f64x2| {
+        let (xj, yj) = (x - cx, y - cy);
+        let (g1x, g1y) = (ai * x + bi * y, bi * x + ci * y);
+        let (g2x, g2y) = (aj * xj + bj * yj, bj * xj + cj * yj);
+        let f1 = half * ((x * g1x + y * g1y) - one);
+        let f2 = half * ((xj * g2x + yj * g2y) - one);
+        let det = g1x * g2y - g1y * g2x;
+        let inv = one / det;
+        let dx = (g1y * f2 - g2y * f1) * inv;
+        let dy = (g2x * f1 - g1x * f2) * inv;
+        let norms = (g1x * g1x + g1y * g1y) * (g2x * g2x + g2y * g2y);
+        (dx, dy, det * det, norms)
     };
-    // One Newton step from `p`: `None` if the crossing there is grazing (or not finite).
-    let step = |p: [f64; 2]| -> Option<[f64; 2]> {
-        let (x, y) = (p[0], p[1]);
-        let (f1, f2) = (
-            0.5 * (fi.quad(x, y) - 1.0),
-            0.5 * (fj.quad(x - c[0], y - c[1]) - 1.0),
-        );
-        let (g1, g2) = (half_grad(fi, x, y), half_grad(fj, x - c[0], y - c[1]));
-        let det = g1[0] * g2[1] - g1[1] * g2[0];
-        let norms = (g1[0] * g1[0] + g1[1] * g1[1]) * (g2[0] * g2[0] + g2[1] * g2[1]);
-        if !det.is_finite() || det * det < WARM_MIN_SINE * WARM_MIN_SINE * norms {
-            return None; // grazing (or not finite): ill-conditioned crossing
+    let (dx, dy, _, _) = step(x0, y0);
+    let (mut x, mut y) = (x0 + dx, y0 + dy);
+    let mut iterations = 1;
+    let (det2, norms) = loop {
+        let (dx, dy, det2, norms) = step(x, y);
+        // Quadratic convergence: after a step this small the error is below rounding.
+        let (d2, p2) = ((dx * dx + dy * dy).to_array(), (x * x + y * y).to_array());
+        (x, y) = (x + dx, y + dy);
+        iterations += 1;
+        if d2[0] <= 1e-18 * (1.0 + p2[0]) && d2[1] <= 1e-18 * (1.0 + p2[1]) {
+            break (det2.to_array(), norms.to_array());
         }
-        let inv_det = 1.0 / det;
-        Some([
-            (g1[1] * f2 - g2[1] * f1) * inv_det,
-            (g2[0] * f1 - g1[0] * f2) * inv_det,
-        ])
+        if iterations == 6 {
+            return None;
+        }
     };
-    let mut out = guess;
-    let mut done = [false; 2];
-    for _ in 0..6 {
-        let steps = [step(out[0]), step(out[1])];
-        for k in 0..2 {
-            if done[k] {
-                continue;
-            }
-            let [dx, dy] = steps[k]?;
-            let (x, y) = (out[k][0], out[k][1]);
-            out[k][0] += dx;
-            out[k][1] += dy;
-            // Quadratic convergence: after a step this small the error is below rounding.
-            done[k] = dx * dx + dy * dy <= 1e-18 * (1.0 + x * x + y * y);
-        }
-        if done[0] && done[1] {
-            break;
-        }
-    }
-    if !(done[0] && done[1]) {
+    // Grazing (or not finite): an ill-conditioned crossing, for the pencil.
+    let min2 = WARM_MIN_SINE * WARM_MIN_SINE;
+    if !(det2[0] >= min2 * norms[0] && det2[1] >= min2 * norms[1]) {
         return None;
     }
+    let ([x, y], [x0, y0]) = ([x.to_array(), y.to_array()], [x0.to_array(), y0.to_array()]);
+    let out = [[x[0], y[0]], [x[1], y[1]]];
     // Lengths here are of order one (the frame is scaled): no over- or underflow to guard
     // against, so squares rather than `hypot`.
-    let (ex, ey) = (out[1][0] - out[0][0], out[1][1] - out[0][1]);
+    let (ex, ey) = (x[1] - x[0], y[1] - y[0]);
     let chord2 = ex * ex + ey * ey;
     // The same crossing twice, or a wild jump: not the chord we are tracking.
     let moved2 = |k: usize| {
-        let (mx, my) = (out[k][0] - guess[k][0], out[k][1] - guess[k][1]);
+        let (mx, my) = (x[k] - x0[k], y[k] - y0[k]);
         mx * mx + my * my
     };
     if chord2.is_nan() || chord2 <= 1e-12 || moved2(0) > 0.25 * chord2 || moved2(1) > 0.25 * chord2
@@ -347,7 +356,8 @@ fn warm_crossings(
     // taken along m and the sum divided by |m|: the three square roots do not wait on one
     // another.
     let m = [-ey, ex];
-    let inv_len = 1.0 / (ex * ex + ey * ey).sqrt(); // order one: no `hypot` needed
+    let len = (ex * ex + ey * ey).sqrt(); // order one: no `hypot` needed
+    let inv_len = 1.0 / len;
     let supports = support(ai, bi, 1.0, 0.0, m[0], m[1]) + support(aj, bj, cphi, sphi, m[0], m[1]);
     let (m, dpt_m) = orient_symmetric(m, supports, m[0] * u[0] + m[1] * u[1]);
     let (n, dpt) = ([m[0] * inv_len, m[1] * inv_len], dpt_m * inv_len);
@@ -361,11 +371,28 @@ fn warm_crossings(
         scale,
     };
     let mid = super::midpoint(p, q);
-    let mut c = frame.contact(ContactState::Overlap, p, q, mid, n, dpt, request);
+    // (The half-chord, when asked for, from the length at hand rather than `hypot`: lengths here
+    // are of order one.)
+    let lean = Request {
+        chord: false,
+        ..*request
+    };
+    let mut c = frame.contact(ContactState::Overlap, p, q, mid, n, dpt, &lean);
+    if request.chord {
+        c.half_chord = 0.5 * len * scale;
+    }
     if request.area {
-        let placed_i = Placed::at(ai, bi, inv_i, (1.0, 0.0), [0.0, 0.0]);
-        let placed_j = Placed::at(aj, bj, inv_j, (cphi, sphi), u);
-        let o = chord_overlap(&placed_i, &placed_j, p, [ex, ey], n);
+        // The caps of i and j beyond the chord. Both are minor, with the chord's images on the
+        // unit disks of both well short of a diameter: a cap's height along n is at most the
+        // depth δ ≤ WARM_MAX_DEPTH·b, and its image's at most δ/b ≤ 0.05 of the unit radius.
+        // The chord's image on each: e in each body's axes, scaled by 1/a, 1/b.
+        let ej = [cphi * ex + sphi * ey, -sphi * ex + cphi * ey];
+        let l2 = [
+            ex * ex * inv_i[0] + ey * ey * inv_i[1],
+            ej[0] * ej[0] * inv_j[0] + ej[1] * ej[1] * inv_j[1],
+        ];
+        let area = minor_caps_sum([ai * bi, aj * bj], l2);
+        let o = LocalOverlap::chord_of_length(area, p, q, n, len);
         c.area = Some(frame.overlap(&o));
     }
     let unscaled = |p: [f64; 2]| [p[0] * scale, p[1] * scale];

@@ -626,6 +626,12 @@ impl LocalOverlap {
     #[inline]
     pub fn chord(area: f64, p: [f64; 2], q: [f64; 2], n: [f64; 2]) -> Self {
         let len = ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)).sqrt();
+        Self::chord_of_length(area, p, q, n, len)
+    }
+
+    /// [`LocalOverlap::chord`] for a caller that has the chord's length `len` (`|q − p|`).
+    #[inline]
+    pub fn chord_of_length(area: f64, p: [f64; 2], q: [f64; 2], n: [f64; 2], len: f64) -> Self {
         LocalOverlap {
             area,
             grad: [-len * n[0], -len * n[1]],

@@ -59,7 +59,8 @@ enum Command {
         /// list).
         #[arg(long, value_delimiter = ',')]
         aspects: Option<Vec<f64>>,
-        /// Inertial numbers, comma-separated (shear; default 0.01,0.03,0.1,0.3).
+        /// Inertial numbers, comma-separated, for every aspect ratio (shear; default
+        /// 0.01,0.03,0.1,0.3, and 0.001 for disks).
         #[arg(long, value_delimiter = ',')]
         inertial: Option<Vec<f64>>,
         /// Worker threads (default: all cores; the jamming study runs its packings in

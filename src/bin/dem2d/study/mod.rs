@@ -13,6 +13,7 @@ pub mod rolling_fig3;
 pub mod shear;
 pub mod silo;
 
+use dem2d::geometry::Shape;
 use dem2d::output::docs_tables::Mode;
 use dem2d::output::plot::{self, LinePanel};
 use std::path::Path;
@@ -52,7 +53,8 @@ pub enum Study {
     Silo,
     /// Steady simple shear at imposed pressure in a Lees–Edwards cell: μ(I), φ(I) and the
     /// ellipses' orientation of 256 (`--grains`) frictional grains (μ = 0.4), α in 1–3
-    /// (`--aspects`), I in 0.01–0.3 (`--inertial`); writes figures/shear.svg and .md.
+    /// (`--aspects`), I in 0.01–0.3 and disks at 0.001 too (`--inertial`); writes
+    /// figures/shear.svg and .md.
     Shear,
 }
 
@@ -70,6 +72,19 @@ impl Study {
             Study::Jamming => "jamming",
             Study::Silo => "silo",
             Study::Shear => "shear",
+        }
+    }
+}
+
+/// A grain of equal-area radius `r` and aspect ratio `aspect` = a/b: the disk of radius `r` at
+/// 1, else the ellipse of the same area, `a = r√α`, `b = r/√α`.
+pub fn grain(r: f64, aspect: f64) -> Shape {
+    if aspect == 1.0 {
+        Shape::Circle { r }
+    } else {
+        Shape::Ellipse {
+            a: r * aspect.sqrt(),
+            b: r / aspect.sqrt(),
         }
     }
 }
@@ -200,7 +215,7 @@ pub fn run(study: Study, options: &Options, docs: Option<Mode>) -> Result<(), cr
         Study::Shear => shear::run(
             grains.unwrap_or(shear::N),
             options.aspects.as_deref().unwrap_or(&shear::ASPECTS),
-            options.inertial.as_deref().unwrap_or(&shear::INERTIAL),
+            options.inertial.as_deref(),
         ),
         Study::Silo => silo::run(),
     }

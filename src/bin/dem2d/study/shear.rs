@@ -17,7 +17,7 @@
 //! area over the cell's, and for ellipses the nematic order `S = |⟨e^{2iθ}⟩|` and the mean
 //! orientation `θ̄ = ½ arg⟨e^{2iθ}⟩` of the long axes against the flow (x).
 
-use super::{Table, line_fit};
+use super::{Table, grain, line_fit};
 use dem2d::contact_law::{ContactSpec, LinearDamping, Scaled};
 use dem2d::dynamics::BodyInit;
 use dem2d::dynamics::World;
@@ -37,6 +37,10 @@ pub const N: usize = 256;
 pub const ASPECTS: [f64; 4] = [1.0, 1.5, 2.0, 3.0];
 /// The target inertial numbers by default.
 pub const INERTIAL: [f64; 4] = [0.01, 0.03, 0.1, 0.3];
+/// The inertial number added for disks by default: the quasi-static end, where da Cruz et al.'s
+/// μ_min and φ_max are read. Its run takes ten times I = 0.01's steps (6.3 million), so
+/// ellipses (whose steps cost about three times a disk's) get it only through `--inertial`.
+pub const QUASI_STATIC: f64 = 0.001;
 /// Mean equal-area diameter (cm).
 pub const D: f64 = 1.0;
 /// Density (g/cm³, of a 1 cm slice).
@@ -76,15 +80,7 @@ fn world(n: usize, aspect: f64, rate: f64) -> World {
     let side = spacing * side_count as f64;
     let bodies = (0..n)
         .map(|k| {
-            let r = 0.5 * D * (0.8 + 0.4 * rng.uniform());
-            let shape = if aspect == 1.0 {
-                Shape::Circle { r }
-            } else {
-                Shape::Ellipse {
-                    a: r * aspect.sqrt(),
-                    b: r / aspect.sqrt(),
-                }
-            };
+            let shape = grain(0.5 * D * (0.8 + 0.4 * rng.uniform()), aspect);
             let position = Vec2::new(
                 spacing * ((k % side_count) as f64 + 0.5),
                 spacing * ((k / side_count) as f64 + 0.5),
@@ -187,20 +183,31 @@ pub fn shear(n: usize, aspect: f64, target: f64) -> Result<Flow, RunError> {
     })
 }
 
-/// Runs the study over `aspects` and `targets` (see the module documentation).
-pub fn run(n: usize, aspects: &[f64], targets: &[f64]) -> Result<String, RunError> {
-    let start = Instant::now();
-    let jobs: Vec<(f64, f64)> = aspects
+/// The study's runs, `(α, target I)`: every aspect ratio at every inertial number of `targets`,
+/// or by default at [`INERTIAL`], with disks also at [`QUASI_STATIC`].
+pub fn jobs(aspects: &[f64], targets: Option<&[f64]>) -> Vec<(f64, f64)> {
+    aspects
         .iter()
-        .flat_map(|&a| targets.iter().map(move |&i| (a, i)))
-        .collect();
+        .flat_map(|&a| {
+            let extra = (targets.is_none() && a == 1.0).then_some(QUASI_STATIC);
+            let each = targets.unwrap_or(&INERTIAL).iter().copied();
+            extra.into_iter().chain(each).map(move |i| (a, i))
+        })
+        .collect()
+}
+
+/// Runs the study's `jobs` (see [`jobs`] and the module documentation).
+pub fn run(n: usize, aspects: &[f64], targets: Option<&[f64]>) -> Result<String, RunError> {
+    let start = Instant::now();
+    let mut jobs = jobs(aspects, targets);
     eprintln!(
-        "dem2d study shear: {} runs of {n} grains ({} aspect ratios × {} inertial numbers)",
+        "dem2d study shear: {} runs of {n} grains ({} aspect ratios)",
         jobs.len(),
         aspects.len(),
-        targets.len()
     );
-    let done: Vec<Flow> = jobs
+    // The slowest runs (a run's steps go as 1/I) start first, so that they do not end alone.
+    jobs.sort_by(|x, y| x.1.total_cmp(&y.1));
+    let mut done: Vec<Flow> = jobs
         .par_iter()
         .map(|&(a, i)| {
             let f = shear(n, a, i)?;
@@ -211,6 +218,7 @@ pub fn run(n: usize, aspects: &[f64], targets: &[f64]) -> Result<String, RunErro
             Ok(f)
         })
         .collect::<Result<_, RunError>>()?;
+    done.sort_by(|x, y| (x.aspect.total_cmp(&y.aspect)).then(x.target.total_cmp(&y.target)));
     let mut table = Table::new(
         "| α | I (target) | I (measured) | μ = −σ_xy/σ_yy | φ | nematic order S | mean angle to the flow (°) | steps |\n|---:|---:|---:|---:|---:|---:|---:|---:|",
     );
