@@ -461,11 +461,12 @@ fn the_outputs_reference_lists_every_file_and_column_a_run_writes() {
             written.insert(name);
         }
     }
-    // (`cell.csv` is a periodic cell's, `discharge.csv` an outflow's: checked with their runs
-    // below.)
+    // (`cell.csv` is a periodic cell's, `discharge.csv` an outflow's, `inserted.csv` an
+    // insertion's: checked with their runs below.)
     let mut without_cell = listed.clone();
     without_cell.remove("cell.csv");
     without_cell.remove("discharge.csv");
+    without_cell.remove("inserted.csv");
     assert_eq!(
         written, without_cell,
         "files written (left) against documented (right)"
@@ -555,11 +556,11 @@ fn the_outputs_reference_lists_every_file_and_column_a_run_writes() {
             "{file} in a periodic cell: documented (left) against written (right)"
         );
     }
-    // An outflow's run: its own file.
+    // An outflow's and an insertion's run: their own files.
     let pour_case = json_blocks(&cases)
         .into_iter()
-        .find(|t| t.contains("\"outflow\""))
-        .expect("an example with an outflow");
+        .find(|t| t.contains("\"outflow\"") && t.contains("\"insert\""))
+        .expect("an example with an insertion and an outflow");
     std::fs::write(dir.join("pour.json"), &pour_case).unwrap();
     let status = Command::new(env!("CARGO_BIN_EXE_dem2d"))
         .args(["run", "pour.json", "--out", "pour_run", "--quiet"])
@@ -577,6 +578,16 @@ fn the_outputs_reference_lists_every_file_and_column_a_run_writes() {
         .collect();
     assert!(listed.contains("discharge.csv"));
     assert_eq!(documented.get("discharge.csv"), Some(&header));
+    let written = read(&dir.join("pour_run").join("inserted.csv"));
+    let header: Vec<String> = written
+        .lines()
+        .next()
+        .unwrap()
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    assert!(listed.contains("inserted.csv"));
+    assert_eq!(documented.get("inserted.csv"), Some(&header));
     // A VTK frame's field data gain the cell's state (its cell data are the same arrays).
     let frame = read(&out.join("vtk/frame_00000.vtu"));
     let start = frame.find("<FieldData").expect("field data");

@@ -3,7 +3,9 @@
 //! insertion by a brute-force test of all pairs; the mass inserted less the mass discharged
 //! against the mass in the scene; the discharge log against the bodies that left, found by
 //! comparing the identities before and after every step; the same bits on 1 and 2 threads and
-//! across a restart through `state.json`.
+//! across a restart through `state.json`; `dem2d plot` and `dem2d analyze` on such a run, the
+//! bodies drawn and measured at each frame against `inserted.csv` and `discharge.csv`, the
+//! packing fraction against `Σ π r²` of the bodies present.
 
 use dem2d::dynamics::World;
 use dem2d::geometry::mass::area;
@@ -253,6 +255,21 @@ fn a_restart_continues_the_flow_exactly() {
     let whole = rows(read(&full, "discharge.csv"));
     assert!(whole.len() > 50, "{}", whole.len());
     assert_eq!(joined, whole);
+    // So do the insertions; and the continued run reads back (its bodies from before the
+    // restart are its case's, under their identities `state.ids`), ending as the whole run.
+    let mut joined = rows(read(&half, "inserted.csv"));
+    joined.extend(rows(read(&rest, "inserted.csv")));
+    assert_eq!(joined, rows(read(&full, "inserted.csv")));
+    let load = |p: &std::path::Path| dem2d::output::run_data::RunData::load(p).unwrap();
+    let (whole, continued) = (load(&full), load(&rest));
+    let (a, b) = (
+        whole.frames.last().unwrap(),
+        continued.frames.last().unwrap(),
+    );
+    assert_eq!((a.step, &a.ids, &a.bodies), (b.step, &b.ids, &b.bodies));
+    for &id in &a.ids {
+        assert_eq!(whole.init(id).shape, continued.init(id).shape, "body {id}");
+    }
     // The state itself reads back as a case with its flow.
     let state = CaseFile::from_json(&read(&half, "state.json")).unwrap();
     assert!(state.case.flow.is_some());
@@ -296,4 +313,193 @@ fn the_energy_inserted_and_removed_is_booked_as_boundary_work() {
         .unwrap();
     assert!(w.flow.as_ref().unwrap().discharged > 100);
     assert!(worst <= 1e-12 * scale, "{worst} against {scale}");
+}
+
+/// The rows of a CSV file of numbers (the header skipped; an empty field, undefined: NaN).
+fn csv_rows(path: &std::path::Path) -> Vec<Vec<f64>> {
+    std::fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .lines()
+        .skip(1)
+        .map(|l| {
+            l.split(',')
+                .map(|x| {
+                    if x.is_empty() {
+                        f64::NAN
+                    } else {
+                        x.parse().unwrap()
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// `dem2d plot` and `dem2d analyze` read a run whose bodies come and go: the bodies each frame
+/// holds are those `inserted.csv` placed by its step less those `discharge.csv` says left by
+/// then (the trajectory's own `body` column and the reader's frames both checked against
+/// that); a snapshot draws one outline per body present; `analyze` counts them and finds the
+/// packing fraction of a window holding them all as `Σ π r²` over the window's area (r the
+/// equal-area radius `inserted.csv` records), and recomputes the run's own `analysis.csv`.
+#[test]
+fn plot_and_analyze_draw_and_measure_the_bodies_present_in_each_frame() {
+    let dir = scratch("flow-plot");
+    let file = dir.join("case.in.json");
+    std::fs::write(&file, falling(900.0, None, "")).unwrap();
+    let run = dir.join("run");
+    let (code, _, err) = dem2d(&[
+        "run",
+        file.to_str().unwrap(),
+        "--out",
+        run.to_str().unwrap(),
+        "--overwrite",
+        "--analysis",
+        "--contacts",
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    // The logs: (step, body) placed, (step, body) removed; each body's equal-area radius.
+    let placed: Vec<(u64, u64)> = csv_rows(&run.join("inserted.csv"))
+        .iter()
+        .map(|r| (r[0] as u64, r[2] as u64))
+        .collect();
+    let radius: BTreeMap<u64, f64> = csv_rows(&run.join("inserted.csv"))
+        .iter()
+        .map(|r| (r[2] as u64, r[4]))
+        .collect();
+    let removed: Vec<(u64, u64)> = csv_rows(&run.join("discharge.csv"))
+        .iter()
+        .map(|r| (r[0] as u64, r[2] as u64))
+        .collect();
+    assert!(
+        placed.len() > 100 && removed.len() > 20,
+        "{placed:?} {removed:?}"
+    );
+    // Bodies are placed and removed between steps: after step s (outflow first), so a frame
+    // written after step s holds those placed at s or before and not removed at s or before.
+    let present = |s: u64| -> Vec<u64> {
+        placed
+            .iter()
+            .filter(|&&(at, id)| at <= s && !removed.iter().any(|&(out, o)| o == id && out <= s))
+            .map(|&(_, id)| id)
+            .collect()
+    };
+    // The trajectory's frames, by step: the identities it lists.
+    let mut frames: BTreeMap<u64, Vec<u64>> = BTreeMap::new();
+    for r in csv_rows(&run.join("trajectory.csv")) {
+        frames.entry(r[0] as u64).or_default().push(r[2] as u64);
+    }
+    assert!(frames.len() > 15, "{} frames", frames.len());
+    let data = dem2d::output::run_data::RunData::load(&run).unwrap();
+    assert_eq!(data.frames.len(), frames.len());
+    let mut counts = Vec::new();
+    for (f, (&step, ids)) in data.frames.iter().zip(&frames) {
+        assert_eq!(
+            &present(step),
+            ids,
+            "step {step}: trajectory.csv against the logs"
+        );
+        assert_eq!((f.step, &f.ids), (step, ids), "step {step}: the reader");
+        counts.push(ids.len());
+    }
+    // Bodies come and go: some frame has lost bodies the one before had.
+    assert!(
+        frames
+            .values()
+            .zip(frames.values().skip(1))
+            .any(|(a, b)| a.iter().any(|id| !b.contains(id))),
+        "no body left between frames"
+    );
+    // A snapshot of several frames (`--last` up to their time): one outline per body present,
+    // each a closed polyline of many points (the axes' and ticks' have 2; no walls here).
+    let times: Vec<f64> = data.frames.iter().map(|f| f.t).collect();
+    for k in [3, times.len() / 2, times.len() - 1] {
+        let svg = dir.join(format!("scene{k}.svg"));
+        let (code, _, err) = dem2d(&[
+            "plot",
+            run.to_str().unwrap(),
+            "--last",
+            "--color",
+            "body",
+            "--to",
+            &format!("{}", times[k]),
+            "--out",
+            svg.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let text = std::fs::read_to_string(&svg).unwrap();
+        let outlines = text
+            .split("<polyline")
+            .skip(1)
+            .filter(|p| {
+                let rest = &p[p.find("points=\"").unwrap() + 8..];
+                rest[..rest.find('"').unwrap()].split_whitespace().count() > 20
+            })
+            .count();
+        assert_eq!(outlines, counts[k], "frame {k}: outlines drawn");
+    }
+    // The paths and outlines over the whole run, and the series: they draw.
+    for kind in ["scene", "series"] {
+        let (code, _, err) = dem2d(&[
+            "plot",
+            run.to_str().unwrap(),
+            "--kind",
+            kind,
+            "--out",
+            dir.join(format!("{kind}.svg")).to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{kind}: {err}");
+    }
+    // analyze: recomputes the run's own analysis.csv (the bodies' extent at each frame)...
+    let again = dir.join("again.csv");
+    let (code, _, err) = dem2d(&[
+        "analyze",
+        run.to_str().unwrap(),
+        "--out",
+        again.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    // (Less its rows of frames without a body, which trajectory.csv has no row to tell of:
+    // here the first, before the first insertion.)
+    let own: Vec<String> = std::fs::read_to_string(run.join("analysis.csv"))
+        .unwrap()
+        .lines()
+        .filter(|l| !l.ends_with(",0,0"))
+        .map(str::to_string)
+        .collect();
+    let redone: Vec<String> = std::fs::read_to_string(&again)
+        .unwrap()
+        .lines()
+        .map(str::to_string)
+        .collect();
+    assert_eq!(redone.len(), frames.len() + 1);
+    assert_eq!(redone, own);
+    // ... and over a window holding every body: all of them, and Σ π r² over its area.
+    let (code, _, err) = dem2d(&[
+        "analyze",
+        run.to_str().unwrap(),
+        "--window=-15,15,-25,10",
+        "--out",
+        again.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&again).unwrap();
+    let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let rows = csv_rows(&again);
+    assert_eq!(rows.len(), frames.len());
+    for (r, ids) in rows.iter().zip(frames.values()) {
+        assert_eq!(r[col("bodies")] as usize, ids.len(), "t = {}", r[0]);
+        let solid: f64 = ids
+            .iter()
+            .map(|id| std::f64::consts::PI * radius[id] * radius[id])
+            .sum();
+        let want = solid / (30.0 * 35.0);
+        let got = r[col("packing_fraction")];
+        assert!(
+            (got - want).abs() <= 1e-12 * want.max(1e-300),
+            "t = {}: packing fraction {got} against {want}",
+            r[0]
+        );
+    }
 }

@@ -1169,6 +1169,17 @@ fn load_run<'py>(py: Python<'py>, dir: PathBuf) -> PyResult<Bound<'py, PyDict>> 
     let d = PyDict::new(py);
     let frames = &run.frames;
     let n = frames.first().map_or(0, |f| f.bodies.len());
+    if frames.iter().any(|f| f.ids != frames[0].ids) {
+        return Err(input_error(
+            py,
+            format!(
+                "{}: the case inserts or removes bodies (`insert`, `outflow`): its frames hold \
+                 different bodies, which load_run's arrays (frames × bodies) cannot; read \
+                 trajectory.csv by its `body` column",
+                dir.display()
+            ),
+        ));
+    }
     let f = frames.len();
     let field = |g: &dyn Fn(&dem2d::output::run_data::BodyState) -> f64| {
         frames

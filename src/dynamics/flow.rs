@@ -234,6 +234,21 @@ pub struct Discharge {
     pub mass: f64,
 }
 
+/// An inserted body: what its inserter drew, so that a reader can make its shape again
+/// ([`InsertShape::make`] of the inserter's shape with `r` and `aspect`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Insertion {
+    pub step: u64,
+    pub time: f64,
+    /// Its identity ([`super::body::Bodies::id`]).
+    pub id: u64,
+    /// Its inserter (an index into the case's `insert`).
+    pub inserter: usize,
+    /// The equal-area radius and aspect ratio drawn.
+    pub r: f64,
+    pub aspect: f64,
+}
+
 /// A scene's insertion and outflow regions and where they are.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Flow {
@@ -248,6 +263,8 @@ pub struct Flow {
     pub discharged_mass: f64,
     /// The removals not yet taken by a reader ([`Flow::take_log`]).
     pub log: Vec<Discharge>,
+    /// The insertions not yet taken by a reader ([`Flow::take_insertions`]).
+    pub inserted_log: Vec<Insertion>,
 }
 
 impl Flow {
@@ -269,12 +286,18 @@ impl Flow {
             discharged: 0,
             discharged_mass: 0.0,
             log: Vec::new(),
+            inserted_log: Vec::new(),
         }
     }
 
     /// The removals logged since the last call.
     pub fn take_log(&mut self) -> Vec<Discharge> {
         std::mem::take(&mut self.log)
+    }
+
+    /// The insertions logged since the last call.
+    pub fn take_insertions(&mut self) -> Vec<Insertion> {
+        std::mem::take(&mut self.inserted_log)
     }
 
     /// Where the flow is, for a restart.
@@ -331,6 +354,9 @@ impl SplitMix64 {
 pub(crate) struct Candidate {
     pub shape: Shape,
     pub angle: f64,
+    /// The equal-area radius and aspect ratio it was made of.
+    pub r: f64,
+    pub aspect: f64,
 }
 
 /// Draws one body of `ins` (size, aspect, angle: three draws).
@@ -342,6 +368,8 @@ pub(crate) fn draw_body(ins: &Inserter, rng: &mut SplitMix64) -> Candidate {
     Candidate {
         shape: ins.shape.make(r, alpha),
         angle,
+        r,
+        aspect: alpha,
     }
 }
 

@@ -7,7 +7,7 @@ pub use super::boundary::Boundary;
 use super::boundary::{Motion, update_servos};
 use super::cell::Cell;
 use super::contacts::{ContactList, REMOVED};
-use super::flow::{Discharge, Flow, SplitMix64, draw_body, draw_position};
+use super::flow::{Discharge, Flow, Insertion, SplitMix64, draw_body, draw_position};
 use super::flow::{FlowRestart, Target};
 use super::materials::{Materials, PairTable};
 use super::neighbour_list::kept;
@@ -353,7 +353,7 @@ impl World {
         let t = self.time;
         let free = self.bodies.len() - self.bodies.prescribed.len();
         let mut new: Vec<BodyInit> = Vec::new();
-        for (ins, st) in flow.inserters.iter().zip(flow.state.iter_mut()) {
+        for (which, (ins, st)) in flow.inserters.iter().zip(flow.state.iter_mut()).enumerate() {
             if t < ins.start || t < st.next_try {
                 continue;
             }
@@ -378,6 +378,15 @@ impl World {
                     .find(|&p| self.clear_of_all(p, bound, &new));
                 match placed {
                     Some(p) => {
+                        // (Its identity: the next after those inserted before it here.)
+                        flow.inserted_log.push(Insertion {
+                            step: self.step,
+                            time: t,
+                            id: self.next_id + new.len() as u64,
+                            inserter: which,
+                            r: c.r,
+                            aspect: c.aspect,
+                        });
                         new.push(BodyInit {
                             shape: c.shape,
                             position: p,

@@ -1,8 +1,15 @@
-//! `discharge.csv`: the bodies the outflow regions removed (see [`crate::dynamics::flow`]), one
-//! row each, `step,t,body,mass`: the step after which it was removed, its time, the body's
-//! identity ([`crate::dynamics::Bodies::id`], the `body` of `trajectory.csv`) and its mass
-//! (g per cm of thickness). Written by every run whose case has an `outflow`; the rows are on
-//! disk at every output frame and at the end.
+//! `discharge.csv` and `inserted.csv`: the bodies the outflow regions removed and those the
+//! insertion regions placed (see [`crate::dynamics::flow`]), one row each.
+//! - `discharge.csv`, `step,t,body,mass`: the step after which it was removed, its time, the
+//!   body's identity ([`crate::dynamics::Bodies::id`], the `body` of `trajectory.csv`) and its
+//!   mass (g per cm of thickness). Written by every run whose case has an `outflow`.
+//! - `inserted.csv`, `step,t,body,insert,r,aspect`: the step after which it was placed (the
+//!   trajectory's frame at that step holds it), its time, its identity, its inserter (an index into the case's `insert`) and the
+//!   equal-area radius and aspect ratio drawn for it — its shape is the inserter's `shape` of
+//!   that radius and aspect ([`crate::dynamics::flow::InsertShape::make`]). Written by every run
+//!   whose case has an `insert`.
+//!
+//! The rows are on disk at every output frame and at the end.
 
 use super::trace::{LineFile, WriteError};
 use crate::dynamics::World;
@@ -13,30 +20,46 @@ use std::path::Path;
 /// The header of `discharge.csv`.
 pub const DISCHARGE_HEADER: &str = "step,t,body,mass";
 
-/// The writer of `discharge.csv` (an observer): takes the world's log of removals after every
-/// step.
+/// The header of `inserted.csv`.
+pub const INSERTED_HEADER: &str = "step,t,body,insert,r,aspect";
+
+/// The writer of `discharge.csv` and `inserted.csv` (an observer): takes the world's logs of
+/// removals and insertions after every step.
 pub struct DischargeWriter {
-    out: LineFile,
+    out: Option<LineFile>,
+    inserted: Option<LineFile>,
     every: u64,
 }
 
 impl DischargeWriter {
-    /// Creates `dir/discharge.csv` with its header; flushed every `every` steps.
-    pub fn create(dir: &Path, every: u64) -> Result<Self, WriteError> {
-        let mut out = LineFile::create(&dir.join("discharge.csv"))?;
-        out.line(format_args!("{DISCHARGE_HEADER}"))?;
-        out.flush()?;
+    /// Creates `dir/discharge.csv` when `outflow`, `dir/inserted.csv` when `insert`, with their
+    /// headers; flushed every `every` steps.
+    pub fn create(dir: &Path, every: u64, outflow: bool, insert: bool) -> Result<Self, WriteError> {
+        let open = |on: bool, name: &str, header: &str| -> Result<Option<LineFile>, WriteError> {
+            if !on {
+                return Ok(None);
+            }
+            let mut f = LineFile::create(&dir.join(name))?;
+            f.line(format_args!("{header}"))?;
+            f.flush()?;
+            Ok(Some(f))
+        };
         Ok(DischargeWriter {
-            out,
+            out: open(outflow, "discharge.csv", DISCHARGE_HEADER)?,
+            inserted: open(insert, "inserted.csv", INSERTED_HEADER)?,
             every: every.max(1),
         })
     }
 
     fn take(&mut self, world: &mut World) -> Result<(), WriteError> {
         let dt = world.dt;
-        if let Some(flow) = world.flow.as_mut() {
-            for d in flow.take_log() {
-                self.out.line(format_args!(
+        let Some(flow) = world.flow.as_mut() else {
+            return Ok(());
+        };
+        let (removed, placed) = (flow.take_log(), flow.take_insertions());
+        if let Some(out) = &mut self.out {
+            for d in removed {
+                out.line(format_args!(
                     "{},{},{},{}",
                     d.step,
                     time_text(d.step, dt),
@@ -45,6 +68,26 @@ impl DischargeWriter {
                 ))?;
             }
         }
+        if let Some(out) = &mut self.inserted {
+            for i in placed {
+                out.line(format_args!(
+                    "{},{},{},{},{},{}",
+                    i.step,
+                    time_text(i.step, dt),
+                    i.id,
+                    i.inserter,
+                    i.r,
+                    i.aspect
+                ))?;
+            }
+        }
+        Ok(())
+    }
+
+    fn flush(&mut self) -> Result<(), WriteError> {
+        for f in [&mut self.out, &mut self.inserted].into_iter().flatten() {
+            f.flush()?;
+        }
         Ok(())
     }
 }
@@ -52,19 +95,19 @@ impl DischargeWriter {
 impl Observer for DischargeWriter {
     fn start(&mut self, world: &mut World, _: &crate::run::Plan) -> Result<(), ObserverError> {
         self.take(world)?;
-        Ok(self.out.flush()?)
+        Ok(self.flush()?)
     }
 
     fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
         self.take(world)?;
         if info.step.is_multiple_of(self.every) {
-            self.out.flush()?;
+            self.flush()?;
         }
         Ok(())
     }
 
     fn finish(&mut self, world: &mut World, _: &End) -> Result<(), ObserverError> {
         self.take(world)?;
-        Ok(self.out.flush()?)
+        Ok(self.flush()?)
     }
 }

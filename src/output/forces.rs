@@ -46,9 +46,8 @@ pub fn normal_force_per_body(
         return sum;
     }
     let case = &run.case;
-    let bodies: Vec<BodyInit> = case
-        .bodies
-        .iter()
+    let bodies: Vec<BodyInit> = run
+        .inits(k)
         .zip(&frame.bodies)
         .map(|(init, s)| BodyInit {
             position: Vec2::new(s.x, s.y),
@@ -59,9 +58,11 @@ pub fn normal_force_per_body(
         })
         .collect();
     let (walls, _) = run.walls_at(k);
+    // (The frame's bodies as they are: no insertion or removal of the world's own.)
     let mut world = Case {
         bodies,
         walls,
+        flow: None,
         ..case.clone()
     }
     .build_world();

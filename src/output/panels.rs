@@ -33,20 +33,28 @@ pub fn time_series(runs: &[(&RunData, &str)], title: &str) -> Vec<LinePanel> {
     };
     let mut c = 0;
     for (run, label) in runs {
-        let n = run.case.bodies.len();
+        // Every body of the run by identity (where the case inserts or removes bodies, each
+        // over the frames that hold it).
+        let all: Vec<usize> = (0..run.frames.len()).collect();
+        let ids = run.ids_in(&all);
+        let n = ids.len();
         if n > PER_BODY_MAX {
             summarise_bodies(run, label, &mut height, &mut angle, &mut c);
             continue;
         }
-        for k in 0..n {
+        for k in ids {
             let name = match (label.is_empty(), n > 1) {
                 (false, true) => format!("{label}, body {k}"),
                 (false, false) => label.to_string(),
                 (true, true) => format!("body {k}"),
                 (true, false) => String::new(),
             };
-            let trace =
-                |of: fn(&BodyState) -> f64| run.frames.iter().map(move |f| (f.t, of(&f.bodies[k])));
+            let trace = |of: fn(&BodyState) -> f64| {
+                run.frames
+                    .iter()
+                    .enumerate()
+                    .filter_map(move |(i, f)| run.place(i, k).map(|at| (f.t, of(&f.bodies[at]))))
+            };
             height
                 .series
                 .push(Series::line(name.clone(), trace(|b| b.y).collect(), c));
@@ -64,7 +72,8 @@ pub fn time_series(runs: &[(&RunData, &str)], title: &str) -> Vec<LinePanel> {
 pub const PER_BODY_MAX: usize = 12;
 
 /// A many-body run as a few lines: the mean, lowest and highest centroid height, and the mean
-/// and largest rotation |θ − θ₀| since the start (the angle panel's label says so).
+/// and largest rotation |θ − θ₀| since the start (the angle panel's label says so), over the
+/// bodies each frame holds (θ₀ a body's angle in the first frame that holds it).
 fn summarise_bodies(
     run: &RunData,
     label: &str,
@@ -72,33 +81,51 @@ fn summarise_bodies(
     angle: &mut LinePanel,
     c: &mut usize,
 ) {
-    let n = run.case.bodies.len();
+    let n = run.most_bodies();
     let prefix = if label.is_empty() {
         String::new()
     } else {
         format!("{label}, ")
     };
-    let first = run.frames.first();
+    // Each body's angle where it first appears (by identity).
+    let mut first: std::collections::HashMap<u64, f64> = std::collections::HashMap::new();
+    for f in &run.frames {
+        for (&id, b) in f.ids.iter().zip(&f.bodies) {
+            first.entry(id).or_insert(b.angle);
+        }
+    }
     let over = |f: fn(f64, f64) -> f64, init: f64, value: &dyn Fn(usize, usize) -> f64| {
         run.frames
             .iter()
             .enumerate()
-            .map(|(t, fr)| (fr.t, (0..n).map(|k| value(t, k)).fold(init, f)))
+            .map(|(t, fr)| {
+                (
+                    fr.t,
+                    (0..fr.bodies.len()).map(|k| value(t, k)).fold(init, f),
+                )
+            })
             .collect::<Vec<_>>()
     };
     let y = |t: usize, k: usize| run.frames[t].bodies[k].y;
     let turn = |t: usize, k: usize| {
-        (run.frames[t].bodies[k].angle - first.map_or(0.0, |f| f.bodies[k].angle)).abs()
+        let f = &run.frames[t];
+        (f.bodies[k].angle - first[&f.ids[k]]).abs()
     };
     let mean = |value: &dyn Fn(usize, usize) -> f64| {
         let mut pts = over(|a, b| a + b, 0.0, value);
-        pts.iter_mut().for_each(|p| p.1 /= n as f64);
+        for (p, f) in pts.iter_mut().zip(&run.frames) {
+            p.1 /= f.bodies.len().max(1) as f64;
+        }
         pts
     };
     let line = Series::line;
+    let of = match run.case.flow {
+        None => format!("mean of {n} bodies"),
+        Some(_) => format!("mean of the bodies present (≤ {n})"),
+    };
     height
         .series
-        .push(line(format!("{prefix}mean of {n} bodies"), mean(&y), *c));
+        .push(line(format!("{prefix}{of}"), mean(&y), *c));
     height.series.push(line(
         format!("{prefix}lowest"),
         over(f64::min, f64::INFINITY, &y),
@@ -112,7 +139,7 @@ fn summarise_bodies(
     angle.y_label = "rotation |θ − θ₀| since the start (rad)".into();
     angle
         .series
-        .push(line(format!("{prefix}mean of {n} bodies"), mean(&turn), *c));
+        .push(line(format!("{prefix}{of}"), mean(&turn), *c));
     angle.series.push(line(
         format!("{prefix}largest"),
         over(f64::max, 0.0, &turn),

@@ -320,7 +320,7 @@ fn select<'a>(
             run.dir.display()
         )));
     };
-    let snapshot = opts.last_only || run.case.bodies.len() > opts.snapshot_above;
+    let snapshot = opts.last_only || run.most_bodies() > opts.snapshot_above;
     let outlines = if snapshot {
         vec![last]
     } else {
@@ -342,7 +342,6 @@ fn select<'a>(
         }
         chosen
     };
-    let n = run.case.bodies.len();
     let values = match color {
         ColorBy::Speed => outlines
             .iter()
@@ -361,8 +360,18 @@ fn select<'a>(
         ColorBy::Rotation => outlines
             .iter()
             .map(|&i| {
-                (0..n)
-                    .map(|k| run.frames[i].bodies[k].angle - run.frames[0].bodies[k].angle)
+                // Since the first frame that holds the body (the run's first, but for a body
+                // inserted later).
+                let f = &run.frames[i];
+                f.ids
+                    .iter()
+                    .zip(&f.bodies)
+                    .map(|(&id, b)| {
+                        let start = (0..=i)
+                            .find_map(|j| run.place(j, id).map(|k| run.frames[j].bodies[k]))
+                            .unwrap_or(*b);
+                        b.angle - start.angle
+                    })
                     .collect()
             })
             .collect(),
@@ -403,7 +412,7 @@ fn scene_bounds(panels: &[Vec<(Drawn, ColorBy)>]) -> (f64, f64, f64, f64) {
         for &i in d.outlines.iter().chain(&d.path) {
             // (With the periodic images drawn at the outlines.)
             let cell = d.run.cell_at(i).filter(|_| d.images);
-            for (b, init) in d.run.frames[i].bodies.iter().zip(&d.run.case.bodies) {
+            for (b, init) in d.run.frames[i].bodies.iter().zip(d.run.inits(i)) {
                 let shifts = match &cell {
                     Some(c) => image_offsets(c, b.x, b.y, init.shape.bounding_radius()),
                     None => Vec::new(),
@@ -544,9 +553,9 @@ pub fn scene(path: &Path, panels: &[ScenePanel], opts: &SceneOptions) -> Result<
     for p in panels {
         let mut runs = Vec::new();
         for (run, label) in &p.runs {
-            let snapshot = opts.last_only || run.case.bodies.len() > opts.snapshot_above;
+            let snapshot = opts.last_only || run.most_bodies() > opts.snapshot_above;
             let color = match opts.color {
-                ColorBy::Auto if snapshot && run.case.bodies.len() > opts.snapshot_above => {
+                ColorBy::Auto if snapshot && run.most_bodies() > opts.snapshot_above => {
                     ColorBy::Force
                 }
                 ColorBy::Auto if p.runs.len() > 1 => ColorBy::Run,
@@ -594,7 +603,7 @@ pub fn scene(path: &Path, panels: &[ScenePanel], opts: &SceneOptions) -> Result<
             .iter()
             .flatten()
             .filter(|d| d.0.snapshot)
-            .flat_map(|d| d.0.run.case.bodies.iter())
+            .flat_map(|d| d.0.outlines.iter().flat_map(|&i| d.0.run.inits(i)))
             .map(|b| 2.0 * b.shape.inscribed_radius())
             .fold(f64::INFINITY, f64::min);
         let want = 8.0 * (x1 - x0) / smallest + 100.0;
@@ -885,9 +894,9 @@ where
     let mut legend = false;
     for (ri, (d, by)) in runs.iter().enumerate() {
         let run = d.run;
-        // The colour of body k's outline number `o`.
-        let pick = |k: usize, o: usize| match (scale, d.values.get(o)) {
-            (Some(s), Some(v)) => s.color(v[k]),
+        // The colour of body k's outline number `o`, where it is the frame's body `at`.
+        let pick = |k: usize, at: usize, o: usize| match (scale, d.values.get(o)) {
+            (Some(s), Some(v)) => s.color(v[at]),
             _ if *by == ColorBy::Body => color(k),
             _ => color(ri),
         };
@@ -903,7 +912,7 @@ where
             let f = &run.frames[last];
             let o = d.outlines.len() - 1;
             let cell = run.cell_at(last).filter(|_| d.images);
-            let polygons = run.case.bodies.iter().enumerate().flat_map(|(k, init)| {
+            let polygons = run.inits(last).enumerate().flat_map(|(k, init)| {
                 let b = f.bodies[k];
                 let shifts = match &cell {
                     Some(c) => image_offsets(c, b.x, b.y, init.shape.bounding_radius()),
@@ -916,7 +925,7 @@ where
             if d.values.is_empty() {
                 chart
                     .draw_series(
-                        polygons.map(|(k, p)| PathElement::new(p, pick(k, o).stroke_width(S))),
+                        polygons.map(|(k, p)| PathElement::new(p, pick(k, k, o).stroke_width(S))),
                     )
                     .map_err(err)?;
             } else {
@@ -925,9 +934,9 @@ where
                 let polygons: Vec<_> = polygons.collect();
                 chart
                     .draw_series(
-                        polygons
-                            .iter()
-                            .map(|(k, p)| Polygon::new(&p[..p.len() - 1], pick(*k, o).filled())),
+                        polygons.iter().map(|(k, p)| {
+                            Polygon::new(&p[..p.len() - 1], pick(*k, *k, o).filled())
+                        }),
                     )
                     .map_err(err)?;
                 chart
@@ -953,20 +962,31 @@ where
         }
         let (t_first, t_last) = (run.frames[first].t, run.frames[last].t);
         let span = (t_last - t_first).max(1e-300);
-        for (k, init) in run.case.bodies.iter().enumerate() {
+        // Each body drawn, by identity (`0 … n − 1` in a case whose bodies stay; else those of
+        // the frames drawn, each over the frames that hold it).
+        for (nth, id) in run.ids_in(&d.path).into_iter().enumerate() {
+            let k = id as usize;
+            let init = run.init(id);
             // Centroid path: the body's or run's colour; dark grey under a colour scale.
             let path_col = if d.values.is_empty() {
-                pick(k, 0)
+                pick(k, k, 0)
             } else {
                 RGBColor(90, 90, 90)
             };
             // In a periodic cell the path breaks where the body re-entered the cell (its image
             // counts changed), instead of crossing it.
+            // It breaks too where the body is not in a frame (inserted later, or removed).
             let mut pieces: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
             let mut images_before = None;
             for &i in &d.path {
                 let f = &run.frames[i];
-                let images = f.images.get(k).copied();
+                let Some(at) = run.place(i, id) else {
+                    if pieces.last().is_some_and(|p| !p.is_empty()) {
+                        pieces.push(Vec::new());
+                    }
+                    continue;
+                };
+                let images = f.images.get(at).copied();
                 if images_before.is_some() && images != images_before {
                     pieces.push(Vec::new());
                 }
@@ -974,8 +994,9 @@ where
                 pieces
                     .last_mut()
                     .expect("a piece")
-                    .push((f.bodies[k].x, f.bodies[k].y));
+                    .push((f.bodies[at].x, f.bodies[at].y));
             }
+            pieces.retain(|p| !p.is_empty());
             let mut series = None;
             for piece in pieces {
                 series = Some(
@@ -985,7 +1006,7 @@ where
                 );
             }
             let series = series.expect("one piece at least");
-            if let (true, 0, Some(col)) = (several && !d.label.is_empty(), k, key) {
+            if let (true, 0, Some(col)) = (several && !d.label.is_empty(), nth, key) {
                 series.label(d.label.clone()).legend(move |(x, y)| {
                     PathElement::new(
                         vec![(x, y), (x + 18 * S as i32, y)],
@@ -998,7 +1019,10 @@ where
             let r = init.shape.bounding_radius();
             for (o, &fi) in d.outlines.iter().enumerate() {
                 let f = &run.frames[fi];
-                let b = f.bodies[k];
+                let Some(at) = run.place(fi, id) else {
+                    continue;
+                };
+                let b = f.bodies[at];
                 let age = (f.t - t_first) / span;
                 let alpha = if d.values.is_empty() {
                     0.15 + 0.85 * age
@@ -1006,9 +1030,10 @@ where
                     // The colour carries the value: fading would change it.
                     1.0
                 };
-                let style = pick(k, o)
-                    .mix(alpha)
-                    .stroke_width(if fi == last { 2 * S } else { S });
+                let style =
+                    pick(k, at, o)
+                        .mix(alpha)
+                        .stroke_width(if fi == last { 2 * S } else { S });
                 // The body, and its images across the seams that cut it.
                 let shifts = match run.cell_at(fi).filter(|_| d.images) {
                     Some(c) => image_offsets(&c, b.x, b.y, r),

@@ -1,10 +1,18 @@
 //! Reading a run directory back (`case.json`, `trajectory.csv`, `increments.csv`,
-//! `summary.json`, and `walls.csv` when the case has walls) for plots and reports.
+//! `summary.json`, `walls.csv` when the case has walls, `inserted.csv` when it inserts bodies)
+//! for plots and reports.
+//!
+//! A frame holds the bodies present at its step, in increasing identity ([`Frame::ids`]): every
+//! body of the case, or where the case inserts or removes bodies (`insert`, `outflow`) those
+//! inserted by then and not yet removed. What each body is (its shape, density, material) is
+//! [`RunData::init`] of its identity: the case's body, or for an inserted one its inserter's
+//! shape of the radius and aspect `inserted.csv` records.
 //!
 //! A run stopped while writing (killed, or a full disk) can leave a last line without its newline
 //! and a last frame without all of its bodies: those are left out — every frame read has every
 //! body — and [`RunData::incomplete`] says what was left out.
 
+use crate::dynamics::BodyInit;
 use crate::scene::Case;
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -26,6 +34,9 @@ pub struct Frame {
     pub step: u64,
     pub t: f64,
     pub bodies: Vec<BodyState>,
+    /// Each body's identity (`trajectory.csv`'s `body`), increasing: `0 … n − 1` in a case
+    /// that neither inserts nor removes bodies.
+    pub ids: Vec<u64>,
     /// In a periodic cell, each body's image counts `ix, iy` (the trajectory's last columns:
     /// see [`crate::dynamics::cell::Cell::unwrapped`]); empty otherwise.
     pub images: Vec<[i32; 2]>,
@@ -61,6 +72,8 @@ pub struct RunData {
     /// In a periodic cell, the cell at each row of `cell.csv` by step (its size follows an
     /// imposed pressure); empty otherwise.
     pub cells: Vec<(u64, crate::dynamics::cell::Cell)>,
+    /// What each body is, by identity (see [`RunData::init`]).
+    known: Vec<Option<BodyInit>>,
 }
 
 /// What went wrong reading a run directory: the file and why.
@@ -153,30 +166,23 @@ impl RunData {
             message: e.to_string(),
         })?;
         let traj_file = dir.join("trajectory.csv");
-        if case.flow.is_some() {
-            return Err(ReadError {
-                file: case_file,
-                message: "the case inserts or removes bodies (`insert`, `outflow`): its frames \
-                          hold different bodies, which these plots and reports do not draw; \
-                          read trajectory.csv by its `body` column (each body's identity) and \
-                          discharge.csv"
-                    .to_string(),
-            });
-        }
+        let flows = case.flow.is_some();
         let cell = case.cell.is_some();
         let header = if cell {
             super::trace::TRAJECTORY_HEADER_CELL
         } else {
             super::trace::TRAJECTORY_HEADER
         };
+        let mut incomplete = Vec::new();
+        let known = known_bodies(dir, &case_file, &case, &mut incomplete)?;
         let (traj, traj_partial) = rows(&traj_file, header)?;
         let n = case.bodies.len();
-        let mut incomplete = Vec::new();
         let mut frames: Vec<Frame> = Vec::new();
         for (line, r) in traj.iter().enumerate() {
             let (step, t) = (r[0] as u64, r[1]);
             if frames.last().is_none_or(|f| f.step != step) {
                 if let Some(f) = frames.last()
+                    && !flows
                     && f.bodies.len() != n
                 {
                     return Err(ReadError {
@@ -192,22 +198,50 @@ impl RunData {
                     step,
                     t,
                     bodies: Vec::new(),
+                    ids: Vec::new(),
                     images: Vec::new(),
                 });
             }
             let f = frames.last_mut().expect("pushed");
-            if r[2] != f.bodies.len() as f64 {
+            let id = r[2];
+            if !flows && id != f.bodies.len() as f64 {
                 return Err(ReadError {
                     file: traj_file,
                     message: format!(
-                        "line {}: body {} where body {} was due (each frame lists bodies 0 to {})",
+                        "line {}: body {id} where body {} was due (each frame lists bodies 0 to {})",
                         line + 2,
-                        r[2],
                         f.bodies.len(),
                         n.saturating_sub(1)
                     ),
                 });
             }
+            if flows {
+                let known_id = id >= 0.0
+                    && id.fract() == 0.0
+                    && known.get(id as usize).is_some_and(Option::is_some);
+                if !known_id {
+                    return Err(ReadError {
+                        file: traj_file,
+                        message: format!(
+                            "line {}: body {id} is neither a body of case.json nor one \
+                             inserted.csv records",
+                            line + 2
+                        ),
+                    });
+                }
+                if f.ids.last().is_some_and(|&last| last >= id as u64) {
+                    return Err(ReadError {
+                        file: traj_file,
+                        message: format!(
+                            "line {}: body {id} after body {} (a frame lists its bodies in \
+                             increasing `body`)",
+                            line + 2,
+                            f.ids[f.ids.len() - 1]
+                        ),
+                    });
+                }
+            }
+            f.ids.push(id as u64);
             f.bodies.push(BodyState {
                 x: r[3],
                 y: r[4],
@@ -221,6 +255,7 @@ impl RunData {
             }
         }
         if let Some(last) = frames.last()
+            && !flows
             && last.bodies.len() != n
         {
             incomplete.push(format!(
@@ -231,6 +266,15 @@ impl RunData {
                 last.bodies.len()
             ));
             frames.pop();
+        } else if traj_partial && flows && frames.len() > 1 {
+            // (Its bodies vary: a frame cut short cannot be told from a whole one.)
+            let last = frames.pop().expect("two frames");
+            incomplete.push(format!(
+                "{}: the last line is incomplete (the run was stopped while writing it): its \
+                 frame (step {}) is left out",
+                traj_file.display(),
+                last.step
+            ));
         } else if traj_partial {
             incomplete.push(format!(
                 "{}: the last line is incomplete (the run was stopped while writing it): left out",
@@ -291,11 +335,155 @@ impl RunData {
             walls,
             incomplete,
             cells,
+            known,
         })
     }
 }
 
+/// What each body of the run is, by identity: the case's bodies (body k, or where a continued
+/// run's case.json lists their identities in `state.ids`, the k-th of those), and the bodies
+/// `inserted.csv` records (a case with an `insert`).
+fn known_bodies(
+    dir: &Path,
+    case_file: &Path,
+    case: &Case,
+    incomplete: &mut Vec<String>,
+) -> Result<Vec<Option<BodyInit>>, ReadError> {
+    let n = case.bodies.len();
+    let ids: Vec<u64> = match case.flow {
+        None => (0..n as u64).collect(),
+        Some(_) => {
+            let value: serde_json::Value =
+                serde_json::from_str(&read(case_file)?).map_err(|e| ReadError {
+                    file: case_file.to_path_buf(),
+                    message: format!("malformed JSON: {e}"),
+                })?;
+            match value["state"]["ids"].as_array() {
+                Some(a) => a.iter().filter_map(serde_json::Value::as_u64).collect(),
+                None => (0..n as u64).collect(),
+            }
+        }
+    };
+    if ids.len() != n {
+        return Err(ReadError {
+            file: case_file.to_path_buf(),
+            message: format!("state.ids: {} identities for {n} bodies", ids.len()),
+        });
+    }
+    let mut known: Vec<Option<BodyInit>> = Vec::new();
+    let mut put = |id: u64, b: BodyInit| {
+        let k = id as usize;
+        if known.len() <= k {
+            known.resize(k + 1, None);
+        }
+        known[k] = Some(b);
+    };
+    for (&id, b) in ids.iter().zip(&case.bodies) {
+        put(id, *b);
+    }
+    let Some(flow) = case.flow.as_ref().filter(|f| !f.inserters.is_empty()) else {
+        return Ok(known);
+    };
+    let file = dir.join("inserted.csv");
+    if !file.exists() {
+        return Err(ReadError {
+            file,
+            message: "is missing: the case inserts bodies (`insert`), and this file records \
+                      what each inserted body is (a run by a dem2d older than it cannot be \
+                      drawn)"
+                .into(),
+        });
+    }
+    let (rows, partial) = rows(&file, super::discharge::INSERTED_HEADER)?;
+    if partial {
+        incomplete.push(format!(
+            "{}: the last line is incomplete (the run was stopped while writing it): left out",
+            file.display()
+        ));
+    }
+    for (line, r) in rows.iter().enumerate() {
+        let which = r[3];
+        let Some(ins) = (which >= 0.0 && which.fract() == 0.0)
+            .then(|| flow.inserters.get(which as usize))
+            .flatten()
+        else {
+            return Err(ReadError {
+                file,
+                message: format!(
+                    "line {}: insert {which}: the case has {} insertion regions",
+                    line + 2,
+                    flow.inserters.len()
+                ),
+            });
+        };
+        let (id, r_eq, aspect) = (r[2], r[4], r[5]);
+        if !(id >= 0.0 && id.fract() == 0.0 && r_eq > 0.0 && aspect >= 1.0) {
+            return Err(ReadError {
+                file,
+                message: format!(
+                    "line {}: body {id}, r {r_eq}, aspect {aspect}: expected an identity, a \
+                     positive radius and an aspect ratio of at least 1",
+                    line + 2
+                ),
+            });
+        }
+        put(
+            id as u64,
+            BodyInit {
+                shape: ins.shape.make(r_eq, aspect),
+                position: crate::geometry::Vec2::zeros(),
+                angle: 0.0,
+                velocity: ins.velocity,
+                omega: ins.omega,
+                density: ins.density,
+                material: ins.material,
+                prescribed: false,
+            },
+        );
+    }
+    Ok(known)
+}
+
 impl RunData {
+    /// What the body of identity `id` is: the case's body, or an inserted body as its inserter
+    /// made it (its shape, density, material and initial velocity; its position is the
+    /// frames'). Every identity of a frame has one.
+    pub fn init(&self, id: u64) -> &BodyInit {
+        self.known[id as usize]
+            .as_ref()
+            .expect("the reader checked every frame's identities")
+    }
+
+    /// What each body of frame `k` is, in the frame's order.
+    pub fn inits(&self, k: usize) -> impl Iterator<Item = &BodyInit> + '_ {
+        self.frames[k].ids.iter().map(|&id| self.init(id))
+    }
+
+    /// Where the body of identity `id` is in frame `k` (`None`: not present then).
+    pub fn place(&self, k: usize, id: u64) -> Option<usize> {
+        self.frames[k].ids.binary_search(&id).ok()
+    }
+
+    /// The most bodies a frame holds.
+    pub fn most_bodies(&self) -> usize {
+        self.frames
+            .iter()
+            .map(|f| f.bodies.len())
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// The identities of the bodies present in any of the frames `frames`, increasing.
+    pub fn ids_in(&self, frames: &[usize]) -> Vec<u64> {
+        let mut ids: Vec<u64> = frames
+            .iter()
+            .flat_map(|&k| self.frames[k].ids.iter().copied())
+            .collect();
+        ids.sort_unstable();
+        ids.dedup();
+        ids
+    }
+
     /// The periodic cell at frame `k`: as `cell.csv` recorded it at the frame's step, else the
     /// case's (`None` without a cell).
     pub fn cell_at(&self, k: usize) -> Option<crate::dynamics::cell::Cell> {

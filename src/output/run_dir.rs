@@ -102,7 +102,7 @@ pub struct RunOptions {
 
 /// The files a run writes (and `dem2d plot`'s default outputs, drawn from them): what is
 /// removed from a directory before a run replaces an earlier one. The summary comes first.
-pub const OUTPUT_FILES: [&str; 17] = [
+pub const OUTPUT_FILES: [&str; 18] = [
     "summary.json",
     "summary.json.tmp",
     "case.json",
@@ -120,6 +120,7 @@ pub const OUTPUT_FILES: [&str; 17] = [
     "cell.csv",
     "reactions.csv",
     "discharge.csv",
+    "inserted.csv",
 ];
 
 /// The result of a run that started (its directory was prepared and its first summary written).
@@ -554,9 +555,14 @@ impl RunDir {
                 true => None,
                 false => Some(Frames::create(dir, every, Reactions)?),
             };
-            let discharge = match world.flow.as_ref().is_some_and(|f| !f.outflows.is_empty()) {
-                true => Some(DischargeWriter::create(dir, every)?),
-                false => None,
+            let discharge = match world.flow.as_ref() {
+                Some(f) => Some(DischargeWriter::create(
+                    dir,
+                    every,
+                    !f.outflows.is_empty(),
+                    !f.inserters.is_empty(),
+                )?),
+                None => None,
             };
             let vtk = match opts.vtk_every {
                 Some(n) => Some(VtkWriter::create(dir, world, n)?),

@@ -3,7 +3,9 @@
 //! walls from `walls.csv` (the first written by `dem2d run --contacts`, the second by every run
 //! with walls). A run without `contacts.csv` cannot be analysed (the forces are not in its other
 //! files): the command says so and exits 1. Without `walls.csv` (a run written before dem2d
-//! recorded the walls), the walls of `case.json` as given are used.
+//! recorded the walls), the walls of `case.json` as given are used. A run whose case inserts or
+//! removes bodies (`insert`, `outflow`) is analysed over the bodies each frame holds, an inserted
+//! body's shape from `inserted.csv`.
 
 use dem2d::analysis::{self, Frame, FrameBody, Window, wall_box};
 use dem2d::output::analysis::{analysis_header, analysis_row, read_contact_frames};
@@ -62,7 +64,6 @@ pub fn run(dir: &Path, window: Option<&[f64]>, out: Option<&Path>) -> Result<(),
         .filter(|w| w.segment().is_none())
         .map(|w| (w.line().point, w.line().normal))
         .collect();
-    let n = data.case.bodies.len();
     // A periodic cell's state at each frame (its size, shift and stress: `cell.csv`).
     let cells: HashMap<u64, dem2d::dynamics::cell::Cell> = match &data.case.cell {
         Some(c) => read_cells(dir, c)
@@ -72,22 +73,12 @@ pub fn run(dir: &Path, window: Option<&[f64]>, out: Option<&Path>) -> Result<(),
         None => HashMap::new(),
     };
     let mut text = format!("{}\n", analysis_header(data.case.cell.is_some()));
-    for f in &data.frames {
-        if f.bodies.len() != n {
-            return Err((
-                1,
-                format!(
-                    "{}: step {}: {} bodies, but case.json has {n}",
-                    dir.join("trajectory.csv").display(),
-                    f.step,
-                    f.bodies.len()
-                ),
-            ));
-        }
+    for (i, f) in data.frames.iter().enumerate() {
+        // The bodies the frame holds (all the case's, or where it inserts or removes bodies
+        // those present at its step).
+        let n = f.bodies.len();
         let bodies = data
-            .case
-            .bodies
-            .iter()
+            .inits(i)
             .zip(&f.bodies)
             .map(|(b, s)| FrameBody {
                 shape: b.shape,
@@ -107,7 +98,7 @@ pub fn run(dir: &Path, window: Option<&[f64]>, out: Option<&Path>) -> Result<(),
             return Err((
                 1,
                 format!(
-                    "{}: step {}: contact ({:?}, {}) names a body beyond the {n} of case.json",
+                    "{}: step {}: contact ({:?}, {}) names a body beyond the {n} of the frame",
                     dir.join("contacts.csv").display(),
                     f.step,
                     c.i,
