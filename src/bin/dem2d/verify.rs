@@ -41,24 +41,50 @@ impl Level {
     }
 }
 
-/// One comparison.
-struct Check {
-    quantity: String,
-    value: f64,
-    reference: String,
-    tolerance: String,
-    pass: bool,
+/// One comparison, as a row of the table: what is compared, dem2d's value, the reference and
+/// the tolerance (as text), and whether it passes.
+pub struct Check {
+    pub quantity: String,
+    pub value: f64,
+    pub reference: String,
+    pub tolerance: String,
+    pub pass: bool,
+}
+
+impl Check {
+    /// `value` against `expected` within the relative tolerance `tol`; `source` (shown after
+    /// `expected`) says where `expected` comes from.
+    pub fn relative(quantity: String, value: f64, expected: f64, source: &str, tol: f64) -> Check {
+        Check {
+            quantity,
+            value,
+            reference: format!("{expected:.6e} ({source})"),
+            tolerance: format!("{tol:.0e} relative"),
+            pass: ((value - expected) / expected).abs() <= tol,
+        }
+    }
+
+    /// `value` in the closed interval `band`, which the table shows as `tolerance`.
+    pub fn within(
+        quantity: String,
+        value: f64,
+        reference: impl Into<String>,
+        (lo, hi): (f64, f64),
+        tolerance: impl Into<String>,
+    ) -> Check {
+        Check {
+            quantity,
+            value,
+            reference: reference.into(),
+            tolerance: tolerance.into(),
+            pass: (lo..=hi).contains(&value),
+        }
+    }
 }
 
 fn relative(rows: Vec<impacts::Row>) -> Vec<Check> {
     rows.into_iter()
-        .map(|(q, v, r, tol)| Check {
-            quantity: q,
-            value: v,
-            reference: format!("{r:.6e} (closed form)"),
-            tolerance: format!("{tol:.0e} relative"),
-            pass: ((v - r) / r).abs() <= tol,
-        })
+        .map(|(q, v, r, tol)| Check::relative(q, v, r, "closed form", tol))
         .collect()
 }
 
@@ -125,41 +151,38 @@ fn biaxial_checks(n_side: usize, aspects: &[f64], strain: f64) -> Result<Vec<Che
 fn packing_checks(ellipses: bool) -> Result<Vec<Check>, RunError> {
     let mut checks = Vec::new();
     let disks = packing::pour(1.0, 0.0, packing::N, false)?;
-    checks.push(Check {
-        quantity: format!(
+    checks.push(Check::within(
+        format!(
             "{} frictionless bidisperse disks poured: packing fraction",
             packing::N
         ),
-        value: disks.packing,
-        reference: "φ_J ≈ 0.84 (fast) … 0.853 (slow protocols), 1:1.4 disks (Schreck, O'Hern & Silbert 2011)"
-            .into(),
-        tolerance: "[0.99 × 0.84, 0.853]".into(),
-        pass: disks.packing >= 0.99 * 0.84 && disks.packing <= 0.853,
-    });
+        disks.packing,
+        "φ_J ≈ 0.84 (fast) … 0.853 (slow protocols), 1:1.4 disks (Schreck, O'Hern & Silbert 2011)",
+        (0.99 * 0.84, 0.853),
+        "[0.99 × 0.84, 0.853]",
+    ));
     if ellipses {
         let e = packing::pour(1.5, 0.0, packing::N, false)?;
-        checks.push(Check {
-            quantity: format!(
+        checks.push(Check::within(
+            format!(
                 "{} frictionless bidisperse ellipses α = 1.5 poured: packing fraction",
                 packing::N
             ),
-            value: e.packing,
-            reference: "maxima of φ_J(α) 0.891 … 0.8974 at α = 1.30 … 1.45 (Delaney 2005, Donev 2007, VanderWerf 2018, Rocks & Hoy 2023, as tabulated by Hoy 2024)"
-                .into(),
-            tolerance: "[0.99 × 0.891, 1.01 × 0.8974]".into(),
-            pass: e.packing >= 0.99 * 0.891 && e.packing <= 1.01 * 0.8974,
-        });
-        checks.push(Check {
-            quantity: format!(
+            e.packing,
+            "maxima of φ_J(α) 0.891 … 0.8974 at α = 1.30 … 1.45 (Delaney 2005, Donev 2007, VanderWerf 2018, Rocks & Hoy 2023, as tabulated by Hoy 2024)",
+            (0.99 * 0.891, 1.01 * 0.8974),
+            "[0.99 × 0.891, 1.01 × 0.8974]",
+        ));
+        checks.push(Check::within(
+            format!(
                 "{} frictionless bidisperse ellipses α = 1.5 poured: coordination (no rattlers)",
                 packing::N
             ),
-            value: e.z_no_rattlers,
-            reference: "hypostatic plateau 5.5 ≲ Z_J ≲ 5.8 for 1.5 ≲ α ≲ 3 (Hoy 2024's summary)"
-                .into(),
-            tolerance: "[5.5, 5.8]".into(),
-            pass: (5.5..=5.8).contains(&e.z_no_rattlers),
-        });
+            e.z_no_rattlers,
+            "hypostatic plateau 5.5 ≲ Z_J ≲ 5.8 for 1.5 ≲ α ≲ 3 (Hoy 2024's summary)",
+            (5.5, 5.8),
+            "[5.5, 5.8]",
+        ));
     }
     Ok(checks)
 }
@@ -190,53 +213,51 @@ fn periodic_checks() -> Result<Vec<Check>, RunError> {
         let phi: Vec<f64> = packings.iter().map(|p| p.phi).collect();
         let z: Vec<f64> = packings.iter().map(|p| p.z).collect();
         let (phi, z) = (mean(&phi), mean(&z));
-        checks.push(Check {
-            quantity: format!(
-                "jamming by FIRE, 4 × 64 frictionless bidisperse grains, α = {aspect}: φ_J"
-            ),
-            value: phi,
-            reference: if aspect == 1.0 {
-                "φ_J ≈ 0.84 (O'Hern et al. 2003; 64 grains lie a little below)".into()
+        let band = |(lo, hi): (f64, f64)| format!("[{lo}, {hi}]");
+        checks.push(Check::within(
+            format!("jamming by FIRE, 4 × 64 frictionless bidisperse grains, α = {aspect}: φ_J"),
+            phi,
+            if aspect == 1.0 {
+                "φ_J ≈ 0.84 (O'Hern et al. 2003; 64 grains lie a little below)"
             } else {
-                "φ_J(2) ≈ 0.88 on the published curve (VanderWerf et al. 2018)".into()
+                "φ_J(2) ≈ 0.88 on the published curve (VanderWerf et al. 2018)"
             },
-            tolerance: format!("[{}, {}]", phi_band.0, phi_band.1),
-            pass: (phi_band.0..=phi_band.1).contains(&phi),
-        });
-        checks.push(Check {
-            quantity: format!("jamming by FIRE, 4 × 64 frictionless bidisperse grains, α = {aspect}: Z_J (rattlers out)"),
-            value: z,
-            reference: z_ref.into(),
-            tolerance: format!("[{}, {}]", z_band.0, z_band.1),
-            pass: (z_band.0..=z_band.1).contains(&z),
-        });
+            phi_band,
+            band(phi_band),
+        ));
+        checks.push(Check::within(
+            format!("jamming by FIRE, 4 × 64 frictionless bidisperse grains, α = {aspect}: Z_J (rattlers out)"),
+            z,
+            z_ref,
+            z_band,
+            band(z_band),
+        ));
     }
     for i in [0.01, 0.1] {
         let f = shear::shear(shear::N, 1.0, i)?;
+        let what = |q: &str| {
+            format!(
+                "Lees–Edwards shear, {} disks μ_p = 0.4, I = {:.4}: {q}",
+                shear::N,
+                f.inertial
+            )
+        };
         let (mu_lo, mu_hi) = (0.2 + 0.7 * f.inertial, 0.3 + 1.3 * f.inertial);
-        checks.push(Check {
-            quantity: format!(
-                "Lees–Edwards shear, {} disks μ_p = 0.4, I = {:.4}: μ",
-                shear::N,
-                f.inertial
-            ),
-            value: f.mu,
-            reference: "μ_min + b I, μ_min ≈ 0.25, b ≈ 1 (da Cruz et al. 2005)".into(),
-            tolerance: format!("[0.2 + 0.7 I, 0.3 + 1.3 I] = [{mu_lo:.3}, {mu_hi:.3}]"),
-            pass: (mu_lo..=mu_hi).contains(&f.mu),
-        });
+        checks.push(Check::within(
+            what("μ"),
+            f.mu,
+            "μ_min + b I, μ_min ≈ 0.25, b ≈ 1 (da Cruz et al. 2005)",
+            (mu_lo, mu_hi),
+            format!("[0.2 + 0.7 I, 0.3 + 1.3 I] = [{mu_lo:.3}, {mu_hi:.3}]"),
+        ));
         let (phi_lo, phi_hi) = (0.79 - 0.4 * f.inertial, 0.82 - 0.2 * f.inertial);
-        checks.push(Check {
-            quantity: format!(
-                "Lees–Edwards shear, {} disks μ_p = 0.4, I = {:.4}: φ",
-                shear::N,
-                f.inertial
-            ),
-            value: f.phi,
-            reference: "φ_max − a I, φ_max ≈ 0.80–0.81, a ≈ 0.3 (da Cruz et al. 2005)".into(),
-            tolerance: format!("[0.79 − 0.4 I, 0.82 − 0.2 I] = [{phi_lo:.4}, {phi_hi:.4}]"),
-            pass: (phi_lo..=phi_hi).contains(&f.phi),
-        });
+        checks.push(Check::within(
+            what("φ"),
+            f.phi,
+            "φ_max − a I, φ_max ≈ 0.80–0.81, a ≈ 0.3 (da Cruz et al. 2005)",
+            (phi_lo, phi_hi),
+            format!("[0.79 − 0.4 I, 0.82 − 0.2 I] = [{phi_lo:.4}, {phi_hi:.4}]"),
+        ));
     }
     Ok(checks)
 }
@@ -250,15 +271,7 @@ pub fn run(level: Level) -> Result<(bool, String), RunError> {
     let mut checks = relative(impacts::normal_rows()?);
     checks.extend(relative(impacts::oblique_rows(&[40.0, 60.0, 80.0])?));
     checks.extend(stress_checks()?);
-    checks.extend(crate::verify_ellipses::checks()?.into_iter().map(
-        |(quantity, value, reference, tolerance, pass)| Check {
-            quantity,
-            value,
-            reference,
-            tolerance,
-            pass,
-        },
-    ));
+    checks.extend(crate::verify_ellipses::checks()?);
     match level {
         Level::Quick => {}
         Level::Default => {

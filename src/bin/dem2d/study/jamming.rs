@@ -27,7 +27,7 @@
 //! 10⁵ iterations) before the band is checked again and the contacts counted.
 //! [`PACKINGS`] packings per α (different seeds), in parallel.
 
-use super::Table;
+use super::{Table, grain};
 use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
 use dem2d::dynamics::BodyInit;
 use dem2d::dynamics::World;
@@ -75,17 +75,7 @@ pub struct Packing {
 fn world(n: usize, aspect: f64, seed: u64) -> World {
     let mut rng = Xorshift(0x9E37_79B9_7F4A_7C15 ^ seed.wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 1);
     let shapes: Vec<Shape> = (0..n)
-        .map(|k| {
-            let r = if k % 2 == 0 { R_SMALL } else { 1.4 * R_SMALL };
-            if aspect == 1.0 {
-                Shape::Circle { r }
-            } else {
-                Shape::Ellipse {
-                    a: r * aspect.sqrt(),
-                    b: r / aspect.sqrt(),
-                }
-            }
-        })
+        .map(|k| grain(if k % 2 == 0 { R_SMALL } else { 1.4 * R_SMALL }, aspect))
         .collect();
     let total: f64 = shapes.iter().map(dem2d::geometry::mass::area).sum();
     let side = (total / PHI_START).sqrt();

@@ -13,6 +13,7 @@ pub mod rolling_fig3;
 pub mod shear;
 pub mod silo;
 
+use dem2d::geometry::Shape;
 use dem2d::output::docs_tables::Mode;
 use dem2d::output::plot::{self, LinePanel};
 use std::path::Path;
@@ -71,6 +72,19 @@ impl Study {
             Study::Jamming => "jamming",
             Study::Silo => "silo",
             Study::Shear => "shear",
+        }
+    }
+}
+
+/// A grain of equal-area radius `r` and aspect ratio `aspect` = a/b: the disk of radius `r` at
+/// 1, else the ellipse of the same area, `a = r√α`, `b = r/√α`.
+pub fn grain(r: f64, aspect: f64) -> Shape {
+    if aspect == 1.0 {
+        Shape::Circle { r }
+    } else {
+        Shape::Ellipse {
+            a: r * aspect.sqrt(),
+            b: r / aspect.sqrt(),
         }
     }
 }

@@ -16,6 +16,7 @@
 //! `cases/packing/packing_a1.5_mu0.5.json`): `dem2d run` on it followed by `dem2d analyze RUN_DIR
 //! --window …` with the table's window gives the row again.
 
+use super::Table;
 use dem2d::analysis::{self, Frame, Window};
 use dem2d::contact_law::NormalForce;
 use dem2d::dynamics::BodyInit;
@@ -25,7 +26,6 @@ use dem2d::output::progress::CommandProgress;
 use dem2d::run::{RunError, Simulation, Stop};
 use dem2d::scene::Case;
 use dem2d::scene::generate::{DENSITY, PileShape, PileSizes, PileSpec, R_SMALL, Xorshift};
-use std::fmt::Write as _;
 use std::time::Instant;
 
 /// Grains per pile by default (`dem2d study packing --grains N` for others).
@@ -214,12 +214,11 @@ pub fn run(n: usize, write: bool) -> Result<String, RunError> {
             piles.push(p);
         }
     }
-    let mut md = String::from(
-        "| α | μ | φ (window) | Z | Z (no rattlers) | rattlers | orientation order | window (cm) | at rest (t, s) | wall time (s) | particle-steps/s |\n|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---:|\n",
+    let mut table = Table::new(
+        "| α | μ | φ (window) | Z | Z (no rattlers) | rattlers | orientation order | window (cm) | at rest (t, s) | wall time (s) | particle-steps/s |\n|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---:|",
     );
     for p in &piles {
-        writeln!(
-            md,
+        table.row(format!(
             "| {} | {} | {:.4} | {:.2} | {:.2} | {:.1} % | {} | [{}, {}] × [{}, {:.1}] | {} ({:.2}) | {:.0} | {:.2e} |",
             p.aspect,
             p.friction,
@@ -236,21 +235,20 @@ pub fn run(n: usize, write: bool) -> Result<String, RunError> {
             p.time,
             p.wall_seconds,
             p.particle_steps_per_second
-        )
-        .expect("string");
+        ));
     }
-    writeln!(
-        md,
+    let note = format!(
         "\n{n} bidisperse grains (1:1.4, equal numbers) per pile in a box {width} cm wide, poured \
          under gravity; window {MARGIN} cm from the walls, the floor and the surface. Written by \
-         `dem2d study packing{}`.",
+         `dem2d study packing{}`.\n",
         if n == N {
             String::new()
         } else {
             format!(" --grains {n}")
         }
-    )
-    .expect("string");
+    );
+    print!("{note}");
+    let md = table.text() + &note;
     let series = |k: usize| -> Vec<Series> {
         [0.0, 0.5]
             .iter()
@@ -294,6 +292,5 @@ pub fn run(n: usize, write: bool) -> Result<String, RunError> {
     ];
     super::write_figure("packing", (1200, 480), (1, 2), &panels);
     std::fs::write("figures/packing.md", &md).expect("figures/packing.md");
-    print!("{md}");
     Ok(md)
 }

@@ -17,7 +17,7 @@
 //! area over the cell's, and for ellipses the nematic order `S = |⟨e^{2iθ}⟩|` and the mean
 //! orientation `θ̄ = ½ arg⟨e^{2iθ}⟩` of the long axes against the flow (x).
 
-use super::{Table, line_fit};
+use super::{Table, grain, line_fit};
 use dem2d::contact_law::{ContactSpec, LinearDamping, Scaled};
 use dem2d::dynamics::BodyInit;
 use dem2d::dynamics::World;
@@ -80,15 +80,7 @@ fn world(n: usize, aspect: f64, rate: f64) -> World {
     let side = spacing * side_count as f64;
     let bodies = (0..n)
         .map(|k| {
-            let r = 0.5 * D * (0.8 + 0.4 * rng.uniform());
-            let shape = if aspect == 1.0 {
-                Shape::Circle { r }
-            } else {
-                Shape::Ellipse {
-                    a: r * aspect.sqrt(),
-                    b: r / aspect.sqrt(),
-                }
-            };
+            let shape = grain(0.5 * D * (0.8 + 0.4 * rng.uniform()), aspect);
             let position = Vec2::new(
                 spacing * ((k % side_count) as f64 + 0.5),
                 spacing * ((k / side_count) as f64 + 0.5),
