@@ -19,8 +19,8 @@
 //!   depth is the distance from E to the body's boundary (positive with E inside the body), the
 //!   normal the body's inward normal at its boundary point q closest to E (from E towards q
 //!   when E is outside: for a circle the line of centres), the contact point E itself. A point
-//!   has no overlap area: under the area law a circle's or a polygon's end contact is a spring
-//!   on this depth (for a disk that is the area law's own force).
+//!   has no overlap area: under the area law a circle's end contact is a spring on this depth
+//!   (for a disk that is the area law's own force); a polygon's is its least cut (below).
 //!
 //! An ellipse under the area law (`request.area`) takes its own rule instead, whose potential
 //! is continuous from face to end ([`ellipse_area`]): the face while the face's chord midpoint
@@ -33,11 +33,16 @@
 //! (≥ b²/a): the depth, the normal and the spring's energy are continuous for any overlap a
 //! DEM contact reaches.
 //!
-//! A polygon (a rectangle among them) takes its own rule ([`polygon`]): the face while some
-//! vertex across the line lies over the segment, with a flat-sided body's flat overlap cut to the
-//! strip over the segment (a brick half over an end tips over it once its centre passes it);
-//! else the end. Where the contact changes from face to end the depth changes (from the deepest
-//! vertex's to the end's distance from the nearer edge): not continuous there.
+//! A polygon (a rectangle among them) takes its own rule ([`polygon`]) under the depth law: the
+//! face while some vertex across the line lies over the segment, with a flat-sided body's flat
+//! overlap cut to the strip over the segment (a brick half over an end tips over it once its
+//! centre passes it); else the end. Where the contact changes from face to end the depth changes
+//! (from the deepest vertex's to the end's distance from the nearer edge): not continuous there.
+//! Under the area law ([`polygon_area`]) it meets the face while the point where the face's
+//! force acts (the chord midpoint; a rectangle's cut's centroid) lies over the segment, else the
+//! end as the half-plane through it that cuts the least of the potential's measure off it — the
+//! area, or a rectangle's Winkler energy ([`least_cut`]): conservative, and continuous from face
+//! to end.
 //!
 //! The segment is i (the giver): the normal points from it into the body.
 
@@ -308,12 +313,13 @@ fn ellipse_area(
     ellipse_wall::contact_wall_ellipse(&wall, a, b, pose, request)
 }
 
-/// A polygon (a rectangle among them) against a segment (`side` the line it meets): the face
-/// while some vertex that lies across the line lies over the segment — the half-plane's contact,
-/// a flat-sided body's flat overlap (its Winkler foundation's area and centre of pressure) cut to
-/// the strip over the segment, so that a brick lying half over an end is carried by the part of
-/// it over the segment and tips over the end once its centre passes it; else the end on the
-/// side of its deepest vertex, a point against the polygon.
+/// A polygon (a rectangle among them) against a segment (`side` the line it meets); under the
+/// area law [`polygon_area`]. Under the depth law: the face while some vertex that lies across
+/// the line lies over the segment — the half-plane's contact, a flat-sided body's flat overlap
+/// (its Winkler foundation's area and centre of pressure) cut to the strip over the segment, so
+/// that a brick lying half over an end is carried by the part of it over the segment and tips
+/// over the end once its centre passes it; else the end on the side of its deepest vertex, a
+/// point against the polygon.
 fn polygon(
     seg: &Segment,
     side: &Wall,
@@ -321,6 +327,9 @@ fn polygon(
     pose: &Pose,
     request: &Request,
 ) -> Option<Contact> {
+    if request.area {
+        return polygon_area(seg, side, shape, pose, request);
+    }
     let mut corners = [Vec2::zeros(); 4];
     let (mut over, mut deepest) = (false, (f64::INFINITY, 0.0));
     for v in shape.vertices(&mut corners) {
@@ -341,4 +350,171 @@ fn polygon(
     }
     let end = if deepest.1 < 0.0 { seg.a } else { seg.b };
     contact_point_body(end, shape, pose, request)
+}
+
+/// A polygon (a rectangle among them) against a segment under the area law (`side` the line it
+/// meets), continuous in its potential from face to end, as [`ellipse_area`] is for an ellipse.
+/// Its potential against a half-plane is a function of the cut the line makes: `W(A)` of the
+/// cut's area A for a polygon, the Winkler foundation's energy `k′M`, M the cut's first moment
+/// about the line (`k′Aȳ`), for a flat-sided body (a rectangle; see `contact_law::overlap`).
+/// The face while the point where the face's resultant acts — the chord's midpoint, a flat-sided
+/// body's cut's centroid — lies over the segment: the half-plane's contact, the whole cut; else
+/// the end E on that side, as the half-plane through E whose cut has the least of that measure
+/// ([`least_cut`]). By the envelope theorem that least cut's gradient is its own line's (the
+/// line held fixed): the half-plane's force through E is the gradient of `W(A_min)` (`k′M_min`),
+/// so the end contact is conservative. At the least area E bisects the chord, so the area law's
+/// force `W′(A) L n` acts at E; at the least moment the cut's centroid lies on the normal
+/// through E, so the Winkler resultant `k′A` passes through E. Where the face's point reaches
+/// the end, the face's own line is that least cut's (its derivative in the line's angle is zero
+/// there): the potential, the force and its point are continuous from face to end.
+fn polygon_area(
+    seg: &Segment,
+    side: &Wall,
+    shape: &Shape,
+    pose: &Pose,
+    request: &Request,
+) -> Option<Contact> {
+    let face = polygon_wall::contact_wall_polygon(side, shape, pose, request)?;
+    let flat = shape.is_flat_sided();
+    // Where the face's resultant acts.
+    let at = match face.flat {
+        Some(f) if face.state == ContactState::Overlap => f.centroid,
+        _ => face.point,
+    };
+    let tau = seg.along(at);
+    if (0.0..=seg.length).contains(&tau) {
+        return Some(face);
+    }
+    let end = if tau < 0.0 { seg.a } else { seg.b };
+    let normal = least_cut(end, shape, pose, flat)?;
+    let wall = Wall::new(end, normal)?;
+    polygon_wall::contact_wall_polygon(&wall, shape, pose, request)
+}
+
+/// The half-plane through the point `e` whose cut off the convex polygon `shape` (at `pose`)
+/// is least — by area, or for a flat-sided body (`moment`) by its first moment about the line
+/// (the Winkler foundation's energy over k′) — as the normal of its free side (world
+/// coordinates); `None` when `e` does not lie inside the polygon (every line through it then
+/// cuts nothing).
+///
+/// The cut of the line through e along `d = (cos θ, sin θ)` is the part of the polygon on the
+/// side `u·(x − e) < 0`, `u = (−sin θ, cos θ)` (u the contact normal). Turning the line by dθ
+/// about e sweeps the strip `t dθ` along its chord (t the place along d from e), so
+/// - the area's derivative is `dA/dθ = ∫ t dt = (r₁² − r₂²)/2` over the chord, `r₁`, `r₂` the
+///   distances from e to the chord's ends: it vanishes where e bisects the chord — the
+///   classical characterisation of the least-area chords through a point of a convex region
+///   (H. G. Eggleston, *Problems in Euclidean Space: Application of Convexity*, Pergamon 1957,
+///   ch. 2; Yaglom & Boltyanskii, *Convex Figures*, 1961, problem 4-7: of the lines through a
+///   point of a convex figure, the one cutting off the least area is bisected by it);
+/// - the first moment `M = ∫ (−u·(x − e)) dA` (the depth vanishes on the chord) has
+///   `dM/dθ = ∫ t dA = A t_c`, zero where the cut's centroid lies on the normal through e.
+///
+/// Both are C¹ in θ; their least value over the whole turn is found by sampling θ, then by
+/// bisection on the derivative's sign about each sampled local least, to the last bit.
+fn least_cut(e: Vec2, shape: &Shape, pose: &Pose, moment: bool) -> Option<Vec2> {
+    let scale = pow2_floor(shape.bounding_radius());
+    let inv = 1.0 / scale;
+    let mut corners = [Vec2::zeros(); 4];
+    // The vertices about e, in the body frame, in units of `scale`.
+    let p = pose.to_body_vector((e - pose.position) * inv);
+    let w: super::small::List<Vec2> = shape
+        .vertices(&mut corners)
+        .iter()
+        .map(|v| v * inv - p)
+        .collect();
+    let k = w.len();
+    // e inside: on the inner side of every edge (counter-clockwise).
+    if (0..k).any(|i| w[i].perp(&w[(i + 1) % k]) <= 0.0) {
+        return None;
+    }
+    // The cut's measure and its derivative in θ.
+    let eval = |theta: f64| -> (f64, f64) {
+        let (sn, cs) = theta.sin_cos();
+        let (d, u) = (Vec2::new(cs, sn), Vec2::new(-sn, cs));
+        let (mut area2, mut first, mut chord) = (0.0, Vec2::zeros(), [0.0f64; 2]);
+        let mut nc = 0;
+        // The cut as a fan from e (on its chord): the shoelace sum and the first moments of
+        // its triangles (e, x, y).
+        let mut prev: Option<Vec2> = None;
+        let mut first_point: Option<Vec2> = None;
+        let mut push = |x: Vec2| {
+            if let Some(q) = prev {
+                let c = q.perp(&x);
+                area2 += c;
+                first += (q + x) * c;
+            } else {
+                first_point = Some(x);
+            }
+            prev = Some(x);
+        };
+        for i in 0..k {
+            let (a, b) = (w[i], w[(i + 1) % k]);
+            let (sa, sb) = (u.dot(&a), u.dot(&b));
+            if sa < 0.0 {
+                push(a);
+            }
+            if (sa < 0.0) != (sb < 0.0) {
+                let x = a + (b - a) * (sa / (sa - sb));
+                if nc < 2 {
+                    chord[nc] = d.dot(&x);
+                }
+                nc += 1;
+                push(x);
+            }
+        }
+        if let (Some(q), Some(x)) = (prev, first_point) {
+            let c = q.perp(&x);
+            area2 += c;
+            first += (q + x) * c;
+        }
+        // Area A = area2/2, first moment about e ∫x dA = first/6.
+        let area = 0.5 * area2;
+        let m = first / 6.0;
+        if moment {
+            // M = −u·∫x dA; dM/dθ = d·∫x dA.
+            (-u.dot(&m), d.dot(&m))
+        } else {
+            let (t1, t2) = (chord[0], chord[1]);
+            // (The chord's ends lie on either side of e: their squares' difference, halved,
+            // with the sign of the end ahead along d.)
+            let (ahead, behind) = if t1 > t2 { (t1, t2) } else { (t2, t1) };
+            (area, 0.5 * (ahead * ahead - behind * behind))
+        }
+    };
+    const N: usize = 64;
+    let step = std::f64::consts::TAU / N as f64;
+    let samples: [f64; N] = std::array::from_fn(|i| eval(step * i as f64).0);
+    let mut best = (f64::INFINITY, 0.0);
+    for i in 0..N {
+        let f = samples[i];
+        if f > samples[(i + N - 1) % N] || f > samples[(i + 1) % N] {
+            continue;
+        }
+        // A sampled local least: bisect on the derivative's sign between its neighbours.
+        let (mut lo, mut hi) = (step * (i as f64 - 1.0), step * (i as f64 + 1.0));
+        let mut theta = step * i as f64;
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if eval(mid).1 > 0.0 {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+            theta = mid;
+        }
+        let (g, _) = eval(theta);
+        let (f, theta) = if g <= f {
+            (g, theta)
+        } else {
+            (f, step * i as f64)
+        };
+        if f < best.0 {
+            best = (f, theta);
+        }
+    }
+    let (sn, cs) = best.1.sin_cos();
+    Some(pose.to_world_vector(Vec2::new(-sn, cs)))
 }
