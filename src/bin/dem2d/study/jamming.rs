@@ -348,10 +348,10 @@ pub fn run(n: usize, packings: usize, aspects: &[f64]) -> Result<String, dem2d::
     let mut md = table.text();
     let _ = writeln!(
         md,
-        "\n{} packings of {n} grains, {:.0} s of wall time on {} threads.",
+        "\n{} packings of {n} grains, {:.0} s of wall time on {}.",
         done.len(),
         wall,
-        rayon::current_num_threads()
+        super::threads()
     );
     let series = |k: usize| {
         vec![Series {

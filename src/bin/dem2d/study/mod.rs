@@ -89,6 +89,14 @@ pub fn grain(r: f64, aspect: f64) -> Shape {
     }
 }
 
+/// The worker threads of the run, as a table's note says them ("1 thread", "2 threads").
+pub fn threads() -> String {
+    match rayon::current_num_threads() {
+        1 => "1 thread".to_string(),
+        n => format!("{n} threads"),
+    }
+}
+
 /// The least-squares line `y = a + b x` through `points`: (a, b).
 pub fn line_fit(points: &[(f64, f64)]) -> (f64, f64) {
     let n = points.len() as f64;

@@ -254,9 +254,9 @@ pub fn run(n: usize, aspects: &[f64], targets: Option<&[f64]>) -> Result<String,
     let wall = start.elapsed().as_secs_f64();
     let _ = writeln!(
         md,
-        "\n{} runs of {n} grains, {wall:.0} s of wall time on {} threads.",
+        "\n{} runs of {n} grains, {wall:.0} s of wall time on {}.",
         done.len(),
-        rayon::current_num_threads()
+        super::threads()
     );
     let series = |phi: bool| -> Vec<Series> {
         aspects

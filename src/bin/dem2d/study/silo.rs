@@ -354,11 +354,11 @@ pub fn run() -> Result<String, RunError> {
         md,
         "\n{N} grains (equal-area radius 0.45–0.55 cm, d = 1 cm) kept in a silo {WIDTH} cm wide \
          with a flat floor of two segment walls, rates over t = {T0}–{T1} s, {TRIALS} \
-         fillings per outlet for clogging; {} runs in all, wall time {:.0} s on {} threads. \
+         fillings per outlet for clogging; {} runs in all, wall time {:.0} s on {}. \
          Written by `dem2d study silo`.",
         jobs.len() + clog_jobs.len(),
         wall,
-        rayon::current_num_threads()
+        super::threads()
     )
     .expect("string");
 
