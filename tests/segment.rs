@@ -1004,8 +1004,9 @@ fn the_energy_of_polygons_rocking_on_segment_ends_is_conserved_under_the_area_la
     // Elastic and frictionless, so K + P + E_el is conserved but for the integrator's error,
     // second order in Δt: a quarter of the step must take the drift down ~16 times. A potential
     // that jumped where the contact changes from face to end leaves a floor: with the end a
-    // spring on its depth (before issue 31's least cut) the same runs drifted by 0.24 → 0.20
-    // (square) and 0.53 → 0.53 (pentagon) of the drop's energy.
+    // spring on its depth (before issue 31's least cut) the same runs drifted by 0.70 → 0.41
+    // (square) of the drop's energy, and the pentagon's was stopped by the blow-up watch at
+    // Δt = 1e-5 s (2.1e-2 at 2.5e-6 s).
     for (shape, name, bound) in [
         (SQUARE, "square", 2e-5),
         (PENTAGON, "pentagon", 3e-3),
