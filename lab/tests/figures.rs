@@ -143,6 +143,7 @@ fn figures_quick_writes_every_figure_and_table_of_the_guide() {
                 "shear",
                 "silo",
                 "verify",
+                "verify_full",
             ];
             if !others.contains(&name) && !name.contains(char::is_uppercase) {
                 wanted.push(format!("{name}.md"));
