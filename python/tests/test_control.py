@@ -73,9 +73,13 @@ def test_the_gil_is_released_while_stepping():
     assert len(during) > 10
 
 
+# The child restores Python's own Ctrl-C handler: a process started with SIGINT ignored (a
+# background job of a non-interactive shell, as a CI runner may start the tests) inherits that,
+# and Python then installs no handler, so no Ctrl-C could reach it.
 CTRL_C = textwrap.dedent(
     """
-    import sys, dem2d
+    import signal, sys, dem2d
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     sys.path.insert(0, {tests!r})
     from test_control import long_case
     sim = dem2d.Simulation(long_case(), threads=1, out={out!r})
