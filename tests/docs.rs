@@ -568,26 +568,18 @@ fn the_outputs_reference_lists_every_file_and_column_a_run_writes() {
         .status()
         .unwrap();
     assert!(status.success());
-    let written = read(&dir.join("pour_run").join("discharge.csv"));
-    let header: Vec<String> = written
-        .lines()
-        .next()
-        .unwrap()
-        .split(',')
-        .map(str::to_string)
-        .collect();
-    assert!(listed.contains("discharge.csv"));
-    assert_eq!(documented.get("discharge.csv"), Some(&header));
-    let written = read(&dir.join("pour_run").join("inserted.csv"));
-    let header: Vec<String> = written
-        .lines()
-        .next()
-        .unwrap()
-        .split(',')
-        .map(str::to_string)
-        .collect();
-    assert!(listed.contains("inserted.csv"));
-    assert_eq!(documented.get("inserted.csv"), Some(&header));
+    for file in ["discharge.csv", "inserted.csv"] {
+        let written = read(&dir.join("pour_run").join(file));
+        let header: Vec<String> = written
+            .lines()
+            .next()
+            .unwrap()
+            .split(',')
+            .map(str::to_string)
+            .collect();
+        assert!(listed.contains(file), "{file}");
+        assert_eq!(documented.get(file), Some(&header), "{file}");
+    }
     // A VTK frame's field data gain the cell's state (its cell data are the same arrays).
     let frame = read(&out.join("vtk/frame_00000.vtu"));
     let start = frame.find("<FieldData").expect("field data");
