@@ -22,26 +22,6 @@ pub fn contact_wall_polygon(
     pose: &Pose,
     request: &Request,
 ) -> Option<Contact> {
-    contact_wall_polygon_in(wall, None, poly, pose, request)
-}
-
-/// The strip over a segment wall, `0 ≤ (x − a)·t ≤ length` (world coordinates): a flat-sided
-/// body's flat overlap is the part of its cut that lies in it (see `narrow_phase::segment`).
-#[derive(Clone, Copy, Debug)]
-pub struct Strip {
-    pub a: Vec2,
-    pub tangent: Vec2,
-    pub length: f64,
-}
-
-/// [`contact_wall_polygon`], its flat overlap cut to `strip` when one is given.
-pub fn contact_wall_polygon_in(
-    wall: &Wall,
-    strip: Option<&Strip>,
-    poly: &Shape,
-    pose: &Pose,
-    request: &Request,
-) -> Option<Contact> {
     let flat = poly.is_flat_sided();
     let scale = pow2_floor(poly.bounding_radius());
     let inv = 1.0 / scale;
@@ -105,17 +85,7 @@ pub fn contact_wall_polygon_in(
     let mut c = frame.contact(state, p1, p2, mid, normal_local, depth, request);
     c.normal = wall.normal;
     if flat {
-        c.flat = Some(match strip {
-            None => frame.flat(&under),
-            Some(st) => {
-                // τ(q) = (c − a)·t + scale (q·t_b) for a local point q: keep 0 ≤ τ ≤ L.
-                let tb = pose.to_body_vector(st.tangent);
-                let tc = (pose.position - st.a).dot(&st.tangent) * inv;
-                let mut kept = clip(&under, [tb.x, tb.y], -tc);
-                kept = clip(&kept, [-tb.x, -tb.y], tc - st.length * inv);
-                frame.flat(&kept)
-            }
-        });
+        c.flat = Some(frame.flat(&under));
     }
     if state == ContactState::Overlap && request.area {
         // The overlap is the polygon below the line; its gradient is the chord's.
@@ -125,25 +95,4 @@ pub fn contact_wall_polygon_in(
         c.area = Some(o);
     }
     Some(c)
-}
-
-/// The part of the polygon `poly` where `u·q ≥ lo` (Sutherland–Hodgman).
-fn clip(poly: &[[f64; 2]], u: [f64; 2], lo: f64) -> List<[f64; 2]> {
-    let mut out = List::new();
-    let k = poly.len();
-    for i in 0..k {
-        let (p, q) = (poly[i], poly[(i + 1) % k]);
-        let (sp, sq) = (
-            u[0] * p[0] + u[1] * p[1] - lo,
-            u[0] * q[0] + u[1] * q[1] - lo,
-        );
-        if sp >= 0.0 {
-            out.push(p);
-        }
-        if (sp >= 0.0) != (sq >= 0.0) {
-            let t = sp / (sp - sq);
-            out.push([p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]);
-        }
-    }
-    out
 }

@@ -33,20 +33,20 @@
 //! (≥ b²/a): the depth, the normal and the spring's energy are continuous for any overlap a
 //! DEM contact reaches.
 //!
-//! A polygon (a rectangle among them) takes its own rule ([`polygon`]) under the depth law: the
-//! face while some vertex across the line lies over the segment, with a flat-sided body's flat
-//! overlap cut to the strip over the segment (a brick half over an end tips over it once its
-//! centre passes it); else the end. Where the contact changes from face to end the depth changes
-//! (from the deepest vertex's to the end's distance from the nearer edge): not continuous there.
-//! Under the area law ([`polygon_area`]) it meets the face while the point where the face's
-//! force acts (the chord midpoint; a rectangle's cut's centroid) lies over the segment, else the
-//! end as the half-plane through it that cuts the least of the potential's measure off it — the
-//! area, or a rectangle's Winkler energy ([`least_cut`]): conservative, and continuous from face
-//! to end.
+//! A polygon (a rectangle among them) takes its own rule ([`polygon`]). Under the area law, and a
+//! flat-sided body (a rectangle: a Winkler foundation against a wall under either law) under
+//! both ([`polygon_least_cut`]), it meets the face while the point where the face's force acts
+//! (the chord midpoint; a rectangle's cut's centroid) lies over the segment, else the end as
+//! the half-plane through it that cuts the least of the potential's measure off it — the area,
+//! or a rectangle's Winkler energy ([`least_cut`]): conservative, and continuous from face to
+//! end. A polygon under the depth law meets it along the axis of least penetration of the two
+//! convex sets ([`polygon_depth`]): the face's (the deepest vertex's depth) or an edge's (the
+//! depth of an end behind that edge's line): the depth is continuous from face to end, and an
+//! end contact is the gradient of `½ k δ²`.
 //!
 //! The segment is i (the giver): the normal points from it into the body.
 
-use super::polygon_wall::{self, Strip};
+use super::polygon_wall;
 use super::{Contact, ContactState, LocalFrame, Request, TOUCH_TOL, pow2_floor};
 use super::{circle_wall, ellipse_wall};
 use crate::geometry::{Pose, Segment, Shape, Vec2, Wall};
@@ -313,13 +313,11 @@ fn ellipse_area(
     ellipse_wall::contact_wall_ellipse(&wall, a, b, pose, request)
 }
 
-/// A polygon (a rectangle among them) against a segment (`side` the line it meets); under the
-/// area law [`polygon_area`]. Under the depth law: the face while some vertex that lies across
-/// the line lies over the segment — the half-plane's contact, a flat-sided body's flat overlap
-/// (its Winkler foundation's area and centre of pressure) cut to the strip over the segment, so
-/// that a brick lying half over an end is carried by the part of it over the segment and tips
-/// over the end once its centre passes it; else the end on the side of its deepest vertex, a
-/// point against the polygon.
+/// A polygon (a rectangle among them) against a segment (`side` the line it meets). Under the
+/// area law, and for a flat-sided body (a rectangle, a Winkler foundation against a wall under
+/// either law) under both, [`polygon_least_cut`]. A polygon under the depth law meets the
+/// segment along the axis of least penetration of the two as convex sets (the separating-axis
+/// depth, [`polygon_depth`]).
 fn polygon(
     seg: &Segment,
     side: &Wall,
@@ -327,33 +325,89 @@ fn polygon(
     pose: &Pose,
     request: &Request,
 ) -> Option<Contact> {
-    if request.area {
-        return polygon_area(seg, side, shape, pose, request);
+    if request.area || shape.is_flat_sided() {
+        return polygon_least_cut(seg, side, shape, pose, request);
     }
-    let mut corners = [Vec2::zeros(); 4];
-    let (mut over, mut deepest) = (false, (f64::INFINITY, 0.0));
-    for v in shape.vertices(&mut corners) {
-        let x = pose.position + pose.to_world_vector(*v);
-        let (h, tau) = (side.signed_distance(x), seg.along(x));
-        over |= h < 0.0 && (0.0..=seg.length).contains(&tau);
-        if h < deepest.0 {
-            deepest = (h, tau);
-        }
-    }
-    if over {
-        let strip = Strip {
-            a: seg.a,
-            tangent: seg.tangent,
-            length: seg.length,
-        };
-        return polygon_wall::contact_wall_polygon_in(side, Some(&strip), shape, pose, request);
-    }
-    let end = if deepest.1 < 0.0 { seg.a } else { seg.b };
-    contact_point_body(end, shape, pose, request)
+    polygon_depth(seg, side, shape, pose, request)
 }
 
-/// A polygon (a rectangle among them) against a segment under the area law (`side` the line it
-/// meets), continuous in its potential from face to end, as [`ellipse_area`] is for an ellipse.
+/// A polygon against a segment under the depth law: the least translation that parts them (the
+/// penetration depth of two convex sets, by the separating-axis theorem). The Minkowski
+/// difference of the polygon and the segment has the polygon's edges and the segment's line
+/// for its edges, so the depth is the least over those normals of the overlap along them:
+/// - the side's normal n: the deepest vertex's depth below the line, the **face** — the
+///   half-plane's contact, bit for bit;
+/// - an edge's outward normal m: `o − min(m·a, m·b)` (o the edge's offset), the depth of the
+///   segment's end furthest behind that edge's line, the **end** E: the polygon is pushed
+///   along −m, the force acts at E. This is the gradient of `½k δ²` with δ = `o − m·E`
+///   (turning the edge about the centroid turns m, and the two terms cancel to E's lever).
+///
+/// The least of these is continuous in the pose: the contact changes from face to end where
+/// the two depths are equal, and an end's depth is E's distance to the edge the polygon would
+/// leave it by. (P's law on the face, the spring at the chord midpoint, is not the gradient of a
+/// potential on a half-plane either.) `None` where an axis parts them by more than the touching
+/// tolerance.
+fn polygon_depth(
+    seg: &Segment,
+    side: &Wall,
+    shape: &Shape,
+    pose: &Pose,
+    request: &Request,
+) -> Option<Contact> {
+    let face = polygon_wall::contact_wall_polygon(side, shape, pose, request)?;
+    let scale = pow2_floor(shape.bounding_radius());
+    let inv = 1.0 / scale;
+    let mut corners = [Vec2::zeros(); 4];
+    let v = shape.vertices(&mut corners);
+    let k = v.len();
+    // The ends in the body's frame, in units of `scale`.
+    let ends = [seg.a, seg.b].map(|e| pose.to_body_vector((e - pose.position) * inv));
+    // The edge of least overlap: (overlap, outward normal, which end).
+    let mut best = (f64::INFINITY, Vec2::zeros(), 0);
+    for i in 0..k {
+        let (p, q) = (v[i] * inv, v[(i + 1) % k] * inv);
+        let e = q - p;
+        let m = Vec2::new(e.y, -e.x) / e.norm(); // outward (counter-clockwise vertices)
+        let behind = ends.map(|x| m.dot(&(p - x)));
+        let (overlap, end) = if behind[0] >= behind[1] {
+            (behind[0], 0)
+        } else {
+            (behind[1], 1)
+        };
+        if overlap < best.0 {
+            best = (overlap, m, end);
+        }
+    }
+    let (overlap, m, end) = best;
+    if overlap < -TOUCH_TOL {
+        // An edge's line parts the polygon from the whole segment.
+        return None;
+    }
+    // An edge parallel to the segment (m = −n) is the face: its overlap is the face's depth
+    // but for rounding, at most a few units of the last place of the ends' coordinates.
+    let margin = 1e-12 * (1.0 + ends[0].norm().max(ends[1].norm()));
+    if face.depth <= (overlap + margin) * scale {
+        return Some(face);
+    }
+    let state = if overlap <= TOUCH_TOL {
+        ContactState::Touching
+    } else {
+        ContactState::Overlap
+    };
+    let frame = LocalFrame::of(pose, scale);
+    Some(Contact {
+        state,
+        point: if end == 0 { seg.a } else { seg.b },
+        normal: frame.vector([-m.x, -m.y]),
+        depth: overlap * scale,
+        half_chord: 0.0,
+        area: None,
+        flat: None,
+    })
+}
+
+/// A polygon (a rectangle among them) against a segment under the area law, or a flat-sided body
+/// under either (`side` the line it meets), continuous in its potential from face to end, as [`ellipse_area`] is for an ellipse.
 /// Its potential against a half-plane is a function of the cut the line makes: `W(A)` of the
 /// cut's area A for a polygon, the Winkler foundation's energy `k′M`, M the cut's first moment
 /// about the line (`k′Aȳ`), for a flat-sided body (a rectangle; see `contact_law::overlap`).
@@ -367,7 +421,7 @@ fn polygon(
 /// through E, so the Winkler resultant `k′A` passes through E. Where the face's point reaches
 /// the end, the face's own line is that least cut's (its derivative in the line's angle is zero
 /// there): the potential, the force and its point are continuous from face to end.
-fn polygon_area(
+fn polygon_least_cut(
     seg: &Segment,
     side: &Wall,
     shape: &Shape,
