@@ -26,6 +26,14 @@
 //! run clogs when no grain leaves for [`CLOG_WAIT`] s once the grains are down ([`SETTLED`])
 //! (an arch spans the outlet; without vibration it never breaks). The probability that the outlet clogs within
 //! [`T_CLOG`] s of the start is the fraction of runs that did.
+//!
+//! The intermittent regime: Pongó et al. measured their exponential in a silo whose bottom
+//! rotates, which breaks the arches of small outlets (the flow goes on in avalanches between
+//! temporary clogs), and took the rate between clogs only. The 2D counterpart here: the floor
+//! (its two segments, the outlet with them) shaken sideways in a square wave of velocity
+//! ±[`SHAKE_SPEED`] of period [`SHAKE_PERIOD`], for [`T_SHAKE`] s; the rate is the mass of the
+//! avalanches over their durations ([`between_clogs`]: an avalanche ends at a pause longer than
+//! [`GAP`]).
 
 use super::line_fit;
 use dem2d::analysis::{self, Frame, Window};
@@ -54,14 +62,48 @@ pub const T_CLOG: f64 = 2.0;
 pub const CLOG_WAIT: f64 = 0.25;
 /// By this time (s) the poured grains have reached the floor (a fall of 50 cm takes 0.32 s).
 pub const SETTLED: f64 = 0.5;
+/// The shaken floor: its speed (cm/s) and the period of its square wave of velocity (s): it
+/// moves ±`SHAKE_SPEED · SHAKE_PERIOD / 4` (0.5 cm, half a grain) about its rest position.
+pub const SHAKE_SPEED: f64 = 20.0;
+pub const SHAKE_PERIOD: f64 = 0.1;
+/// The shaken runs' duration (s; the outlets of D ≤ 3 d run three times as long: their
+/// avalanches are short and rare).
+pub const T_SHAKE: f64 = 8.0;
+/// Fewer grains than this discharged in avalanches leave a rate out of the fits.
+pub const MIN_GRAINS: usize = 50;
+/// A pause in the discharge longer than this (s) ends an avalanche (a temporary clog): twice a
+/// grain's mean passage at the smallest outlets' rates between clogs (about 20 grains/s).
+pub const GAP: f64 = 0.1;
 const DENSITY: f64 = 2.5;
 const DT: f64 = 1e-4;
 const G: f64 = 981.0;
 
 /// The case of a silo of outlet `d_out` (cm) with grains of aspect `alpha`, filled with seed
-/// `seed`, run for `duration` s.
-pub fn case_text(d_out: f64, alpha: f64, seed: u64, duration: f64) -> String {
+/// `seed`, run for `duration` s; with `shake`, the floor shaken sideways (its segments then
+/// reach 2 cm into the side walls, so that no gap opens at them).
+pub fn case_text(d_out: f64, alpha: f64, seed: u64, duration: f64, shake: bool) -> String {
     let half = 0.5 * WIDTH;
+    let (outer, motion) = if shake {
+        // A square wave of velocity about the rest position: a quarter period out, then half
+        // periods back and forth, to the end of the run.
+        let mut stages = Vec::new();
+        let (mut t, mut sign) = (0.25 * SHAKE_PERIOD, 1.0);
+        while t < duration {
+            stages.push(format!(
+                r#"{{ "until": {t:.6}, "velocity": [{}, 0] }}"#,
+                sign * SHAKE_SPEED
+            ));
+            t += 0.5 * SHAKE_PERIOD;
+            sign = -sign;
+        }
+        stages.push(format!(r#"{{ "velocity": [{}, 0] }}"#, sign * SHAKE_SPEED));
+        (
+            half + 2.0,
+            format!(r#", "motion": [{}]"#, stages.join(", ")),
+        )
+    } else {
+        (half, String::new())
+    };
     let shape = if alpha == 1.0 {
         "\"shape\": \"circle\"".to_string()
     } else {
@@ -73,7 +115,7 @@ pub fn case_text(d_out: f64, alpha: f64, seed: u64, duration: f64) -> String {
   "gravity": [0, -{G}], "dt": {DT}, "duration": {duration}, "output_every": 1000,
   "contact": {{ "model": "linear", "kn_over_rho_g": 2000, "restitution": 0.5, "friction": 0.5 }},
   "walls": [ {{ "point": [-{half}, 0], "normal": [1, 0] }}, {{ "point": [{half}, 0], "normal": [-1, 0] }},
-             {{ "segment": [[-{half}, 0], [-{e}, 0]] }}, {{ "segment": [[{e}, 0], [{half}, 0]] }} ],
+             {{ "segment": [[-{outer}, 0], [-{e}, 0]]{motion} }}, {{ "segment": [[{e}, 0], [{outer}, 0]]{motion} }} ],
   "bodies": [],
   "insert": [ {{ "region": [-{half}, {half}, 2, 50], "count": {FILL}, {shape}, "size": {{"uniform": [0.45, 0.55]}},
                 "density": {DENSITY}, "seed": {seed} }},
@@ -111,8 +153,8 @@ impl Discharge {
     }
 }
 
-fn world(d_out: f64, alpha: f64, seed: u64, duration: f64) -> World {
-    Case::from_json(&case_text(d_out, alpha, seed, duration))
+fn world(d_out: f64, alpha: f64, seed: u64, duration: f64, shake: bool) -> World {
+    Case::from_json(&case_text(d_out, alpha, seed, duration, shake))
         .expect("a valid silo case")
         .build_world()
 }
@@ -166,7 +208,7 @@ fn column_phi(w: &mut World) -> f64 {
 /// The discharge rate of one outlet.
 pub fn discharge(d_out: f64, alpha: f64) -> Result<Discharge, RunError> {
     let start = Instant::now();
-    let (log, clogged, mut w) = run_silo(world(d_out, alpha, 1, T1), T1, false)?;
+    let (log, clogged, mut w) = run_silo(world(d_out, alpha, 1, T1, false), T1, false)?;
     let mass: f64 = log
         .iter()
         .filter(|(t, _)| *t > T0 && *t <= T1)
@@ -192,8 +234,69 @@ pub fn discharge(d_out: f64, alpha: f64) -> Result<Discharge, RunError> {
 /// Whether a silo of outlet `d_out` filled with `seed` clogs within T_CLOG, and the grains
 /// discharged before.
 pub fn clogs(d_out: f64, alpha: f64, seed: u64) -> Result<(bool, usize), RunError> {
-    let (log, clogged, _) = run_silo(world(d_out, alpha, seed, T_CLOG), T_CLOG, true)?;
+    let (log, clogged, _) = run_silo(world(d_out, alpha, seed, T_CLOG, false), T_CLOG, true)?;
     Ok((clogged, log.len()))
+}
+
+/// The discharge between temporary clogs: the log's discharges `(time, mass)` after `t0`
+/// grouped into avalanches (a pause longer than `gap` ends one); the rate is the mass each
+/// avalanche discharged after its first grain over its duration (first to last grain), summed
+/// over the avalanches. Returns (rate, time flowing, avalanches); an avalanche of one grain has
+/// no duration and counts for neither.
+pub fn between_clogs(log: &[(f64, f64)], t0: f64, gap: f64) -> (f64, f64, usize) {
+    let events: Vec<(f64, f64)> = log.iter().copied().filter(|(t, _)| *t > t0).collect();
+    let (mut mass, mut flowing, mut avalanches) = (0.0, 0.0, 0);
+    let mut i = 0;
+    while i < events.len() {
+        let mut j = i;
+        while j + 1 < events.len() && events[j + 1].0 - events[j].0 <= gap {
+            j += 1;
+        }
+        if j > i {
+            flowing += events[j].0 - events[i].0;
+            mass += events[i + 1..=j].iter().map(|e| e.1).sum::<f64>();
+            avalanches += 1;
+        }
+        i = j + 1;
+    }
+    let rate = if flowing > 0.0 { mass / flowing } else { 0.0 };
+    (rate, flowing, avalanches)
+}
+
+/// A run with the floor shaken (the intermittent regime).
+#[derive(Clone, Debug)]
+pub struct Intermittent {
+    pub d_out: f64,
+    pub alpha: f64,
+    /// The rate between clogs (g/s per cm), the time flowing (s) out of the run's after T0,
+    /// the avalanches, and the grains discharged after T0.
+    pub rate: f64,
+    pub flowing: f64,
+    pub avalanches: usize,
+    pub grains: usize,
+    pub wall_seconds: f64,
+}
+
+/// How long a shaken run lasts (s).
+pub fn shake_duration(d_out: f64) -> f64 {
+    if d_out <= 3.0 { 3.0 * T_SHAKE } else { T_SHAKE }
+}
+
+/// The rate between clogs of one outlet with the floor shaken.
+pub fn intermittent(d_out: f64, alpha: f64) -> Result<Intermittent, RunError> {
+    let start = Instant::now();
+    let until = shake_duration(d_out);
+    let (log, ..) = run_silo(world(d_out, alpha, 1, until, true), until, false)?;
+    let (rate, flowing, avalanches) = between_clogs(&log, T0, GAP);
+    Ok(Intermittent {
+        d_out,
+        alpha,
+        rate,
+        flowing,
+        avalanches,
+        grains: log.iter().filter(|(t, _)| *t > T0).count(),
+        wall_seconds: start.elapsed().as_secs_f64(),
+    })
 }
 
 /// Beverloo's `C` and `k` (D and d in cm, d = 1) from rates `(D, W)` with bulk density `rho_b`:
@@ -245,6 +348,38 @@ pub fn run() -> Result<String, RunError> {
         .par_iter()
         .map(|&(d, seed)| clogs(d, 1.0, seed).map(|(c, n)| (d, c, n)))
         .collect::<Result<_, _>>()?;
+    // The intermittent regime: the floor shaken.
+    let shaken_outlets = [1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 5.0, 6.0];
+    let shaken_jobs: Vec<(f64, f64)> = [1.0, 2.0, 3.0]
+        .iter()
+        .flat_map(|&a| shaken_outlets.iter().map(move |&d| (d, a)))
+        .collect();
+    // (The long runs first, so that the threads end together.)
+    let mut order: Vec<usize> = (0..shaken_jobs.len()).collect();
+    order.sort_by(|&i, &j| {
+        let cost = |(d, a): (f64, f64)| shake_duration(d) * a.min(2.0);
+        cost(shaken_jobs[j]).total_cmp(&cost(shaken_jobs[i]))
+    });
+    let shaken_jobs: Vec<(f64, f64)> = order.iter().map(|&i| shaken_jobs[i]).collect();
+    let mut shaken: Vec<Intermittent> = shaken_jobs
+        .par_iter()
+        .map(|&(d, a)| {
+            let r = intermittent(d, a);
+            if let Ok(r) = &r {
+                eprintln!(
+                    "shaken floor, α = {a}, D = {d}: W = {:.1} g/s between clogs, flowing {:.2} s, \
+                     {} avalanches, {} grains, {:.0} s",
+                    r.rate, r.flowing, r.avalanches, r.grains, r.wall_seconds
+                );
+            }
+            r
+        })
+        .collect::<Result<_, _>>()?;
+    shaken.sort_by(|p, q| {
+        (p.alpha, p.d_out)
+            .partial_cmp(&(q.alpha, q.d_out))
+            .expect("finite")
+    });
     let wall = start.elapsed().as_secs_f64();
 
     // Beverloo on the disks.
@@ -350,13 +485,131 @@ pub fn run() -> Result<String, RunError> {
         )
         .expect("string");
     }
+    // The shaken floor: exp(κD) through D ≤ 3 d, the power law through D ≥ 3.5 d.
+    md.push_str(
+        "\n| grains (floor shaken) | D/d | W between clogs (g/s) | time flowing (s) | avalanches | \
+         grains out | exp(κD) fit, D ≤ 3 (g/s) | power law fitted over D ≥ 3.5 (g/s) |\n\
+         |---|---:|---:|---:|---:|---:|---:|---:|\n",
+    );
+    let mut shaken_fits = Vec::new();
+    for alpha in [1.0, 2.0, 3.0] {
+        let of: Vec<&Intermittent> = shaken
+            .iter()
+            .filter(|r| r.alpha == alpha && r.rate > 0.0 && r.grains >= MIN_GRAINS)
+            .collect();
+        let small: Vec<(f64, f64)> = of
+            .iter()
+            .filter(|r| r.d_out <= 3.0)
+            .map(|r| (r.d_out, r.rate.ln()))
+            .collect();
+        let (ln_a, kappa) = if small.len() >= 2 {
+            line_fit(&small)
+        } else {
+            (f64::NAN, f64::NAN)
+        };
+        // W^{2/3} = s (D − k) over the larger outlets.
+        let big: Vec<(f64, f64)> = of
+            .iter()
+            .filter(|r| r.d_out >= 3.5)
+            .map(|r| (r.d_out, r.rate.powf(2.0 / 3.0)))
+            .collect();
+        let (b0, slope) = line_fit(&big);
+        let k_pow = -b0 / slope;
+        let power = move |d: f64| (slope * (d - k_pow)).max(0.0).powf(1.5);
+        let exp_fit = move |d: f64| (ln_a + kappa * d).exp();
+        // The two forms' rms misfit of ln W over D ≤ 3 (where the form gives a flow), and the
+        // outlets where it gives none.
+        let rms = |f: &dyn Fn(f64) -> f64| {
+            let on: Vec<f64> = small
+                .iter()
+                .filter(|&&(d, _)| f(d) > 0.0)
+                .map(|&(d, lw)| (lw - f(d).ln()).powi(2))
+                .collect();
+            (
+                (on.iter().sum::<f64>() / on.len().max(1) as f64).sqrt(),
+                small.len() - on.len(),
+            )
+        };
+        let (rms_exp, (rms_pow, none_pow)) = (rms(&exp_fit).0, rms(&power));
+        for r in shaken.iter().filter(|r| r.alpha == alpha) {
+            writeln!(
+                md,
+                "| {} | {} | {:.1}{} | {:.2} | {} | {} | {} | {:.1} |",
+                if alpha == 1.0 {
+                    "disks".to_string()
+                } else {
+                    format!("ellipses α = {alpha}")
+                },
+                r.d_out,
+                r.rate,
+                if r.grains < MIN_GRAINS {
+                    " (few grains: not fitted)"
+                } else {
+                    ""
+                },
+                r.flowing,
+                r.avalanches,
+                r.grains,
+                if r.d_out <= 3.0 && kappa.is_finite() {
+                    format!("{:.1}", exp_fit(r.d_out))
+                } else {
+                    "–".into()
+                },
+                power(r.d_out)
+            )
+            .expect("string");
+        }
+        shaken_fits.push((
+            alpha,
+            ln_a,
+            kappa,
+            k_pow,
+            rms_exp,
+            rms_pow,
+            none_pow,
+            small.len(),
+        ));
+    }
+    md.push('\n');
+    for (alpha, _, kappa, k_pow, rms_exp, rms_pow, none_pow, fitted) in &shaken_fits {
+        let name = if *alpha == 1.0 {
+            "Disks".to_string()
+        } else {
+            format!("Ellipses α = {alpha}")
+        };
+        if *fitted < 2 {
+            writeln!(
+                md,
+                "{name} (floor shaken): fewer than two outlets of D/d ≤ 3 discharged \
+                 {MIN_GRAINS} grains in avalanches: no exponential fitted; the power law \
+                 through D/d ≥ 3.5 has k = {k_pow:.2}."
+            )
+            .expect("string");
+            continue;
+        }
+        writeln!(
+            md,
+            "{name} (floor shaken): exp(κD) through the {fitted} outlets of D/d ≤ 3 with \
+             {MIN_GRAINS} grains or more: κ = {kappa:.2} per d, rms misfit of ln W \
+             {rms_exp:.2}; the power law W ∝ (D − k d)^{{3/2}} through D/d ≥ 3.5: k = \
+             {k_pow:.2}, rms misfit of ln W over those outlets {rms_pow:.2}{}.",
+            if *none_pow > 0 {
+                format!(" where it gives a flow (none at {none_pow} of them: D ≤ k d)")
+            } else {
+                String::new()
+            }
+        )
+        .expect("string");
+    }
     writeln!(
         md,
         "\n{N} grains (equal-area radius 0.45–0.55 cm, d = 1 cm) kept in a silo {WIDTH} cm wide \
          with a flat floor of two segment walls, rates over t = {T0}–{T1} s, {TRIALS} \
-         fillings per outlet for clogging; {} runs in all, wall time {:.0} s on {}. \
-         Written by `dem2d study silo`.",
-        jobs.len() + clog_jobs.len(),
+         fillings per outlet for clogging; the floor shaken at ±{SHAKE_SPEED} cm/s (period \
+         {SHAKE_PERIOD} s) for {T_SHAKE} s ({} s for D/d ≤ 3), rates between pauses longer \
+         than {GAP} s after t = {T0} s; {} runs in all, wall time {:.0} s on {}. Written by `dem2d study silo`.",
+        3.0 * T_SHAKE,
+        jobs.len() + clog_jobs.len() + shaken_jobs.len(),
         wall,
         super::threads()
     )
@@ -446,8 +699,68 @@ pub fn run() -> Result<String, RunError> {
             ..Default::default()
         },
     ];
-    super::write_figure("silo", (1500, 480), (1, 3), &panels);
+    let mut shaken_series = Vec::new();
+    for (c_i, &(alpha, ln_a, kappa, .., fitted)) in shaken_fits.iter().enumerate() {
+        let label = if alpha == 1.0 {
+            "disks".to_string()
+        } else {
+            format!("ellipses α = {alpha}")
+        };
+        shaken_series.push(Series {
+            label,
+            points: shaken
+                .iter()
+                .filter(|r| r.alpha == alpha && r.rate > 0.0 && r.grains >= MIN_GRAINS)
+                .map(|r| (r.d_out, r.rate))
+                .collect(),
+            color: c_i,
+            markers: true,
+            ..Default::default()
+        });
+        if fitted >= 2 {
+            shaken_series.push(Series::line(
+                format!("exp(κD), κ = {kappa:.2}"),
+                (0..=30)
+                    .map(|i| 1.5 + 1.5 * i as f64 / 30.0)
+                    .map(|d| (d, (ln_a + kappa * d).exp()))
+                    .collect(),
+                c_i,
+            ));
+        }
+    }
+    let mut panels = panels.to_vec();
+    panels.push(LinePanel {
+        title: "Floor shaken: W between clogs".into(),
+        x_label: "outlet D/d (–)".into(),
+        y_label: "W (g/s per cm)".into(),
+        log_y: true,
+        series: shaken_series,
+        legend: plot::Legend::LowerRight,
+        ..Default::default()
+    });
+    super::write_figure("silo", (2000, 480), (1, 4), &panels);
     std::fs::write("figures/silo.md", &md).expect("figures/silo.md");
     print!("{md}");
     Ok(md)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::between_clogs;
+
+    #[test]
+    fn the_rate_between_clogs_counts_the_avalanches_only() {
+        // Two avalanches after t0 = 1: grains of 2 g at 1.0 (before t0: left out), 1.1, 1.15,
+        // 1.2 (one avalanche, 0.1 s, 4 g after its first grain), a pause of 0.5 s, then 1.7,
+        // 1.75 (0.05 s, 2 g), then a lone grain at 3.0 (no duration: left out).
+        let log = [1.0, 1.1, 1.15, 1.2, 1.7, 1.75, 3.0].map(|t| (t, 2.0));
+        let (rate, flowing, avalanches) = between_clogs(&log, 1.0, 0.1);
+        assert_eq!(avalanches, 2);
+        assert!((flowing - 0.15).abs() < 1e-12, "{flowing}");
+        assert!((rate - 6.0 / 0.15).abs() < 1e-9, "{rate}");
+        // A longer gap joins them: one avalanche of 0.65 s and 8 g.
+        let (rate, flowing, avalanches) = between_clogs(&log, 1.0, 0.6);
+        assert_eq!(avalanches, 1);
+        assert!((rate - 8.0 / 0.65).abs() < 1e-9 && (flowing - 0.65).abs() < 1e-12);
+    }
 }
