@@ -263,6 +263,21 @@ pub fn between_clogs(log: &[(f64, f64)], t0: f64, gap: f64) -> (f64, f64, usize)
     (rate, flowing, avalanches)
 }
 
+/// The fits of one kind of grain's rates with the floor shaken: `ln W = ln_a + κ D` through the
+/// `fitted` outlets of D ≤ 3 d, the power law's k through D ≥ 3.5 d, the two forms' rms misfit
+/// of ln W over D ≤ 3 d, and the outlets there where the power law gives no flow.
+#[derive(Clone, Copy)]
+struct ShakenFit {
+    alpha: f64,
+    ln_a: f64,
+    kappa: f64,
+    k_pow: f64,
+    rms_exp: f64,
+    rms_pow: f64,
+    none_pow: usize,
+    fitted: usize,
+}
+
 /// A run with the floor shaken (the intermittent regime).
 #[derive(Clone, Debug)]
 pub struct Intermittent {
@@ -559,7 +574,7 @@ pub fn run() -> Result<String, RunError> {
             )
             .expect("string");
         }
-        shaken_fits.push((
+        shaken_fits.push(ShakenFit {
             alpha,
             ln_a,
             kappa,
@@ -567,17 +582,27 @@ pub fn run() -> Result<String, RunError> {
             rms_exp,
             rms_pow,
             none_pow,
-            small.len(),
-        ));
+            fitted: small.len(),
+        });
     }
     md.push('\n');
-    for (alpha, _, kappa, k_pow, rms_exp, rms_pow, none_pow, fitted) in &shaken_fits {
-        let name = if *alpha == 1.0 {
+    for f in &shaken_fits {
+        let ShakenFit {
+            alpha,
+            kappa,
+            k_pow,
+            rms_exp,
+            rms_pow,
+            none_pow,
+            fitted,
+            ..
+        } = *f;
+        let name = if alpha == 1.0 {
             "Disks".to_string()
         } else {
             format!("Ellipses α = {alpha}")
         };
-        if *fitted < 2 {
+        if fitted < 2 {
             writeln!(
                 md,
                 "{name} (floor shaken): fewer than two outlets of D/d ≤ 3 discharged \
@@ -593,7 +618,7 @@ pub fn run() -> Result<String, RunError> {
              {MIN_GRAINS} grains or more: κ = {kappa:.2} per d, rms misfit of ln W \
              {rms_exp:.2}; the power law W ∝ (D − k d)^{{3/2}} through D/d ≥ 3.5: k = \
              {k_pow:.2}, rms misfit of ln W over those outlets {rms_pow:.2}{}.",
-            if *none_pow > 0 {
+            if none_pow > 0 {
                 format!(" where it gives a flow (none at {none_pow} of them: D ≤ k d)")
             } else {
                 String::new()
@@ -700,7 +725,14 @@ pub fn run() -> Result<String, RunError> {
         },
     ];
     let mut shaken_series = Vec::new();
-    for (c_i, &(alpha, ln_a, kappa, .., fitted)) in shaken_fits.iter().enumerate() {
+    for (c_i, f) in shaken_fits.iter().enumerate() {
+        let ShakenFit {
+            alpha,
+            ln_a,
+            kappa,
+            fitted,
+            ..
+        } = *f;
         let label = if alpha == 1.0 {
             "disks".to_string()
         } else {
