@@ -778,7 +778,38 @@ pub fn run() -> Result<String, RunError> {
 
 #[cfg(test)]
 mod tests {
-    use super::between_clogs;
+    use super::{DT, SHAKE_PERIOD, SHAKE_SPEED, between_clogs, world};
+    use dem2d::run::Simulation;
+
+    #[test]
+    fn the_shaken_floor_moves_as_a_triangle_wave_about_its_rest_position() {
+        // The floor's program, a square wave of velocity ±v of period P starting with a quarter
+        // period out, puts its segments at x₀ + the triangle wave of amplitude vP/4 (0.5 cm):
+        // out at P/4, back at P/2, the other side at 3P/4, home at P; the outlet moves with them.
+        let mut w = world(3.0, 2.0, 1, 0.2, true);
+        let rest: Vec<f64> = [2, 3].map(|k| w.walls[k].point().x).to_vec();
+        let amplitude = SHAKE_SPEED * SHAKE_PERIOD / 4.0;
+        assert!((amplitude - 0.5).abs() < 1e-12);
+        for (t, offset) in [
+            (0.25, amplitude),
+            (0.5, 0.0),
+            (0.75, -amplitude),
+            (1.0, 0.0),
+        ] {
+            let until = t * SHAKE_PERIOD;
+            let step = (until / DT).round() as u64;
+            Simulation::new(&mut w).until_step(step).run().unwrap();
+            for (k, x0) in [2, 3].into_iter().zip(&rest) {
+                let x = w.walls[k].point().x;
+                assert!(
+                    (x - x0 - offset).abs() < 1e-9,
+                    "floor segment {k} at t = {until}: {x} against {}",
+                    x0 + offset
+                );
+                assert_eq!(w.walls[k].point().y, 0.0);
+            }
+        }
+    }
 
     #[test]
     fn the_rate_between_clogs_counts_the_avalanches_only() {
