@@ -541,10 +541,44 @@ fn the_contact_of_every_shape_with_a_segment_matches_a_fine_sampling_of_its_boun
     assert!(faces > 200 && ends > 100, "{faces} faces, {ends} ends");
 }
 
-/// The largest departure of `K + P + E_el` from its start, at the steps where no contact is
-/// open (within a contact a step's energy differs from the shadow energy it conserves), over
-/// 1.5 s at the step `dt`, as a fraction of the bodies' potential energy above the floor; and
-/// the number of contact-steps on the segments' faces and ends.
+/// Runs the elastic, frictionless world `w` (forces evaluated) for `steps` steps: the largest
+/// departure of `K + P + E_el` from its start at the steps where no contact is open (within a
+/// contact a step's energy differs from the shadow energy it conserves), and the contact-steps
+/// on the segments' faces and ends (an end's contact acts at the end; frictionless, a face's
+/// force lies along the segment's normal and an end's need not). `Err` with the blow-up watch's
+/// report when it stopped the run.
+fn drift_and_counts(w: &mut World, steps: u64) -> Result<(f64, usize, usize), String> {
+    let total = |w: &World| w.energies.kinetic + w.energies.potential + w.energies.elastic;
+    let e0 = total(w);
+    let (mut worst, mut ends, mut faces) = (0.0f64, 0, 0);
+    Simulation::new(w)
+        .for_steps(steps)
+        .run_each(|w, _| {
+            if !w.contacts.slots.iter().any(|s| s.active) {
+                worst = worst.max((total(w) - e0).abs());
+            }
+            for (slot, d) in w.contacts.slots.iter().zip(&w.contacts.data) {
+                if let Some(seg) = slot.sides().wall().and_then(|k| w.walls[k].segment())
+                    && slot.active
+                {
+                    let (n, f) = (seg.normal(), d.force);
+                    if d.point == seg.a
+                        || d.point == seg.b
+                        || (f.x * n.y - f.y * n.x).abs() > 1e-9 * f.norm()
+                    {
+                        ends += 1;
+                    } else {
+                        faces += 1;
+                    }
+                }
+            }
+        })
+        .map_err(|e| e.to_string())?;
+    Ok((worst, faces, ends))
+}
+
+/// [`drift_and_counts`] of disks or ellipses dropped into a funnel of segments, over 1.5 s at
+/// the step `dt`, the drift as a fraction of the bodies' potential energy above the floor.
 fn funnel_drift(nf: &str, shapes: &[&str], dt: f64) -> (f64, usize, usize) {
     let walls = r#"[ { "segment": [[-6, 6], [-1, 1]] }, { "segment": [[1, 1], [6, 6]] },
                      { "point": [0, -3], "normal": [0, 1] }, { "point": [-8, 0], "normal": [1, 0] },
@@ -568,31 +602,10 @@ fn funnel_drift(nf: &str, shapes: &[&str], dt: f64) -> (f64, usize, usize) {
     let bodies = format!("[{}]", bodies.join(", "));
     let mut w = case_dt(&contact, walls, &bodies, -980.0, dt);
     w.evaluate_forces();
-    let total = |w: &World| w.energies.kinetic + w.energies.potential + w.energies.elastic;
-    let e0 = total(&w);
     let scale: f64 = (0..w.bodies.len())
         .map(|k| w.bodies.mass[k] * 980.0 * (w.bodies.state[k].pose.position.y + 3.0))
         .sum();
-    let (mut worst, mut ends, mut faces) = (0.0f64, 0, 0);
-    Simulation::new(&mut w)
-        .for_steps((1.5 / dt).round() as u64)
-        .run_each(|w, _| {
-            if !w.contacts.slots.iter().any(|s| s.active) {
-                worst = worst.max((total(w) - e0).abs());
-            }
-            for (slot, d) in w.contacts.slots.iter().zip(&w.contacts.data) {
-                if let Some(seg) = slot.sides().wall().and_then(|k| w.walls[k].segment())
-                    && slot.active
-                {
-                    if d.point == seg.a || d.point == seg.b {
-                        ends += 1;
-                    } else {
-                        faces += 1;
-                    }
-                }
-            }
-        })
-        .unwrap();
+    let (worst, faces, ends) = drift_and_counts(&mut w, (1.5 / dt).round() as u64).unwrap();
     (worst / scale, faces, ends)
 }
 
@@ -1024,35 +1037,12 @@ fn end_drift(
             dt,
         );
         w.evaluate_forces();
-        let total = |w: &World| w.energies.kinetic + w.energies.potential + w.energies.elastic;
-        let e0 = total(&w);
         scale += (0..w.bodies.len())
             .map(|k| w.bodies.mass[k] * 980.0 * (w.bodies.state[k].pose.position.y + 2.0))
             .sum::<f64>();
-        let mut worst = 0.0f64;
-        Simulation::new(&mut w)
-            .for_steps((0.6 / dt).round() as u64)
-            .run_each(|w, _| {
-                if !w.contacts.slots.iter().any(|s| s.active) {
-                    worst = worst.max((total(w) - e0).abs());
-                }
-                for (slot, d) in w.contacts.slots.iter().zip(&w.contacts.data) {
-                    if let Some(seg) = slot.sides().wall().and_then(|k| w.walls[k].segment())
-                        && slot.active
-                    {
-                        let (n, f) = (seg.normal(), d.force);
-                        if d.point == seg.a
-                            || d.point == seg.b
-                            || (f.x * n.y - f.y * n.x).abs() > 1e-9 * f.norm()
-                        {
-                            ends += 1;
-                        } else {
-                            faces += 1;
-                        }
-                    }
-                }
-            })
-            .map_err(|e| e.to_string())?;
+        let (worst, f, e) = drift_and_counts(&mut w, (0.6 / dt).round() as u64)?;
+        faces += f;
+        ends += e;
         drift += worst;
     }
     Ok((drift / scale, faces, ends))
