@@ -276,6 +276,8 @@ struct ShakenFit {
     rms_pow: f64,
     none_pow: usize,
     fitted: usize,
+    /// κ with the avalanches split at GAP/2 and 2 GAP.
+    kappa_gaps: [f64; 2],
 }
 
 /// A run with the floor shaken (the intermittent regime).
@@ -289,6 +291,9 @@ pub struct Intermittent {
     pub flowing: f64,
     pub avalanches: usize,
     pub grains: usize,
+    /// The rate between clogs with the avalanches split at pauses longer than GAP/2 and 2 GAP
+    /// (how much the rate owes to that choice).
+    pub other_gaps: [f64; 2],
     pub wall_seconds: f64,
 }
 
@@ -310,6 +315,7 @@ pub fn intermittent(d_out: f64, alpha: f64) -> Result<Intermittent, RunError> {
         flowing,
         avalanches,
         grains: log.iter().filter(|(t, _)| *t > T0).count(),
+        other_gaps: [0.5, 2.0].map(|f| between_clogs(&log, T0, f * GAP).0),
         wall_seconds: start.elapsed().as_secs_f64(),
     })
 }
@@ -522,6 +528,19 @@ pub fn run() -> Result<String, RunError> {
         } else {
             (f64::NAN, f64::NAN)
         };
+        // κ with the avalanches split at GAP/2 and 2 GAP.
+        let kappa_gaps = [0, 1].map(|g| {
+            let pts: Vec<(f64, f64)> = of
+                .iter()
+                .filter(|r| r.d_out <= 3.0 && r.other_gaps[g] > 0.0)
+                .map(|r| (r.d_out, r.other_gaps[g].ln()))
+                .collect();
+            if pts.len() >= 2 {
+                line_fit(&pts).1
+            } else {
+                f64::NAN
+            }
+        });
         // W^{2/3} = s (D − k) over the larger outlets.
         let big: Vec<(f64, f64)> = of
             .iter()
@@ -583,6 +602,7 @@ pub fn run() -> Result<String, RunError> {
             rms_pow,
             none_pow,
             fitted: small.len(),
+            kappa_gaps,
         });
     }
     md.push('\n');
@@ -595,6 +615,7 @@ pub fn run() -> Result<String, RunError> {
             rms_pow,
             none_pow,
             fitted,
+            kappa_gaps,
             ..
         } = *f;
         let name = if alpha == 1.0 {
@@ -617,12 +638,17 @@ pub fn run() -> Result<String, RunError> {
             "{name} (floor shaken): exp(κD) through the {fitted} outlets of D/d ≤ 3 with \
              {MIN_GRAINS} grains or more: κ = {kappa:.2} per d, rms misfit of ln W \
              {rms_exp:.2}; the power law W ∝ (D − k d)^{{3/2}} through D/d ≥ 3.5: k = \
-             {k_pow:.2}, rms misfit of ln W over those outlets {rms_pow:.2}{}.",
+             {k_pow:.2}, rms misfit of ln W over those outlets {rms_pow:.2}{}. κ with the \
+             avalanches split at pauses longer than {} s and {} s instead: {:.2} and {:.2} per d.",
             if none_pow > 0 {
                 format!(" where it gives a flow (none at {none_pow} of them: D ≤ k d)")
             } else {
                 String::new()
-            }
+            },
+            0.5 * GAP,
+            2.0 * GAP,
+            kappa_gaps[0],
+            kappa_gaps[1]
         )
         .expect("string");
     }
