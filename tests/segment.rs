@@ -735,8 +735,7 @@ fn under_the_area_law_an_ellipse_crossing_an_end_changes_its_area_and_force_cont
     let (a, b) = (1.5, 0.6);
     let shape = Shape::Ellipse { a, b };
     for angle in [0.0, 0.4, 1.2] {
-        let probe = Pose::new(Vec2::zeros(), angle);
-        let reach = shape.support(probe.to_body_vector(Vec2::new(0.0, -1.0)));
+        let reach = reach_below(&shape, angle);
         let dx = 1e-4;
         let (mut last, mut ends, mut faces) = (None::<(f64, f64, Vec2)>, 0, 0);
         let mut x = -3.0;
@@ -1140,6 +1139,13 @@ fn under_the_depth_law_polygons_on_segment_ends_run_without_a_jump_and_flat_ones
     }
 }
 
+/// How far `shape`, turned by `angle`, reaches below its centroid (its support along −y): a
+/// body at height `reach − d` over a horizontal segment is `d` into it.
+fn reach_below(shape: &Shape, angle: f64) -> f64 {
+    let probe = Pose::new(Vec2::zeros(), angle);
+    shape.support(probe.to_body_vector(Vec2::new(0.0, -1.0)))
+}
+
 /// The pentagon of the polygon tests (vertices counter-clockwise about its centroid-ish).
 fn test_pentagon() -> Shape {
     Shape::Polygon(
@@ -1185,8 +1191,7 @@ fn under_the_area_law_a_polygon_crossing_an_end_changes_its_potential_and_force_
         let mut changes = 0;
         for angle in [0.0, 0.3, 0.785, 1.2, 2.0, 2.9] {
             for depth in [0.002, 0.01, 0.05] {
-                let probe = Pose::new(Vec2::zeros(), angle);
-                let reach = shape.support(probe.to_body_vector(Vec2::new(0.0, -1.0)));
+                let reach = reach_below(&shape, angle);
                 type Seen = (f64, f64, bool, Vec2, Vec2);
                 let mut last: Option<Seen> = None;
                 let (mut ends, mut faces) = (0, 0);
@@ -1284,8 +1289,7 @@ fn under_the_depth_law_a_polygons_depth_is_continuous_over_an_end_and_its_end_co
     let mut changes = 0;
     for angle in [0.0, 0.3, 0.785, 1.2, 2.0, 2.9] {
         for depth in [0.002, 0.01, 0.05] {
-            let probe = Pose::new(Vec2::zeros(), angle);
-            let reach = shape.support(probe.to_body_vector(Vec2::new(0.0, -1.0)));
+            let reach = reach_below(&shape, angle);
             let (mut last, mut ends, mut x) = (None::<(f64, bool)>, 0, -2.0);
             while x < 2.0 {
                 let pose = Pose::new(Vec2::new(x, reach - depth), angle);
@@ -1320,8 +1324,7 @@ fn under_the_depth_law_a_polygons_depth_is_continuous_over_an_end_and_its_end_co
     let (mut checked, mut worst) = (0, 0.0f64);
     while checked < 2000 {
         let angle = 2.0 * PI * rng.next();
-        let probe = Pose::new(Vec2::zeros(), angle);
-        let reach = shape.support(probe.to_body_vector(Vec2::new(0.0, -1.0)));
+        let reach = reach_below(&shape, angle);
         let pose = Pose::new(
             Vec2::new(1.2 * (2.0 * rng.next() - 1.0), reach - 0.1 * rng.next()),
             angle,
@@ -1371,8 +1374,7 @@ fn under_the_area_law_a_polygons_end_contact_is_the_gradient_of_its_potential() 
         while checked < 2000 {
             let angle = 2.0 * PI * rng.next();
             let x = 1.2 * (2.0 * rng.next() - 1.0);
-            let probe = Pose::new(Vec2::zeros(), angle);
-            let reach = shape.support(probe.to_body_vector(Vec2::new(0.0, -1.0)));
+            let reach = reach_below(&shape, angle);
             let pose = Pose::new(Vec2::new(x, reach - 0.1 * rng.next()), angle);
             let Some(c) = contact(&Object::Segment(seg), &Object::Body { shape, pose }) else {
                 continue;
@@ -1490,8 +1492,7 @@ fn under_the_area_law_a_polygons_end_contact_is_the_least_cut_through_the_end() 
         let mut checked = 0;
         while checked < 300 {
             let angle = 2.0 * PI * rng.next();
-            let probe = Pose::new(Vec2::zeros(), angle);
-            let reach = shape.support(probe.to_body_vector(Vec2::new(0.0, -1.0)));
+            let reach = reach_below(&shape, angle);
             let pose = Pose::new(
                 Vec2::new(1.2 * (2.0 * rng.next() - 1.0), reach - 0.15 * rng.next()),
                 angle,

@@ -320,6 +320,15 @@ pub fn intermittent(d_out: f64, alpha: f64) -> Result<Intermittent, RunError> {
     })
 }
 
+/// The grains of aspect `alpha` as the tables and legends name them.
+fn grains(alpha: f64) -> String {
+    if alpha == 1.0 {
+        "disks".into()
+    } else {
+        format!("ellipses α = {alpha}")
+    }
+}
+
 /// Beverloo's `C` and `k` (D and d in cm, d = 1) from rates `(D, W)` with bulk density `rho_b`:
 /// `W^{2/3} = (C ρ_b √g)^{2/3} (D − k d)`.
 pub fn beverloo_fit(points: &[(f64, f64)], rho_b: f64) -> (f64, f64) {
@@ -451,11 +460,7 @@ pub fn run() -> Result<String, RunError> {
         writeln!(
             md,
             "| {} | {} | {:.1} | {:.1} | {:.3} | {} | {:.1} | {} |",
-            if r.alpha == 1.0 {
-                "disks".to_string()
-            } else {
-                format!("ellipses α = {}", r.alpha)
-            },
+            grains(r.alpha),
             r.d_out,
             r.rate,
             r.grains_per_s,
@@ -569,11 +574,7 @@ pub fn run() -> Result<String, RunError> {
             writeln!(
                 md,
                 "| {} | {} | {:.1}{} | {:.2} | {} | {} | {} | {:.1} |",
-                if alpha == 1.0 {
-                    "disks".to_string()
-                } else {
-                    format!("ellipses α = {alpha}")
-                },
+                grains(alpha),
                 r.d_out,
                 r.rate,
                 if r.grains < MIN_GRAINS {
@@ -618,10 +619,10 @@ pub fn run() -> Result<String, RunError> {
             kappa_gaps,
             ..
         } = *f;
-        let name = if alpha == 1.0 {
-            "Disks".to_string()
-        } else {
-            format!("Ellipses α = {alpha}")
+        let name = {
+            let mut name = grains(alpha);
+            name[..1].make_ascii_uppercase();
+            name
         };
         if fitted < 2 {
             writeln!(
@@ -675,11 +676,7 @@ pub fn run() -> Result<String, RunError> {
             .filter(|r| r.alpha == *alpha && r.steady())
             .map(|r| (r.d_out, r.rate))
             .collect();
-        let label = if *alpha == 1.0 {
-            "disks".to_string()
-        } else {
-            format!("ellipses α = {alpha}")
-        };
+        let label = grains(*alpha);
         rate_series.push(Series {
             label: label.clone(),
             points: pts.clone(),
@@ -759,11 +756,7 @@ pub fn run() -> Result<String, RunError> {
             fitted,
             ..
         } = *f;
-        let label = if alpha == 1.0 {
-            "disks".to_string()
-        } else {
-            format!("ellipses α = {alpha}")
-        };
+        let label = grains(alpha);
         shaken_series.push(Series {
             label,
             points: shaken
