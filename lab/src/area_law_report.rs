@@ -197,8 +197,9 @@ fn rebound(shape: Shape, angle: f64, nf: NormalForce, e: f64, hertz: bool) -> f6
     ratio
 }
 
-/// Requested → obtained restitution: a disk (the spring on the depth, itself the exact clamped
-/// solution) and an ellipse a/b = 1.5 falling flat or on its tip under the area law.
+/// Requested → obtained restitution: a disk (the spring on the depth, whose exact answer is the
+/// clamped spring–dashpot of tests/dynamics_analytic.rs) and an ellipse a/b = 1.5 falling flat or
+/// on its tip under the area law.
 pub fn restitution_table() -> String {
     let disk = Shape::Circle { r: 1.5f64.sqrt() };
     let ellipse = Shape::Ellipse { a: 1.5, b: 1.0 };
