@@ -44,8 +44,10 @@ use rayon::prelude::*;
 /// number of threads.
 pub(crate) const SLOT_CHUNK: usize = 512;
 
-/// How many slots ahead a loop asks for its second body's data.
-const PREFETCH_AHEAD: usize = 8;
+/// How many slots ahead a loop asks for its second body's data. (10⁶ disks, one thread, three
+/// interleaved pairs of `dem2d-lab bench --shapes disks --sizes 10000,1000000 --steps 100`:
+/// 8 → 16 slots 13.15 → 13.44 M particle-steps/s at 10⁶, 10⁴ unchanged; 32 no better than 16.)
+const PREFETCH_AHEAD: usize = 16;
 
 /// Per-chunk results of the pass.
 #[derive(Clone, Copy, Debug, Default)]
