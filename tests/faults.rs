@@ -56,8 +56,11 @@ fn whole_csv(file: &Path) -> Vec<Vec<f64>> {
 fn wait_until_running(child: &mut Child, dir: &Path) {
     let deadline = Instant::now() + Duration::from_secs(60);
     loop {
+        // (The writers are made after the first summary: on a loaded machine a run can take
+        // half a second between the two, and one killed there has no trajectory to draw.)
         if let Ok(text) = std::fs::read_to_string(dir.join("summary.json"))
             && text.contains("\"running\"")
+            && dir.join("trajectory.csv").exists()
         {
             break;
         }

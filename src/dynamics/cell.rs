@@ -102,6 +102,18 @@ pub const PRESSURE_RELAXATION: f64 = 0.1;
 /// The largest relative change of a cell's height in one step under an imposed pressure.
 pub const MAX_STRETCH: f64 = 1e-4;
 
+/// The lattice of a cell's images when the neighbour list was built: the Lees–Edwards shift
+/// and the sides. The images of a body move with the lattice, not only with the body: between
+/// builds, a pair through an image approaches by at most the two bodies' displacements plus
+/// the lattice's ([`Cell::lattice_drift`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LatticeMark {
+    /// `S`, the total shift (not reduced modulo `L_x`).
+    pub shift: f64,
+    /// `L_x`, `L_y`.
+    pub size: Vec2,
+}
+
 /// What a crossing did to a body: its new position and velocity, and the image counts to add.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Wrapped {
@@ -344,6 +356,29 @@ impl Cell {
             velocity: v,
             images,
         })
+    }
+
+    /// The lattice now, to compare with later ([`Cell::lattice_drift`]).
+    #[inline]
+    pub fn lattice(&self) -> LatticeMark {
+        LatticeMark {
+            shift: self.shift,
+            size: self.size,
+        }
+    }
+
+    /// How far an image within reach has moved with the lattice since `mark`, at most: the
+    /// shift's advance plus the change of each side (an image one period away moves by the
+    /// change of the period; across the sheared seam, by the change of the shift, or by that
+    /// less a period when the nearest image changes — no more). A neighbour list built at
+    /// `mark` misses no pair while the bodies' displacements and this drift together stay
+    /// within its skin. Without it, two bodies at rest on either side of a sheared seam never
+    /// met while the shift swept their images through each other (issue 41).
+    #[inline]
+    pub fn lattice_drift(&self, mark: &LatticeMark) -> f64 {
+        (self.shift - mark.shift).abs()
+            + (self.size.x - mark.size.x).abs()
+            + (self.size.y - mark.size.y).abs()
     }
 
     /// Advances the Lees–Edwards shift over a step `dt`.

@@ -110,6 +110,8 @@ pub(crate) struct SceneFacts {
     pub clumps: bool,
     /// Every body is a circle.
     pub disks: bool,
+    /// The largest bounding radius (the reach of a pair: [`super::neighbour_list::pair_reach`]).
+    pub max_bound: f64,
 }
 
 impl SceneFacts {
@@ -122,6 +124,7 @@ impl SceneFacts {
             circles: bodies.is_circle.iter().any(|&c| c) || clumps,
             clumps,
             disks: bodies.is_circle.iter().all(|&c| c),
+            max_bound: bodies.bound.iter().copied().fold(0.0, f64::max),
         }
     }
 }

@@ -245,6 +245,9 @@ pub struct ContactList {
     pub(crate) built_at: Vec<Vec2>,
     /// Wall points when the list was built (moving walls count towards the rebuild).
     pub(crate) wall_built_at: Vec<Vec2>,
+    /// In a periodic cell, its lattice when the list was built (the images' motion counts
+    /// towards the rebuild: [`super::cell::Cell::lattice_drift`]).
+    pub(crate) lattice_built_at: Option<super::cell::LatticeMark>,
     /// In a periodic cell, whether each body lay near a seam when the list was built
     /// ([`ContactList::mark_near_seams`]); empty until marked.
     pub(crate) near_seam: Vec<bool>,
@@ -292,9 +295,9 @@ impl ContactList {
 
     /// Whether a pair outside the list could touch now: two bodies approach by at most the sum
     /// of their displacements since the build, which must stay within the skin (the step's
-    /// rule, there taken from the drift's sums); also true for a list not built for these
-    /// bodies. A body that wrapped across a seam counts its jump, which forces a build.
-    pub(crate) fn outgrown(&self, bodies: &super::Bodies) -> bool {
+    /// rule, there taken from the drift's sums), with the drift of a periodic cell's lattice
+    /// ([`ContactList::lattice_drift`]); also true for a list not built for these bodies.
+    pub(crate) fn outgrown(&self, bodies: &super::Bodies, cell: Option<&Cell>) -> bool {
         if self.built_at.len() != bodies.len() {
             return true;
         }
@@ -307,7 +310,17 @@ impl ContactList {
                 top[1] = d;
             }
         }
-        top[0] + top[1] > self.skin
+        top[0] + top[1] + self.lattice_drift(cell) > self.skin
+    }
+
+    /// How far the images of a periodic cell have moved since the list was built
+    /// ([`Cell::lattice_drift`]; 0 outside a cell).
+    #[inline]
+    pub(crate) fn lattice_drift(&self, cell: Option<&Cell>) -> f64 {
+        match (cell, &self.lattice_built_at) {
+            (Some(c), Some(mark)) => c.lattice_drift(mark),
+            _ => 0.0,
+        }
     }
 
     /// Marks the bodies that lay near a seam of `cell` at the build (within a margin of twice

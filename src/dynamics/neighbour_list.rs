@@ -103,8 +103,16 @@ impl Builder {
         list.wall_built_at.clear();
         list.wall_built_at
             .extend(walls.iter().map(|w| w.line().point));
+        list.lattice_built_at = cell.map(Cell::lattice);
         lost
     }
+}
+
+/// The reach of a pair of bodies whose largest bounding radius is `max_bound`: two bounding
+/// diameters and the skin. A periodic side must exceed twice it
+/// ([`super::cell::Cell::check_size`]).
+pub fn pair_reach(max_bound: f64) -> f64 {
+    2.0 * max_bound + SKIN_FRACTION * max_bound
 }
 
 /// The skin for these bodies ([`SKIN_FRACTION`] of the largest bounding radius).
@@ -140,6 +148,7 @@ pub(crate) fn restore(
     list.built_at.extend_from_slice(&saved.built_at);
     list.wall_built_at.extend_from_slice(&saved.wall_built_at);
     list.builds = saved.builds;
+    list.lattice_built_at = saved.lattice_built_at;
 }
 
 /// What a scene keeps beside its slots: pair caches where some pair keeps something in them

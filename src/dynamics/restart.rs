@@ -27,7 +27,7 @@
 use super::account::{Diagnostics, Energies};
 use super::body::BodyInit;
 use super::boundary::{Boundary, WallLoad};
-use super::cell::Cell;
+use super::cell::{Cell, LatticeMark};
 use super::contacts::{ContactData, Slot};
 use super::flow::FlowRestart;
 use super::partner::Partner;
@@ -98,6 +98,9 @@ pub struct RestartState {
     /// Body positions and wall points when the list was built.
     pub built_at: Vec<Vec2>,
     pub wall_built_at: Vec<Vec2>,
+    /// A periodic cell's lattice when the list was built (`None` outside a cell; in a state
+    /// file written before it was kept, the cell's lattice now).
+    pub lattice_built_at: Option<LatticeMark>,
     pub builds: u64,
     pub energies: Energies,
     pub diagnostics: Diagnostics,

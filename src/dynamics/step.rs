@@ -119,6 +119,11 @@ pub struct Stepper {
 }
 
 impl Stepper {
+    /// The largest bounding radius of the bodies, as of the last list build.
+    pub(crate) fn max_bound(&self) -> f64 {
+        self.facts.max_bound
+    }
+
     /// Heap bytes of the grid, and of the build's and the passes' scratch.
     pub(crate) fn heap_bytes(&self) -> (usize, usize) {
         let (grid, build) = self.builder.heap_bytes();
@@ -203,7 +208,12 @@ impl Stepper {
         // 3. Forces at the new positions (the neighbour list first, if a pair outside it could
         // now touch: two bodies approach by at most the sum of their displacements, a body and
         // a wall by the sum of theirs).
-        if wd.contacts.built_at.len() != n || disp[0] + disp[1].max(wall_disp) > wd.contacts.skin {
+        // In a periodic cell the images move with its lattice too (the Lees–Edwards shift, a
+        // side under an imposed stress).
+        let drift = wd.contacts.lattice_drift(wd.cell.as_deref());
+        if wd.contacts.built_at.len() != n
+            || disp[0] + disp[1].max(wall_disp) + drift > wd.contacts.skin
+        {
             lap.to(&mut self.times.rest);
             self.rebuild_neighbours(wd);
             lap.to(&mut self.times.list_builds);
@@ -343,7 +353,7 @@ impl Stepper {
     /// Evaluates the forces of the current configuration without advancing (used at t = 0).
     pub(crate) fn evaluate_forces(&mut self, wd: &mut Parts, always_rebuild: bool) {
         self.size_partials(wd);
-        if always_rebuild || wd.contacts.outgrown(wd.bodies) {
+        if always_rebuild || wd.contacts.outgrown(wd.bodies, wd.cell.as_deref()) {
             self.rebuild_neighbours(wd);
         }
         let slots = self.compute_slots(wd, 0.0);

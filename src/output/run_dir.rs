@@ -58,7 +58,7 @@ use crate::output::vtk::VtkWriter;
 use crate::output::walls::Walls;
 use crate::output::write_atomically;
 use crate::run::time::time_value;
-use crate::run::{CriticalStepSampler, RunProgress, Simulation, Stop, watch};
+use crate::run::{CriticalStepSampler, EnergyAudit, RunProgress, Simulation, Stop, watch};
 use crate::run::{ObserverError, RunError as RunFailure};
 use crate::scene::Case;
 use std::fmt;
@@ -445,6 +445,7 @@ struct Writers {
     reactions: Option<Frames<Reactions>>,
     discharge: Option<DischargeWriter>,
     sampler: CriticalStepSampler,
+    audit: EnergyAudit,
     analysis: Option<AnalysisOutput>,
     vtk: Option<VtkWriter>,
     lines: ProgressLines,
@@ -517,10 +518,11 @@ impl RunDir {
             }
         }
         let resumed = opts.run.as_ref();
-        let (initial_total, counts) = {
+        let (progress, counts) = {
             let sim = simulation(world, case, opts, resumed);
-            (sim.progress().initial_total, Counts::of(&sim))
+            (sim.progress().clone(), Counts::of(&sim))
         };
+        let initial_total = progress.initial_total;
         let summary = summarize(
             case,
             world,
@@ -588,6 +590,7 @@ impl RunDir {
                 reactions,
                 discharge,
                 sampler: CriticalStepSampler { every },
+                audit: EnergyAudit::new(&progress, case.energy_audit, every),
                 analysis,
                 vtk,
                 lines: ProgressLines::new(&case.name, opts.progress),
@@ -646,7 +649,7 @@ impl RunDir {
         if let Some(x) = w.discharge.as_mut() {
             sim = sim.observe(x);
         }
-        sim = sim.observe(&mut w.sampler);
+        sim = sim.observe(&mut w.sampler).observe(&mut w.audit);
         if let Some(a) = w.analysis.as_mut() {
             sim = sim.observe(a);
         }
@@ -683,6 +686,9 @@ impl RunDir {
         world.network_critical_dt();
         let observed = world.diagnostics.dt_critical_observed;
         let mut warnings = self.warnings.clone();
+        if let Some(f) = self.writers.as_ref().ok().and_then(|w| w.audit.finding()) {
+            warnings.push(f.warning());
+        }
         if case.dt > observed && observed.is_finite() {
             warnings.push(format!(
                 "dt = {:e} exceeds the critical time step of the contact network observed during the run, \

@@ -236,12 +236,13 @@ fn write_state_block(
     if let Some(c) = &s.cell {
         let _ = writeln!(
             out,
-            "    \"cell\": {{\"size\": {}, \"offset\": {}, \"shift\": {}, \"stress\": [{}], \"stiffness_yy\": {}}},",
+            "    \"cell\": {{\"size\": {}, \"offset\": {}, \"shift\": {}, \"stress\": [{}], \"stiffness_yy\": {}, \"elastic_yy\": {}}},",
             vec2(c.size),
             num(c.offset),
             num(c.shift),
             c.stress.map(num).join(", "),
-            num(c.stiffness_yy)
+            num(c.stiffness_yy),
+            num(c.elastic_yy)
         );
     }
     if s.flow.is_some() || s.ids.iter().enumerate().any(|(k, &id)| id != k as u64) {
@@ -367,7 +368,7 @@ fn write_state_block(
     out.push_str(",\n");
     let _ = write!(
         out,
-        "    \"neighbour_list\": {{\"builds\": {}, \"wall_built_at\": [{}], \"built_at\": [",
+        "    \"neighbour_list\": {{\"builds\": {}, \"wall_built_at\": [{}], ",
         s.builds,
         s.wall_built_at
             .iter()
@@ -375,6 +376,15 @@ fn write_state_block(
             .collect::<Vec<_>>()
             .join(", ")
     );
+    if let Some(m) = &s.lattice_built_at {
+        let _ = write!(
+            out,
+            "\"lattice_built_at\": {{\"shift\": {}, \"size\": {}}}, ",
+            num(m.shift),
+            vec2(m.size)
+        );
+    }
+    out.push_str("\"built_at\": [");
     write_lines(out, &s.built_at, |out, _, p| out.push_str(&vec2(*p)));
     out.push_str("}\n");
 }

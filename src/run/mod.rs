@@ -26,6 +26,7 @@
 //! The driver reads the world only through its step's report and its energies: a run through
 //! it gives the same bits as the world stepped alone.
 
+pub mod audit;
 mod observer;
 mod progress;
 pub mod quiescence;
@@ -33,6 +34,7 @@ mod simulation;
 pub mod time;
 pub mod watch;
 
+pub use audit::{AuditFinding, EnergyAudit};
 pub use observer::{CriticalStepSampler, End, Observer, ObserverError, Plan, StepInfo};
 pub use progress::RunProgress;
 pub use quiescence::Quiescence;

@@ -3,7 +3,7 @@
 use super::observer::{End, Observer, Plan, StepInfo};
 use super::progress::RunProgress;
 use super::quiescence::Quiescence;
-use super::watch::{BlowupReport, BlowupWatch};
+use super::watch::{self, BlowupReport, BlowupWatch};
 use super::{RunError, Stop};
 use crate::dynamics::{StepReport, World};
 use std::sync::atomic::{AtomicI32, Ordering};
@@ -34,10 +34,14 @@ pub struct Simulation<'a> {
 impl<'a> Simulation<'a> {
     /// A run of `world` from its current state, with no stop condition but a blow-up (the
     /// watch is on: [`Simulation::without_watch`]) and no observer. The watch's reference and the
-    /// initial energy are the world's state now.
+    /// initial energy are the world's state now: its account starts closed, `E₀ = K + P + E_el +
+    /// D − W` with the work `W` the state already holds (a state continued without its run's
+    /// progress, such as `dem2d relax`'s, keeps the walls' work of the run that made it; booking
+    /// it as created energy put the work of a compression into the `unaccounted` of the shear
+    /// that followed: issue 41).
     pub fn new(world: &'a mut World) -> Self {
         let progress = RunProgress {
-            initial_total: world.energies.total(),
+            initial_total: world.energies.total() - world.energies.boundary_work,
             quiescence_streak: 0,
             first_contact_step: None,
             contact_sum: 0,
@@ -259,11 +263,11 @@ impl<'a> Simulation<'a> {
             if progress.first_contact_step.is_none() && report.contacts > 0 {
                 progress.first_contact_step = Some(s);
             }
-            let trigger = if self.watching {
-                progress.watch.check(world)
-            } else {
-                None
-            };
+            let trigger = match self.watching {
+                true => progress.watch.check(world),
+                false => None,
+            }
+            .or_else(|| watch::cell_limit(world));
             let blowup = trigger.map(|t| BlowupReport::of_trigger(t, world));
             // The stop conditions, in order of precedence; the streak is kept once the
             // observers have taken the step.

@@ -46,6 +46,17 @@ pub enum Trigger {
     Energy { created: f64, available: f64 },
     /// An overlap deeper than the bodies (in units of the smaller inscribed radius).
     Depth { ratio: f64 },
+    /// A periodic side following a stress shrank to the least the model allows
+    /// ([`World::cell_below_limit`]): `side` 0 for x, 1 for y.
+    CellLimit { side: usize, size: f64, least: f64 },
+}
+
+/// The cell's limit, checked after every step whether or not the watch is on: beyond it the
+/// model itself fails, not the physics ([`World::cell_below_limit`]).
+pub fn cell_limit(world: &World) -> Option<Trigger> {
+    world
+        .cell_below_limit()
+        .map(|(side, size, least)| Trigger::CellLimit { side, size, least })
 }
 
 /// The state a run is checked against (public: the run's saved progress carries it, so that a
@@ -75,7 +86,8 @@ impl BlowupWatch {
             kinetic0: e.kinetic,
             elastic0: e.elastic,
             potential0: e.potential,
-            total0: e.total(),
+            // (The work a state already holds was done before: see `Simulation::new`.)
+            total0: e.total() - e.boundary_work,
             gravity_supplied: 0.0,
             boundary_supplied: 0.0,
             dissipated_max: e.dissipated,
@@ -279,6 +291,21 @@ impl BlowupReport {
                         ),
                     ),
                 }
+            }
+            Trigger::CellLimit { side, size, least } => {
+                let (axis, p) = (["x", "y"][side], world.cell.and_then(|c| c.pressure));
+                (
+                    most_energetic_body(world),
+                    format!(
+                        "the periodic cell's {axis} side shrank to {size:.6e} cm, not above twice \
+                         the reach of a pair ({least:.6e} cm: two largest bounding diameters and \
+                         the neighbour list's skin): a body would meet two images of another, or \
+                         its own, and only the nearest is modelled. The bodies cannot carry the \
+                         imposed stress{} in a cell this small: give the cell more bodies (or \
+                         smaller ones), or a lower stress",
+                        p.map_or(String::new(), |p| format!(" ({} dyn/cm)", p.target))
+                    ),
+                )
             }
         };
         BlowupReport {

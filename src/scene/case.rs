@@ -31,7 +31,7 @@ use super::ranges::{Placed, SpecContext, check_extent, check_spec, check_steps};
 use crate::contact_law::{Check, ContactSpec, Keys, NormalForce, ParamError};
 use crate::dynamics::boundary::{BoundaryKind, Program, Stage, StageMotion};
 use crate::dynamics::cell::{Cell, PRESSURE_RELAXATION, Periodic, Pressure};
-use crate::dynamics::neighbour_list::SKIN_FRACTION;
+use crate::dynamics::neighbour_list::pair_reach;
 use crate::dynamics::{BodyInit, Boundary, Flow, Materials, Motion, Servo, Span};
 use crate::geometry::Vec2;
 use serde_json::{Map, Value};
@@ -72,6 +72,9 @@ pub struct Case {
     /// Cundall's local non-viscous damping coefficient α (`"damping": {"local": α}`, in [0, 1);
     /// 0, the default: off; see `dynamics::local_damping`).
     pub local_damping: f64,
+    /// The energy audit's threshold (`"energy_audit"`, a fraction of the energy the run has had
+    /// in motion; [`crate::run::audit`]).
+    pub energy_audit: f64,
 }
 
 /// The case's optional outputs.
@@ -128,6 +131,9 @@ impl Case {
         let quiescence = o.opt_with("quiescence", positive)?;
         let quiescence_window = o.opt_with("quiescence_window", count)?.unwrap_or(1);
         let output_every = o.opt_with("output_every", count)?.unwrap_or(100);
+        let energy_audit = o
+            .opt_with("energy_audit", positive)?
+            .unwrap_or(crate::run::audit::DEFAULT_THRESHOLD);
         let output = match o.get("output") {
             None => OutputSpec::default(),
             Some(v) => {
@@ -342,6 +348,7 @@ impl Case {
             cell,
             flow,
             local_damping,
+            energy_audit,
         })
     }
 
@@ -374,6 +381,7 @@ impl Case {
             cell: None,
             flow: None,
             local_damping: 0.0,
+            energy_audit: crate::run::audit::DEFAULT_THRESHOLD,
         }
     }
 
@@ -815,7 +823,7 @@ fn parse_cell(
         .iter()
         .map(|b| b.shape.bounding_radius())
         .fold(0.0f64, f64::max);
-    let reach = 2.0 * max_bound + SKIN_FRACTION * max_bound;
+    let reach = pair_reach(max_bound);
     if let Err((k, least)) = cell.check_size(reach) {
         return Err(FieldError::new(
             format!("{}[{k}]", at("size")),
