@@ -238,19 +238,34 @@ impl Grid {
             (lo, ((hi - lo) / size).floor() + 1.0)
         };
         // A sparse cell (far larger than its bodies' reach) gets at most a few tiles per body,
-        // each larger than the reach: the same pairs, without a tiling larger than memory.
+        // each larger than the reach: the same pairs, without a tiling larger than memory. The
+        // cap holds for the product, whatever the shape of the tiling: a cell one tile wide
+        // whose bodies span 1e25 cm in y (a body thrown up at 1e30 cm/s) would otherwise split
+        // the excess evenly, keep nx at 1 and ask for 1e16 rows (issue 41, item 6).
         let cap = (4 * n).max(64) as f64;
         let f = (fx * fy / cap).sqrt().max(1.0);
-        let (nx, ny) = (
-            ((fx / f).floor() as i64).max(1),
-            ((fy / f).floor() as i64).max(1),
-        );
+        let whole = |v: f64| {
+            if v.is_finite() {
+                v.clamp(1.0, cap)
+            } else {
+                1.0
+            }
+        };
+        let nx = whole((fx / f).floor());
+        let ny = whole((fy / f).floor()).min((cap / nx).floor()).max(1.0);
+        let (nx, ny) = (nx as i64, ny as i64);
         let (wx, wy) = (
             lx / nx as f64,
             if cell.periodic_y() {
                 ly / ny as f64
             } else {
-                size
+                // Rows cover the bodies' extent (wider than the reach when it is capped), so
+                // two bodies within reach are in the same row or neighbouring rows.
+                if ny as f64 == fy {
+                    size
+                } else {
+                    size.max(fy * size / ny as f64)
+                }
             },
         );
         let cells = (nx * ny) as usize;
