@@ -11,7 +11,7 @@ use std::path::Path;
 use std::process::Command;
 
 mod common;
-use common::{dem2d, scratch};
+use common::{dem2d, f64s, i64s, scratch, vtu_arrays};
 
 /// Every shape, an ellipse of a/b = 10 among them, on a floor between two walls, stacked so
 /// that bodies touch bodies and walls within 0.1 s.
@@ -341,60 +341,6 @@ const SILO_MIX: &str = r#"{ "version": 1, "name": "silo_mix", "units": "cm",
               { "region": [-10, 10, 16, 20], "rate": 200, "count": 6, "shape": "rectangle",
                 "size": 0.4, "aspect": {"uniform": [1, 2]} } ],
   "outflow": [ { "region": [-20, 20, -100, -4] } ] }"#;
-
-/// The arrays of a `.vtu` frame as dem2d writes it (inline base64, a UInt64 byte count first),
-/// decoded here without VTK: name → raw little-endian bytes.
-fn vtu_arrays(text: &str) -> std::collections::HashMap<String, Vec<u8>> {
-    fn decode(s: &str) -> Vec<u8> {
-        let val = |c: u8| match c {
-            b'A'..=b'Z' => c - b'A',
-            b'a'..=b'z' => c - b'a' + 26,
-            b'0'..=b'9' => c - b'0' + 52,
-            b'+' => 62,
-            b'/' => 63,
-            _ => panic!("not base64: {c}"),
-        };
-        let s: Vec<u8> = s.bytes().filter(|c| !c.is_ascii_whitespace()).collect();
-        let mut out = Vec::new();
-        for q in s.chunks(4) {
-            let pad = q.iter().filter(|&&c| c == b'=').count();
-            let v = q
-                .iter()
-                .map(|&c| if c == b'=' { 0 } else { u32::from(val(c)) })
-                .fold(0u32, |acc, x| (acc << 6) | x);
-            out.extend(&[(v >> 16) as u8, (v >> 8) as u8, v as u8][..3 - pad]);
-        }
-        out
-    }
-    let mut arrays = std::collections::HashMap::new();
-    for part in text.split("<DataArray ").skip(1) {
-        let name = part
-            .split("Name=\"")
-            .nth(1)
-            .unwrap()
-            .split('"')
-            .next()
-            .unwrap();
-        let body = part.split('>').nth(1).unwrap().split('<').next().unwrap();
-        let raw = decode(body);
-        let n = u64::from_le_bytes(raw[..8].try_into().unwrap()) as usize;
-        assert_eq!(raw.len(), 8 + n, "{name}: byte count");
-        arrays.insert(name.to_string(), raw[8..].to_vec());
-    }
-    arrays
-}
-
-fn f64s(b: &[u8]) -> Vec<f64> {
-    b.chunks(8)
-        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
-        .collect()
-}
-
-fn i64s(b: &[u8]) -> Vec<i64> {
-    b.chunks(8)
-        .map(|c| i64::from_le_bytes(c.try_into().unwrap()))
-        .collect()
-}
 
 /// The largest distance of `points` from the boundary of `shape` (a case file's shape object)
 /// placed at `(x, y)` turned by `angle`, relative to its size: a circle's at distance r, an

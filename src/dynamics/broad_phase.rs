@@ -458,4 +458,40 @@ mod tests {
             "dense layouts: {dense_seen} of 4"
         );
     }
+
+    /// Issue 41, item 6: a cell periodic in x, 8 cm wide (one tile across), whose bodies span
+    /// 1e25 cm in y (one thrown up at 1e30 cm/s) or 1e14 cm: the tiling asked for 1e16 rows (a
+    /// hang, 37 TB). The tiles are now at most `4 n` (the cap), the buffers a few kB, and the
+    /// pairs those of all pairs through the nearest image in x, by brute force.
+    #[test]
+    fn a_cell_periodic_in_x_tiles_a_huge_vertical_extent_within_its_cap() {
+        use crate::dynamics::cell::{Cell, Periodic};
+        let cell = Cell::new(Vec2::new(8.0, 10.0), Periodic::X, 0.0, None);
+        for far in [1e14, 1e25, f64::MAX] {
+            let at = [
+                (7.5, 1.0, 0.6),
+                (0.2, 1.0, 0.6),
+                (4.2, 1.0, 0.6),
+                (4.0, 2.1, 0.5),
+                (2.2, far, 0.6),
+                (2.4, far, 0.6),
+            ];
+            let b = bodies(&at);
+            let mut grid = Grid::default();
+            let mut out = Vec::new();
+            grid.pairs_periodic(&b, 0.1, &cell, &mut out);
+            assert!(grid.heap_bytes() < 1 << 16, "{} bytes", grid.heap_bytes());
+            let mut want = Vec::new();
+            for i in 0..at.len() {
+                for j in i + 1..at.len() {
+                    let d = cell.shortest(Vec2::new(at[j].0 - at[i].0, at[j].1 - at[i].1));
+                    let r = at[i].2 + 0.1 + at[j].2;
+                    if d.norm_squared() <= r * r {
+                        want.push((i as u32, j as u32));
+                    }
+                }
+            }
+            assert_eq!(out, want, "bodies up to y = {far:e}");
+        }
+    }
 }

@@ -46,7 +46,7 @@ impl CaseFile {
     pub fn from_json(text: &str) -> Result<CaseFile, FieldError> {
         let value = parse_json(text, "")?;
         let mut case = Case::from_value(&value)?;
-        let mut warnings = Vec::new();
+        let mut warnings = case.warnings();
         let (restart, run) = match value.get("state") {
             None => (None, None),
             Some(s) => {
