@@ -379,7 +379,11 @@ fn mutated_cases_run_blow_up_or_are_refused_with_the_field_named() {
         let file = scratch.join(format!("m{k}.json"));
         std::fs::write(&file, &text).unwrap();
         let out = scratch.join(format!("m{k}"));
-        let vtk = if k % 4 == 0 { " (--vtk-every 500)" } else { "" };
+        let vtk = if k.is_multiple_of(4) {
+            " (--vtk-every 500)"
+        } else {
+            ""
+        };
         let label = format!("seed {seed}, #{k}: {base}{vtk}: {}", what.join("; "));
         jobs.push((label, file, out));
     }
@@ -409,7 +413,7 @@ fn mutated_cases_run_blow_up_or_are_refused_with_the_field_named() {
                         ];
                         // Every fourth with VTK frames (every 500 steps): the writer meets
                         // what the mutations make too.
-                        if k % 4 == 0 {
+                        if k.is_multiple_of(4) {
                             args.extend(["--vtk-every", "500"]);
                         }
                         let result = run_bounded(&args);
