@@ -33,7 +33,8 @@ fn pages() -> Vec<PathBuf> {
     while let Some(d) = dirs.pop() {
         for e in std::fs::read_dir(&d).unwrap() {
             let p = e.unwrap().path();
-            if p.is_dir() {
+            // (Not `docs/src/figures`, a link to the repository's figures/ for mdBook.)
+            if p.is_dir() && !p.is_symlink() {
                 dirs.push(p);
             } else if p.extension().is_some_and(|x| x == "md") {
                 out.push(p);
@@ -662,4 +663,178 @@ fn every_number_of_the_readmes_results_is_in_the_page_it_links_to() {
         }
     }
     assert!(rows >= 5, "the README's results table lost its rows");
+}
+
+/// The targets of the Markdown images of `text` (`![alt](target)`).
+fn images(text: &str) -> Vec<String> {
+    let text = prose(text);
+    let mut out = Vec::new();
+    let mut rest = text.as_str();
+    while let Some(i) = rest.find("![") {
+        let after = &rest[i + 2..];
+        if let Some(j) = after.find("](") {
+            let target = &after[j + 2..];
+            if let Some(k) = target.find(')') {
+                out.push(target[..k].to_string());
+            }
+        }
+        rest = &rest[i + 2..];
+    }
+    out
+}
+
+/// Issue 41, item 13: `mdbook serve docs` showed no figure. mdBook serves `docs/src` as the
+/// site's root (a page `docs/src/a/b.md` at `/a/b.html`), and a browser resolves a relative
+/// link against the page's URL, a `..` at the root staying there: `../../../figures/x.svg` from
+/// `/results/shear.html` is `/figures/x.svg`. Every image of the guide, resolved so, must be a
+/// file under `docs/src` (where mdBook copies it from) — as well as resolving on a forge, which
+/// [`every_link_of_the_guide_and_the_readme_resolves`] checks.
+#[test]
+fn every_image_of_the_guide_shows_in_the_served_book() {
+    let src = root().join("docs/src");
+    let mut missing = Vec::new();
+    let mut seen = 0;
+    for page in pages() {
+        let rel = page.strip_prefix(&src).unwrap();
+        // The URL's folders, from the site's root.
+        let mut url: Vec<String> = rel
+            .parent()
+            .unwrap()
+            .components()
+            .map(|c| c.as_os_str().to_string_lossy().into_owned())
+            .collect();
+        for target in images(&read(&page)) {
+            if target.starts_with("http://") || target.starts_with("https://") {
+                continue;
+            }
+            let mut at = url.clone();
+            for part in target.split('/') {
+                match part {
+                    ".." => {
+                        at.pop();
+                    }
+                    "." | "" => {}
+                    p => at.push(p.to_string()),
+                }
+            }
+            let served = at.iter().fold(src.clone(), |p, c| p.join(c));
+            if !served.is_file() {
+                missing.push(format!(
+                    "{}: {target} is /{} in the served book: no such file under docs/src",
+                    rel.display(),
+                    at.join("/")
+                ));
+            }
+            seen += 1;
+        }
+        url.clear();
+    }
+    assert!(seen >= 20, "only {seen} images found");
+    assert!(missing.is_empty(), "{}", missing.join("\n"));
+}
+
+/// Issue 41, item 13: the README's list of what `dem2d run` writes left out `walls.csv`. Every
+/// file that the README's main command writes is named in the paragraph after it (the files
+/// listed by the directory itself, not by the code).
+#[test]
+fn the_readme_names_every_file_its_main_command_writes() {
+    let readme = read(&root().join("README.md"));
+    let para = readme
+        .split("The first command builds dem2d")
+        .nth(1)
+        .and_then(|t| t.split("\n\n").next())
+        .expect("the README's paragraph after its main command");
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("docs_readme_run");
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = Command::new(common::bin())
+        .args(["run", "cases/settle3_dt1e-5.json", "--quiet", "--out"])
+        .arg(&dir)
+        .current_dir(root())
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
+    let mut files: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|n| !n.starts_with('.'))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 6, "{files:?}");
+    for f in &files {
+        assert!(
+            para.contains(&format!("`{f}`")),
+            "the README's main command writes {f}, which its paragraph does not name:\n{para}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A number as the guide writes it: thousands grouped by spaces, a minus sign (−).
+fn grouped(x: f64) -> String {
+    let n = x.round() as i64;
+    let digits = n.unsigned_abs().to_string();
+    let mut out = String::new();
+    for (k, c) in digits.chars().enumerate() {
+        if k > 0 && (digits.len() - k).is_multiple_of(3) {
+            out.push(' ');
+        }
+        out.push(c);
+    }
+    if n < 0 { format!("−{out}") } else { out }
+}
+
+/// Issue 41, item 13: the materials tutorial's paddle numbers had gone stale (the page said
+/// 32 686 dyn, 65 372 erg/s and 42 157 erg; the code gave 19 624, 39 249 and 39 879). The
+/// page's command is run here and its numbers read from the files it writes: the row of
+/// `reactions.csv` quoted on the page, the force and the power rounded, `walls_work` and
+/// `unaccounted` of `summary.json` (the run gives the same bits on any number of threads).
+#[test]
+fn the_materials_tutorials_numbers_are_those_of_its_command() {
+    let page = read(&root().join("docs/src/tutorials/materials-and-motion.md"));
+    assert!(page.contains("dem2d run cases/paddle_materials.json"));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("docs_paddle");
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = Command::new(common::bin())
+        .args(["run", "cases/paddle_materials.json", "--quiet", "--out"])
+        .arg(&dir)
+        .current_dir(root())
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
+    let reactions = read(&dir.join("reactions.csv"));
+    let row = reactions
+        .lines()
+        .rfind(|l| l.starts_with("100000,1,80,"))
+        .expect("the paddle's row at t = 1 s");
+    assert!(page.contains(row), "the page does not quote {row}");
+    let f: Vec<f64> = row.split(',').map(|x| x.parse().unwrap()).collect();
+    let (fx, power) = (f[6], f[9]);
+    let summary: serde_json::Value =
+        serde_json::from_str(&read(&dir.join("summary.json"))).unwrap();
+    let e = &summary["energies"];
+    let work = e["walls_work"].as_f64().unwrap();
+    let unaccounted = e["unaccounted"].as_f64().unwrap();
+    // (The page's prose with its line breaks as spaces.)
+    let flat = page.split_whitespace().collect::<Vec<_>>().join(" ");
+    for (what, text) in [
+        (
+            "fx",
+            format!("pushes the paddle back with {} dyn", grouped(-fx)),
+        ),
+        ("power", format!("= {} erg/s", grouped(power))),
+        (
+            "walls_work",
+            format!("`walls_work` is {} erg", grouped(work)),
+        ),
+        (
+            "unaccounted",
+            format!("(`unaccounted`) is {} erg", grouped(unaccounted)),
+        ),
+    ] {
+        assert!(
+            flat.contains(&text),
+            "{what}: the page does not say {text:?}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -432,3 +432,80 @@ fn every_way_a_run_ends_has_its_status_and_exit_code() {
     assert!(!traj.contains("00000000000001,"));
     assert_eq!(s["time"], 1.2);
 }
+
+/// Issue 41, items 4 and 5, off the beaten path: a run whose bodies come and go (the guide's
+/// pouring example: insertion of three shapes, an outflow region), with VTK frames, stopped part
+/// way and continued from its `state.json` with VTK again — the continued writer starts from a
+/// world of inserted bodies, some removed (it panicked at the first inserted body, and drew
+/// bodies by index). Every frame of both parts has one body cell per row of the trajectory at
+/// its step, named by the same identities in the same order.
+#[test]
+fn a_pouring_run_with_vtk_continued_from_its_state_draws_the_bodies_it_holds() {
+    let dir = scratch_path("pour_vtk_restart");
+    std::fs::create_dir_all(&dir).unwrap();
+    let page = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/src/reference/case-file.md"),
+    )
+    .unwrap();
+    let pouring = page
+        .split("```json\n")
+        .skip(1)
+        .map(|b| b.split("```").next().unwrap())
+        .find(|b| b.contains("\"name\": \"pouring\""))
+        .unwrap();
+    let file = dir.join("pouring.json");
+    std::fs::write(&file, pouring).unwrap();
+    let (first, second) = (dir.join("first"), dir.join("second"));
+    let (code, _, err) = dem2d(&[
+        "run",
+        file.to_str().unwrap(),
+        "--out",
+        first.to_str().unwrap(),
+        "--quiet",
+        "--max-steps",
+        "8000",
+        "--vtk-every",
+        "1000",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let (code, _, err) = dem2d(&[
+        "run",
+        first.join("state.json").to_str().unwrap(),
+        "--out",
+        second.to_str().unwrap(),
+        "--quiet",
+        "--vtk-every",
+        "1000",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    let mut checked = 0;
+    for run in [&first, &second] {
+        let traj = whole_csv(&run.join("trajectory.csv"));
+        let mut frames: Vec<_> = std::fs::read_dir(run.join("vtk"))
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .collect();
+        frames.sort();
+        for f in frames {
+            let a = common::vtu_arrays(&std::fs::read_to_string(&f).unwrap());
+            let step = common::i64s(&a["STEP"])[0] as f64;
+            let want: Vec<i64> = traj
+                .iter()
+                .filter(|r| r[0] == step)
+                .map(|r| r[2] as i64)
+                .collect();
+            let kinds = common::i32s(&a["kind"]);
+            let ids = common::i64s(&a["id"]);
+            let got: Vec<i64> = (0..kinds.len())
+                .filter(|&c| kinds[c] == 0)
+                .map(|c| ids[c])
+                .collect();
+            assert_eq!(got, want, "{}: step {step}", f.display());
+            checked += 1;
+        }
+    }
+    // 0, 1000, …, 8000 and the continued run's 8000, 9000, 10000.
+    assert_eq!(checked, 12);
+    assert!(first.join("discharge.csv").exists());
+}

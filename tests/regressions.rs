@@ -1111,3 +1111,625 @@ mod bug_the_cdt_limiter_counted_neighbours_that_do_not_touch {
         }
     }
 }
+
+/// The user guide's pouring example (`docs/src/reference/case-file.md`, the case named
+/// `pouring`): fixed grains, three inserters of circles, ellipses and rectangles, an outflow
+/// region below a gap.
+fn pouring() -> Value {
+    let page = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/src/reference/case-file.md"),
+    )
+    .unwrap();
+    let block = page
+        .split("```json\n")
+        .skip(1)
+        .map(|b| b.split("```").next().unwrap())
+        .find(|b| b.contains("\"name\": \"pouring\""))
+        .expect("the pouring example");
+    serde_json::from_str(block).unwrap()
+}
+
+/// Each body's shape by identity, as the run's files give it: the case's bodies, then each
+/// inserted body's inserter's shape at the radius and aspect `inserted.csv` records (the
+/// formulas of docs/src/reference/outputs.md): (VTK shape code, semi-axes, exact area).
+fn shapes_by_id(case: &Value, run: &Path) -> std::collections::HashMap<u64, (i32, [f64; 2], f64)> {
+    let pi = std::f64::consts::PI;
+    let of = |s: &Value| -> (i32, [f64; 2], f64) {
+        let n = |k: &str| s[k].as_f64().unwrap();
+        match s["type"].as_str().unwrap() {
+            "circle" => (0, [n("r"), n("r")], pi * n("r") * n("r")),
+            "ellipse" => (1, [n("a"), n("b")], pi * n("a") * n("b")),
+            "rectangle" => (2, [n("w") / 2.0, n("h") / 2.0], n("w") * n("h")),
+            t => panic!("{t}"),
+        }
+    };
+    let mut out: std::collections::HashMap<u64, (i32, [f64; 2], f64)> = case["bodies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .enumerate()
+        .map(|(k, b)| (k as u64, of(&b["shape"])))
+        .collect();
+    for row in csv(&run.join("inserted.csv")) {
+        let (r, a) = (row["r"], row["aspect"]);
+        let shape = match case["insert"][row["insert"] as usize]["shape"].as_str() {
+            Some("ellipse") => {
+                serde_json::json!({"type": "ellipse", "a": r * a.sqrt(), "b": r / a.sqrt()})
+            }
+            Some("rectangle") => {
+                serde_json::json!({"type": "rectangle", "w": r * (pi * a).sqrt(), "h": r * (pi / a).sqrt()})
+            }
+            _ => serde_json::json!({"type": "circle", "r": r}),
+        };
+        out.insert(row["body"] as u64, of(&shape));
+    }
+    out
+}
+
+/// Issue 41, item 5. `--vtk` on any run that inserts bodies panicked (`src/output/vtk.rs`:
+/// index out of bounds, exit 101) at its first inserted body — the user guide's own pouring
+/// example; from Python a `PanicException`. The writer kept one outline per body of the case,
+/// by index. Now it keeps them by identity and makes an inserted body's when it first draws it.
+mod bug_vtk_panicked_on_every_run_that_inserts_bodies {
+    use super::*;
+
+    #[test]
+    fn the_guides_pouring_example_writes_every_frame_with_every_body() {
+        let dir = scratch("vtk_pouring");
+        let case = write(&dir, "pouring.json", &pouring());
+        let out = dir.join("run");
+        let (code, _, err) = dem2d(&[
+            "run",
+            &case,
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--vtk-every",
+            "2000",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        assert!(!err.contains("panicked"), "{err}");
+        // Frames at steps 0, 2000, …, 10000, each with one body cell per row of the
+        // trajectory at its step.
+        let traj = csv(&out.join("trajectory.csv"));
+        for k in 0..6 {
+            let text = std::fs::read_to_string(out.join(format!("vtk/frame_{k:05}.vtu"))).unwrap();
+            let a = super::common::vtu_arrays(&text);
+            let step = super::common::i64s(&a["STEP"])[0] as f64;
+            let rows = traj.iter().filter(|r| r["step"] == step).count();
+            let bodies = super::common::i32s(&a["kind"])
+                .iter()
+                .filter(|&&k| k == 0)
+                .count();
+            assert_eq!(bodies, rows, "frame {k} (step {step})");
+            assert!(k == 0 || rows > 4, "frame {k}: nothing inserted");
+        }
+    }
+}
+
+/// Issue 41, item 4. After an outflow removed a body, VTK drew every later body with its
+/// predecessor's outline (an ellipse with the removed circle's, a square with the ellipse's):
+/// the outlines were kept by index, which a removal shifts. Every silo or hopper looked wrong
+/// in ParaView while the `shape` arrays were right. Now the outline, `id` and `pair` follow
+/// the body's identity (`trajectory.csv`'s `body`).
+mod bug_vtk_drew_each_body_after_a_removed_one_with_its_predecessors_outline {
+    use super::*;
+
+    #[test]
+    fn each_body_is_drawn_with_its_own_shape_before_and_after_removals() {
+        let dir = scratch("vtk_outflow");
+        let case = pouring();
+        let file = write(&dir, "pouring.json", &case);
+        let out = dir.join("run");
+        let (code, _, err) = dem2d(&[
+            "run",
+            &file,
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--vtk-every",
+            "500",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let removed = csv(&out.join("discharge.csv"));
+        assert!(removed.len() >= 3, "{} bodies left", removed.len());
+        let shapes = shapes_by_id(&case, &out);
+        let traj = csv(&out.join("trajectory.csv"));
+        let mut after_removal = 0;
+        for k in 0..21 {
+            let text = std::fs::read_to_string(out.join(format!("vtk/frame_{k:05}.vtu"))).unwrap();
+            let a = super::common::vtu_arrays(&text);
+            let step = super::common::i64s(&a["STEP"])[0] as f64;
+            let ids: Vec<u64> = traj
+                .iter()
+                .filter(|r| r["step"] == step)
+                .map(|r| r["body"] as u64)
+                .collect();
+            let (points, conn, offsets) = (
+                super::common::f64s(&a["Points"]),
+                super::common::i64s(&a["connectivity"]),
+                super::common::i64s(&a["offsets"]),
+            );
+            let (id, code, axes) = (
+                super::common::i64s(&a["id"]),
+                super::common::i32s(&a["shape"]),
+                super::common::f64s(&a["semi_axes"]),
+            );
+            for (c, &body) in ids.iter().enumerate() {
+                let (want_code, want_axes, area) = shapes[&body];
+                assert_eq!(id[c] as u64, body, "frame {k}, cell {c}");
+                assert_eq!(code[c], want_code, "frame {k}: body {body}");
+                assert_eq!(
+                    [axes[2 * c], axes[2 * c + 1]],
+                    want_axes,
+                    "frame {k}: body {body}"
+                );
+                // The outline's area (shoelace) is the body's, short by at most the chords'
+                // deficit (1e-3 of the smaller semi-axis per unit of perimeter: < 1 %).
+                let from = if c == 0 { 0 } else { offsets[c - 1] as usize };
+                let ring: Vec<(f64, f64)> = conn[from..offsets[c] as usize]
+                    .iter()
+                    .map(|&p| (points[3 * p as usize], points[3 * p as usize + 1]))
+                    .collect();
+                let drawn: f64 = (0..ring.len())
+                    .map(|i| {
+                        let (p, q) = (ring[i], ring[(i + 1) % ring.len()]);
+                        0.5 * (p.0 * q.1 - q.0 * p.1)
+                    })
+                    .sum();
+                assert!(
+                    (drawn - area).abs() <= 1e-2 * area,
+                    "frame {k} (step {step}): body {body}'s outline has area {drawn}, its shape {area}"
+                );
+            }
+            if removed.iter().any(|r| r["step"] < step) {
+                after_removal += 1;
+            }
+        }
+        assert!(after_removal >= 3, "{after_removal} frames after a removal");
+    }
+}
+
+/// Issue 41, item 6. In a cell periodic in x, a body thrown up fast made the broad phase tile
+/// the bodies' whole vertical extent: at 1e16 cm/s the run hung, at 1e30 it asked for 37 TB,
+/// and an edited state force of 1e300 panicked with a capacity overflow. The tiling's cap now
+/// holds for the number of tiles, whatever its shape, and a body beyond the extent a case may
+/// place one at (1e9 × the smallest width) stops the run as a blow-up naming the step and the
+/// body.
+mod bug_a_body_thrown_up_fast_in_a_cell_periodic_in_x_hung_the_run {
+    use super::*;
+
+    fn cell_x(vy: f64) -> Value {
+        serde_json::json!({ "version": 1, "name": "thrown", "units": "cm",
+          "gravity": [0, -980], "dt": 1e-5, "duration": 0.01, "output_every": 100,
+          "cell": { "size": [8, 10], "periodic": "x" },
+          "contact": { "model": "linear", "kn_over_rho_g": 36400, "restitution": 0.5, "friction": 0.5 },
+          "walls": [ { "point": [0, 0], "normal": [0, 1] } ],
+          "bodies": [ { "shape": {"type": "ellipse", "a": 1.0, "b": 0.5}, "position": [7.5, 1] },
+                      { "shape": {"type": "circle", "r": 0.6}, "position": [2.2, 1], "velocity": [0, vy] },
+                      { "shape": {"type": "circle", "r": 0.6}, "position": [4.2, 1] } ] })
+    }
+
+    /// Runs `args` with a deadline: (exit code, stderr), or a failure naming the hang.
+    fn bounded(args: &[&str]) -> (i32, String) {
+        let mut child = Command::new(bin())
+            .args(args)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let start = Instant::now();
+        while child.try_wait().unwrap().is_none() {
+            if start.elapsed() > Duration::from_secs(60) {
+                let _ = child.kill();
+                panic!("{args:?}: no answer in 60 s (a hang)");
+            }
+            std::thread::sleep(Duration::from_millis(10));
+        }
+        let out = child.wait_with_output().unwrap();
+        (
+            out.status.code().unwrap_or(-1),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    }
+
+    #[test]
+    fn a_body_thrown_up_at_1e16_or_1e30_cm_per_s_stops_the_run_naming_it() {
+        let dir = scratch("thrown");
+        for vy in [1e16, 1e30] {
+            let file = write(&dir, &format!("thrown_{vy:e}.json"), &cell_x(vy));
+            let out = dir.join(format!("run_{vy:e}"));
+            let (code, err) = bounded(&["run", &file, "--out", out.to_str().unwrap(), "--quiet"]);
+            assert_eq!(code, 1, "{err}");
+            assert!(
+                !err.contains("panicked") && !err.contains("memory"),
+                "{err}"
+            );
+            // Found at the first scan (step 64), the body named; its height there is the free
+            // flight's, y₀ + v t (gravity's −g t²/2 is below its rounding).
+            assert!(
+                err.contains("blow-up at step 64") && err.contains("body 1:"),
+                "{err}"
+            );
+            let y = 1.0 + vy * 64.0 * 1e-5;
+            assert!(
+                err.contains(&format!("{y:.3e} cm from the origin")),
+                "{y:.3e}: {err}"
+            );
+            assert_eq!(summary(&out)["status"], "blowup");
+        }
+    }
+
+    #[test]
+    fn an_edited_state_force_of_1e300_stops_the_run_at_its_first_step() {
+        let dir = scratch("force1e300");
+        let mut case = cell_x(0.0);
+        case["duration"] = 0.005.into();
+        let file = write(&dir, "case.json", &case);
+        let first = dir.join("first");
+        let (code, _, err) = dem2d(&["run", &file, "--out", first.to_str().unwrap(), "--quiet"]);
+        assert_eq!(code, 0, "{err}");
+        let mut state: Value =
+            serde_json::from_str(&std::fs::read_to_string(first.join("state.json")).unwrap())
+                .unwrap();
+        state["state"]["bodies"][1]["force"] = serde_json::json!([0, 1e300]);
+        let edited = write(&dir, "edited.json", &state);
+        let out = dir.join("edited");
+        let (code, err) = bounded(&[
+            "run",
+            &edited,
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--duration",
+            "0.02",
+        ]);
+        assert_eq!(code, 1, "{err}");
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(
+            err.contains("blow-up at step 501") && err.contains("body 1:"),
+            "{err}"
+        );
+    }
+}
+
+/// Issue 41, item 8. `--threads 20000` (and `threads=10**6` from Python) was accepted: thousands
+/// of threads, the machine's load above 1000 for minutes. More than 4 × the machine's cores is
+/// now refused (exit 2, naming `--threads` and what is accepted) by every command that takes it.
+mod bug_thousands_of_worker_threads_were_accepted {
+    use super::*;
+
+    #[test]
+    fn more_than_four_threads_per_core_are_refused_by_every_command() {
+        let cores = std::thread::available_parallelism().unwrap().get();
+        let (max, over) = (4 * cores, (4 * cores + 1).to_string());
+        let settle = case("settle3_dt1e-5.json");
+        let dir = scratch("threads");
+        let out = dir.join("out");
+        for args in [
+            vec!["run", &settle, "--threads", "20000"],
+            vec!["run", &settle, "--threads", &over],
+            vec![
+                "relax",
+                &settle,
+                "--out",
+                out.to_str().unwrap(),
+                "--threads",
+                "20000",
+            ],
+            vec!["study", "impacts", "--threads", "20000"],
+        ] {
+            let (code, _, err) = dem2d(&args);
+            assert_eq!(code, 2, "{args:?}: {err}");
+            assert!(
+                err.contains("--threads:") && err.contains(&format!("at most {max} accepted")),
+                "{args:?}: {err}"
+            );
+            assert!(!out.exists(), "{args:?} wrote output");
+        }
+        // The most accepted runs.
+        let (code, _, err) = dem2d(&[
+            "run",
+            &settle,
+            "--threads",
+            &max.to_string(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--max-steps",
+            "100",
+        ]);
+        assert_eq!(code, 0, "{err}");
+    }
+}
+
+/// Issue 41, item 9. `dem2d study shear` and `study jamming` over one aspect ratio panicked
+/// (exit 101) drawing the figure, after printing the table: a series of one point had a value
+/// range the plot refused. And a study run without `--docs` replaced the tracked
+/// `figures/shear.svg` and `figures/shear.md` with the subset it ran. Now a range of one value
+/// is padded by 5 % of it, and without `--docs` (or `--check`) a study writes its figures into
+/// `runs/study/NAME` (or `--out`), and says so.
+mod bug_a_study_of_one_aspect_ratio_panicked_and_replaced_the_tracked_figures {
+    use super::*;
+
+    #[test]
+    fn one_aspect_ratio_draws_its_figure_outside_the_tracked_figures() {
+        let tracked = |f: &str| {
+            std::fs::read(
+                Path::new(env!("CARGO_MANIFEST_DIR"))
+                    .join("figures")
+                    .join(f),
+            )
+            .unwrap()
+        };
+        let before: Vec<Vec<u8>> = ["shear.svg", "shear.md", "jamming.svg", "jamming.md"]
+            .iter()
+            .map(|f| tracked(f))
+            .collect();
+        // From an empty working directory: the default output, runs/study/NAME.
+        let dir = scratch("study_one_alpha");
+        for (name, args) in [
+            (
+                "shear",
+                vec!["--grains", "16", "--aspects", "1", "--inertial", "0.1"],
+            ),
+            (
+                "jamming",
+                vec!["--grains", "16", "--packings", "1", "--aspects", "1.5"],
+            ),
+        ] {
+            let out = Command::new(bin())
+                .args(["study", name, "--threads", "1"])
+                .args(&args)
+                .current_dir(&dir)
+                .output()
+                .unwrap();
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(0), "{name}: {err}");
+            let at = dir.join("runs/study").join(name);
+            assert!(err.contains(&format!("are in runs/study/{name}")), "{err}");
+            for f in [
+                format!("{name}.svg"),
+                format!("{name}.md"),
+                format!("{name}.png"),
+            ] {
+                assert!(at.join(&f).is_file(), "{name}: no {f}");
+            }
+            assert!(!dir.join("figures").exists());
+            // The figure holds the one point (a marker in each panel).
+            let svg = std::fs::read_to_string(at.join(format!("{name}.svg"))).unwrap();
+            assert!(svg.contains("<circle"), "{name}: no point drawn");
+        }
+        // --out puts them there.
+        let out_dir = dir.join("mine");
+        let (code, _, err) = dem2d(&[
+            "study",
+            "shear",
+            "--grains",
+            "16",
+            "--aspects",
+            "1",
+            "--inertial",
+            "0.1",
+            "--threads",
+            "1",
+            "--out",
+            out_dir.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{err}");
+        assert!(out_dir.join("shear.svg").is_file());
+        let after: Vec<Vec<u8>> = ["shear.svg", "shear.md", "jamming.svg", "jamming.md"]
+            .iter()
+            .map(|f| tracked(f))
+            .collect();
+        assert!(before == after, "a study without --docs changed figures/");
+        // --out with --docs is refused (the tracked figures are --docs's).
+        let (code, _, err) = dem2d(&["study", "impacts", "--docs", "--out", "x"]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("--out"), "{err}");
+    }
+}
+
+/// Issue 41, item 10. Silent mistakes: SI gravity (`[0, -9.81]`) and a density in kg/m³ ran
+/// without a hint (dem2d is cgs); `"units": "m"` was accepted and ignored; an insertion region
+/// behind a wall placed no body and the run ended with exit 0; a scene filled only by insertion
+/// had an a-priori critical step of `inf`, so a Δt far above it went unwarned. Now: a warning
+/// (terminal and `summary.json`) for SI-looking gravity and densities; `units` other than
+/// "cm" refused; a region behind a fixed wall refused, naming it, and an inserter that placed
+/// nothing warned of at the end; the a-priori step counts the bodies the inserters can make.
+mod bug_mistakes_of_units_and_insertion_ran_silently {
+    use super::*;
+
+    fn warnings(dir: &Path) -> Vec<String> {
+        summary(dir)["warnings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|w| w.as_str().unwrap().to_string())
+            .collect()
+    }
+
+    #[test]
+    fn si_gravity_and_densities_are_warned_of_and_other_units_refused() {
+        let dir = scratch("si_units");
+        for (name, edit, want) in [
+            (
+                "gravity",
+                ("gravity", serde_json::json!([0, -9.81])),
+                "is Earth's in m/s²",
+            ),
+            (
+                "density",
+                ("density", serde_json::json!(2500.0)),
+                "bodies[0] has a density of 2500 g/cm³",
+            ),
+        ] {
+            let mut v = settle3();
+            match edit.0 {
+                "gravity" => v["gravity"] = edit.1,
+                _ => v["bodies"][0]["density"] = edit.1,
+            }
+            let file = write(&dir, &format!("{name}.json"), &v);
+            let out = dir.join(name);
+            let (code, _, err) = dem2d(&[
+                "run",
+                &file,
+                "--out",
+                out.to_str().unwrap(),
+                "--quiet",
+                "--max-steps",
+                "200",
+            ]);
+            assert_eq!(code, 0, "{err}");
+            let said: Vec<&str> = err.lines().filter(|l| l.contains(want)).collect();
+            assert_eq!(said.len(), 1, "{name}: once in the terminal: {err}");
+            assert_eq!(
+                warnings(&out).iter().filter(|w| w.contains(want)).count(),
+                1,
+                "{name}: once in summary.json"
+            );
+            assert!(said[0].contains("cgs"), "{}", said[0]);
+        }
+        // The shipped cases (cgs) warn of neither.
+        let out = dir.join("cgs");
+        let (code, _, err) = dem2d(&[
+            "run",
+            &case("settle3_dt1e-5.json"),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--max-steps",
+            "10",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        assert!(warnings(&out).is_empty(), "{:?}", warnings(&out));
+        // Units other than cm.
+        for units in ["m", "mm", "SI"] {
+            let mut v = settle3();
+            v["units"] = units.into();
+            let file = write(&dir, "units.json", &v);
+            let (code, _, err) = dem2d(&["run", &file, "--out", dir.join("u").to_str().unwrap()]);
+            assert_eq!(code, 2, "{err}");
+            assert!(
+                err.contains("field `units`") && err.contains("may only be \"cm\""),
+                "{err}"
+            );
+        }
+    }
+
+    #[test]
+    fn an_insertion_region_behind_a_wall_is_refused_or_warned_of() {
+        let dir = scratch("behind_wall");
+        // A fixed lid at y = 8 over the box (free side below), the first region above it.
+        let mut v = pouring();
+        v["walls"]
+            .as_array_mut()
+            .unwrap()
+            .push(serde_json::json!({"point": [0, 8], "normal": [0, -1]}));
+        let file = write(&dir, "fixed.json", &v);
+        let (code, _, err) = dem2d(&["run", &file, "--out", dir.join("f").to_str().unwrap()]);
+        assert_eq!(code, 2, "{err}");
+        assert!(
+            err.contains("field `insert[0].region`") && err.contains("behind walls[2]"),
+            "{err}"
+        );
+        assert!(!dir.join("f").exists());
+        // A lid that moves (away, slowly) may free the region later: the run goes on, and its
+        // end says which inserter placed nothing of what was due (the counts: ⌊rate t⌋ capped,
+        // and `keep`).
+        v["walls"][2]["velocity"] = serde_json::json!([0, 0.001]);
+        let file = write(&dir, "moving.json", &v);
+        let out = dir.join("m");
+        let (code, _, err) = dem2d(&["run", &file, "--out", out.to_str().unwrap(), "--quiet"]);
+        assert_eq!(code, 0, "{err}");
+        assert!(!out.join("inserted.csv").exists() || csv(&out.join("inserted.csv")).is_empty());
+        let w = warnings(&out);
+        // insert[0]: 200/s from 0.01 s to 0.2 s, capped at 100: ⌊200 × 0.19⌋ = 38.
+        for (k, due) in [(0, 38), (1, 40), (2, 20)] {
+            let want = format!("insert[{k}] placed no body of the {due} due by t = 0.2 s");
+            assert!(w.iter().any(|x| x.starts_with(&want)), "{want}: {w:?}");
+            assert!(err.contains(&want), "{err}");
+        }
+    }
+
+    #[test]
+    fn a_scene_filled_only_by_insertion_has_a_finite_critical_step_and_its_warning() {
+        let dir = scratch("insertion_only");
+        let mut v = pouring();
+        v["bodies"] = serde_json::json!([]);
+        v["duration"] = 0.01.into();
+        // The same scene with its inserters' extreme bodies given as bodies (each inserter's
+        // smallest and largest size at its smallest and largest aspect ratio): the same
+        // a-priori step.
+        let mut listed = v.clone();
+        let pi = std::f64::consts::PI;
+        let mut bodies = Vec::new();
+        for (k, ins) in v["insert"].as_array().unwrap().iter().enumerate() {
+            let range = |key: &str| -> (f64, f64) {
+                match &ins[key] {
+                    Value::Null => (1.0, 1.0),
+                    Value::Number(n) => (n.as_f64().unwrap(), n.as_f64().unwrap()),
+                    d => {
+                        let xs: Vec<f64> = d
+                            .get("uniform")
+                            .or_else(|| d.get("choice"))
+                            .unwrap()
+                            .as_array()
+                            .unwrap()
+                            .iter()
+                            .map(|x| x.as_f64().unwrap())
+                            .collect();
+                        (
+                            xs.iter().copied().fold(f64::INFINITY, f64::min),
+                            xs.iter().copied().fold(0.0, f64::max),
+                        )
+                    }
+                }
+            };
+            let ((r0, r1), (a0, a1)) = (range("size"), range("aspect"));
+            for (r, a) in [(r0, a0), (r0, a1), (r1, a0), (r1, a1)] {
+                let shape = match ins["shape"].as_str() {
+                    Some("ellipse") => {
+                        serde_json::json!({"type": "ellipse", "a": r * a.sqrt(), "b": r / a.sqrt()})
+                    }
+                    Some("rectangle") => {
+                        serde_json::json!({"type": "rectangle", "w": r * (pi * a).sqrt(), "h": r * (pi / a).sqrt()})
+                    }
+                    _ => serde_json::json!({"type": "circle", "r": r}),
+                };
+                let mut b = serde_json::json!({"shape": shape, "position": [-5.0 + 3.0 * k as f64, 30.0 + 3.0 * bodies.len() as f64]});
+                for key in ["density", "material"] {
+                    if !ins[key].is_null() {
+                        b[key] = ins[key].clone();
+                    }
+                }
+                bodies.push(b);
+            }
+        }
+        listed["bodies"] = Value::Array(bodies);
+        listed.as_object_mut().unwrap().remove("insert");
+        let mut dt = Vec::new();
+        for (name, v) in [("inserted", &v), ("listed", &listed)] {
+            let file = write(&dir, &format!("{name}.json"), v);
+            let out = dir.join(name);
+            let (code, _, err) = dem2d(&["run", &file, "--out", out.to_str().unwrap(), "--quiet"]);
+            assert_eq!(code, 0, "{name}: {err}");
+            dt.push(
+                summary(&out)["dt_critical"]
+                    .as_f64()
+                    .expect("a finite step"),
+            );
+        }
+        assert!(dt[0].is_finite() && dt[0] > 0.0, "{dt:?}");
+        assert_eq!(dt[0], dt[1], "insertion against the same bodies listed");
+        // Δt above it is warned of, as for bodies listed in the case.
+        v["dt"] = (2.0 * dt[0]).into();
+        let file = write(&dir, "coarse.json", &v);
+        let out = dir.join("coarse");
+        let (_, _, err) = dem2d(&["run", &file, "--out", out.to_str().unwrap(), "--quiet"]);
+        assert!(
+            err.contains("exceeds the critical time step estimated"),
+            "{err}"
+        );
+    }
+}

@@ -4,6 +4,10 @@ writer. Used by tests/vtk.rs; needs VTK's Python module (Debian: python3-vtk9).
 
     python3 tests/vtk_check.py RUN_DIR
 
+A run whose bodies come and go (`insert`, `outflow`) is read as such: a frame's bodies are the
+trajectory's rows at its step, each named by its identity (`body`), its shape the case's (a body
+of the case) or its inserter's at the radius and aspect inserted.csv records (an inserted body).
+
 Checks, for every frame listed in run.pvd:
 - the frame's TIME equals the pvd's timestep and the trajectory's t at that step;
 - cell counts: one polygon per body, one line per wall, one line per contact (the number of
@@ -12,6 +16,10 @@ Checks, for every frame listed in run.pvd:
   area (pi a b, pi r^2, w h): inscribed, so smaller, by at most eps * b * perimeter with
   eps = 1e-3 (the outline's chord bound, src/output/outline.rs); rectangles exact to 1e-12;
 - each polygon's area centroid against the body's position (within 1e-3 b);
+- each polygon's vertices on the boundary of the body's own shape, placed at the trajectory's
+  position and angle: a circle's at distance r, an ellipse's on (x'/a)^2 + (y'/b)^2 = 1, a
+  rectangle's the four corners (1e-9 relative) — the outline drawn is the shape of the body
+  that has that identity, whatever its index in the frame;
 - ids, velocities, angular velocities and angles equal to the trajectory's (to the bit: both
   are the same doubles, the CSV in shortest round-trip form);
 - the shape tensor against R diag(a^2, b^2) R^T computed here from the case's semi-axes and
@@ -59,11 +67,55 @@ def perimeter(a, b):
     return math.pi * (a + b) * (1 + 3 * h / (10 + math.sqrt(4 - 3 * h)))
 
 
+def inserted_shape(spec, r, aspect):
+    """The shape of an inserted body: its inserter's `shape` at radius r and aspect (see
+    docs/src/reference/outputs.md, inserted.csv)."""
+    kind = spec["shape"]
+    if kind == "circle":
+        return {"type": "circle", "r": r}
+    if kind == "ellipse":
+        return {"type": "ellipse", "a": r * math.sqrt(aspect), "b": r / math.sqrt(aspect)}
+    if kind == "rectangle":
+        return {"type": "rectangle", "w": r * math.sqrt(math.pi * aspect), "h": r * math.sqrt(math.pi / aspect)}
+    fail(f"inserted shape {kind} is not checked here")
+
+
+def on_boundary(shape, P, x, y, ang):
+    """The largest distance of the points P from the boundary of `shape` at (x, y, ang), relative
+    to its size (0 for points on it)."""
+    cs, sn = math.cos(ang), math.sin(ang)
+    worst = 0.0
+    kind = shape["type"]
+    local = [((p[0] - x) * cs + (p[1] - y) * sn, -(p[0] - x) * sn + (p[1] - y) * cs) for p in P]
+    if kind == "circle":
+        r = shape["r"]
+        for u, v in local:
+            worst = max(worst, abs(math.hypot(u, v) - r) / r)
+    elif kind == "ellipse":
+        a, b = shape["a"], shape["b"]
+        for u, v in local:
+            worst = max(worst, abs(math.sqrt((u / a) ** 2 + (v / b) ** 2) - 1))
+    else:
+        hw, hh = shape["w"] / 2, shape["h"] / 2
+        if len(local) != 4:
+            return math.inf
+        for u, v in local:
+            worst = max(worst, abs(abs(u) - hw) / hw, abs(abs(v) - hh) / hh)
+    return worst
+
+
 def main(run):
     case = json.load(open(os.path.join(run, "case.json")))
-    bodies = case["bodies"]
+    # Every body's shape by its identity: the case's bodies, then the inserted ones.
+    shapes = {k: b["shape"] for k, b in enumerate(case["bodies"])}
+    inserted_path = os.path.join(run, "inserted.csv")
+    if os.path.exists(inserted_path):
+        with open(inserted_path) as f:
+            for row in csv.DictReader(f):
+                spec = case["insert"][int(row["insert"])]
+                shapes[int(row["body"])] = inserted_shape(spec, float(row["r"]), float(row["aspect"]))
     walls = case.get("walls", [])
-    nb, nw = len(bodies), len(walls)
+    nw = len(walls)
     traj = {}
     with open(os.path.join(run, "trajectory.csv")) as f:
         for row in csv.DictReader(f):
@@ -99,13 +151,15 @@ def main(run):
         check(t == float(ds.get("timestep")), f"{path}: TIME {t} != pvd timestep {ds.get('timestep')}")
         rows = traj.get(step)
         check(rows is not None, f"{path}: step {step} is not a trajectory frame")
+        nb = len(rows)
+        bids = [int(row["body"]) for row in rows]
         check(float(rows[0]["t"]) == t, f"{path}: TIME {t} != trajectory t {rows[0]['t']}")
 
         cd = grid.GetCellData()
         arr = {cd.GetArrayName(i): vtk_to_numpy(cd.GetArray(i)) for i in range(cd.GetNumberOfArrays())}
         kind = arr["kind"]
         n_body, n_contact, n_wall, n_outline = (int((kind == k).sum()) for k in (0, 1, 2, 3))
-        check(n_body == nb, f"{path}: {n_body} body cells, case has {nb} bodies")
+        check(n_body == nb, f"{path}: {n_body} body cells, the trajectory has {nb} bodies")
         check(n_wall == nw, f"{path}: {n_wall} wall cells, case has {nw} walls")
         check(n_outline == n_cell, f"{path}: {n_outline} cell outlines, want {n_cell}")
         if step > 0:
@@ -138,16 +192,15 @@ def main(run):
         for k in range(nb):
             c = k  # bodies come first, in order
             check(grid.GetCellType(c) == vtk.VTK_POLYGON, f"{path}: cell {c} is not a polygon")
-            check(arr["id"][c] == k, f"{path}: body cell {c} has id {arr['id'][c]}")
             row = rows[k]
-            check(int(row["body"]) == k, "trajectory order")
+            check(arr["id"][c] == bids[k], f"{path}: body cell {c} has id {arr['id'][c]}, the trajectory's row {k} is body {bids[k]}")
             x, y, ang = float(row["x"]), float(row["y"]), float(row["angle"])
             for name, col in (("angle", "angle"), ("angular_velocity", "omega")):
                 check(arr[name][c] == float(row[col]), f"{path}: body {k} {name} {arr[name][c]} != {row[col]}")
             v = arr["velocity"][c]
             check(v[0] == float(row["vx"]) and v[1] == float(row["vy"]) and v[2] == 0.0,
                   f"{path}: body {k} velocity {v} != ({row['vx']}, {row['vy']})")
-            shape = bodies[k]["shape"]
+            shape = shapes[bids[k]]
             kind_name = shape["type"]
             if kind_name == "circle":
                 a = b = shape["r"]
@@ -183,6 +236,9 @@ def main(run):
             check(abs(A - area[c]) <= 1e-9 * exact, f"{path}: shoelace {A} != VTK area {area[c]}")
             check(math.hypot(cx - x, cy - y) <= 1e-3 * min(a, b), f"{path}: body {k} polygon centroid "
                   f"({cx}, {cy}) far from ({x}, {y})")
+            off = on_boundary(shape, P, x, y, ang)
+            check(off <= 1e-9, f"{path}: body {bids[k]}'s outline is not its {kind_name} {shape}: "
+                  f"a vertex {off:.3g} off its boundary")
             # Shape tensor R diag(a^2, b^2) R^T, semi-axes.
             T = arr["shape_tensor"][c].reshape(3, 3)
             cs, sn = math.cos(ang), math.sin(ang)
@@ -199,7 +255,7 @@ def main(run):
             check(abs(ev[0] - min(a, b) ** 2) <= 1e-9 * a * a and abs(ev[1] - max(a, b) ** 2) <= 1e-9 * a * a,
                   f"{path}: body {k} tensor eigenvalues {ev}, semi-axes {a}, {b}")
 
-        centroid = {k: (float(rows[k]["x"]), float(rows[k]["y"])) for k in range(nb)}
+        centroid = {bids[k]: (float(rows[k]["x"]), float(rows[k]["y"])) for k in range(nb)}
         n_seam = 0
         for c in range(grid.GetNumberOfCells()):
             if kind[c] == 1:
@@ -207,7 +263,7 @@ def main(run):
                 cell = grid.GetCell(c)
                 p0, p1 = pts[cell.GetPointId(0)], pts[cell.GetPointId(1)]
                 i, j = arr["pair"][c]
-                check(0 <= i < nb, f"{path}: contact {c} pair {i}, {j}")
+                check(i in centroid, f"{path}: contact {c} pair {i}, {j}")
                 check(tuple(p0[:2]) == centroid[i], f"{path}: contact {c} starts at {p0}, not body {i}'s centroid")
                 n = arr["normal"][c]
                 check(abs(math.hypot(n[0], n[1]) - 1) < 1e-12, f"{path}: contact {c} normal {n}")
@@ -229,7 +285,7 @@ def main(run):
                     wp, wn = w["point"], w["normal"]
                     norm = math.hypot(*wn)
                     dist = ((p1[0] - wp[0]) * wn[0] + (p1[1] - wp[1]) * wn[1]) / norm
-                    check(abs(dist) <= 0.05 * max(bodies[i]["shape"].get(s, 0) for s in "rabwh"),
+                    check(abs(dist) <= 0.05 * max(shapes[i].get(s, 0) for s in "rabwh"),
                           f"{path}: wall contact {c} point {p1} is {dist} from wall {-1 - j}")
                 fn, ft, F = arr["normal_force"][c], arr["tangential_force"][c], arr["force"][c]
                 check(fn >= 0, f"{path}: contact {c} pulls: F_n = {fn}")

@@ -252,8 +252,9 @@ fn bench(
             "--sizes: {n} is not a pile size (1…10000, or a multiple of 10000)"
         )));
     }
-    if threads.contains(&0) {
-        return Err(Failure::input("--threads: must be at least 1".into()));
+    for &n in threads {
+        dem2d::run::threads::check_threads(n)
+            .map_err(|e| Failure::input(format!("--threads: {e}")))?;
     }
     let all = std::thread::available_parallelism().map_or(1, |n| n.get());
     let threads = if threads.is_empty() {

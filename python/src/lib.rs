@@ -67,6 +67,30 @@ fn input_error(py: Python<'_>, message: String) -> PyErr {
     error(py, "InputError", message, &[("field", py.None())])
 }
 
+/// A whole number ≥ 0 given for the argument `name` (a Python int, or a numpy integer), else
+/// `dem2d.InputError` naming it and what is accepted: a negative number, a float or a string
+/// is refused by name (not as an `OverflowError` or a `TypeError` from the conversion).
+fn whole(py: Python<'_>, name: &str, v: &Bound<'_, PyAny>) -> PyResult<u64> {
+    let refuse = || {
+        input_error(
+            py,
+            format!(
+                "{name}: must be a whole number ≥ 1, got {}",
+                v.repr().map_or_else(|_| "?".to_string(), |r| r.to_string())
+            ),
+        )
+    };
+    if v.is_instance_of::<pyo3::types::PyBool>() {
+        return Err(refuse());
+    }
+    let i = v
+        .call_method0("__index__")
+        .map_err(|_| refuse())?
+        .extract::<i128>()
+        .map_err(|_| refuse())?;
+    u64::try_from(i).map_err(|_| refuse())
+}
+
 /// A scene: the case file's keys (docs/src/reference/case-file.md), read by dem2d's own reader.
 ///
 /// `Case(d)` from a dict (numpy values allowed), `Case.load(path)` from a case file or a run's
@@ -307,7 +331,7 @@ impl Simulation {
     fn new(
         py: Python<'_>,
         case: &Bound<'_, PyAny>,
-        threads: Option<usize>,
+        threads: Option<&Bound<'_, PyAny>>,
         out: Option<PathBuf>,
         overwrite: bool,
         vtk: Option<&Bound<'_, PyAny>>,
@@ -333,8 +357,27 @@ impl Simulation {
         };
         let c = case.get();
         let scene = c.scene();
-        if threads == Some(0) {
-            return Err(input_error(py, "threads: must be at least 1".into()));
+        // Any whole number is read (a negative one is refused by name, not as an OverflowError),
+        // then held to the command line's limit (`dem2d::run::threads`).
+        let threads = threads
+            .map(|v| whole(py, "threads", v))
+            .transpose()?
+            .map(|n| {
+                let n = usize::try_from(n).unwrap_or(usize::MAX);
+                dem2d::run::threads::check_threads(n)
+                    .map(|()| n)
+                    .map_err(|e| input_error(py, format!("threads: {e}")))
+            })
+            .transpose()?;
+        // What the case's reader found worth telling (Δt above the critical step, units, …),
+        // as `dem2d run` prints them: Python's warnings (`UserWarning`), once each.
+        for w in &c.file.warnings {
+            PyErr::warn(
+                py,
+                &py.get_type::<pyo3::exceptions::PyUserWarning>(),
+                &std::ffi::CString::new(format!("dem2d: {w}")).unwrap_or_default(),
+                1,
+            )?;
         }
         // `vtk=True`: the case's `output.vtk_every`, else its `output_every`; a number: the
         // steps between frames; False or None: as the case says (`output.vtk`).
@@ -440,10 +483,12 @@ impl Simulation {
     fn run(
         &self,
         py: Python<'_>,
-        steps: Option<u64>,
+        steps: Option<&Bound<'_, PyAny>>,
         duration: Option<f64>,
         until_rest: Option<bool>,
     ) -> PyResult<String> {
+        // Any whole number is read: `run(-5)` is refused by name (it was an OverflowError).
+        let steps = steps.map(|v| whole(py, "steps", v)).transpose()?;
         let mut guard = self.lock(py)?;
         let inner = &mut *guard;
         if inner.closed {
@@ -465,7 +510,7 @@ impl Simulation {
             ));
         }
         if steps == Some(0) {
-            return Err(input_error(py, "steps: must be at least 1".into()));
+            return Err(input_error(py, "steps: must be at least 1, got 0".into()));
         }
         let world_step = inner.world.step;
         let until_step = match duration {
@@ -1089,6 +1134,7 @@ impl Simulation {
         } = inner;
         let stop = &self.stop;
         let progress = progress.clone();
+        let before = (progress.clone(), world.step);
         let work = move || -> Ran {
             let mut sim = Driver::new(world)
                 .resume(progress)
@@ -1117,7 +1163,29 @@ impl Simulation {
         let mut pending = None;
         let ran = std::thread::scope(|s| {
             s.spawn(move || {
-                let ran = pool.install(work);
+                // A panic is a bug in dem2d: it reaches Python as `dem2d.RunError` naming it,
+                // not as a `PanicException` (the world is left where the panic found it).
+                let ran =
+                    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| pool.install(work)))
+                        .unwrap_or_else(|payload| {
+                            let what = payload
+                                .downcast_ref::<&str>()
+                                .map(|s| s.to_string())
+                                .or_else(|| payload.downcast_ref::<String>().cloned())
+                                .unwrap_or_default();
+                            let (progress, start_step) = before;
+                            let counts = Counts {
+                                quiescent_step: None,
+                                first_contact_step: progress.first_contact_step,
+                                contact_sum: progress.contact_sum,
+                                wall_seconds: 0.0,
+                                start_step,
+                            };
+                            let e = format!(
+                                "internal error (a bug in dem2d, please report it): {what}"
+                            );
+                            (Err(RunFailure::Observer(e.into())), counts, progress)
+                        });
                 let _ = tx.send(ran);
             });
             loop {

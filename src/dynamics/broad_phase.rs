@@ -238,19 +238,34 @@ impl Grid {
             (lo, ((hi - lo) / size).floor() + 1.0)
         };
         // A sparse cell (far larger than its bodies' reach) gets at most a few tiles per body,
-        // each larger than the reach: the same pairs, without a tiling larger than memory.
+        // each larger than the reach: the same pairs, without a tiling larger than memory. The
+        // cap holds for the product, whatever the shape of the tiling: a cell one tile wide
+        // whose bodies span 1e25 cm in y (a body thrown up at 1e30 cm/s) would otherwise split
+        // the excess evenly, keep nx at 1 and ask for 1e16 rows (issue 41, item 6).
         let cap = (4 * n).max(64) as f64;
         let f = (fx * fy / cap).sqrt().max(1.0);
-        let (nx, ny) = (
-            ((fx / f).floor() as i64).max(1),
-            ((fy / f).floor() as i64).max(1),
-        );
+        let whole = |v: f64| {
+            if v.is_finite() {
+                v.clamp(1.0, cap)
+            } else {
+                1.0
+            }
+        };
+        let nx = whole((fx / f).floor());
+        let ny = whole((fy / f).floor()).min((cap / nx).floor()).max(1.0);
+        let (nx, ny) = (nx as i64, ny as i64);
         let (wx, wy) = (
             lx / nx as f64,
             if cell.periodic_y() {
                 ly / ny as f64
             } else {
-                size
+                // Rows cover the bodies' extent (wider than the reach when it is capped), so
+                // two bodies within reach are in the same row or neighbouring rows.
+                if ny as f64 == fy {
+                    size
+                } else {
+                    size.max(fy * size / ny as f64)
+                }
             },
         );
         let cells = (nx * ny) as usize;
@@ -442,5 +457,41 @@ mod tests {
             (1..4).contains(&dense_seen),
             "dense layouts: {dense_seen} of 4"
         );
+    }
+
+    /// Issue 41, item 6: a cell periodic in x, 8 cm wide (one tile across), whose bodies span
+    /// 1e25 cm in y (one thrown up at 1e30 cm/s) or 1e14 cm: the tiling asked for 1e16 rows (a
+    /// hang, 37 TB). The tiles are now at most `4 n` (the cap), the buffers a few kB, and the
+    /// pairs those of all pairs through the nearest image in x, by brute force.
+    #[test]
+    fn a_cell_periodic_in_x_tiles_a_huge_vertical_extent_within_its_cap() {
+        use crate::dynamics::cell::{Cell, Periodic};
+        let cell = Cell::new(Vec2::new(8.0, 10.0), Periodic::X, 0.0, None);
+        for far in [1e14, 1e25, f64::MAX] {
+            let at = [
+                (7.5, 1.0, 0.6),
+                (0.2, 1.0, 0.6),
+                (4.2, 1.0, 0.6),
+                (4.0, 2.1, 0.5),
+                (2.2, far, 0.6),
+                (2.4, far, 0.6),
+            ];
+            let b = bodies(&at);
+            let mut grid = Grid::default();
+            let mut out = Vec::new();
+            grid.pairs_periodic(&b, 0.1, &cell, &mut out);
+            assert!(grid.heap_bytes() < 1 << 16, "{} bytes", grid.heap_bytes());
+            let mut want = Vec::new();
+            for i in 0..at.len() {
+                for j in i + 1..at.len() {
+                    let d = cell.shortest(Vec2::new(at[j].0 - at[i].0, at[j].1 - at[i].1));
+                    let r = at[i].2 + 0.1 + at[j].2;
+                    if d.norm_squared() <= r * r {
+                        want.push((i as u32, j as u32));
+                    }
+                }
+            }
+            assert_eq!(out, want, "bodies up to y = {far:e}");
+        }
     }
 }

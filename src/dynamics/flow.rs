@@ -290,6 +290,30 @@ impl Flow {
         }
     }
 
+    /// The inserters that placed no body although their target at time `t` asked for some:
+    /// (inserter, bodies due). A region behind a wall, or filled by fixed bodies, finds no
+    /// place for any body, and a run would otherwise end with exit 0 and none inserted (issue
+    /// 41).
+    pub fn starved(&self, t: f64) -> Vec<(usize, u64)> {
+        self.inserters
+            .iter()
+            .zip(&self.state)
+            .enumerate()
+            .filter(|(_, (ins, st))| st.inserted == 0 && t >= ins.start)
+            .filter_map(|(k, (ins, _))| {
+                let due = match ins.target {
+                    Target::Rate { rate, count } => {
+                        let n = ((t - ins.start) * rate).floor() as u64;
+                        count.map_or(n, |c| n.min(c))
+                    }
+                    Target::Count(c) => c,
+                    Target::Keep { keep, count } => count.map_or(keep, |c| keep.min(c)),
+                };
+                (due > 0).then_some((k, due))
+            })
+            .collect()
+    }
+
     /// The removals logged since the last call.
     pub fn take_log(&mut self) -> Vec<Discharge> {
         std::mem::take(&mut self.log)

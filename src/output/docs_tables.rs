@@ -30,7 +30,8 @@ pub fn guide_files(root: &Path) -> Result<Vec<PathBuf>, String> {
         let entries = std::fs::read_dir(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
         for entry in entries {
             let path = entry.map_err(|e| format!("{}: {e}", dir.display()))?.path();
-            if path.is_dir() {
+            // (Not `docs/src/figures`, a link to the repository's figures/ for mdBook.)
+            if path.is_dir() && !path.is_symlink() {
                 dirs.push(path);
             } else if path.extension().is_some_and(|e| e == "md") {
                 files.push(path);

@@ -1284,7 +1284,17 @@ fn data_range(vals: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
             10f64.powf((h + 0.01).ceil()),
         )
     } else {
-        let pad = 0.05 * (hi - lo).max(1e-12 * hi.abs().max(1.0));
+        let far = lo.abs().max(hi.abs());
+        // One value (or a spread too small to draw, see `check_range`): a band of ±5 % of its
+        // magnitude about it (±0.05 about 0). A study over one aspect ratio drew such a series
+        // and panicked (issue 41).
+        let pad = if hi - lo > 1e-9 * far {
+            0.05 * (hi - lo).max(1e-12 * hi.abs().max(1.0))
+        } else if far > 0.0 {
+            0.05 * far
+        } else {
+            0.05
+        };
         (lo - pad, hi + pad)
     }
 }

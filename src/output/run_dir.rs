@@ -43,7 +43,6 @@
 //!   created beyond what the initial state and gravity supply, or an overlap deeper than the
 //!   bodies); the report names the step, the body and the reason.
 
-use crate::dynamics::timestep::estimate_critical_dt_of;
 use crate::dynamics::{RestartState, World};
 use crate::output::analysis::AnalysisOutput;
 use crate::output::cell::CellRow;
@@ -489,25 +488,20 @@ impl RunDir {
         prepare_dir(dir, opts.overwrite, opts.input.as_deref())?;
         let case_file = dir.join("case.json");
         write_atomically(dir, "case.json", case_text).map_err(io_at(&case_file))?;
-        let dt_critical = estimate_critical_dt_of(
-            &world.bodies,
-            &world.pairs,
-            &world.walls,
-            case.gravity.norm(),
-        );
+        let dt_critical = case.critical_dt();
+        // The case's own warnings (Δt, units), given by a caller that read the case
+        // (`CaseFile::warnings`) or found here.
         let mut warnings = opts.warnings.clone();
+        for w in case.warnings() {
+            if !warnings.contains(&w) {
+                warnings.push(w);
+            }
+        }
         let outside = case.bodies_outside_cell();
         if outside > 0 && opts.restart.is_none() {
             warnings.push(format!(
                 "{outside} bodies start outside the periodic cell: each is brought into it \
                  through the seams (its image counts start from the crossings)"
-            ));
-        }
-        if case.dt > dt_critical {
-            warnings.push(format!(
-                "dt = {:e} exceeds the critical time step estimated from the stiffest possible contact, {:.3e} \
-                 (damping, rotational inertia and lever arms included): the explicit scheme may oscillate or blow up",
-                case.dt, dt_critical
             ));
         }
         // A continued run's contacts are the run's, not bodies placed overlapping.
@@ -696,6 +690,16 @@ impl RunDir {
                  oscillate or blow up",
                 case.dt
             ));
+        }
+        if let Some(flow) = &world.flow {
+            for (k, due) in flow.starved(world.time) {
+                warnings.push(format!(
+                    "insert[{k}] placed no body of the {due} due by t = {} s: no position in its \
+                     region was clear of the walls and bodies in its `attempts` tries (is the \
+                     region behind a wall, or full?)",
+                    crate::run::time::time_text(world.step, world.dt)
+                ));
+            }
         }
         let status = Status::of(&outcome);
         let (blowup, signal, io_error) = match outcome {

@@ -21,8 +21,10 @@
 //! seam sticks out of it; a contact across a seam is drawn from the receiver's centroid to the
 //! giver's image nearest to it (a new point), not across the cell.
 //!
-//! Cell data (zero where an array does not apply to a kind): `id` (body index, contact ordinal,
-//! wall index), `pair` (a contact's i and j, a wall w given as j = −1 − w), `shape` (0 circle, 1
+//! Cell data (zero where an array does not apply to a kind): `id` (a body's identity — the
+//! `body` of `trajectory.csv`, its index until an outflow removes a body —, a contact's ordinal,
+//! a wall's index), `pair` (a contact's i and j by identity, a wall w given as j = −1 − w),
+//! `shape` (0 circle, 1
 //! ellipse, 2 rectangle, 3 polygon, 4 clump, −1 not a body), `semi_axes` (a, b: an ellipse's semi-axes,
 //! (r, r) for a circle, (w/2, h/2) for a rectangle, for a polygon those of the ellipse with its
 //! second moments of area, whose a lies along the polygon's long axis — the tensor below is
@@ -52,6 +54,7 @@ use crate::dynamics::{Partner, World};
 use crate::geometry::{Shape, Vec2};
 use crate::run::time::{time_text, time_value};
 use crate::run::{End, Observer, ObserverError, Plan, StepInfo};
+use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::io;
 use std::path::{Path, PathBuf};
@@ -67,8 +70,11 @@ pub struct VtkWriter {
     /// Each frame's time (decimal text) and file, relative to the run directory.
     frames: Vec<(String, String)>,
     last_step: Option<u64>,
-    /// Body-frame outline of each body (computed once).
-    outlines: Vec<Vec<(f64, f64)>>,
+    /// Body-frame outline of each body, by its identity ([`crate::dynamics::Bodies::id`]):
+    /// computed once per body, when it is first drawn. Keyed by identity, not by index: an
+    /// outflow removes rows and shifts every later body's index, an insertion appends bodies
+    /// the writer has not seen (issue 41, items 4 and 5).
+    outlines: HashMap<u64, Vec<(f64, f64)>>,
     /// Box that walls are clipped to: every body and wall point seen so far.
     bbox: Option<(f64, f64, f64, f64)>,
     /// Steps between frames, as an observer of a run.
@@ -100,6 +106,24 @@ pub fn existing_outputs(run_dir: &Path) -> Vec<PathBuf> {
     out
 }
 
+/// The body-frame outline of every body now in `world`, by identity: those in `known` kept
+/// (a body's shape never changes), the others computed, the removed bodies' dropped.
+fn outlines_by_id(
+    world: &World,
+    mut known: HashMap<u64, Vec<(f64, f64)>>,
+) -> HashMap<u64, Vec<(f64, f64)>> {
+    let b = &world.bodies;
+    b.id.iter()
+        .zip(&b.shape)
+        .map(|(&id, shape)| {
+            let outline = known
+                .remove(&id)
+                .unwrap_or_else(|| super::outline::body_frame_vertices(shape));
+            (id, outline)
+        })
+        .collect()
+}
+
 fn io_err(file: &Path) -> impl FnOnce(io::Error) -> WriteError + '_ {
     move |error| WriteError {
         file: file.to_path_buf(),
@@ -117,12 +141,7 @@ impl VtkWriter {
             run_dir: run_dir.to_path_buf(),
             frames: Vec::new(),
             last_step: None,
-            outlines: world
-                .bodies
-                .shape
-                .iter()
-                .map(super::outline::body_frame_vertices)
-                .collect(),
+            outlines: outlines_by_id(world, HashMap::new()),
             bbox: None,
             every: every.max(1),
         })
@@ -143,6 +162,7 @@ impl VtkWriter {
         self.last_step = Some(step);
         // The contact normals and depths are not kept by the step.
         world.refresh_contact_extras();
+        self.outlines = outlines_by_id(world, std::mem::take(&mut self.outlines));
         self.grow_bbox(world);
         let name = format!("vtk/frame_{:05}.vtu", self.frames.len());
         let path = self.run_dir.join(&name);
@@ -224,7 +244,7 @@ impl VtkWriter {
             let s = &b.state[k];
             let angle = s.pose.angle();
             let (x, y) = (s.pose.position.x, s.pose.position.y);
-            for p in super::outline::place(&self.outlines[k], x, y, angle) {
+            for p in super::outline::place(&self.outlines[&b.id[k]], x, y, angle) {
                 connectivity.push(push_point(&mut points, p));
             }
             offsets.push(connectivity.len() as i64);
@@ -249,7 +269,7 @@ impl VtkWriter {
             );
             cells.push(Cell {
                 kind: 0,
-                id: k as i64,
+                id: b.id[k] as i64,
                 pair: [-1, -1],
                 shape: kind,
                 semi_axes: [sa, sb],
@@ -297,10 +317,12 @@ impl VtkWriter {
             types.push(VTK_LINE);
             let (nrm, f) = (c.extra.normal, c.data.force);
             let t = Vec2::new(-nrm.y, nrm.x);
+            // The pair by identity, as trajectory.csv names bodies.
+            let j = if j >= 0 { b.id[j as usize] as i64 } else { j };
             cells.push(Cell {
                 kind: 1,
                 id: ordinal as i64,
-                pair: [i, j],
+                pair: [b.id[i as usize] as i64, j],
                 normal_force: f.dot(&nrm),
                 tangential_force: f.dot(&t),
                 force: [f.x, f.y, 0.0],

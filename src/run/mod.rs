@@ -31,6 +31,7 @@ mod observer;
 mod progress;
 pub mod quiescence;
 mod simulation;
+pub mod threads;
 pub mod time;
 pub mod watch;
 

@@ -20,6 +20,15 @@
 //! that, a floor given 300 times launched a body at 200 cm/s with `D = −1.7e5` erg and the watch
 //! never fired (issue 29).
 //!
+//! # The extent criterion
+//! A body farther from the origin than [`MAX_EXTENT_RATIO`] × the smallest width (twice the
+//! smallest inscribed radius) is beyond what a case or a state file may place a body at (the
+//! reader refuses it: positions there no longer resolve the bodies), so the run could write a
+//! state nobody can continue: a
+//! body thrown up at 1e16 cm/s in a cell periodic in x, or pushed by an edited force of 1e300
+//! dyn (issue 41). The positions are scanned every [`EXTENT_EVERY`] steps (an O(n) read: every
+//! step it would cost a visible fraction of a step of free flight).
+//!
 //! # The depth criterion
 //! An overlap deeper than the bodies themselves — more than twice the smaller inscribed radius
 //! of the pair, the smaller body's whole thickness — is no contact any law describes: the step
@@ -33,6 +42,15 @@ use std::fmt;
 /// How many times the energy that could be in motion may be created before the run counts as
 /// blown up.
 pub const ENERGY_GROWTH: f64 = 10.0;
+
+/// Farthest coordinate (|x| or |y|) of a body, in units of the smallest size: the case reader's
+/// limit (`scene::ranges`, which reads this constant; its size of a shape is at most twice the
+/// inscribed radius, which the run's watch takes, so that no state the reader accepts trips the
+/// watch).
+pub const MAX_EXTENT_RATIO: f64 = 1e9;
+
+/// Steps between two scans of the positions for a body beyond [`MAX_EXTENT_RATIO`].
+pub const EXTENT_EVERY: u64 = 64;
 
 /// Deepest overlap accepted during a run, in units of the smaller inscribed radius of the pair.
 pub const DEPTH_LIMIT: f64 = 2.0;
@@ -49,6 +67,12 @@ pub enum Trigger {
     /// A periodic side following a stress shrank to the least the model allows
     /// ([`World::cell_below_limit`]): `side` 0 for x, 1 for y.
     CellLimit { side: usize, size: f64, least: f64 },
+    /// A body beyond the resolvable extent: its coordinate and the limit (cm).
+    Escaped {
+        body: usize,
+        coordinate: f64,
+        limit: f64,
+    },
 }
 
 /// The cell's limit, checked after every step whether or not the watch is on: beyond it the
@@ -143,8 +167,34 @@ impl BlowupWatch {
         if ratio > self.depth_limit || ratio.is_nan() {
             return Some(Trigger::Depth { ratio });
         }
+        if world.step.is_multiple_of(EXTENT_EVERY) {
+            return escaped(world);
+        }
         None
     }
+}
+
+/// The body farthest beyond [`MAX_EXTENT_RATIO`] × the smallest width (twice the smallest
+/// inscribed radius), if any.
+pub fn escaped(world: &World) -> Option<Trigger> {
+    let b = &world.bodies;
+    let smallest = b
+        .shape
+        .iter()
+        .map(|s| s.inscribed_radius())
+        .fold(f64::INFINITY, f64::min);
+    let limit = MAX_EXTENT_RATIO * 2.0 * smallest;
+    let (body, coordinate) = b
+        .state
+        .iter()
+        .map(|s| s.pose.position.x.abs().max(s.pose.position.y.abs()))
+        .enumerate()
+        .max_by(|a, c| a.1.total_cmp(&c.1))?;
+    (coordinate > limit).then_some(Trigger::Escaped {
+        body,
+        coordinate,
+        limit,
+    })
 }
 
 /// The body with the largest kinetic energy (a non-finite one first).
@@ -267,6 +317,19 @@ impl BlowupReport {
                      {available:.3e} erg that the initial state and gravity can supply (the step \
                      is unstable: is dt above the critical step, or a stiffness far above what dt \
                      can follow?)"
+                ),
+            ),
+            Trigger::Escaped {
+                body,
+                coordinate,
+                limit,
+            } => (
+                body,
+                format!(
+                    "it is {coordinate:.3e} cm from the origin, beyond {MAX_EXTENT_RATIO:e} × the \
+                     smallest body's width ({limit:.3e} cm), the farthest a case or a state \
+                     file may place a body: positions there no longer resolve the bodies (a \
+                     velocity or a force far beyond what the scene can give?)"
                 ),
             ),
             Trigger::Depth { ratio } => {

@@ -36,13 +36,18 @@ use crate::dynamics::{BodyInit, Boundary, Flow, Materials, Motion, Servo, Span};
 use crate::geometry::Vec2;
 use serde_json::{Map, Value};
 
+/// The densest material, in g/cm³ (osmium, 22.6, rounded up): a denser body is most likely given
+/// in kg/m³ ([`Case::warnings`]).
+pub const DENSEST_MATERIAL: f64 = 30.0;
+
 /// A scene as a case file describes it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Case {
     pub name: String,
     pub description: String,
-    /// The length unit, for the plots' labels only (`"cm"` in every shipped case: dem2d works in
-    /// cgs; default empty).
+    /// The length unit, for the plots' labels only: `"cm"` or empty (absent). dem2d works in
+    /// cgs; any other unit is refused, since nothing would convert it (issue 41: `"m"` was
+    /// accepted and ignored).
     pub units: String,
     pub gravity: Vec2,
     pub dt: f64,
@@ -125,6 +130,16 @@ impl Case {
         let name = o.req_with("name", string)?;
         let description = o.opt_with("description", string)?.unwrap_or_default();
         let units = o.opt_with("units", string)?.unwrap_or_default();
+        if !units.is_empty() && units != "cm" {
+            return Err(FieldError::new(
+                "units",
+                format!(
+                    "dem2d works in cgs (lengths in cm, masses in g, times in s) and converts \
+                     nothing: `units` may only be \"cm\" (or left out), got {units:?}; give every \
+                     length in cm, densities in g/cm³ and gravity in cm/s² ([0, -980])"
+                ),
+            ));
+        }
         let gravity = Vec2::from(o.req_with("gravity", vec2)?);
         let dt = o.req_with("dt", scale)?;
         let duration = o.req_with("duration", scale)?;
@@ -272,6 +287,9 @@ impl Case {
         };
         let (insert, outflow) = (o.get("insert"), o.get("outflow"));
         let flow = super::flow::parse_flow(insert, outflow, &named, &bodies)?;
+        if let Some(f) = &flow {
+            super::flow::check_regions_clear_of_walls(f, &walls)?;
+        }
         let local_damping = match o.get("damping") {
             None => 0.0,
             Some(v) => parse_damping(v)?,
@@ -475,6 +493,99 @@ impl Case {
     pub fn quiescence_criterion(&self) -> Option<crate::run::Quiescence> {
         self.quiescence
             .map(|q| crate::run::Quiescence::new(q, self.quiescence_window))
+    }
+
+    /// The a-priori critical time step of the scene ([`estimate_critical_dt_of`]): of the
+    /// case's bodies and of the bodies its inserters can make (each inserter's smallest and
+    /// largest size at its smallest and largest aspect ratio: [`super::flow::extremes`]), so
+    /// that a scene filled by insertion gets an estimate (it was `inf`, and the Δt warning never
+    /// came: issue 41).
+    ///
+    /// [`estimate_critical_dt_of`]: crate::dynamics::timestep::estimate_critical_dt_of
+    pub fn critical_dt(&self) -> f64 {
+        use crate::dynamics::body::Bodies;
+        use crate::dynamics::materials::PairTable;
+        let extra = self
+            .flow
+            .as_ref()
+            .map(super::flow::extremes)
+            .unwrap_or_default();
+        let inits: Vec<BodyInit> = self.bodies.iter().chain(&extra).copied().collect();
+        let pairs = PairTable::new(&self.contact, &self.materials, &self.walls);
+        crate::dynamics::timestep::estimate_critical_dt_of(
+            &Bodies::new(&inits),
+            &pairs,
+            &self.walls,
+            self.gravity.norm(),
+        )
+    }
+
+    /// What is worth telling about the case before it runs (every command that runs it prints
+    /// these, and `summary.json` lists them; the Python module's `Case.warnings`):
+    /// - `dt` above the a-priori critical step ([`Case::critical_dt`]);
+    /// - gravity of Earth's magnitude in m/s² (|g| in 9–11: dem2d is cgs, where it is 980
+    ///   cm/s²), or a body denser than any material (above [`DENSEST_MATERIAL`] g/cm³: a density
+    ///   in kg/m³?), each naming the largest size too (in cm). A size alone cannot tell SI from
+    ///   cgs (0.005 is a 50 µm powder grain in cm): it is named beside these.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        let dt_critical = self.critical_dt();
+        if self.dt > dt_critical {
+            out.push(format!(
+                "dt = {:e} exceeds the critical time step estimated from the stiffest possible contact, {:.3e} \
+                 (damping, rotational inertia and lever arms included): the explicit scheme may oscillate or blow up",
+                self.dt, dt_critical
+            ));
+        }
+        let extra = self
+            .flow
+            .as_ref()
+            .map(super::flow::extremes)
+            .unwrap_or_default();
+        let all: Vec<(String, &BodyInit)> = self
+            .bodies
+            .iter()
+            .enumerate()
+            .map(|(k, b)| (index("bodies", k), b))
+            .chain(
+                extra
+                    .iter()
+                    .enumerate()
+                    .map(|(k, b)| (index("insert", k / 4), b)),
+            )
+            .collect();
+        let largest = all
+            .iter()
+            .map(|(_, b)| b.shape.bounding_radius())
+            .fold(0.0, f64::max);
+        // (Three significant digits, written plainly: 1.5, 0.424, 2e-5.)
+        let largest: f64 = format!("{largest:.2e}").parse().unwrap_or(largest);
+        let sizes = format!(
+            "sizes and positions are read in cm too (the largest body here reaches {largest} cm \
+             from its centre)"
+        );
+        let g = self.gravity.norm();
+        if (9.0..=11.0).contains(&g) {
+            out.push(format!(
+                "gravity of magnitude {g} cm/s² is Earth's in m/s²: dem2d works in cgs, where \
+                 it is about 980 cm/s² (\"gravity\": [0, -980]); {sizes}"
+            ));
+        }
+        if let Some((at, b)) = all
+            .iter()
+            .filter(|(_, b)| b.density > DENSEST_MATERIAL)
+            .max_by(|x, y| x.1.density.total_cmp(&y.1.density))
+        {
+            out.push(format!(
+                "{at} has a density of {} g/cm³, denser than any material (osmium: 22.6 \
+                 g/cm³): a density in kg/m³? dem2d works in cgs, where {} kg/m³ is {} g/cm³; \
+                 {sizes}",
+                b.density,
+                b.density,
+                b.density / 1000.0
+            ));
+        }
+        out
     }
 
     /// Number of steps the duration takes (rounded to the nearest step).

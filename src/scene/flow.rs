@@ -341,3 +341,75 @@ pub fn templates(flow: &Flow) -> Vec<BodyInit> {
         })
         .collect()
 }
+
+/// Bodies of each inserter's extreme sizes and shapes: the smallest and the largest size, each
+/// at the smallest and the largest aspect ratio (the lightest body and the longest lever
+/// bound the critical time step; see [`super::Case::critical_dt`]). Their positions are the
+/// region's centre (only their shapes and masses are read).
+pub fn extremes(flow: &Flow) -> Vec<BodyInit> {
+    flow.inserters
+        .iter()
+        .flat_map(|i| {
+            let (r0, r1) = i.size.range();
+            let (a0, a1) = i.aspect.range();
+            [(r0, a0), (r0, a1), (r1, a0), (r1, a1)].map(|(r, a)| BodyInit {
+                shape: i.shape.make(r, a),
+                position: Vec2::new(
+                    0.5 * (i.region.x0 + i.region.x1),
+                    0.5 * (i.region.y0 + i.region.y1),
+                ),
+                angle: 0.0,
+                velocity: i.velocity,
+                omega: i.omega,
+                density: i.density,
+                material: i.material,
+                prescribed: false,
+            })
+        })
+        .collect()
+}
+
+/// Refuses an insertion region in which no body can be placed because a fixed half-plane wall
+/// covers it: every position an inserter may draw (the region less its smallest body's
+/// bounding radius on each side) is on the wall's solid side or within that radius of it, so
+/// the inserter (which places a body only clear of every wall) would place none, and the run
+/// end with exit 0 and an empty scene (issue 41). The signed distance is linear, so its
+/// largest value over the rectangle of positions is at a corner.
+pub fn check_regions_clear_of_walls(
+    flow: &Flow,
+    walls: &[crate::dynamics::Boundary],
+) -> Result<(), FieldError> {
+    use crate::dynamics::Motion;
+    for (k, ins) in flow.inserters.iter().enumerate() {
+        let b = ins.smallest_bound();
+        let r = &ins.region;
+        let corners = [
+            Vec2::new(r.x0 + b, r.y0 + b),
+            Vec2::new(r.x1 - b, r.y0 + b),
+            Vec2::new(r.x0 + b, r.y1 - b),
+            Vec2::new(r.x1 - b, r.y1 - b),
+        ];
+        for (w, wall) in walls.iter().enumerate() {
+            if wall.segment().is_some() || !matches!(wall.motion, Motion::Fixed) {
+                continue;
+            }
+            let clearest = corners
+                .iter()
+                .map(|&c| wall.signed_distance(c))
+                .fold(f64::NEG_INFINITY, f64::max);
+            if clearest <= b {
+                return Err(FieldError::new(
+                    join(&index("insert", k), "region"),
+                    format!(
+                        "[{}, {}, {}, {}] lies behind walls[{w}] (on its solid side, or closer \
+                         to it than its smallest body's bounding radius, {b}): no body can be \
+                         placed there; move the region to the wall's free side (the side its \
+                         normal points to)",
+                        r.x0, r.x1, r.y0, r.y1
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}

@@ -33,7 +33,7 @@ pub const MIN_SCALE: f64 = 1e-40;
 /// Largest ratio of the largest to the smallest size in a scene (or a pair).
 pub const MAX_SIZE_RATIO: f64 = 1e6;
 /// Largest coordinate, in units of the smallest size.
-pub const MAX_EXTENT_RATIO: f64 = 1e9;
+pub const MAX_EXTENT_RATIO: f64 = crate::run::watch::MAX_EXTENT_RATIO;
 /// Ceiling on the number of steps of a run.
 pub const MAX_STEPS: u64 = 10_000_000_000;
 /// Largest input file (a case of a million bodies is about 200 MB).

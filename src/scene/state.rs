@@ -47,7 +47,7 @@ impl CaseFile {
     pub fn from_json(text: &str) -> Result<CaseFile, FieldError> {
         let value = parse_json(text, "")?;
         let mut case = Case::from_value(&value)?;
-        let mut warnings = Vec::new();
+        let mut warnings = case.warnings();
         let (restart, run) = match value.get("state") {
             None => (None, None),
             Some(s) => {
@@ -193,6 +193,8 @@ fn check_account(
             Some(Trigger::CellLimit { side, size, least }) => {
                 format!("a cell side ({side}) of {size:e} cm, below its least {least:e} cm")
             }
+            // The positions are the reader's own range check.
+            Some(Trigger::Escaped { .. }) => return check_closure(e, run),
         };
         return Err(FieldError::new(
             "state.energies",

@@ -133,3 +133,64 @@ impl Rng {
         (self.0 >> 11) as f64 / (1u64 << 53) as f64
     }
 }
+
+/// The arrays of a `.vtu` frame as dem2d writes it (inline base64, a UInt64 byte count first),
+/// decoded here without VTK: name → raw little-endian bytes.
+pub fn vtu_arrays(text: &str) -> std::collections::HashMap<String, Vec<u8>> {
+    fn decode(s: &str) -> Vec<u8> {
+        let val = |c: u8| match c {
+            b'A'..=b'Z' => c - b'A',
+            b'a'..=b'z' => c - b'a' + 26,
+            b'0'..=b'9' => c - b'0' + 52,
+            b'+' => 62,
+            b'/' => 63,
+            _ => panic!("not base64: {c}"),
+        };
+        let s: Vec<u8> = s.bytes().filter(|c| !c.is_ascii_whitespace()).collect();
+        let mut out = Vec::new();
+        for q in s.chunks(4) {
+            let pad = q.iter().filter(|&&c| c == b'=').count();
+            let v = q
+                .iter()
+                .map(|&c| if c == b'=' { 0 } else { u32::from(val(c)) })
+                .fold(0u32, |acc, x| (acc << 6) | x);
+            out.extend(&[(v >> 16) as u8, (v >> 8) as u8, v as u8][..3 - pad]);
+        }
+        out
+    }
+    let mut arrays = std::collections::HashMap::new();
+    for part in text.split("<DataArray ").skip(1) {
+        let name = part
+            .split("Name=\"")
+            .nth(1)
+            .unwrap()
+            .split('"')
+            .next()
+            .unwrap();
+        let body = part.split('>').nth(1).unwrap().split('<').next().unwrap();
+        let raw = decode(body);
+        let n = u64::from_le_bytes(raw[..8].try_into().unwrap()) as usize;
+        assert_eq!(raw.len(), 8 + n, "{name}: byte count");
+        arrays.insert(name.to_string(), raw[8..].to_vec());
+    }
+    arrays
+}
+
+pub fn f64s(b: &[u8]) -> Vec<f64> {
+    b.chunks(8)
+        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+        .collect()
+}
+
+pub fn i64s(b: &[u8]) -> Vec<i64> {
+    b.chunks(8)
+        .map(|c| i64::from_le_bytes(c.try_into().unwrap()))
+        .collect()
+}
+
+/// Little-endian `Int32`s.
+pub fn i32s(b: &[u8]) -> Vec<i32> {
+    b.chunks(4)
+        .map(|c| i32::from_le_bytes(c.try_into().unwrap()))
+        .collect()
+}

@@ -38,9 +38,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Run one of the studies behind the user guide's tables (rolling-fig3, repose, biaxial,
-    /// impacts, biaxial-shape, packing, representation) and print its Markdown table; run from
-    /// the repository (the studies read `cases/`).
+    // The first line (`dem2d --help`) names every study, from the list itself.
+    #[command(about = study::about(), long_about = study::about())]
     Study {
         /// Which study.
         #[arg(value_enum)]
@@ -75,6 +74,10 @@ enum Command {
         /// and the repository's instead of writing them; fail if they differ.
         #[arg(long)]
         check: bool,
+        /// Where the figures and the table file go (default runs/study/NAME); with --docs or
+        /// --check they go into figures/, the user guide's.
+        #[arg(long, conflicts_with_all = ["docs", "check"])]
+        out: Option<PathBuf>,
     },
     /// Contact geometry of pairs of bodies: reads a JSON array of {"i": BODY, "j": BODY} from FILE
     /// (or standard input for `-`) and prints one JSON result per pair.
@@ -449,13 +452,17 @@ fn run_contact(file: &str) -> Result<(), Failure> {
 }
 
 /// Sizes the global thread pool (`None`: rayon's default, one thread per core).
+/// (At most [`dem2d::run::threads::max_threads`]: more is refused, exit 2, naming `--threads`.)
 fn set_threads(threads: Option<usize>) -> Result<(), Failure> {
+    if let Some(n) = threads {
+        dem2d::run::threads::check_threads(n)
+            .map_err(|e| Failure::input(format!("--threads: {e}")))?;
+    }
     match threads {
         None => rayon::ThreadPoolBuilder::new()
             .use_current_thread()
             .build_global()
             .map_err(|e| Failure::failed(format!("thread pool: {e}"))),
-        Some(0) => Err(Failure::input("--threads: must be at least 1".into())),
         // The main thread is one of the pool's threads: the step's passes then start on it
         // without handing each pass to another thread and waiting (on one thread: no rayon
         // hand-off at all, the passes run in place).
@@ -878,6 +885,7 @@ fn main() -> ExitCode {
             threads,
             docs,
             check,
+            out,
         } => set_threads(*threads).and_then(|()| {
             study::run(
                 *name,
@@ -887,6 +895,7 @@ fn main() -> ExitCode {
                     packings: *packings,
                     aspects: aspects.clone(),
                     inertial: inertial.clone(),
+                    out: out.clone(),
                 },
                 docs_mode(*docs, *check),
             )

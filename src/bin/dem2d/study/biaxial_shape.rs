@@ -442,12 +442,13 @@ pub fn run(grains: usize, write: bool) -> Result<String, RunError> {
             ..Default::default()
         },
     ];
-    super::write_figure("biaxial_shape", (1200, 480), (1, 2), &panels);
-    std::fs::write("figures/biaxial_shape.md", &md).expect("figures/biaxial_shape.md");
+    super::write_figure("biaxial_shape", (1200, 480), (1, 2), &panels)?;
+    super::write_text("biaxial_shape.md", &md)?;
     let chains = force_chains(&[&results[0], &results[results.len() - 1]]);
-    std::fs::write("figures/force_chains.svg", &chains).expect("figures/force_chains.svg");
-    let png = plot::png_of_svg(&chains, 1.0).expect("force chains PNG");
-    std::fs::write("target/figure-png/force_chains.png", png).expect("force_chains.png");
+    super::write_text("force_chains.svg", &chains)?;
+    let png = plot::png_of_svg(&chains, 1.0)
+        .map_err(|e| dem2d::run::RunError::Observer(format!("force_chains.png: {e}").into()))?;
+    super::write_png("force_chains.png", &png)?;
     print!("{md}");
     Ok(md)
 }

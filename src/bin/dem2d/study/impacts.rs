@@ -156,7 +156,7 @@ pub fn run() -> Result<String, RunError> {
             ..Default::default()
         })
         .collect();
-    super::write_figure("impacts", (1500, 480), (1, 3), &panels);
+    super::write_figure("impacts", (1500, 480), (1, 3), &panels)?;
     let mut md = table(&rows);
     writeln!(
         md,
@@ -170,7 +170,7 @@ pub fn run() -> Result<String, RunError> {
         angles.len(),
     )
     .expect("string");
-    std::fs::write("figures/impacts.md", &md).expect("figures/impacts.md");
+    super::write_text("impacts.md", &md)?;
     print!("{md}");
     // The machine's share stays out of the tracked table.
     eprintln!(

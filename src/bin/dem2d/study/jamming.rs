@@ -397,7 +397,7 @@ pub fn run(n: usize, packings: usize, aspects: &[f64]) -> Result<String, dem2d::
             [(4.0, "isostatic disks: 4"), (6.0, "isostatic ellipses: 6")],
         ),
     ];
-    super::write_figure("jamming", (1200, 480), (1, 2), &panels);
-    std::fs::write("figures/jamming.md", &md).expect("figures/jamming.md");
+    super::write_figure("jamming", (1200, 480), (1, 2), &panels)?;
+    super::write_text("jamming.md", &md)?;
     Ok(md)
 }

@@ -16,7 +16,8 @@ pub mod silo;
 use dem2d::geometry::Shape;
 use dem2d::output::docs_tables::Mode;
 use dem2d::output::plot::{self, LinePanel};
-use std::path::Path;
+use dem2d::run::RunError;
+use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU8, Ordering};
 
@@ -59,7 +60,28 @@ pub enum Study {
     Shear,
 }
 
+/// The `dem2d study` command's description, naming every study of [`Study`] (so that the list
+/// in `dem2d --help` cannot fall behind the studies: it named 7 of 10, issue 41).
+pub fn about() -> String {
+    use clap::ValueEnum;
+    let names: Vec<String> = Study::value_variants()
+        .iter()
+        .filter_map(|s| s.to_possible_value())
+        .map(|v| v.get_name().to_string())
+        .collect();
+    format!(
+        "Run one of the studies behind the user guide's tables ({}) and print its Markdown \
+         table; run from the repository (the studies read `cases/`)",
+        names.join(", ")
+    )
+}
+
 impl Study {
+    /// Whether the study draws figures or writes a table file (see [`OUT`]).
+    pub fn writes_figures(self) -> bool {
+        !matches!(self, Study::RollingFig3 | Study::Repose | Study::Biaxial)
+    }
+
     /// The name of the study's marked table in the user guide (`--docs`).
     pub fn table_name(self) -> &'static str {
         match self {
@@ -136,16 +158,57 @@ impl Table {
     }
 }
 
+/// Where a study writes its figures and its table file: `figures/` with `--docs` or `--check`
+/// (the tracked files the user guide shows, which CI compares with git), else the `--out`
+/// directory (default `runs/study/NAME`), so that a study of a subset never replaces the
+/// tracked figures (issue 41); and where their PNGs go (`target/figure-png/` beside the tracked
+/// figures, else the same directory).
+static OUT: Mutex<Option<(PathBuf, PathBuf)>> = Mutex::new(None);
+
+/// The study's output directories (see [`OUT`]): (figures and tables, PNGs).
+fn out_dirs() -> (PathBuf, PathBuf) {
+    OUT.lock()
+        .expect("not poisoned")
+        .clone()
+        .unwrap_or_else(|| (PathBuf::from("figures"), PathBuf::from("target/figure-png")))
+}
+
+/// An error writing a study's file, as the run error the studies return.
+fn write_error(path: &Path, e: impl std::fmt::Display) -> RunError {
+    RunError::Observer(format!("{}: cannot write: {e}", path.display()).into())
+}
+
+/// Writes a study's text file `name` (its table, `NAME.md`; an SVG) into its output directory.
+pub fn write_text(name: &str, text: &str) -> Result<(), RunError> {
+    let path = out_dirs().0.join(name);
+    std::fs::write(&path, text).map_err(|e| write_error(&path, e))
+}
+
+/// Writes a study's PNG `name` beside its figures (see [`OUT`]).
+pub fn write_png(name: &str, png: &[u8]) -> Result<(), RunError> {
+    let dir = out_dirs().1;
+    std::fs::create_dir_all(&dir).map_err(|e| write_error(&dir, e))?;
+    let path = dir.join(name);
+    std::fs::write(&path, png).map_err(|e| write_error(&path, e))
+}
+
 /// Draws a study's figure `panels` (`size` in pixels, a `grid` of rows × columns) into
-/// `figures/NAME.svg`, and as a PNG into `target/figure-png/NAME.png` (to look at).
-pub fn write_figure(name: &str, size: (u32, u32), grid: (usize, usize), panels: &[LinePanel]) {
-    std::fs::create_dir_all("target/figure-png").expect("target/figure-png");
+/// `NAME.svg` in its output directory, and as a PNG `NAME.png` (to look at; see [`OUT`]).
+pub fn write_figure(
+    name: &str,
+    size: (u32, u32),
+    grid: (usize, usize),
+    panels: &[LinePanel],
+) -> Result<(), RunError> {
+    let (dir, png) = out_dirs();
+    std::fs::create_dir_all(&png).map_err(|e| write_error(&png, e))?;
     for path in [
-        format!("figures/{name}.svg"),
-        format!("target/figure-png/{name}.png"),
+        dir.join(format!("{name}.svg")),
+        png.join(format!("{name}.png")),
     ] {
-        plot::line_panels(Path::new(&path), size, grid, panels).expect(&path);
+        plot::line_panels(&path, size, grid, panels).map_err(|e| write_error(&path, e))?;
     }
+    Ok(())
 }
 
 /// What the studies do with the case files they can write (`--write-cases`): 0 nothing, 1 write
@@ -186,6 +249,8 @@ pub struct Options {
     pub aspects: Option<Vec<f64>>,
     /// The inertial numbers.
     pub inertial: Option<Vec<f64>>,
+    /// Where the figures and the table file go without `--docs` (default `runs/study/NAME`).
+    pub out: Option<PathBuf>,
 }
 
 /// Runs `study` with `options`. With `docs`, the study's table goes into its marked region of
@@ -208,6 +273,21 @@ pub fn run(study: Study, options: &Options, docs: Option<Mode>) -> Result<(), cr
         Ordering::Relaxed,
     );
     let write = write_cases;
+    // The tracked figures with --docs or --check; else a directory of the run's own.
+    let own = match docs {
+        Some(_) => None,
+        None => {
+            let dir = options
+                .out
+                .clone()
+                .unwrap_or_else(|| Path::new("runs/study").join(study.table_name()));
+            std::fs::create_dir_all(&dir).map_err(|e| {
+                crate::Failure::failed(format!("{}: cannot create: {e}", dir.display()))
+            })?;
+            Some(dir)
+        }
+    };
+    *OUT.lock().expect("not poisoned") = own.clone().map(|d| (d.clone(), d));
     let md = match study {
         Study::RollingFig3 => rolling_fig3::run(),
         Study::Repose => repose::run(write),
@@ -232,6 +312,14 @@ pub fn run(study: Study, options: &Options, docs: Option<Mode>) -> Result<(), cr
     .map_err(|e| crate::Failure::failed(format!("dem2d study: {e}")))?;
     if let Some(mode) = docs {
         crate::refresh_docs(study.table_name(), &md, mode)?;
+    }
+    if let Some(dir) = own
+        && study.writes_figures()
+    {
+        eprintln!(
+            "dem2d study: its figures and table are in {} (figures/ is written only with --docs)",
+            dir.display()
+        );
     }
     let stale = std::mem::take(&mut *STALE_CASES.lock().expect("not poisoned"));
     if !stale.is_empty() {

@@ -290,7 +290,7 @@ pub fn run(n: usize, write: bool) -> Result<String, RunError> {
             ..Default::default()
         },
     ];
-    super::write_figure("packing", (1200, 480), (1, 2), &panels);
-    std::fs::write("figures/packing.md", &md).expect("figures/packing.md");
+    super::write_figure("packing", (1200, 480), (1, 2), &panels)?;
+    super::write_text("packing.md", &md)?;
     Ok(md)
 }

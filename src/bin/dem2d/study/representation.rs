@@ -656,8 +656,8 @@ pub fn run(grains: usize) -> Result<String, RunError> {
         drop_panel("mu05", "P Fig. 2 drop, floor μ = 0.5"),
         pile_panel,
     ];
-    super::write_figure("representation_pareto", (1500, 620), (1, 3), &panels);
-    std::fs::write("figures/representation.md", &md).expect("figures/representation.md");
+    super::write_figure("representation_pareto", (1500, 620), (1, 3), &panels)?;
+    super::write_text("representation.md", &md)?;
     print!("{md}");
     Ok(md)
 }

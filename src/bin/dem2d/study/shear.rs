@@ -296,7 +296,7 @@ pub fn run(n: usize, aspects: &[f64], targets: Option<&[f64]>) -> Result<String,
             ..Default::default()
         },
     ];
-    super::write_figure("shear", (1200, 480), (1, 2), &panels);
-    std::fs::write("figures/shear.md", &md).expect("figures/shear.md");
+    super::write_figure("shear", (1200, 480), (1, 2), &panels)?;
+    super::write_text("shear.md", &md)?;
     Ok(md)
 }

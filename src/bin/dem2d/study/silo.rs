@@ -789,8 +789,8 @@ pub fn run() -> Result<String, RunError> {
         legend: plot::Legend::LowerRight,
         ..Default::default()
     });
-    super::write_figure("silo", (2000, 480), (1, 4), &panels);
-    std::fs::write("figures/silo.md", &md).expect("figures/silo.md");
+    super::write_figure("silo", (2000, 480), (1, 4), &panels)?;
+    super::write_text("silo.md", &md)?;
     print!("{md}");
     Ok(md)
 }
