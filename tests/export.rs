@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 mod common;
-use common::{dem2d, scratch};
+use common::{MIXED_SCENE as MIX, dem2d, scratch, sheared_cell};
 
 /// The dump's columns, fixed by the issue that asked for it (LAMMPS's names).
 const COLUMNS: &str = "id type x y z vx vy omegaz shapex shapey shapez quatw quati quatj quatk \
@@ -214,26 +214,6 @@ fn check_atom(atom: &[f64], t: &[f64; 7], (a, b, code): (f64, f64, u64), materia
     assert_eq!(atom[17], material as f64);
 }
 
-/// Ellipses, disks, a rectangle and a polygon on a floor between two walls, moving and
-/// turning, in contact by the end.
-const MIX: &str = r#"{ "version": 1, "name": "dump_mix", "units": "cm",
-  "gravity": [0, -980], "dt": 1e-5, "duration": 0.1, "output_every": 1000,
-  "contact": { "model": "linear", "kn_over_rho_g": 36400, "restitution": 0.5, "friction": 0.5 },
-  "walls": [ { "point": [0, 0], "normal": [0, 1] }, { "point": [0, 0], "normal": [1, 0] },
-             { "point": [30, 0], "normal": [-1, 0] } ],
-  "bodies": [
-    { "shape": {"type": "circle", "r": 1}, "position": [2, 1.05], "velocity": [-5, 0], "omega": 3 },
-    { "shape": {"type": "ellipse", "a": 3, "b": 1}, "position": [7, 2.0], "angle": 0.4, "omega": 2 },
-    { "shape": {"type": "polygon", "vertices": [[0,0],[2,0],[2.5,1.5],[1,2.5],[-0.5,1.2]]},
-      "position": [12, 1.6], "angle": 0.3 },
-    { "shape": {"type": "ellipse", "a": 1.5, "b": 0.8}, "position": [16, 1.2], "angle": 2.5,
-      "omega": -40 },
-    { "shape": {"type": "rectangle", "w": 2, "h": 1}, "position": [12, 5], "angle": -1 },
-    { "shape": {"type": "ellipse", "a": 2, "b": 0.4}, "position": [20, 3.5], "angle": -0.7,
-      "omega": 100 },
-    { "shape": {"type": "circle", "r": 0.8}, "position": [26, 3], "velocity": [30, 0] }
-  ] }"#;
-
 fn run(case_text: &str, dir: &Path, name: &str, extra: &[&str]) -> std::path::PathBuf {
     let case = dir.join(format!("{name}.json"));
     std::fs::write(&case, case_text).unwrap();
@@ -394,31 +374,7 @@ fn identities_and_shapes_stay_with_their_bodies_across_insertion_and_outflow() {
 #[test]
 fn a_periodic_cell_is_the_dump_box_with_the_lees_edwards_tilt() {
     let dir = scratch("cell");
-    let bodies: Vec<String> = (0..12)
-        .map(|k| {
-            let (i, j) = (k % 4, k / 4);
-            let shape = if k % 2 == 0 {
-                r#"{"type": "circle", "r": 0.5}"#
-            } else {
-                r#"{"type": "ellipse", "a": 0.7, "b": 0.4}"#
-            };
-            format!(
-                r#"{{"shape": {shape}, "position": [{}, {}], "angle": {}, "velocity": [{}, 0]}}"#,
-                2.0 * i as f64 + 1.0,
-                2.0 * j as f64 + 1.0,
-                0.3 * k as f64,
-                2.0 * j as f64 - 2.0
-            )
-        })
-        .collect();
-    let case = format!(
-        r#"{{"version": 1, "name": "dump_cell", "gravity": [0, 0], "dt": 5e-5, "duration": 0.5,
-        "output_every": 1000,
-        "cell": {{"size": [8, 6], "periodic": "xy", "shear_rate": 3}},
-        "contact": {{"model": "linear", "kn": 1e6, "restitution": 0.5, "friction": 0.4}},
-        "bodies": [{}]}}"#,
-        bodies.join(", ")
-    );
+    let case = sheared_cell();
     let out = run(&case, &dir, "le", &["--dump"]);
     let dumped = std::fs::read_to_string(out.join("dump.lammpstrj")).unwrap();
     let exported = dir.join("exported.lammpstrj");
