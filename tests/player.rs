@@ -551,3 +551,74 @@ fn chromium_opens_the_player_without_errors_and_draws_the_bodies_where_they_are(
     let n = check_frame(&chrome, &dir, &flow, frames - 1, &|id| shapes[&id]);
     assert!(n == present && n >= 8, "{n} of {present} bodies checked");
 }
+
+/// `--out FILE.gif` / `.mp4` go through ffmpeg: without it the command says so (exit 2) and
+/// writes nothing; with it (where installed: CI does not install it) the movie has one picture
+/// per frame at the width asked, as ffprobe counts them.
+#[test]
+fn movies_go_through_ffmpeg_or_say_that_it_is_missing() {
+    let dir = scratch("movie");
+    let mix = run(&dir, "mix", MIXED_SCENE, &[]);
+    let gif = dir.join("m.gif");
+    let empty = dir.join("no-programs");
+    std::fs::create_dir_all(&empty).unwrap();
+    let out = Command::new(common::bin())
+        .args([
+            "animate",
+            mix.to_str().unwrap(),
+            "--out",
+            gif.to_str().unwrap(),
+        ])
+        .env("PATH", &empty)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("ffmpeg not found") && err.contains("apt-get install ffmpeg"),
+        "{err}"
+    );
+    assert!(!gif.exists());
+    let has = |p: &str| {
+        Command::new(p)
+            .arg("-version")
+            .output()
+            .is_ok_and(|o| o.status.success())
+    };
+    if !(has("ffmpeg") && has("ffprobe")) {
+        eprintln!(
+            "SKIPPED the movie check: no ffmpeg and ffprobe (Debian: apt-get install ffmpeg)"
+        );
+        return;
+    }
+    for (name, width) in [("m.gif", 500), ("m.mp4", 640)] {
+        let file = dir.join(name);
+        let w = width.to_string();
+        let (code, _, err) = dem2d(&[
+            "animate",
+            mix.to_str().unwrap(),
+            "--out",
+            file.to_str().unwrap(),
+            "--width",
+            &w,
+            "--color",
+            "spin",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let probe = Command::new("ffprobe")
+            .args([
+                "-v",
+                "error",
+                "-count_frames",
+                "-show_entries",
+                "stream=nb_read_frames,width",
+                "-of",
+                "csv=p=0",
+            ])
+            .arg(&file)
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&probe.stdout);
+        assert_eq!(text.trim(), format!("{width},11"), "{name}");
+    }
+}

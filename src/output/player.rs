@@ -413,21 +413,19 @@ pub fn write_movie(
             .arg(fps.to_string())
             .arg("-i")
             .arg(&pattern);
+        // The frames are drawn at twice their width (as `dem2d plot` writes PNG): scaled down
+        // to `width`.
         match kind {
             // H.264 wants even sizes and 4:2:0 colour for players to open it.
-            Movie::Mp4 => cmd.args([
-                "-vf",
-                "scale=trunc(iw/2)*2:trunc(ih/2)*2",
-                "-pix_fmt",
-                "yuv420p",
-                "-movflags",
-                "+faststart",
-            ]),
+            Movie::Mp4 => cmd
+                .arg("-vf")
+                .arg(format!("scale={width}:-2:flags=lanczos"))
+                .args(["-pix_fmt", "yuv420p", "-movflags", "+faststart"]),
             // One palette made from the frames themselves.
-            Movie::Gif => cmd.args([
-                "-vf",
-                "split[a][b];[a]palettegen=stats_mode=diff[p];[b][p]paletteuse",
-            ]),
+            Movie::Gif => cmd.arg("-vf").arg(format!(
+                "scale={width}:-1:flags=lanczos,split[a][b];[a]palettegen=stats_mode=diff[p];\
+                 [b][p]paletteuse"
+            )),
         };
         let output = cmd
             .arg(out)
