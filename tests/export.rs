@@ -408,7 +408,7 @@ fn a_periodic_cell_is_the_dump_box_with_the_lees_edwards_tilt() {
         }
         for (atom, row) in f.atoms.iter().zip(rows) {
             let k = row[0] as usize;
-            let ax = if k % 2 == 0 {
+            let ax = if k.is_multiple_of(2) {
                 (0.5, 0.5, 0)
             } else {
                 (0.7, 0.4, 1)

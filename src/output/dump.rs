@@ -22,8 +22,8 @@
 //! ```
 //! LAMMPS's own order (`dump_modify time yes` puts `ITEM: TIME` first). Per body, one row:
 //! - `id`: the body's identity plus one (LAMMPS numbers atoms from 1): `trajectory.csv`'s `body`
-//!   + 1, stable across insertion and outflow (an inserted body gets the next identity; a removed
-//!   one's is never reused), so OVITO follows each grain from frame to frame;
+//!   plus one, stable across insertion and outflow (an inserted body gets the next identity; a
+//!   removed one's is never reused), so OVITO follows each grain from frame to frame;
 //! - `type`: its material plus one (`materials[k]` of the case is type k + 1; type 1 the scene's
 //!   law), as LIGGGHTS maps atom types to materials;
 //! - `x y z`: its centroid (cm), z = 0; `vx vy` (cm/s); `omegaz` (rad/s, counter-clockwise);
@@ -163,7 +163,7 @@ pub fn dump_box(bodies: &[DumpBody], walls: &[Boundary], cell: Option<&Cell>) ->
     }
     // Nothing to span (no body left, no wall): a unit box, so that readers get a cell.
     for a in [&mut x, &mut y] {
-        if !(a[0] <= a[1]) {
+        if a[0] > a[1] || a[0].is_nan() || a[1].is_nan() {
             *a = [0.0, 1.0];
         }
     }

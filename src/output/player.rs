@@ -18,10 +18,15 @@
 //! zoom (wheel, + −) and pan (drag); `f` or a double click fits the scene. A click shows the
 //! body under it (its identity, shape, material, state) and follows it by identity.
 //!
+//! A sequential colour scale runs from 0 to the 99th percentile of the run's values (of the
+//! frame's, with "scale per frame"), a signed one symmetrically about 0 to the 99th percentile
+//! of |value|: a few grains flung out at the start do not turn every other one the bottom colour.
+//!
 //! The page opens at the first frame and plays; `#frame=K` in the address opens it paused at
 //! frame K (0-based; `last` the last), `#color=NAME` chooses the colouring, `#network` shows
-//! the contact forces. The canvas says where it draws (`data-view="s,x0,y0"`: a point (x, y)
-//! in cm is at page pixel `(x0 + s x, y0 − s y)`) and which frame (`data-frame`), for tests.
+//! the contact forces, `#size=WxH` draws on a canvas of that size whatever the window
+//! (screenshots). The canvas says where it draws (`data-view="s,x0,y0"`: a point (x, y) in cm
+//! is at page pixel `(x0 + s x, y0 − s y)`) and which frame (`data-frame`), for tests.
 //!
 //! # The data
 //! Each body is drawn by identity (`trajectory.csv`'s `body`), never by its place in a frame,
