@@ -1400,7 +1400,7 @@ fn animate(
         Some(kind) => {
             py.detach(|| player::write_movie(&run, &frames, &out, kind, by, (fps, width)))
                 .map_err(|e| match e {
-                    MovieError::NoFfmpeg(m) | MovieError::Input(m) => input_error(py, m),
+                    MovieError::NoFfmpeg(m) => input_error(py, m),
                     MovieError::Failed(m) => error(py, "OutputError", m, &[]),
                 })?;
         }

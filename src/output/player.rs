@@ -260,8 +260,6 @@ pub enum Movie {
 pub enum MovieError {
     /// ffmpeg is not installed (or does not run).
     NoFfmpeg(String),
-    /// What was asked cannot be drawn (a colouring the run cannot give).
-    Input(String),
     /// Drawing a frame, or ffmpeg, failed.
     Failed(String),
 }

@@ -922,9 +922,7 @@ fn animate(
             };
             player::write_movie(&run, &frames, &out, kind, by, (fps, width)).map_err(
                 |e| match e {
-                    player::MovieError::NoFfmpeg(m) | player::MovieError::Input(m) => {
-                        Failure::input(m)
-                    }
+                    player::MovieError::NoFfmpeg(m) => Failure::input(m),
                     player::MovieError::Failed(m) => Failure::failed(m),
                 },
             )?;
