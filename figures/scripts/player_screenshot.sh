@@ -3,7 +3,7 @@
 # of segment walls (cases/hopper_segments.json) at its last frame, the grains coloured by the
 # normal contact force on each, the contact network drawn (the arch over the outlet), as headless
 # Chromium shows the page. Needs Debian's chromium; run from the repository after
-# `cargo build --release`. About 15 s (the run 12 s).
+# `cargo build --release`. About 20 s (18 s measured; the run 10–13 s).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 run=target/player-figure
