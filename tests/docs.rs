@@ -435,7 +435,7 @@ fn the_outputs_reference_lists_every_file_and_column_a_run_writes() {
     std::fs::write(dir.join("case.json"), &case).unwrap();
     let out = dir.join("run");
     let status = Command::new(common::bin())
-        .args(["run", "case.json", "--out", "run", "--quiet"])
+        .args(["run", "case.json", "--out", "run", "--quiet", "--dump"])
         .current_dir(&dir)
         .status()
         .unwrap();
@@ -495,6 +495,20 @@ fn the_outputs_reference_lists_every_file_and_column_a_run_writes() {
             "{file}: the columns documented (left) against written (right)"
         );
     }
+    // The dump's columns (its `ITEM: ATOMS` line).
+    let dump = read(&out.join("dump.lammpstrj"));
+    let atoms: Vec<String> = dump
+        .lines()
+        .find_map(|l| l.strip_prefix("ITEM: ATOMS "))
+        .expect("a frame")
+        .split(' ')
+        .map(str::to_string)
+        .collect();
+    assert_eq!(
+        documented.get("dump.lammpstrj"),
+        Some(&atoms),
+        "dump.lammpstrj: the columns documented (left) against written (right)"
+    );
     // summary.json's keys.
     let summary: serde_json::Value =
         serde_json::from_str(&read(&out.join("summary.json"))).unwrap();
@@ -602,7 +616,7 @@ fn the_outputs_reference_lists_every_file_and_column_a_run_writes() {
 fn the_command_line_reference_names_every_option() {
     let page = read(&root().join("docs/src/reference/command-line.md"));
     for command in [
-        "run", "plot", "analyze", "contact", "generate", "verify", "study",
+        "run", "plot", "analyze", "export", "animate", "contact", "generate", "verify", "study",
     ] {
         let out = Command::new(common::bin())
             .args(["help", command])

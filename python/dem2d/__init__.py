@@ -18,7 +18,7 @@ import json
 import math
 from pathlib import Path
 
-from ._core import Case, Simulation, __version__
+from ._core import Case, Simulation, __version__, animate, export
 from ._core import load_run as _load_run
 from ._errors import BlowupError, Error, InputError, OutputError, RunError
 
@@ -27,6 +27,8 @@ __all__ = [
     "Simulation",
     "Run",
     "load_run",
+    "export",
+    "animate",
     "Error",
     "InputError",
     "RunError",
@@ -195,6 +197,17 @@ class Run:
         out[..., 0] += ix * lx + iy * shift
         out[..., 1] += iy * ly
         return out
+
+    def export(self, format="lammps-dump", out=None):
+        """`dem2d export`: the run's LAMMPS-style dump for OVITO (default `RUN/dump.lammpstrj`);
+        returns its path."""
+        return export(self.path, format, out)
+
+    def animate(self, out=None, **options):
+        """`dem2d animate`: the run as a self-contained HTML player (default
+        `RUN/animation.html`), or a movie (`.mp4`, `.gif`, through ffmpeg); `options` are
+        `every`, `color`, `fps`, `width` (see `dem2d.animate`). Returns its path."""
+        return animate(self.path, out, **options)
 
     @property
     def status(self):

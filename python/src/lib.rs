@@ -326,7 +326,7 @@ type Ran = (Result<Stop, RunFailure>, Counts, RunProgress);
 impl Simulation {
     #[new]
     #[pyo3(signature = (case, *, threads=None, out=None, overwrite=false, vtk=None,
-                        analysis=false, contacts=false, progress=false))]
+                        analysis=false, contacts=false, dump=false, progress=false))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -337,6 +337,7 @@ impl Simulation {
         vtk: Option<&Bound<'_, PyAny>>,
         analysis: bool,
         contacts: bool,
+        dump: bool,
         progress: bool,
     ) -> PyResult<Simulation> {
         let case: Py<Case> = if let Ok(c) = case.cast::<Case>() {
@@ -420,6 +421,7 @@ impl Simulation {
                     overwrite,
                     stop: None,
                     vtk_every: vtk,
+                    dump,
                     analysis: analysis || scene.output.analysis,
                     contacts: contacts || scene.output.contacts,
                     analysis_window: scene.output.analysis_window,
@@ -1371,11 +1373,116 @@ fn load_run<'py>(py: Python<'py>, dir: PathBuf) -> PyResult<Bound<'py, PyDict>> 
     Ok(d)
 }
 
+/// Reads the run directory `dir` for `export` and `animate` (`dem2d.InputError` naming the
+/// file when it is not a whole run).
+fn read_run(py: Python<'_>, dir: &std::path::Path) -> PyResult<dem2d::output::run_data::RunData> {
+    dem2d::output::run_data::RunData::load(dir).map_err(|e| input_error(py, e.to_string()))
+}
+
+/// `dem2d export RUN --format lammps-dump [--out FILE]`: writes the run's LAMMPS-style dump
+/// (for OVITO; `dem2d::output::dump`) and returns its path.
+#[pyfunction]
+#[pyo3(signature = (dir, format="lammps-dump", out=None))]
+fn export(py: Python<'_>, dir: PathBuf, format: &str, out: Option<PathBuf>) -> PyResult<PathBuf> {
+    if format != "lammps-dump" {
+        return Err(input_error(
+            py,
+            format!("format: the formats are \"lammps-dump\", got {format:?}"),
+        ));
+    }
+    let run = read_run(py, &dir)?;
+    let out = out.unwrap_or_else(|| dir.join(dem2d::output::dump::FILE));
+    py.detach(|| dem2d::output::dump::export_run(&run, &out))
+        .map_err(|e| error(py, "OutputError", e.to_string(), &[]))?;
+    Ok(out)
+}
+
+/// `dem2d animate RUN [--out FILE] [--every N]`: the run as a self-contained HTML player
+/// (`.html`, the default `RUN/animation.html`) or a movie through ffmpeg (`.mp4`, `.gif`:
+/// coloured by `color`, one of speed, spin, rotation, force, body, at `fps` frames per second
+/// and `width` pixels); returns its path.
+#[pyfunction]
+#[pyo3(signature = (dir, out=None, *, every=1, color="speed", fps=20, width=800))]
+fn animate(
+    py: Python<'_>,
+    dir: PathBuf,
+    out: Option<PathBuf>,
+    every: usize,
+    color: &str,
+    fps: u32,
+    width: u32,
+) -> PyResult<PathBuf> {
+    use dem2d::output::player::{self, Movie, MovieError};
+    use dem2d::output::plot::ColorBy;
+    if every == 0 {
+        return Err(input_error(py, "every: must be at least 1".into()));
+    }
+    let out = out.unwrap_or_else(|| dir.join("animation.html"));
+    let ext = out
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let movie = match ext.as_deref() {
+        Some("html" | "htm") => None,
+        Some("mp4") => Some(Movie::Mp4),
+        Some("gif") => Some(Movie::Gif),
+        _ => {
+            return Err(input_error(
+                py,
+                format!(
+                    "out {}: animate writes .html (the player), .mp4 or .gif (through ffmpeg)",
+                    out.display()
+                ),
+            ));
+        }
+    };
+    let by = match color {
+        "speed" => ColorBy::Speed,
+        "spin" => ColorBy::Omega,
+        "rotation" => ColorBy::Rotation,
+        "force" => ColorBy::Force,
+        "body" => ColorBy::Body,
+        other => {
+            return Err(input_error(
+                py,
+                format!(
+                    "color: one of \"speed\", \"spin\", \"rotation\", \"force\", \"body\", \
+                     got {other:?}"
+                ),
+            ));
+        }
+    };
+    if movie.is_some() && !((1..=120).contains(&fps) && (100..=8000).contains(&width)) {
+        return Err(input_error(
+            py,
+            format!("fps must be 1 … 120 and width 100 … 8000 pixels, got {fps} and {width}"),
+        ));
+    }
+    let run = read_run(py, &dir)?;
+    let frames = player::thin(&run, every);
+    match movie {
+        None => {
+            py.detach(|| player::write_player(&run, &frames, &out))
+                .map_err(|e| error(py, "OutputError", e.to_string(), &[]))?;
+        }
+        Some(kind) => {
+            py.detach(|| player::write_movie(&run, &frames, &out, kind, by, (fps, width)))
+                .map_err(|e| match e {
+                    MovieError::NoFfmpeg(m) => input_error(py, m),
+                    MovieError::Failed(m) => error(py, "OutputError", m, &[]),
+                })?;
+        }
+    }
+    Ok(out)
+}
+
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Case>()?;
     m.add_class::<Simulation>()?;
     m.add_function(wrap_pyfunction!(load_run, m)?)?;
+    m.add_function(wrap_pyfunction!(export, m)?)?;
+    m.add_function(wrap_pyfunction!(animate, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

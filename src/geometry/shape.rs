@@ -233,6 +233,29 @@ impl Shape {
         }
     }
 
+    /// The shape's kind as a number, as the VTK frames' `shape` array and the LAMMPS dump's
+    /// `shape` column write it: 0 circle, 1 ellipse, 2 rectangle, 3 polygon, 4 clump.
+    pub fn type_code(&self) -> u8 {
+        match self {
+            Shape::Circle { .. } => 0,
+            Shape::Ellipse { .. } => 1,
+            Shape::Rectangle { .. } => 2,
+            Shape::Polygon(_) => 3,
+            Shape::Clump(_) => 4,
+        }
+    }
+
+    /// The semi-axes `(a, b)` of a shape that is an ellipse, `a` along the body's x axis:
+    /// `(r, r)` for a circle; `None` for the others. Viewers that draw ellipses exactly (OVITO's
+    /// aspherical particles, a canvas's `ellipse`) ask this.
+    pub fn ellipse_semi_axes(&self) -> Option<(f64, f64)> {
+        match *self {
+            Shape::Circle { r } => Some((r, r)),
+            Shape::Ellipse { a, b } => Some((a, b)),
+            Shape::Rectangle { .. } | Shape::Polygon(_) | Shape::Clump(_) => None,
+        }
+    }
+
     /// The vertices of a shape with corners, counter-clockwise about the centroid (body
     /// frame): a polygon's, a rectangle's four corners (written into `corners`, from
     /// `(−w/2, −h/2)`, and read from there) — to the narrow phase a rectangle *is* a

@@ -226,6 +226,11 @@ pub struct SceneOptions {
     /// In a periodic cell, also draw the periodic images of the bodies that a seam cuts (those
     /// that overlap the cell), so that grains at a seam look whole.
     pub images: bool,
+    /// The region drawn, `(x0, x1, y0, y1)` (default: what the outlines and walls need): the
+    /// frames of a movie share one.
+    pub bounds: Option<(f64, f64, f64, f64)>,
+    /// The colour scale's range (default: the values drawn): the frames of a movie share one.
+    pub color_range: Option<(f64, f64)>,
 }
 
 impl Default for SceneOptions {
@@ -240,6 +245,8 @@ impl Default for SceneOptions {
             color: ColorBy::Auto,
             snapshot_above: 100,
             images: false,
+            bounds: None,
+            color_range: None,
         }
     }
 }
@@ -578,15 +585,20 @@ pub fn scene(path: &Path, panels: &[ScenePanel], opts: &SceneOptions) -> Result<
         .map(|(r, _)| r.case.units.clone())
         .next()
         .unwrap_or_default();
-    let scale = color.quantity(&units).map(|(label, signed)| {
-        let vals = drawn
-            .iter()
-            .flatten()
-            .flat_map(|d| d.0.values.iter().flatten().copied());
-        ColorScale::new(label, signed, vals)
-    });
+    let scale = color
+        .quantity(&units)
+        .map(|(label, signed)| match opts.color_range {
+            Some((lo, hi)) => ColorScale::new(label, signed, [lo, hi].into_iter()),
+            None => {
+                let vals = drawn
+                    .iter()
+                    .flatten()
+                    .flat_map(|d| d.0.values.iter().flatten().copied());
+                ColorScale::new(label, signed, vals)
+            }
+        });
 
-    let (mut x0, mut x1, mut y0, mut y1) = scene_bounds(&drawn);
+    let (mut x0, mut x1, mut y0, mut y1) = opts.bounds.unwrap_or_else(|| scene_bounds(&drawn));
     check_range("the scene's x", x0, x1)?;
     check_range("the scene's y", y0, y1)?;
     let layout = SceneLayout {

@@ -47,6 +47,7 @@ use crate::dynamics::{RestartState, World};
 use crate::output::analysis::AnalysisOutput;
 use crate::output::cell::CellRow;
 use crate::output::discharge::DischargeWriter;
+use crate::output::dump::{Dump, DumpWriter};
 use crate::output::progress::ProgressLines;
 use crate::output::reactions::Reactions;
 use crate::output::run_data::BodyState;
@@ -82,6 +83,9 @@ pub struct RunOptions {
     /// Write VTK frames (`vtk/frame_NNNNN.vtu`) every this many steps, at the start and at the
     /// end, and `run.pvd` (see [`crate::output::vtk`]); `None`: no VTK output.
     pub vtk_every: Option<u64>,
+    /// Write `dump.lammpstrj` at the output frames (a LAMMPS-style dump for OVITO:
+    /// [`crate::output::dump`]).
+    pub dump: bool,
     /// Write `analysis.csv` at the output frames ([`crate::output::analysis`]).
     pub analysis: bool,
     /// Write `contacts.csv` and `walls.csv` at the output frames.
@@ -101,7 +105,7 @@ pub struct RunOptions {
 
 /// The files a run writes (and `dem2d plot`'s default outputs, drawn from them): what is
 /// removed from a directory before a run replaces an earlier one. The summary comes first.
-pub const OUTPUT_FILES: [&str; 18] = [
+pub const OUTPUT_FILES: [&str; 21] = [
     "summary.json",
     "summary.json.tmp",
     "case.json",
@@ -120,6 +124,9 @@ pub const OUTPUT_FILES: [&str; 18] = [
     "reactions.csv",
     "discharge.csv",
     "inserted.csv",
+    "dump.lammpstrj",
+    "dump.lammpstrj.tmp",
+    "animation.html",
 ];
 
 /// The result of a run that started (its directory was prepared and its first summary written).
@@ -443,6 +450,7 @@ struct Writers {
     cells: Option<Frames<CellRow>>,
     reactions: Option<Frames<Reactions>>,
     discharge: Option<DischargeWriter>,
+    dump: Option<DumpWriter>,
     sampler: CriticalStepSampler,
     audit: EnergyAudit,
     analysis: Option<AnalysisOutput>,
@@ -560,6 +568,10 @@ impl RunDir {
                 )?),
                 None => None,
             };
+            let dump = match opts.dump {
+                true => Some(Frames::create(dir, every, Dump)?),
+                false => None,
+            };
             let vtk = match opts.vtk_every {
                 Some(n) => Some(VtkWriter::create(dir, world, n)?),
                 None => None,
@@ -583,6 +595,7 @@ impl RunDir {
                 cells,
                 reactions,
                 discharge,
+                dump,
                 sampler: CriticalStepSampler { every },
                 audit: EnergyAudit::new(&progress, case.energy_audit, every),
                 analysis,
@@ -641,6 +654,9 @@ impl RunDir {
             sim = sim.observe(x);
         }
         if let Some(x) = w.discharge.as_mut() {
+            sim = sim.observe(x);
+        }
+        if let Some(x) = w.dump.as_mut() {
             sim = sim.observe(x);
         }
         sim = sim.observe(&mut w.sampler).observe(&mut w.audit);

@@ -101,7 +101,7 @@ impl LineFile {
 pub trait FrameRows {
     /// The file's name in the run's directory.
     const FILE: &'static str;
-    /// The file's header line.
+    /// The file's header line (empty: none).
     const HEADER: &'static str;
     /// The header line of this writer's file ([`FrameRows::HEADER`] unless it depends on the
     /// run).
@@ -130,7 +130,10 @@ impl<R: FrameRows> Frames<R> {
     /// every `every` steps.
     pub fn create(dir: &Path, every: u64, rows: R) -> Result<Self, WriteError> {
         let mut out = LineFile::create(&dir.join(R::FILE))?;
-        out.line(format_args!("{}", rows.header()))?;
+        // (A file without a header line, such as a LAMMPS dump, has an empty one.)
+        if !rows.header().is_empty() {
+            out.line(format_args!("{}", rows.header()))?;
+        }
         out.flush()?;
         Ok(Frames {
             out,

@@ -194,3 +194,53 @@ pub fn i32s(b: &[u8]) -> Vec<i32> {
         .map(|c| i32::from_le_bytes(c.try_into().unwrap()))
         .collect()
 }
+
+/// Ellipses, disks, a rectangle and a polygon on a floor between two walls, moving and
+/// turning, in contact by the end.
+pub const MIXED_SCENE: &str = r#"{ "version": 1, "name": "mixed_scene", "units": "cm",
+  "gravity": [0, -980], "dt": 1e-5, "duration": 0.1, "output_every": 1000,
+  "contact": { "model": "linear", "kn_over_rho_g": 36400, "restitution": 0.5, "friction": 0.5 },
+  "walls": [ { "point": [0, 0], "normal": [0, 1] }, { "point": [0, 0], "normal": [1, 0] },
+             { "point": [30, 0], "normal": [-1, 0] } ],
+  "bodies": [
+    { "shape": {"type": "circle", "r": 1}, "position": [2, 1.05], "velocity": [-5, 0], "omega": 3 },
+    { "shape": {"type": "ellipse", "a": 3, "b": 1}, "position": [7, 2.0], "angle": 0.4, "omega": 2 },
+    { "shape": {"type": "polygon", "vertices": [[0,0],[2,0],[2.5,1.5],[1,2.5],[-0.5,1.2]]},
+      "position": [12, 1.6], "angle": 0.3 },
+    { "shape": {"type": "ellipse", "a": 1.5, "b": 0.8}, "position": [16, 1.2], "angle": 2.5,
+      "omega": -40 },
+    { "shape": {"type": "rectangle", "w": 2, "h": 1}, "position": [12, 5], "angle": -1 },
+    { "shape": {"type": "ellipse", "a": 2, "b": 0.4}, "position": [20, 3.5], "angle": -0.7,
+      "omega": 100 },
+    { "shape": {"type": "circle", "r": 0.8}, "position": [26, 3], "velocity": [30, 0] }
+  ] }"#;
+
+/// Disks and ellipses in a periodic cell 8 × 6 cm under Lees–Edwards shear (γ̇ = 3/s), no
+/// gravity, 0.5 s, frames every 0.05 s.
+pub fn sheared_cell() -> String {
+    let bodies: Vec<String> = (0..12)
+        .map(|k| {
+            let (i, j) = (k % 4, k / 4);
+            let shape = if k % 2 == 0 {
+                r#"{"type": "circle", "r": 0.5}"#
+            } else {
+                r#"{"type": "ellipse", "a": 0.7, "b": 0.4}"#
+            };
+            format!(
+                r#"{{"shape": {shape}, "position": [{}, {}], "angle": {}, "velocity": [{}, 0]}}"#,
+                2.0 * i as f64 + 1.0,
+                2.0 * j as f64 + 1.0,
+                0.3 * k as f64,
+                2.0 * j as f64 - 2.0
+            )
+        })
+        .collect();
+    format!(
+        r#"{{"version": 1, "name": "sheared_cell", "gravity": [0, 0], "dt": 5e-5, "duration": 0.5,
+        "output_every": 1000,
+        "cell": {{"size": [8, 6], "periodic": "xy", "shear_rate": 3}},
+        "contact": {{"model": "linear", "kn": 1e6, "restitution": 0.5, "friction": 0.4}},
+        "bodies": [{}]}}"#,
+        bodies.join(", ")
+    )
+}

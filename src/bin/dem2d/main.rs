@@ -123,6 +123,11 @@ enum Command {
         /// output_every); implies --vtk.
         #[arg(long)]
         vtk_every: Option<u64>,
+        /// Also write OUT/dump.lammpstrj at the output frames: a LAMMPS-style dump for OVITO
+        /// (ellipses as ellipsoids, orientations as quaternions; what `dem2d export` writes
+        /// from a run directory).
+        #[arg(long)]
+        dump: bool,
         /// Also write OUT/analysis.csv at the output frames: stress (Love–Weber and from the
         /// walls), packing fraction, coordination, fabric anisotropies, orientation order. The
         /// case's "output": {"analysis": true} does the same.
@@ -240,6 +245,44 @@ enum Command {
         #[arg(long)]
         images: bool,
     },
+    /// Write a run (a directory written by `dem2d run`) in another program's format: a
+    /// LAMMPS-style text dump for OVITO (`--format lammps-dump`), one frame per output frame.
+    Export {
+        /// The run directory.
+        run_dir: PathBuf,
+        /// The format.
+        #[arg(long, value_enum)]
+        format: ExportFormat,
+        /// Output file (default: RUN_DIR/dump.lammpstrj).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Write a run (a directory written by `dem2d run`) as a player that opens in any browser:
+    /// one self-contained HTML file (no network, no external script) with every output frame's
+    /// true outlines, play/pause, a time slider, speed, colour by a quantity, the contact
+    /// forces when the run has contacts.csv, zoom and pan. With --out FILE.mp4 or FILE.gif, a
+    /// movie instead, through ffmpeg.
+    Animate {
+        /// The run directory.
+        run_dir: PathBuf,
+        /// Output file, .html (default: RUN_DIR/animation.html), or .mp4 or .gif (ffmpeg).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Keep every N-th output frame (and the last), for a smaller file.
+        #[arg(long, default_value_t = 1)]
+        every: usize,
+        /// A movie's colouring: speed, spin (angular velocity), rotation (since the first
+        /// frame), force (normal contact force on each body), body (one colour each); the
+        /// player offers its own choice (speed, spin, angle, material, body, contact force).
+        #[arg(long, value_enum, default_value = "speed")]
+        color: AnimateColor,
+        /// A movie's frames per second.
+        #[arg(long, default_value_t = 20)]
+        fps: u32,
+        /// A movie's width in pixels.
+        #[arg(long, default_value_t = 800)]
+        width: u32,
+    },
     /// Generate a pile of disks or ellipses on a jittered lattice in a box, as a case file
     /// (`cases/settle_disks_10k.json` is `--shape disks --n 10000 --seed 1`).
     Generate {
@@ -278,6 +321,21 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum ExportFormat {
+    /// A LAMMPS-style text dump (`dump.lammpstrj`), read by OVITO.
+    LammpsDump,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum AnimateColor {
+    Speed,
+    Spin,
+    Rotation,
+    Force,
+    Body,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -484,6 +542,7 @@ struct RunArgs<'a> {
     overwrite: bool,
     vtk: bool,
     vtk_every: Option<u64>,
+    dump: bool,
     analysis: bool,
     contacts: bool,
 }
@@ -544,6 +603,7 @@ fn run(args: RunArgs) -> Result<(), Failure> {
         overwrite: args.overwrite,
         stop,
         vtk_every,
+        dump: args.dump,
         analysis: args.analysis || case.output.analysis,
         contacts: args.contacts || case.output.contacts,
         analysis_window: case.output.analysis_window,
@@ -772,6 +832,112 @@ fn plot(run_dir: &std::path::Path, kind: PlotKind, args: PlotArgs) -> Result<(),
     print_out(&format!("{}\n", out.display()))
 }
 
+/// Reads a run directory for `export` and `animate`, with the warnings `plot` gives for a run
+/// that did not finish and for files cut short.
+fn load_run(run_dir: &std::path::Path) -> Result<dem2d::output::run_data::RunData, Failure> {
+    let run = dem2d::output::run_data::RunData::load(run_dir)
+        .map_err(|e| Failure::input(e.to_string()))?;
+    match run.summary["status"].as_str() {
+        Some("completed" | "at_rest" | "max_steps") | None => {}
+        Some(status) => say(&format!(
+            "dem2d: warning: {}: the run's status is `{status}`: writing the frames it wrote",
+            run_dir.join("summary.json").display()
+        )),
+    }
+    for note in &run.incomplete {
+        say(&format!("dem2d: warning: {note}"));
+    }
+    Ok(run)
+}
+
+fn export(run_dir: &std::path::Path, out: Option<&std::path::Path>) -> Result<(), Failure> {
+    let run = load_run(run_dir)?;
+    let out = out.map_or_else(
+        || run_dir.join(dem2d::output::dump::FILE),
+        std::path::Path::to_path_buf,
+    );
+    let frames =
+        dem2d::output::dump::export_run(&run, &out).map_err(|e| Failure::failed(e.to_string()))?;
+    print_out(&format!(
+        "{}: {frames} frames, {} bodies at most\n",
+        out.display(),
+        run.most_bodies()
+    ))
+}
+
+fn animate(
+    run_dir: &std::path::Path,
+    out: Option<&std::path::Path>,
+    every: usize,
+    (color, fps, width): (AnimateColor, u32, u32),
+) -> Result<(), Failure> {
+    use dem2d::output::player;
+    if every == 0 {
+        return Err(Failure::input("--every: must be at least 1".into()));
+    }
+    let out = out.map_or_else(
+        || run_dir.join("animation.html"),
+        std::path::Path::to_path_buf,
+    );
+    let ext = out
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let movie = match ext.as_deref() {
+        Some("html" | "htm") => None,
+        Some("mp4") => Some(player::Movie::Mp4),
+        Some("gif") => Some(player::Movie::Gif),
+        _ => {
+            return Err(Failure::input(format!(
+                "--out {}: dem2d animate writes .html (the player), .mp4 or .gif (through \
+                 ffmpeg); give a file name ending in one of them",
+                out.display()
+            )));
+        }
+    };
+    if movie.is_some() {
+        if !(1..=120).contains(&fps) {
+            return Err(Failure::input(format!("--fps: must be 1 … 120, got {fps}")));
+        }
+        if !(100..=8000).contains(&width) {
+            return Err(Failure::input(format!(
+                "--width: must be 100 … 8000 pixels, got {width}"
+            )));
+        }
+    }
+    let run = load_run(run_dir)?;
+    let frames = player::thin(&run, every);
+    match movie {
+        None => {
+            let bytes = player::write_player(&run, &frames, &out)
+                .map_err(|e| Failure::failed(e.to_string()))?;
+            print_out(&format!(
+                "{}: {} frames, {:.1} MB\n",
+                out.display(),
+                frames.len(),
+                bytes as f64 / 1e6
+            ))
+        }
+        Some(kind) => {
+            use dem2d::output::plot::ColorBy;
+            let by = match color {
+                AnimateColor::Speed => ColorBy::Speed,
+                AnimateColor::Spin => ColorBy::Omega,
+                AnimateColor::Rotation => ColorBy::Rotation,
+                AnimateColor::Force => ColorBy::Force,
+                AnimateColor::Body => ColorBy::Body,
+            };
+            player::write_movie(&run, &frames, &out, kind, by, (fps, width)).map_err(
+                |e| match e {
+                    player::MovieError::NoFfmpeg(m) => Failure::input(m),
+                    player::MovieError::Failed(m) => Failure::failed(m),
+                },
+            )?;
+            print_out(&format!("{}: {} frames\n", out.display(), frames.len()))
+        }
+    }
+}
+
 fn generate(
     shape: PileShapeArg,
     n: usize,
@@ -910,6 +1076,7 @@ fn main() -> ExitCode {
             overwrite,
             vtk,
             vtk_every,
+            dump,
             analysis,
             contacts,
         } => set_threads(*threads).and_then(|()| {
@@ -922,6 +1089,7 @@ fn main() -> ExitCode {
                 overwrite: *overwrite,
                 vtk: *vtk,
                 vtk_every: *vtk_every,
+                dump: *dump,
                 analysis: *analysis,
                 contacts: *contacts,
             })
@@ -1007,6 +1175,19 @@ fn main() -> ExitCode {
                 images: *images,
             },
         ),
+        Command::Export {
+            run_dir,
+            format: ExportFormat::LammpsDump,
+            out,
+        } => export(run_dir, out.as_deref()),
+        Command::Animate {
+            run_dir,
+            out,
+            every,
+            color,
+            fps,
+            width,
+        } => animate(run_dir, out.as_deref(), *every, (*color, *fps, *width)),
         Command::Generate {
             shape,
             n,
