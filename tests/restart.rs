@@ -367,8 +367,7 @@ fn extreme_numbers_read_back_as_the_same_bits() {
     // number in (0.1 + 0.2) × …'s last bits round-trips the same way.)
     let e = state.energies;
     let run = RunProgress {
-        initial_total: e.kinetic + e.potential + e.elastic + f64::MIN_POSITIVE
-            - e.boundary_work
+        initial_total: e.kinetic + e.potential + e.elastic + f64::MIN_POSITIVE - e.boundary_work
             + (0.1 + 0.2) * 1e-9,
         quiescence_streak: u64::MAX,
         first_contact_step: None,
