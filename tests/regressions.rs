@@ -470,7 +470,7 @@ mod bug_a_wall_given_300_times_ran_to_exit_0 {
         let mut w = c.build_world();
         let mut sim = Simulation::new(&mut w).until_time(c.duration);
         let ended = sim.run();
-        let watch = sim.progress().watch.clone();
+        let watch = sim.progress().watch;
         let e = w.energies;
         eprintln!(
             "300 floors: stopped at t = {:.4} s ({ended:?}); K {:.3e} D {:.3e}",

@@ -19,6 +19,7 @@ import math
 from pathlib import Path
 
 from ._core import Case, Simulation, __version__, animate, export
+from ._core import fields as _fields
 from ._core import load_run as _load_run
 from ._errors import BlowupError, Error, InputError, OutputError, RunError
 
@@ -208,6 +209,16 @@ class Run:
         `RUN/animation.html`), or a movie (`.mp4`, `.gif`, through ffmpeg); `options` are
         `every`, `color`, `fps`, `width` (see `dem2d.animate`). Returns its path."""
         return animate(self.path, out, **options)
+
+    def fields(self, axis="y", bins=20, start=None, end=None, range=None, relative=False,
+               out=None):
+        """`dem2d fields`: the run's coarse-grained fields in `bins` slabs along `axis`, averaged
+        over the frames with `start <= t <= end` (s), as a dict of numpy arrays (the columns of
+        `fields.csv`: `y` or `x`, `phi`, `vx`, `vy`, `temperature`, `sxx`, `syy`, `sxy`,
+        `nematic`, `frames`; NaN where empty). Also writes `fields.csv` (or `out`)."""
+        path = _fields(self.path, axis=axis, bins=bins, start=start, end=end, range=range,
+                       relative=relative, out=out)
+        return _read_csv(path)
 
     @property
     def status(self):

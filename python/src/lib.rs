@@ -326,7 +326,8 @@ type Ran = (Result<Stop, RunFailure>, Counts, RunProgress);
 impl Simulation {
     #[new]
     #[pyo3(signature = (case, *, threads=None, out=None, overwrite=false, vtk=None,
-                        analysis=false, contacts=false, dump=false, progress=false))]
+                        analysis=false, contacts=false, dump=false, progress=false,
+                        checkpoint_every=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -339,6 +340,7 @@ impl Simulation {
         contacts: bool,
         dump: bool,
         progress: bool,
+        checkpoint_every: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Simulation> {
         let case: Py<Case> = if let Ok(c) = case.cast::<Case>() {
             c.clone().unbind()
@@ -398,6 +400,19 @@ impl Simulation {
                 }
             },
         };
+        // `checkpoint_every=N`: `dem2d run --checkpoint-every N` (state.json every N steps).
+        let checkpoint_every = match checkpoint_every {
+            None => None,
+            Some(v) => match whole(py, "checkpoint_every", v)? {
+                0 => {
+                    return Err(input_error(
+                        py,
+                        "checkpoint_every: at least 1 step, got 0".to_string(),
+                    ));
+                }
+                n => Some(n),
+            },
+        };
         let mut builder = rayon::ThreadPoolBuilder::new();
         if let Some(n) = threads {
             builder = builder.num_threads(n);
@@ -408,8 +423,8 @@ impl Simulation {
         let mut world = c.file.build_world();
         let resumed = c.file.run.as_ref().map(|p| continued(p, scene));
         let progress_now = match &resumed {
-            Some(p) => p.clone(),
-            None => Driver::new(&mut world).progress().clone(),
+            Some(p) => *p,
+            None => *Driver::new(&mut world).progress(),
         };
         let files = match out {
             None => None,
@@ -423,10 +438,11 @@ impl Simulation {
                     vtk_every: vtk,
                     dump,
                     analysis: analysis || scene.output.analysis,
+                    checkpoint_every,
                     contacts: contacts || scene.output.contacts,
                     analysis_window: scene.output.analysis_window,
                     restart: c.file.restart.clone(),
-                    run: c.file.run.clone(),
+                    run: c.file.run,
                     input: c.source.clone(),
                     warnings: c.file.warnings.clone(),
                 };
@@ -937,10 +953,11 @@ impl Simulation {
 
     /// The periodic cell now (None without one): `size` (Lx, Ly, cm), `periodic` ("x" or
     /// "xy"), `shear_rate` (1/s), `offset` (the Lees–Edwards shift of the image above modulo
-    /// Lx) and `shift` (its total, cm), `pressure` (the imposed σ_yy, or None), `stress` (the
+    /// Lx) and `shift` (its total, cm), `pressure` (the imposed σ_yy, or None), `stress_xx`,
+    /// `stress_yy`, `strain_rate_xx`, `strain_rate_yy` (each side's control, or None), `stress` (the
     /// cell's mean stress of the last evaluation, 2×2, compression positive, kinetic part
     /// included; NaN in an "x" cell), `normal_stress` (σ_yy), `shear_stress` ((σ_xy + σ_yx)/2),
-    /// `stiffness_yy` and `area` (cm²), as `cell.csv` writes them.
+    /// `stiffness_yy`, `stiffness_xx` and `area` (cm²), as `cell.csv` writes them.
     #[getter]
     fn cell<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
         let g = self.lock(py)?;
@@ -953,7 +970,18 @@ impl Simulation {
         d.set_item("shear_rate", c.shear_rate)?;
         d.set_item("offset", c.offset)?;
         d.set_item("shift", c.shift)?;
-        d.set_item("pressure", c.pressure.map(|p| p.target))?;
+        d.set_item("pressure", c.pressure().map(|p| p.target))?;
+        // Each side's target: a stress (dyn/cm) or a strain rate (1/s), None for a fixed side.
+        for (side, key) in ["xx", "yy"].into_iter().enumerate() {
+            use dem2d::dynamics::cell::SideControl;
+            let (stress, rate) = match c.control[side] {
+                Some(SideControl::Stress(p)) => (Some(p.target), None),
+                Some(SideControl::StrainRate(e)) => (None, Some(e)),
+                None => (None, None),
+            };
+            d.set_item(format!("stress_{key}"), stress)?;
+            d.set_item(format!("strain_rate_{key}"), rate)?;
+        }
         let measured = c.measures_stress();
         let stress = if measured { c.stress } else { [f64::NAN; 4] };
         d.set_item(
@@ -964,7 +992,11 @@ impl Simulation {
         d.set_item("shear_stress", c.shear_stress())?;
         d.set_item(
             "stiffness_yy",
-            if measured { c.stiffness_yy } else { f64::NAN },
+            if measured { c.stiffness[1] } else { f64::NAN },
+        )?;
+        d.set_item(
+            "stiffness_xx",
+            if measured { c.stiffness[0] } else { f64::NAN },
         )?;
         d.set_item("area", c.area())?;
         Ok(Some(d))
@@ -1135,8 +1167,8 @@ impl Simulation {
             ..
         } = inner;
         let stop = &self.stop;
-        let progress = progress.clone();
-        let before = (progress.clone(), world.step);
+        let progress = *progress;
+        let before = (progress, world.step);
         let work = move || -> Ran {
             let mut sim = Driver::new(world)
                 .resume(progress)
@@ -1155,7 +1187,7 @@ impl Simulation {
                 }
                 None => {
                     let outcome = sim.run();
-                    (outcome, Counts::of(&sim), sim.progress().clone())
+                    (outcome, Counts::of(&sim), *sim.progress())
                 }
             }
         };
@@ -1397,6 +1429,65 @@ fn export(py: Python<'_>, dir: PathBuf, format: &str, out: Option<PathBuf>) -> P
     Ok(out)
 }
 
+/// `dem2d fields RUN --axis AXIS --bins N [--from T0] [--to T1] [--range LO,HI] [--relative]`:
+/// writes the run's coarse-grained fields (`fields.csv`, `dem2d::output::fields`) and returns
+/// its path; the notes (no contacts.csv, the range chosen) as Python warnings.
+#[pyfunction]
+#[pyo3(signature = (dir, *, axis="y", bins, start=None, end=None, range=None, relative=false, out=None))]
+#[allow(clippy::too_many_arguments)]
+fn fields(
+    py: Python<'_>,
+    dir: PathBuf,
+    axis: &str,
+    bins: usize,
+    start: Option<f64>,
+    end: Option<f64>,
+    range: Option<(f64, f64)>,
+    relative: bool,
+    out: Option<PathBuf>,
+) -> PyResult<PathBuf> {
+    use dem2d::analysis::fields::Axis;
+    let axis = match axis {
+        "x" => Axis::X,
+        "y" => Axis::Y,
+        other => {
+            return Err(input_error(
+                py,
+                format!("axis: \"x\" or \"y\", got {other:?}"),
+            ));
+        }
+    };
+    let request = dem2d::output::fields::FieldRequest {
+        axis,
+        bins,
+        from: start,
+        to: end,
+        range,
+        relative,
+    };
+    let f = py
+        .detach(|| dem2d::output::fields::run_fields(&dir, &request))
+        .map_err(|m| input_error(py, m))?;
+    for note in &f.notes {
+        PyErr::warn(
+            py,
+            &py.get_type::<pyo3::exceptions::PyUserWarning>(),
+            &std::ffi::CString::new(format!("dem2d fields: {note}")).unwrap_or_default(),
+            1,
+        )?;
+    }
+    let out = out.unwrap_or_else(|| dir.join("fields.csv"));
+    std::fs::write(&out, dem2d::output::fields::fields_csv(&f)).map_err(|e| {
+        error(
+            py,
+            "OutputError",
+            format!("{}: cannot write: {e}", out.display()),
+            &[],
+        )
+    })?;
+    Ok(out)
+}
+
 /// `dem2d animate RUN [--out FILE] [--every N]`: the run as a self-contained HTML player
 /// (`.html`, the default `RUN/animation.html`) or a movie through ffmpeg (`.mp4`, `.gif`:
 /// coloured by `color`, one of speed, spin, rotation, force, body, at `fps` frames per second
@@ -1482,6 +1573,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Simulation>()?;
     m.add_function(wrap_pyfunction!(load_run, m)?)?;
     m.add_function(wrap_pyfunction!(export, m)?)?;
+    m.add_function(wrap_pyfunction!(fields, m)?)?;
     m.add_function(wrap_pyfunction!(animate, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

@@ -223,3 +223,48 @@ def test_vtk_frames_are_the_command_lines(tmp_path):
     with pytest.raises(dem2d.RunError, match="was closed"):
         sim.run(10)
     dem2d.Simulation(dem2d.Case.load(path), out=b, overwrite=True).run(10)
+
+
+def test_a_killed_python_run_leaves_its_last_checkpoint(tmp_path):
+    # `checkpoint_every=N` as `dem2d run --checkpoint-every N`: a Python process killed outright
+    # (SIGKILL, nothing written at the end) leaves the state of a step that is a multiple of N,
+    # with the status `checkpoint`, and the command line continues it.
+    import subprocess
+    import sys
+    import time
+
+    case = dem2d.Case(case_dict("settle3_dt1e-5.json"))
+    with pytest.raises(dem2d.InputError, match="checkpoint_every"):
+        dem2d.Simulation(case, checkpoint_every=0)
+    d = case_dict("settle3_dt1e-5.json")
+    d["duration"] = 1e3
+    d.pop("quiescence")  # (it comes to rest in 881 steps)
+    (tmp_path / "case.json").write_text(json.dumps(d))
+    out = tmp_path / "py"
+    script = tmp_path / "run.py"
+    script.write_text(
+        "import dem2d\n"
+        f"case = dem2d.Case.load({str(tmp_path / 'case.json')!r})\n"
+        f"with dem2d.Simulation(case, threads=1, out={str(out)!r}, checkpoint_every=1000) as sim:\n"
+        "    sim.run(10**9)\n"
+    )
+    child = subprocess.Popen([sys.executable, str(script)])
+    state, deadline = None, time.time() + 120
+    try:
+        while time.time() < deadline and child.poll() is None:
+            try:
+                s = json.loads((out / "state.json").read_text())
+                if s["state"]["step"] >= 2000:
+                    state = s
+                    break
+            except (OSError, ValueError):
+                pass  # not there yet (it is replaced atomically, never torn)
+            time.sleep(0.02)
+    finally:
+        child.kill()
+        child.wait()
+    assert state is not None, "no checkpoint past step 2000 within two minutes"
+    state = json.loads((out / "state.json").read_text())
+    assert state["state"]["status"] == "checkpoint"
+    assert state["state"]["step"] % 1000 == 0 and state["state"]["step"] >= 2000
+    cli("run", out / "state.json", "--out", tmp_path / "on", "--max-steps", "500", "--quiet")

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import dem2d
-from conftest import ROOT, cli
+from conftest import ROOT, case_dict, cli
 
 
 def settle3(tmp_path):
@@ -97,3 +97,25 @@ def test_bad_requests_raise_input_errors(tmp_path, monkeypatch):
     monkeypatch.setenv("PATH", str(tmp_path))
     with pytest.raises(dem2d.InputError, match="ffmpeg not found"):
         dem2d.animate(out, tmp_path / "m.gif")
+
+
+def test_fields_are_the_command_lines(tmp_path):
+    # `Run.fields` writes the bytes `dem2d fields` writes and returns its columns; a run without
+    # contacts.csv warns, a bad option raises InputError naming it.
+    d = case_dict("shear_cell.json")
+    d["duration"] = 0.2
+    (tmp_path / "case.json").write_text(json.dumps(d))
+    cli("run", tmp_path / "case.json", "--out", tmp_path / "run", "--contacts", "--quiet")
+    cli("fields", tmp_path / "run", "--bins", "5", "--out", tmp_path / "cli.csv")
+    run = dem2d.load_run(tmp_path / "run")
+    f = run.fields(bins=5)
+    assert (tmp_path / "run" / "fields.csv").read_bytes() == (tmp_path / "cli.csv").read_bytes()
+    assert len(f["y"]) == 5 and f["syy"].mean() > 0
+    with pytest.raises(dem2d.InputError, match="--bins"):
+        run.fields(bins=0)
+    with pytest.raises(dem2d.InputError, match="axis"):
+        run.fields(axis="z", bins=3)
+    cli("run", tmp_path / "case.json", "--out", tmp_path / "bare", "--quiet", "--max-steps", "800")
+    with pytest.warns(UserWarning, match="contacts.csv"):
+        g = dem2d.load_run(tmp_path / "bare").fields(bins=3)
+    assert all(v != v for v in g["sxx"])

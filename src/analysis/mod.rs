@@ -18,6 +18,7 @@
 //!   walls when the scene has one, or a window given by the caller.
 
 pub mod fabric;
+pub mod fields;
 pub mod packing;
 pub mod stress;
 

@@ -32,6 +32,19 @@
 //! the servo walls (`dynamics::boundary`); the bodies behind the contacts are softer than their
 //! affine stiffness, so the actual correction is smaller and the control does not overshoot.
 //! A cell pushed harder than P dilates; one below P contracts. See [`Cell::stretch`].
+//!
+//! # Stress and strain-rate control of each side
+//! Each side of an `"xy"` cell can be controlled on its own ([`Cell::control`]): held at a
+//! normal stress (`"stress": {"xx": S_xx, "yy": S_yy}`; `"pressure": P` is `{"yy": P}`), its
+//! length following σ_xx or σ_yy by the rule above against that side's affine stiffness `K_xx =
+//! (1/A) Σ_c k_n (n_x l_x)²` or `K_yy`; or strained at a true rate ε̇ (`"strain_rate": {"yy":
+//! ε̇}`, 1/s, negative compresses): `L ← L exp(ε̇ Δt)` every step. Every body's coordinate along
+//! a stretched side is stretched with it; a stretch of x stretches the Lees–Edwards shift too
+//! (the image lattice deforms affinely, and a body's unwrapped position with it). The isotropic
+//! compression of a sample to a stress and the biaxial test — one side strained, the other
+//! held at its stress — run without walls (PFC's and Yade's `PeriTriaxController`, LAMMPS's
+//! `fix press/berendsen` and `fix deform`). The stretch's work is booked side by side (see
+//! [`Cell::stretch`]).
 
 use super::partner::ImageShift;
 use crate::geometry::Vec2;
@@ -65,6 +78,15 @@ pub struct Pressure {
     pub gain: f64,
 }
 
+/// How one side of a cell moves (see the module documentation).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SideControl {
+    /// The side's length follows its normal stress towards a target.
+    Stress(Pressure),
+    /// The side is strained at a true rate ε̇ (1/s; negative compresses): `L ← L exp(ε̇ Δt)`.
+    StrainRate(f64),
+}
+
 /// A periodic cell (see the module documentation).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cell {
@@ -77,22 +99,24 @@ pub struct Cell {
     pub offset: f64,
     /// The total x shift `S = ∫ γ̇ L_y dt` (not reduced modulo `L_x`).
     pub shift: f64,
-    /// An imposed normal stress, if any.
-    pub pressure: Option<Pressure>,
+    /// How each side (x, y) moves: `None` for a fixed side.
+    pub control: [Option<SideControl>; 2],
     /// The cell's mean stress at the last force evaluation, compressive positive: `(1/A)(Σ_c
     /// f ⊗ l + Σ_k m v′ ⊗ v′)` (xx, xy, yx, yy; Love–Weber over the pairs of bodies, f the
     /// force on the receiver and l the branch vector to it from the giver's image; v′ the
     /// velocity about the shear's mean flow `γ̇ (y − L_y/2)`).
     pub stress: [f64; 4],
-    /// `(1/A) Σ_c F_s n_y l_y` (F_s the elastic part of a contact's normal force): minus the
-    /// rate at which the contacts' stored energy changes per unit vertical affine strain.
-    pub elastic_yy: f64,
-    /// The contacts' affine stiffness against a vertical stretch, `(1/A) Σ_c k_n (n_y l_y)²`
-    /// (the change of σ_yy per unit vertical strain with the bodies moved affinely).
-    pub stiffness_yy: f64,
-    /// `λ − 1` of the stretch of the step under way, whose work's second half waits for the
-    /// forces at its end ([`Cell::measure`]); 0 between steps.
-    pub strained: f64,
+    /// `(1/A) Σ_c F_s n_x l_x` and `(1/A) Σ_c F_s n_y l_y` (F_s the elastic part of a
+    /// contact's normal force): minus the rate at which the contacts' stored energy changes per
+    /// unit affine strain along x and along y.
+    pub elastic: [f64; 2],
+    /// The contacts' affine stiffness against a stretch along x and along y, `(1/A) Σ_c k_n
+    /// (n_x l_x)²` and `(1/A) Σ_c k_n (n_y l_y)²` (the change of σ_xx or σ_yy per unit strain
+    /// along it, with the bodies moved affinely).
+    pub stiffness: [f64; 2],
+    /// `λ − 1` of each side's stretch in the step under way, whose work's second half waits for
+    /// the forces at its end ([`Cell::measure`]); 0 between steps.
+    pub strained: [f64; 2],
 }
 
 /// The relaxation factor of an imposed pressure: the fraction of the stress error the cell's
@@ -137,11 +161,11 @@ impl Cell {
             shear_rate,
             offset: 0.0,
             shift: 0.0,
-            pressure,
+            control: [None, pressure.map(SideControl::Stress)],
             stress: [0.0; 4],
-            elastic_yy: 0.0,
-            stiffness_yy: 0.0,
-            strained: 0.0,
+            elastic: [0.0; 2],
+            stiffness: [0.0; 2],
+            strained: [0.0; 2],
         }
     }
 
@@ -154,7 +178,7 @@ impl Cell {
         slots: &super::contact_pass::SlotPartial,
         kinetic: &[f64; 3],
     ) -> f64 {
-        let (contact, stiffness, elastic) = (&slots.stress, slots.stiffness_yy, slots.elastic_yy);
+        let (contact, stiffness, elastic) = (&slots.stress, slots.stiffness, slots.elastic_n);
         let a = self.area();
         self.stress = [
             (contact[0] + kinetic[0]) / a,
@@ -162,11 +186,38 @@ impl Cell {
             (contact[2] + kinetic[1]) / a,
             (contact[3] + kinetic[2]) / a,
         ];
-        self.elastic_yy = elastic / a;
-        self.stiffness_yy = stiffness / a;
-        let work = -0.5 * elastic * self.strained;
-        self.strained = 0.0;
+        self.elastic = [elastic[0] / a, elastic[1] / a];
+        self.stiffness = [stiffness[0] / a, stiffness[1] / a];
+        let mut work = -0.5 * elastic[1] * self.strained[1];
+        if self.strained[0] != 0.0 {
+            work += -0.5 * elastic[0] * self.strained[0];
+        }
+        self.strained = [0.0; 2];
         work
+    }
+
+    /// The imposed normal stress on the horizontal faces (σ_yy's target), if y follows one:
+    /// the case's `pressure`.
+    pub fn pressure(&self) -> Option<Pressure> {
+        match self.control[1] {
+            Some(SideControl::Stress(p)) => Some(p),
+            _ => None,
+        }
+    }
+
+    /// Whether a side of the cell moves (follows a stress or a strain rate).
+    pub fn deforms(&self) -> bool {
+        self.control.iter().any(Option::is_some)
+    }
+
+    /// σ_xx (`side` 0) or σ_yy (1), compressive positive (NaN where the cell does not measure
+    /// it).
+    pub fn normal_stress_of(&self, side: usize) -> f64 {
+        match (self.measures_stress(), side) {
+            (false, _) => f64::NAN,
+            (true, 0) => self.stress[0],
+            (true, _) => self.stress[3],
+        }
     }
 
     /// `Σ m v′v′` (xx, xy, yy) of `bodies` about the shear's mean flow.
@@ -213,33 +264,54 @@ impl Cell {
         }
     }
 
-    /// Under an imposed pressure, the cell's height for the next step from the stress of the
-    /// last evaluation; returns the factor `λ` it (and every body's y) is stretched by (1
-    /// without a pressure) and the first half of the work the stretch does on the bodies: the
-    /// change of the contacts' stored energy, `−Σ F_s n·δl = −(λ − 1) Σ F_s n_y l_y` (the affine
-    /// stretch changes each branch vector by `δl = l_y (λ − 1) ŷ` and no velocity; the shear
-    /// springs, which integrate relative velocities, do not see it), taken by the trapezoidal
-    /// rule: half with the sum before the stretch here, half with the sum after it when the
-    /// step's forces are measured ([`Cell::measure`]) — exact for linear springs, so that a
-    /// contact the stretch closes gets its stored energy from the account, not from nowhere. The relative error `σ_yy − P` is corrected by the fraction
-    /// [`PRESSURE_RELAXATION`] per step against the contacts' affine stiffness:
-    /// `λ − 1 = α (σ_yy − P)/K_yy` (the servo walls' rule: `dynamics::boundary`), at most
-    /// [`MAX_STRETCH`] either way (and that much, towards the target, without contacts).
-    pub fn stretch(&mut self) -> (f64, f64) {
-        let Some(p) = self.pressure else {
-            return (1.0, 0.0);
-        };
-        let error = self.normal_stress() - p.target;
-        let strain = if self.stiffness_yy > 0.0 {
-            p.gain * error / self.stiffness_yy
-        } else {
-            MAX_STRETCH.copysign(error)
-        };
-        let lambda = 1.0 + strain.clamp(-MAX_STRETCH, MAX_STRETCH);
-        let work = -0.5 * self.area() * self.elastic_yy * (lambda - 1.0);
-        self.size.y *= lambda;
-        self.strained = lambda - 1.0;
-        (lambda, work)
+    /// The cell's sides for the next step, of length `dt`, from their controls and the stress of
+    /// the last evaluation; returns the factors `λ = (λ_x, λ_y)` they (and every body's
+    /// coordinates) are stretched by (1 for a fixed side) and the first half of the work the
+    /// stretch does on the bodies: the change of the contacts' stored energy, `−Σ F_s n·δl =
+    /// −(λ_x − 1) Σ F_s n_x l_x − (λ_y − 1) Σ F_s n_y l_y` (the affine stretch changes each
+    /// branch vector by `δl = ((λ_x − 1) l_x, (λ_y − 1) l_y)` and no velocity; the shear springs,
+    /// which integrate relative velocities, do not see it), taken by the trapezoidal rule: half
+    /// with the sums before the stretch here, half with the sums after it when the step's forces
+    /// are measured ([`Cell::measure`]) — exact for linear springs, so that a contact the stretch
+    /// closes gets its stored energy from the account, not from nowhere. A side held at a
+    /// stress corrects the relative error `σ − S` by the fraction α per step against its
+    /// affine stiffness: `λ − 1 = α (σ − S)/K` (the servo walls' rule: `dynamics::boundary`), at
+    /// most [`MAX_STRETCH`] either way (and that much, towards the target, without contacts); a
+    /// side strained at a rate ε̇ takes `λ = exp(ε̇ Δt)`. A stretch of x stretches the
+    /// Lees–Edwards shift with it.
+    pub fn stretch(&mut self, dt: f64) -> (Vec2, f64) {
+        let mut lambda = [1.0, 1.0];
+        let mut work = 0.0;
+        let a = self.area();
+        // y first: its figures are those of the cell before x could move.
+        for side in [1, 0] {
+            let Some(control) = self.control[side] else {
+                continue;
+            };
+            let l = match control {
+                SideControl::Stress(p) => {
+                    let error = self.normal_stress_of(side) - p.target;
+                    let k = self.stiffness[side];
+                    let strain = if k > 0.0 {
+                        p.gain * error / k
+                    } else {
+                        MAX_STRETCH.copysign(error)
+                    };
+                    1.0 + strain.clamp(-MAX_STRETCH, MAX_STRETCH)
+                }
+                SideControl::StrainRate(rate) => (rate * dt).exp(),
+            };
+            work += -0.5 * a * self.elastic[side] * (l - 1.0);
+            self.strained[side] = l - 1.0;
+            lambda[side] = l;
+        }
+        self.size.y *= lambda[1];
+        if self.control[0].is_some() {
+            self.size.x *= lambda[0];
+            self.shift *= lambda[0];
+            self.offset = (self.offset * lambda[0]).rem_euclid(self.size.x);
+        }
+        (Vec2::new(lambda[0], lambda[1]), work)
     }
 
     /// Whether `p` (inside the cell) lies within `margin` of one of its seams.

@@ -63,12 +63,13 @@ pub(crate) struct SlotPartial {
     pub history_energy_change: f64,
     /// In a periodic cell, over the pairs of bodies: `Σ f ⊗ l` (xx, xy, yx, yy; f the force on
     /// the receiver, l the branch vector from the giver's image to the receiver: Love–Weber),
-    /// and the contacts' affine stiffness against a vertical stretch `Σ k_n (n_y l_y)²`.
+    /// and the contacts' affine stiffness against a stretch along x and along y, `Σ k_n (n_x
+    /// l_x)²` and `Σ k_n (n_y l_y)²`.
     pub stress: [f64; 4],
-    pub stiffness_yy: f64,
-    /// `Σ F_s n_y l_y`, F_s the elastic part of the normal force: minus the rate at which the
-    /// contacts' stored energy changes under a vertical affine stretch.
-    pub elastic_yy: f64,
+    pub stiffness: [f64; 2],
+    /// `Σ F_s n_x l_x` and `Σ F_s n_y l_y`, F_s the elastic part of the normal force: minus the
+    /// rate at which the contacts' stored energy changes under an affine stretch along x, y.
+    pub elastic_n: [f64; 2],
     /// In a Lees–Edwards cell, the power of the contacts across its y seam on the image's
     /// extra velocity u, `Σ f·u`, and of their non-elastic parts (the boundary's work: see
     /// `dynamics::cell`).
@@ -89,8 +90,10 @@ impl SlotPartial {
         for (a, b) in self.stress.iter_mut().zip(p.stress) {
             *a += b;
         }
-        self.stiffness_yy += p.stiffness_yy;
-        self.elastic_yy += p.elastic_yy;
+        for k in 0..2 {
+            self.stiffness[k] += p.stiffness[k];
+            self.elastic_n[k] += p.elastic_n[k];
+        }
         self.image_power += p.image_power;
         self.image_power_ne += p.image_power_ne;
     }
@@ -1081,16 +1084,19 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool, const PERIODIC: boo
         && let Some(k) = giver
         && cx.cell.is_some_and(Cell::measures_stress)
     {
-        // The cell's stress (Love–Weber) and its stiffness against a vertical stretch (only
-        // an `"xy"` cell shears, so only there does an image move).
+        // The cell's stress (Love–Weber) and its stiffness against a stretch of each side (only
+        // an `"xy"` cell measures them: only there can a side move).
         let at = b.state[k].pose.position + sides.image.map_or(Vec2::zeros(), |i| i.offset);
         let l = b.state[recv].pose.position - at;
         p.stress[0] += f.x * l.x;
         p.stress[1] += f.x * l.y;
         p.stress[2] += f.y * l.x;
         p.stress[3] += f.y * l.y;
-        p.stiffness_yy += cf.kn * (n_.y * l.y) * (n_.y * l.y);
-        p.elastic_yy += (cf.normal - cf.normal_non_elastic) * n_.y * l.y;
+        let elastic = cf.normal - cf.normal_non_elastic;
+        p.stiffness[0] += cf.kn * (n_.x * l.x) * (n_.x * l.x);
+        p.stiffness[1] += cf.kn * (n_.y * l.y) * (n_.y * l.y);
+        p.elastic_n[0] += elastic * n_.x * l.x;
+        p.elastic_n[1] += elastic * n_.y * l.y;
         if let Some(image) = sides.image {
             // The relative velocity the law saw is the receiver's less the image's, which moves
             // at the giver's plus u: the bodies' power exceeds the contact's by f·u.

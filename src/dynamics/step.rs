@@ -157,7 +157,7 @@ impl Stepper {
         // then each body drifted, stretched with the cell and brought back into it).
         match wd.cell.as_deref_mut() {
             Some(cell) => {
-                let (stretch, work) = cell.stretch();
+                let (stretch, work) = cell.stretch(dt);
                 cell.advance(dt);
                 let cell = *cell;
                 wd.energies.boundary_work += work;
@@ -165,7 +165,7 @@ impl Stepper {
                 wd.energies.boundary_work += crossing;
             }
             None => {
-                self.kick_drift::<false>(wd, None, 1.0);
+                self.kick_drift::<false>(wd, None, Vec2::new(1.0, 1.0));
             }
         }
         lap.to(&mut self.times.drift);
@@ -252,15 +252,15 @@ impl Stepper {
     }
 
     /// Kick to the half step and drift (stages 1–2), chunk by chunk, into the body partials;
-    /// `PERIODIC`: in `cell`, each body's y stretched by `stretch` (the cell's, under an imposed
-    /// pressure) and the body brought back into the cell, its image counts kept. Returns the
+    /// `PERIODIC`: in `cell`, each body's x and y stretched by `stretch` (the cell's, where its
+    /// sides follow a stress or a strain rate) and the body brought back into the cell, its image counts kept. Returns the
     /// kinetic energy the bodies gained re-entering a Lees–Edwards cell (the boundary's work:
     /// their velocity changes by the image's).
     fn kick_drift<const PERIODIC: bool>(
         &mut self,
         wd: &mut Parts,
         cell: Option<&Cell>,
-        stretch: f64,
+        stretch: Vec2,
     ) -> f64 {
         let dt = wd.dt;
         let h = 0.5 * dt;
@@ -310,7 +310,8 @@ impl Stepper {
                         continue;
                     }
                     if PERIODIC && let Some(cell) = cell {
-                        pos.y *= stretch;
+                        pos.x *= stretch.x;
+                        pos.y *= stretch.y;
                         if let Some(w) = cell.wrap(pos, s.vel) {
                             pos = w.position;
                             let gained = 0.5 * (w.velocity.norm_squared() - s.vel.norm_squared());

@@ -300,7 +300,7 @@ impl World {
     /// than go on with contacts it cannot see (issue 41: one disk at P = 1000 ended in a cell
     /// 0.498 cm high with exit 0).
     pub fn cell_below_limit(&self) -> Option<(usize, f64, f64)> {
-        let cell = self.cell.as_ref().filter(|c| c.pressure.is_some())?;
+        let cell = self.cell.as_ref().filter(|c| c.deforms())?;
         let max_bound = self.stepper.max_bound();
         let sides = [cell.size.x, cell.size.y];
         cell.check_size(super::neighbour_list::pair_reach(max_bound))

@@ -34,7 +34,7 @@ impl FrameRows for CellRow {
             let [sxx, sxy, syx, syy] = c.stress;
             out.line(format_args!(
                 "{step},{t},{},{},{},{},{sxx},{sxy},{syx},{syy},{}",
-                c.size.x, c.size.y, c.offset, c.shift, c.stiffness_yy
+                c.size.x, c.size.y, c.offset, c.shift, c.stiffness[1]
             ))
         } else {
             // An `"x"` cell measures no stress: empty fields.
@@ -60,7 +60,7 @@ pub fn read_cells(dir: &Path, case_cell: &Cell) -> Result<Vec<(u64, Cell)>, Read
             c.offset = v[4];
             c.shift = v[5];
             c.stress = [v[6], v[7], v[8], v[9]];
-            c.stiffness_yy = v[10];
+            c.stiffness[1] = v[10];
             (v[0] as u64, c)
         })
         .collect())

@@ -6,6 +6,7 @@ pub mod contacts;
 pub mod discharge;
 pub mod docs_tables;
 pub mod dump;
+pub mod fields;
 pub mod forces;
 pub mod outline;
 pub mod panels;

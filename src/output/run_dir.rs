@@ -88,6 +88,9 @@ pub struct RunOptions {
     pub dump: bool,
     /// Write `analysis.csv` at the output frames ([`crate::output::analysis`]).
     pub analysis: bool,
+    /// Rewrite `state.json` every this many steps (atomically, status `checkpoint`): a run killed
+    /// outright continues from the last ([`crate::output::state::StateWriter`]).
+    pub checkpoint_every: Option<u64>,
     /// Write `contacts.csv` and `walls.csv` at the output frames.
     pub contacts: bool,
     /// The region of the analysis measures (`[x0, x1, y0, y1]`; default: the wall box).
@@ -402,7 +405,7 @@ impl Ended {
         Ended {
             outcome,
             counts: Counts::of(sim),
-            progress: sim.progress().clone(),
+            progress: *sim.progress(),
         }
     }
 }
@@ -435,7 +438,7 @@ pub fn simulation<'a>(
 /// for rest anew when continued (its window more steps); any other keeps its streak, as the
 /// uninterrupted run would.
 pub fn continued(p: &RunProgress, case: &Case) -> RunProgress {
-    let mut p = p.clone();
+    let mut p = *p;
     if p.quiescence_streak >= case.quiescence_window {
         p.quiescence_streak = 0;
     }
@@ -522,7 +525,7 @@ impl RunDir {
         let resumed = opts.run.as_ref();
         let (progress, counts) = {
             let sim = simulation(world, case, opts, resumed);
-            (sim.progress().clone(), Counts::of(&sim))
+            (*sim.progress(), Counts::of(&sim))
         };
         let initial_total = progress.initial_total;
         let summary = summarize(
@@ -539,10 +542,9 @@ impl RunDir {
 
         // The case as parsed, for the state file (`dem2d run` reads the text it was given).
         let value = crate::scene::fields::parse_json(case_text, "");
-        let state = value
-            .as_ref()
-            .ok()
-            .map(|v| StateWriter::new(dir, v, case.duration));
+        let state = value.as_ref().ok().map(|v| {
+            StateWriter::new(dir, v, case.duration).checkpoint_every(opts.checkpoint_every)
+        });
         let every = case.output_every;
         let cell = world.cell.is_some();
         let writers = Frames::create(dir, every, Trajectory { cell }).and_then(|traj| {

@@ -236,13 +236,15 @@ fn write_state_block(
     if let Some(c) = &s.cell {
         let _ = writeln!(
             out,
-            "    \"cell\": {{\"size\": {}, \"offset\": {}, \"shift\": {}, \"stress\": [{}], \"stiffness_yy\": {}, \"elastic_yy\": {}}},",
+            "    \"cell\": {{\"size\": {}, \"offset\": {}, \"shift\": {}, \"stress\": [{}], \"stiffness_yy\": {}, \"elastic_yy\": {}, \"stiffness_xx\": {}, \"elastic_xx\": {}}},",
             vec2(c.size),
             num(c.offset),
             num(c.shift),
             c.stress.map(num).join(", "),
-            num(c.stiffness_yy),
-            num(c.elastic_yy)
+            num(c.stiffness[1]),
+            num(c.elastic[1]),
+            num(c.stiffness[0]),
+            num(c.elastic[0])
         );
     }
     if s.flow.is_some() || s.ids.iter().enumerate().any(|(k, &id)| id != k as u64) {
@@ -460,11 +462,15 @@ pub fn current_bodies(world: &World) -> Vec<BodyInit> {
 
 /// The writer of a run's `state.json` (an observer): when the run ends, however it ends but by a
 /// blow-up (a non-finite or unphysical state is nothing to continue from), with the status of
-/// its end.
+/// its end; with checkpoints ([`StateWriter::checkpoint_every`]), also every so many steps, with
+/// the status `checkpoint`, each replacing the last atomically — a run killed outright (SIGKILL,
+/// a node lost) continues from the last, and the continued run's rows are the uninterrupted
+/// run's.
 pub struct StateWriter {
     dir: PathBuf,
     case: Value,
     duration: f64,
+    checkpoint_every: Option<u64>,
 }
 
 impl StateWriter {
@@ -474,7 +480,14 @@ impl StateWriter {
             dir: dir.to_path_buf(),
             case: case.clone(),
             duration,
+            checkpoint_every: None,
         }
+    }
+
+    /// Also writes the state every `every` steps (`None` or 0: only at the end).
+    pub fn checkpoint_every(mut self, every: Option<u64>) -> Self {
+        self.checkpoint_every = every.filter(|&n| n > 0);
+        self
     }
 
     /// Writes the state now, with the run's progress `run` and the status `status`.
@@ -484,23 +497,33 @@ impl StateWriter {
         run: &RunProgress,
         status: Status,
     ) -> Result<(), WriteError> {
-        write_state(
-            &self.dir,
-            &self.case,
-            self.duration,
-            world,
-            run,
-            status.as_str(),
-        )
-        .map_err(|error| WriteError {
-            file: self.dir.join("state.json"),
-            error,
+        self.write_status(world, run, status.as_str())
+    }
+
+    fn write_status(
+        &self,
+        world: &World,
+        run: &RunProgress,
+        status: &str,
+    ) -> Result<(), WriteError> {
+        write_state(&self.dir, &self.case, self.duration, world, run, status).map_err(|error| {
+            WriteError {
+                file: self.dir.join("state.json"),
+                error,
+            }
         })
     }
 }
 
 impl Observer for StateWriter {
-    fn after_step(&mut self, _: &mut World, _: &StepInfo) -> Result<(), ObserverError> {
+    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+        // (Not at the last step: the run's end writes it with how it ended.)
+        if let Some(n) = self.checkpoint_every
+            && info.step.is_multiple_of(n)
+            && !info.stopping
+        {
+            self.write_status(world, &info.progress, "checkpoint")?;
+        }
         Ok(())
     }
 

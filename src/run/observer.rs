@@ -31,6 +31,8 @@ pub struct StepInfo {
     /// The blow-up watch found the state after this step unphysical: it is the run's last, and
     /// what is written of it is only for the report.
     pub blowup: bool,
+    /// The run's progress after this step (what a state written now continues with).
+    pub progress: RunProgress,
 }
 
 /// How the run ended, for the observers' last word.

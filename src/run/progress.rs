@@ -6,7 +6,7 @@ use super::watch::BlowupWatch;
 
 /// The run's progress: the quiescence streak, the counters of the summary and the blow-up
 /// watch's reference state.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RunProgress {
     /// `K + P + E_el + D` at t = 0 of the whole run.
     pub initial_total: f64,

@@ -269,8 +269,8 @@ impl<'a> Simulation<'a> {
             }
             .or_else(|| watch::cell_limit(world));
             let blowup = trigger.map(|t| BlowupReport::of_trigger(t, world));
-            // The stop conditions, in order of precedence; the streak is kept once the
-            // observers have taken the step.
+            // The stop conditions, in order of precedence; the streak is kept before the
+            // observers take the step (a checkpoint saves it with the state).
             let mut stop = None;
             let mut streak = progress.quiescence_streak;
             if blowup.is_none() {
@@ -296,12 +296,16 @@ impl<'a> Simulation<'a> {
                     stop = Some(Stop::Completed);
                 }
             }
+            if blowup.is_none() {
+                progress.quiescence_streak = streak;
+            }
             let info = StepInfo {
                 step: s,
                 report,
                 last,
                 stopping: blowup.is_some() || stop.is_some(),
                 blowup: blowup.is_some(),
+                progress: *progress,
             };
             for o in self.observers.iter_mut() {
                 o.after_step(world, &info).map_err(RunError::Observer)?;
@@ -309,7 +313,6 @@ impl<'a> Simulation<'a> {
             if let Some(b) = blowup {
                 return Err(RunError::Blowup(b));
             }
-            progress.quiescence_streak = streak;
             if let Some(stop) = stop {
                 if let Stop::AtRest { since } = stop {
                     self.quiescent_step = Some(since);

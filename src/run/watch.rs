@@ -85,7 +85,7 @@ pub fn cell_limit(world: &World) -> Option<Trigger> {
 
 /// The state a run is checked against (public: the run's saved progress carries it, so that a
 /// continued run is checked against the start of the whole run).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BlowupWatch {
     /// Kinetic, elastic, potential and total energy at the start.
     pub kinetic0: f64,
@@ -356,7 +356,11 @@ impl BlowupReport {
                 }
             }
             Trigger::CellLimit { side, size, least } => {
-                let (axis, p) = (["x", "y"][side], world.cell.and_then(|c| c.pressure));
+                let axis = ["x", "y"][side];
+                let p = world.cell.and_then(|c| match c.control[side] {
+                    Some(crate::dynamics::cell::SideControl::Stress(p)) => Some(p),
+                    _ => None,
+                });
                 (
                     most_energetic_body(world),
                     format!(
@@ -364,8 +368,8 @@ impl BlowupReport {
                          the reach of a pair ({least:.6e} cm: two largest bounding diameters and \
                          the neighbour list's skin): a body would meet two images of another, or \
                          its own, and only the nearest is modelled. The bodies cannot carry the \
-                         imposed stress{} in a cell this small: give the cell more bodies (or \
-                         smaller ones), or a lower stress",
+                         imposed stress or strain{} in a cell this small: give the cell more \
+                         bodies (or smaller ones), or a lower stress",
                         p.map_or(String::new(), |p| format!(" ({} dyn/cm)", p.target))
                     ),
                 )

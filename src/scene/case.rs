@@ -23,14 +23,14 @@
 
 use super::body::{WallGeometry, parse_body_with, parse_wall_or_segment_with};
 use super::fields::{
-    FieldError, Obj, count, index, join, non_negative, number, positive, scale, type_of,
+    FieldError, Obj, count, index, join, non_negative, number, object, positive, scale, type_of,
     unknown_field, vec2,
 };
 use super::materials::{Named, body_density, check_mixing, meeting, read_materials, read_pairs};
 use super::ranges::{Placed, SpecContext, check_extent, check_spec, check_steps};
 use crate::contact_law::{Check, ContactSpec, Keys, NormalForce, ParamError};
 use crate::dynamics::boundary::{BoundaryKind, Program, Stage, StageMotion};
-use crate::dynamics::cell::{Cell, PRESSURE_RELAXATION, Periodic, Pressure};
+use crate::dynamics::cell::{Cell, PRESSURE_RELAXATION, Periodic, Pressure, SideControl};
 use crate::dynamics::neighbour_list::pair_reach;
 use crate::dynamics::{BodyInit, Boundary, Flow, Materials, Motion, Servo, Span};
 use crate::geometry::Vec2;
@@ -892,11 +892,25 @@ fn parse_cell(
     let shear_rate = c.opt_with("shear_rate", number)?;
     let pressure = c.opt_with("pressure", positive)?;
     let gain = c.opt_with("pressure_gain", positive)?;
+    // Per side: `{"xx": …, "yy": …}`, each optional.
+    let sides = |f: fn(&Value, &str) -> Result<f64, FieldError>| {
+        move |v: &Value, p: &str| {
+            let s = object(v, p, |o| Ok([o.opt_with("xx", f)?, o.opt_with("yy", f)?]))?;
+            if s == [None, None] {
+                return Err(FieldError::new(p, "needs `xx`, `yy` or both"));
+            }
+            Ok(s)
+        }
+    };
+    let stress = c.opt_with("stress", sides(positive))?;
+    let strain_rate = c.opt_with("strain_rate", sides(number))?;
     let at = |k: &str| join("cell", k);
     if periodic == Periodic::X {
         for (k, given) in [
             ("shear_rate", shear_rate.is_some()),
             ("pressure", pressure.is_some()),
+            ("stress", stress.is_some()),
+            ("strain_rate", strain_rate.is_some()),
         ] {
             if given {
                 return Err(FieldError::new(
@@ -906,9 +920,40 @@ fn parse_cell(
             }
         }
     }
+    let mut stress = stress.unwrap_or([None, None]);
+    if let Some(p) = pressure {
+        if stress[1].is_some() {
+            return Err(FieldError::new(
+                at("pressure"),
+                "and `stress.yy` both given: `pressure` is `stress.yy` (give one)",
+            ));
+        }
+        stress[1] = Some(p);
+    }
+    let strain_rate = strain_rate.unwrap_or([None, None]);
+    for side in 0..2 {
+        if stress[side].is_some() && strain_rate[side].is_some() {
+            let k = ["xx", "yy"][side];
+            return Err(FieldError::new(
+                format!("{}.{k}", at("strain_rate")),
+                format!(
+                    "and a stress on the same side ({}): a side follows its stress or is \
+                     strained at a rate, not both",
+                    if side == 1 && pressure.is_some() {
+                        at("pressure")
+                    } else {
+                        format!("{}.{k}", at("stress"))
+                    }
+                ),
+            ));
+        }
+    }
     if let Some(g) = gain {
-        if pressure.is_none() {
-            return Err(FieldError::new(at("pressure_gain"), "needs `pressure`"));
+        if stress == [None, None] {
+            return Err(FieldError::new(
+                at("pressure_gain"),
+                "needs `pressure` or `stress`",
+            ));
         }
         if g > 1.0 {
             return Err(FieldError::new(
@@ -920,15 +965,17 @@ fn parse_cell(
         }
     }
     c.finish()?;
-    let cell = Cell::new(
-        size,
-        periodic,
-        shear_rate.unwrap_or(0.0),
-        pressure.map(|target| Pressure {
-            target,
-            gain: gain.unwrap_or(PRESSURE_RELAXATION),
-        }),
-    );
+    let mut cell = Cell::new(size, periodic, shear_rate.unwrap_or(0.0), None);
+    for side in 0..2 {
+        cell.control[side] = match (stress[side], strain_rate[side]) {
+            (Some(target), _) => Some(SideControl::Stress(Pressure {
+                target,
+                gain: gain.unwrap_or(PRESSURE_RELAXATION),
+            })),
+            (None, Some(rate)) => Some(SideControl::StrainRate(rate)),
+            (None, None) => None,
+        };
+    }
     // At most one image of a pair within reach: every periodic side above twice the reach.
     let max_bound = bodies
         .iter()

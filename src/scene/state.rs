@@ -178,7 +178,7 @@ fn check_account(
         ));
     }
     if let Some(run) = run {
-        let mut watch = run.watch.clone();
+        let mut watch = run.watch;
         use crate::run::watch::{ENERGY_GROWTH, Trigger};
         let why = match watch.check(world) {
             None => return check_closure(e, run),
@@ -603,23 +603,44 @@ pub fn parse_state(
         (Some(mut c), Some(v)) => {
             let mut k = Obj::new(v, "state.cell")?;
             let size = k.req_with("size", pair)?;
-            if size.x != c.size.x {
-                return Err(FieldError::new(
-                    "state.cell.size[0]",
-                    format!("{} differs from the case's cell width {}", size.x, c.size.x),
-                ));
-            }
-            if size.y.is_nan() || size.y <= 0.0 {
-                return Err(FieldError::new("state.cell.size[1]", "must be positive"));
+            // The sides are where the run left them (a side that followed a stress or a strain
+            // rate moved; the case's may since have fixed it, to shear at constant volume), and
+            // must leave a pair one image within reach, as a case's must.
+            for (side, got) in [size.x, size.y].into_iter().enumerate() {
+                if got.is_nan() || got <= 0.0 {
+                    return Err(FieldError::new(
+                        format!("state.cell.size[{side}]"),
+                        "must be positive",
+                    ));
+                }
             }
             c.size = size;
+            let max_bound = case
+                .bodies
+                .iter()
+                .map(|b| b.shape.bounding_radius())
+                .fold(0.0f64, f64::max);
+            if let Err((side, least)) =
+                c.check_size(crate::dynamics::neighbour_list::pair_reach(max_bound))
+            {
+                return Err(FieldError::new(
+                    format!("state.cell.size[{side}]"),
+                    format!(
+                        "{} cm is too small: a periodic side must exceed twice the reach of a \
+                         pair ({least:.6e} cm)",
+                        [size.x, size.y][side]
+                    ),
+                ));
+            }
             c.offset = k.req_with("offset", float)?;
             c.shift = k.req_with("shift", float)?;
             c.stress = k.req_with("stress", floats::<4>)?;
-            c.stiffness_yy = k.req_with("stiffness_yy", float)?;
+            c.stiffness[1] = k.req_with("stiffness_yy", float)?;
             // (Absent from state files written before it was kept: the first step's stretch
             // then books half its work from zero, as those runs did.)
-            c.elastic_yy = k.opt_with("elastic_yy", float)?.unwrap_or(0.0);
+            c.elastic[1] = k.opt_with("elastic_yy", float)?.unwrap_or(0.0);
+            c.stiffness[0] = k.opt_with("stiffness_xx", float)?.unwrap_or(0.0);
+            c.elastic[0] = k.opt_with("elastic_xx", float)?.unwrap_or(0.0);
             k.finish()?;
             if !(0.0..c.size.x).contains(&c.offset) {
                 return Err(FieldError::new(

@@ -16,7 +16,7 @@ use dem2d::output::summary::Status;
 use dem2d::scene::fields::parse_json;
 use dem2d::scene::parse_pairs;
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 /// The system allocator with transparent huge pages for large blocks (see [`dem2d::alloc`]): a
@@ -138,6 +138,11 @@ enum Command {
         /// "output": {"contacts": true} does the same.
         #[arg(long)]
         contacts: bool,
+        /// Rewrite OUT/state.json every N steps (atomically; its status `checkpoint`): a run
+        /// killed outright (SIGKILL, a lost node) continues from the last with `dem2d run
+        /// OUT/state.json`, and its rows are the uninterrupted run's, byte for byte.
+        #[arg(long, value_name = "N")]
+        checkpoint_every: Option<u64>,
     },
     /// Bring a case's bodies to rest at a minimum of their potential energy (FIRE, on positions
     /// and angles, under the law's conservative part; frictionless laws only): writes
@@ -187,6 +192,36 @@ enum Command {
         #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
         window: Option<Vec<f64>>,
         /// Output file (default: RUN_DIR/analysis.csv).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Coarse-grained fields across a run (a directory written by `dem2d run`): profiles of
+    /// the packing fraction, mean velocity, granular temperature, stress (with the run's
+    /// contacts.csv: run it with --contacts) and nematic order in bins along one axis, averaged
+    /// over the output frames in a window of time, into RUN_DIR/fields.csv.
+    Fields {
+        /// The run directory.
+        run_dir: PathBuf,
+        /// The axis the bins follow: y (horizontal slabs) or x (vertical slabs).
+        #[arg(long, value_enum, default_value = "y")]
+        axis: AxisArg,
+        /// The number of bins.
+        #[arg(long)]
+        bins: usize,
+        /// Average over the frames from this time on (s).
+        #[arg(long)]
+        from: Option<f64>,
+        /// Average over the frames up to this time (s).
+        #[arg(long)]
+        to: Option<f64>,
+        /// Outside a periodic cell, the bins' range lo,hi along the axis (cm; default: the box
+        /// of four walls, else the bodies' extent); write `--range=-1,2` when lo is negative.
+        #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+        range: Option<Vec<f64>>,
+        /// In a Lees–Edwards cell, vx about the imposed profile γ̇ (y − Ly/2).
+        #[arg(long)]
+        relative: bool,
+        /// Output file (default: RUN_DIR/fields.csv).
         #[arg(long)]
         out: Option<PathBuf>,
     },
@@ -321,6 +356,12 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum AxisArg {
+    X,
+    Y,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -545,6 +586,7 @@ struct RunArgs<'a> {
     dump: bool,
     analysis: bool,
     contacts: bool,
+    checkpoint_every: Option<u64>,
 }
 
 fn run(args: RunArgs) -> Result<(), Failure> {
@@ -584,6 +626,11 @@ fn run(args: RunArgs) -> Result<(), Failure> {
             PathBuf::from(d)
         }
     });
+    if args.checkpoint_every == Some(0) {
+        return Err(Failure::input(
+            "--checkpoint-every: must be at least 1 (steps)".into(),
+        ));
+    }
     if args.vtk_every == Some(0) {
         return Err(Failure::input("--vtk-every: must be at least 1".into()));
     }
@@ -605,6 +652,7 @@ fn run(args: RunArgs) -> Result<(), Failure> {
         vtk_every,
         dump: args.dump,
         analysis: args.analysis || case.output.analysis,
+        checkpoint_every: args.checkpoint_every,
         contacts: args.contacts || case.output.contacts,
         analysis_window: case.output.analysis_window,
         restart,
@@ -1079,6 +1127,7 @@ fn main() -> ExitCode {
             dump,
             analysis,
             contacts,
+            checkpoint_every,
         } => set_threads(*threads).and_then(|()| {
             run(RunArgs {
                 case,
@@ -1092,6 +1141,7 @@ fn main() -> ExitCode {
                 dump: *dump,
                 analysis: *analysis,
                 contacts: *contacts,
+                checkpoint_every: *checkpoint_every,
             })
         }),
         Command::Relax {
@@ -1122,6 +1172,31 @@ fn main() -> ExitCode {
             out,
         } => analyze::run(run_dir, window.as_deref(), out.as_deref())
             .map_err(|(code, message)| Failure { code, message }),
+        Command::Fields {
+            run_dir,
+            axis,
+            bins,
+            from,
+            to,
+            range,
+            relative,
+            out,
+        } => fields(
+            run_dir,
+            &dem2d::output::fields::FieldRequest {
+                axis: match axis {
+                    AxisArg::X => dem2d::analysis::fields::Axis::X,
+                    AxisArg::Y => dem2d::analysis::fields::Axis::Y,
+                },
+                bins: *bins,
+                from: *from,
+                to: *to,
+                range: None,
+                relative: *relative,
+            },
+            range.as_deref(),
+            out.as_deref(),
+        ),
         Command::Verify {
             quick,
             full,
@@ -1216,4 +1291,37 @@ fn main() -> ExitCode {
             ExitCode::from(f.code)
         }
     }
+}
+
+/// `dem2d fields`: writes RUN_DIR/fields.csv (or `out`).
+fn fields(
+    dir: &Path,
+    request: &dem2d::output::fields::FieldRequest,
+    range: Option<&[f64]>,
+    out: Option<&Path>,
+) -> Result<(), Failure> {
+    let mut request = request.clone();
+    request.range = match range {
+        None => None,
+        Some(&[lo, hi]) if lo < hi && lo.is_finite() && hi.is_finite() => Some((lo, hi)),
+        Some(r) => {
+            return Err(Failure {
+                code: 2,
+                message: format!("--range: expected lo,hi with lo < hi, got {r:?}"),
+            });
+        }
+    };
+    let f = dem2d::output::fields::run_fields(dir, &request).map_err(|message| Failure {
+        // The options' mistakes exit 2, the files' 1.
+        code: if message.starts_with("--") { 2 } else { 1 },
+        message,
+    })?;
+    for note in &f.notes {
+        eprintln!("dem2d fields: {note}");
+    }
+    let out = out.map_or_else(|| dir.join("fields.csv"), Path::to_path_buf);
+    std::fs::write(&out, dem2d::output::fields::fields_csv(&f))
+        .map_err(|e| Failure::failed(format!("{}: cannot write: {e}", out.display())))?;
+    println!("{}", out.display());
+    Ok(())
 }
