@@ -20,6 +20,7 @@ from pathlib import Path
 
 from ._core import Case, Simulation, __version__, animate, export
 from ._core import fields as _fields
+from ._core import forces as _forces
 from ._core import load_run as _load_run
 from ._errors import BlowupError, Error, InputError, OutputError, RunError
 
@@ -219,6 +220,17 @@ class Run:
         path = _fields(self.path, axis=axis, bins=bins, start=start, end=end, range=range,
                        relative=relative, out=out)
         return _read_csv(path)
+
+    def forces(self, frame=None, start=None, bins=40):
+        """`dem2d forces`: the normal-force distribution and the stress-fabric check of the
+        run's frame `frame` (default the last), or of every frame from `start` (s), or of a
+        relaxed directory's state. Writes `forces.csv` and `forces.json`; returns
+        `forces.json` as a dict with `distribution`, the columns of `forces.csv` (`f_over_mean`,
+        `pdf`, `count`)."""
+        _forces(self.path, frame=frame, start=start, bins=bins)
+        out = json.loads((self.path / "forces.json").read_text())
+        out["distribution"] = _read_csv(self.path / "forces.csv")
+        return out
 
     @property
     def status(self):

@@ -1488,6 +1488,43 @@ fn fields(
     Ok(out)
 }
 
+/// `dem2d forces RUN [--frame K] [--from T] [--bins N]`: writes `forces.csv` and `forces.json`
+/// (`dem2d::output::force_statistics`) and returns the directory they are in.
+#[pyfunction]
+#[pyo3(signature = (dir, *, frame=None, start=None, bins=40))]
+fn forces(
+    py: Python<'_>,
+    dir: PathBuf,
+    frame: Option<i64>,
+    start: Option<f64>,
+    bins: usize,
+) -> PyResult<PathBuf> {
+    use dem2d::output::force_statistics::{ForcesRequest, forces_csv, forces_json, run_forces};
+    let request = ForcesRequest {
+        frame,
+        from: start,
+        bins,
+    };
+    let r = py
+        .detach(|| run_forces(&dir, &request))
+        .map_err(|m| input_error(py, m))?;
+    for (name, text) in [
+        ("forces.csv", forces_csv(&r)),
+        ("forces.json", forces_json(&r)),
+    ] {
+        let out = dir.join(name);
+        std::fs::write(&out, text).map_err(|e| {
+            error(
+                py,
+                "OutputError",
+                format!("{}: cannot write: {e}", out.display()),
+                &[],
+            )
+        })?;
+    }
+    Ok(dir)
+}
+
 /// `dem2d animate RUN [--out FILE] [--every N]`: the run as a self-contained HTML player
 /// (`.html`, the default `RUN/animation.html`) or a movie through ffmpeg (`.mp4`, `.gif`:
 /// coloured by `color`, one of speed, spin, rotation, force, body, at `fps` frames per second
@@ -1574,6 +1611,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load_run, m)?)?;
     m.add_function(wrap_pyfunction!(export, m)?)?;
     m.add_function(wrap_pyfunction!(fields, m)?)?;
+    m.add_function(wrap_pyfunction!(forces, m)?)?;
     m.add_function(wrap_pyfunction!(animate, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

@@ -119,3 +119,20 @@ def test_fields_are_the_command_lines(tmp_path):
     with pytest.warns(UserWarning, match="contacts.csv"):
         g = dem2d.load_run(tmp_path / "bare").fields(bins=3)
     assert all(v != v for v in g["sxx"])
+
+
+def test_forces_are_the_command_lines(tmp_path):
+    # `Run.forces` writes what `dem2d forces` writes and returns forces.json with the histogram.
+    d = case_dict("shear_cell.json")
+    d["duration"] = 0.2
+    (tmp_path / "case.json").write_text(json.dumps(d))
+    cli("run", tmp_path / "case.json", "--out", tmp_path / "run", "--contacts", "--quiet")
+    cli("forces", tmp_path / "run", "--from", "0.1")
+    want = (tmp_path / "run" / "forces.csv").read_bytes()
+    r = dem2d.load_run(tmp_path / "run").forces(start=0.1)
+    assert (tmp_path / "run" / "forces.csv").read_bytes() == want
+    width = 2 * r["distribution"]["f_over_mean"][0]
+    assert abs((r["distribution"]["pdf"] * width).sum() - 1) < 1e-12
+    assert r["contacts"] == int(r["distribution"]["count"].sum())
+    with pytest.raises(dem2d.InputError, match="--frame"):
+        dem2d.load_run(tmp_path / "run").forces(frame=10**6)

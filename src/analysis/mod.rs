@@ -19,6 +19,7 @@
 
 pub mod fabric;
 pub mod fields;
+pub mod forces;
 pub mod packing;
 pub mod stress;
 

@@ -7,6 +7,7 @@ pub mod discharge;
 pub mod docs_tables;
 pub mod dump;
 pub mod fields;
+pub mod force_statistics;
 pub mod forces;
 pub mod outline;
 pub mod panels;

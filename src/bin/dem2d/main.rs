@@ -225,6 +225,23 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Contact-force statistics of a run made with --contacts (or of a directory's state.json,
+    /// such as `dem2d relax` writes): the distribution of the normal forces over their mean
+    /// into RUN_DIR/forces.csv, and the anisotropies a_c, a_n, a_t with the check
+    /// sin φ ≈ ½(a_c + a_n + a_t) into RUN_DIR/forces.json.
+    Forces {
+        /// The run directory (or a `dem2d relax` output directory).
+        run_dir: PathBuf,
+        /// The frame (0 the first, -1 the last: the default); write `--frame=-2` for negatives.
+        #[arg(long, allow_negative_numbers = true)]
+        frame: Option<i64>,
+        /// Every frame from this time on (s), pooled.
+        #[arg(long)]
+        from: Option<f64>,
+        /// The histogram's bins.
+        #[arg(long, default_value_t = 40)]
+        bins: usize,
+    },
     /// Run the benchmarks with published or closed-form answers (impacts, stress, packing,
     /// biaxial) and print each comparison: quantity, value, reference, tolerance, pass or fail.
     /// Exits 1 if any fails.
@@ -1197,6 +1214,19 @@ fn main() -> ExitCode {
             range.as_deref(),
             out.as_deref(),
         ),
+        Command::Forces {
+            run_dir,
+            frame,
+            from,
+            bins,
+        } => forces(
+            run_dir,
+            &dem2d::output::force_statistics::ForcesRequest {
+                frame: *frame,
+                from: *from,
+                bins: *bins,
+            },
+        ),
         Command::Verify {
             quick,
             full,
@@ -1323,5 +1353,41 @@ fn fields(
     std::fs::write(&out, dem2d::output::fields::fields_csv(&f))
         .map_err(|e| Failure::failed(format!("{}: cannot write: {e}", out.display())))?;
     println!("{}", out.display());
+    Ok(())
+}
+
+/// `dem2d forces`: writes RUN_DIR/forces.csv and RUN_DIR/forces.json and prints the check.
+fn forces(
+    dir: &Path,
+    request: &dem2d::output::force_statistics::ForcesRequest,
+) -> Result<(), Failure> {
+    use dem2d::output::force_statistics::{forces_csv, forces_json, run_forces};
+    let r = run_forces(dir, request).map_err(|message| Failure {
+        code: if message.starts_with("--") { 2 } else { 1 },
+        message,
+    })?;
+    for (name, text) in [
+        ("forces.csv", forces_csv(&r)),
+        ("forces.json", forces_json(&r)),
+    ] {
+        let out = dir.join(name);
+        std::fs::write(&out, text)
+            .map_err(|e| Failure::failed(format!("{}: cannot write: {e}", out.display())))?;
+        println!("{}", out.display());
+    }
+    let f = &r.check.fabric;
+    println!(
+        "{} contacts over {} frame(s) from {}: mean force {:.6e} dyn/cm; a_c {:.4}, a_n {:.4}, \
+         a_t {:.4}: ½(a_c + a_n + a_t) = {:.4} against sin φ = {:.4}",
+        r.distribution.count,
+        r.frames,
+        r.source,
+        r.distribution.mean,
+        f.a_c,
+        f.a_n,
+        f.a_t,
+        r.check.half_sum,
+        r.check.sin_phi
+    );
     Ok(())
 }
