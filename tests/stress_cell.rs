@@ -292,6 +292,9 @@ fn contradictory_controls_are_refused_naming_the_field() {
         (r#""stress": {"xx": -5}"#, "cell.stress.xx"),
         (r#""stress": {"zz": 5}"#, "cell.stress.zz"),
         (r#""strain_rate": {"yy": "fast"}"#, "cell.strain_rate.yy"),
+        // 1e-5 s steps: at most 1000 /s either way (1 % per step).
+        (r#""strain_rate": {"yy": -2000}"#, "cell.strain_rate.yy"),
+        (r#""strain_rate": {"xx": 1e6}"#, "cell.strain_rate.xx"),
     ] {
         let e = cell(members);
         assert!(e.contains(field), "{members}: {e}");

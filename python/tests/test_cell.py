@@ -166,3 +166,30 @@ def test_relax_refuses_friction_with_the_command_lines_message(tmp_path):
     assert code == 2 and err.strip() == f"dem2d: {e.value}"
     with pytest.raises(dem2d.InputError, match="tolerance: must be a positive number"):
         dem2d.Simulation(frictionless_disks()).relax(tolerance=0)
+
+
+def test_each_sides_control_and_the_width_that_follows_it():
+    # `cell.stress` and `cell.strain_rate` (the command line's keys) in `sim.cell`: the width
+    # follows σ_xx, the height is strained at its rate: L_y = 9 exp(ε̇ t) to round-off.
+    case = cell_case(shear_rate=0.0, pressure=None)
+    bodies = json.loads(case.to_json())["bodies"]
+    spec = {
+        "version": 1, "name": "cell", "gravity": [0, 0], "dt": 5e-5, "duration": 1,
+        "output_every": 100,
+        "cell": {"size": [9, 9], "periodic": "xy", "stress": {"xx": 500},
+                 "strain_rate": {"yy": -0.2}},
+        "contact": {"model": "linear", "kn": 1e6, "restitution": 0.5, "friction": 0.4},
+        "bodies": bodies,
+    }
+    sim = dem2d.Simulation(dem2d.Case(spec), threads=1)
+    sim.run(2000)
+    c = sim.cell
+    assert c["stress_xx"] == 500 and c["stress_yy"] is None
+    assert c["strain_rate_yy"] == -0.2 and c["strain_rate_xx"] is None
+    want = 9 * np.exp(-0.2 * 2000 * 5e-5)
+    assert abs(c["size"][1] - want) < 1e-12 * want
+    # The grains on a 1.5 cm lattice touch nothing at first: the width shrinks at the cap.
+    assert c["size"][0] < 9
+    with pytest.raises(dem2d.InputError, match="cell.strain_rate.yy"):
+        spec["cell"]["strain_rate"] = {"yy": -1e5}
+        dem2d.Case(spec)

@@ -283,7 +283,7 @@ impl Case {
         }
         let cell = match o.get("cell") {
             None => None,
-            Some(v) => Some(parse_cell(v, &walls, &bodies, gravity)?),
+            Some(v) => Some(parse_cell(v, &walls, &bodies, gravity, dt)?),
         };
         let (insert, outflow) = (o.get("insert"), o.get("outflow"));
         let flow = super::flow::parse_flow(insert, outflow, &named, &bodies)?;
@@ -867,11 +867,15 @@ fn parse_damping(v: &Value) -> Result<f64, FieldError> {
 
 /// The periodic cell (see [`Case::cell`]): its size against the bodies' reach, no wall across a
 /// periodic direction, shear and pressure only in a cell periodic in x and y, no gravity there.
+/// The most a strain rate may stretch a cell's side in one step.
+const MAX_STRAIN_PER_STEP: f64 = 0.01;
+
 fn parse_cell(
     v: &Value,
     walls: &[Boundary],
     bodies: &[BodyInit],
     gravity: Vec2,
+    dt: f64,
 ) -> Result<Cell, FieldError> {
     let mut c = Obj::new(v, "cell")?;
     let size = Vec2::from(c.req_with("size", |v, p| {
@@ -931,6 +935,25 @@ fn parse_cell(
         stress[1] = Some(p);
     }
     let strain_rate = strain_rate.unwrap_or([None, None]);
+    // A side strained by more than 1 % in one step moves every body affinely by that much
+    // between two force evaluations: no contact law follows that (the stress control's stretch
+    // is capped at 1e-4 per step).
+    for (side, rate) in strain_rate.iter().enumerate() {
+        if let Some(rate) = rate
+            && (rate * dt).abs() > MAX_STRAIN_PER_STEP
+        {
+            let k = ["xx", "yy"][side];
+            return Err(FieldError::new(
+                format!("{}.{k}", at("strain_rate")),
+                format!(
+                    "{rate} /s strains the cell by {:.3e} per step of {dt} s: at most \
+                     {MAX_STRAIN_PER_STEP} per step (|rate| ≤ {:.6e} /s at this dt)",
+                    (rate * dt).abs(),
+                    MAX_STRAIN_PER_STEP / dt
+                ),
+            ));
+        }
+    }
     for side in 0..2 {
         if stress[side].is_some() && strain_rate[side].is_some() {
             let k = ["xx", "yy"][side];
