@@ -140,7 +140,7 @@ pub fn worst_case(bodies: &Bodies, a: usize, b: Option<usize>, depth: f64) -> Ki
 pub struct Relative {
     /// Velocity of the receiver's material point minus the giver's (a wall's: its velocity).
     pub velocity: Vec2,
-    /// Relative spin `ω_receiver − ω_giver` (a wall does not turn).
+    /// Relative spin `ω_receiver − ω_giver` (a wall's: its angular velocity, 0 unless it turns).
     pub spin: f64,
 }
 
@@ -155,7 +155,11 @@ pub fn relative(b: &Bodies, walls: &[Boundary], sides: Sides, point: Vec2) -> Re
             velocity -= b.point_velocity(k, point - centroid(b, k, sides));
             spin -= b.state[k].omega;
         }
-        Partner::Wall(w) => velocity -= walls[w].velocity,
+        Partner::Wall(w) => {
+            // A turning boundary's material point moves at v + ω ẑ × (x − P).
+            velocity -= walls[w].velocity_at(point);
+            spin -= walls[w].omega();
+        }
     }
     if let Some(image) = sides.image {
         // The giver's periodic image moves with the cell's shear as well as with the giver.
