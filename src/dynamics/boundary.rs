@@ -397,13 +397,28 @@ impl Boundary {
         self.turn.map_or(0.0, |t| t.angle)
     }
 
-    /// The velocity of the boundary's material point at `x`: `v + ω ẑ × (x − P)`.
+    /// The lever of a contact at `x` with normal `n` (from the boundary to the body) about the
+    /// pivot: `x − P`, but for a drum `−R n`, the point of its circle on the normal's line
+    /// (where a disk's or an ellipse's contact lies; a rectangle's force acts at its overlap's
+    /// centroid, off that line, and a turning circle moves nothing along its own normals: taken
+    /// at `x`, its normal force would do work that no spring stores).
     #[inline(always)]
-    pub fn velocity_at(&self, x: Vec2) -> Vec2 {
+    pub fn lever(&self, x: Vec2, n: Vec2) -> Vec2 {
+        match (&self.kind, &self.turn) {
+            (BoundaryKind::Drum(d, _), _) => -n * d.radius,
+            (_, Some(t)) => x - t.pivot,
+            (_, None) => x - self.point(),
+        }
+    }
+
+    /// The velocity of the boundary's material point at the contact at `x` with normal `n`:
+    /// `v + ω ẑ × lever` ([`Boundary::lever`]).
+    #[inline(always)]
+    pub fn velocity_at(&self, x: Vec2, n: Vec2) -> Vec2 {
         match &self.turn {
             None => self.velocity,
             Some(t) => {
-                let r = x - t.pivot;
+                let r = self.lever(x, n);
                 self.velocity + Vec2::new(-r.y, r.x) * t.omega
             }
         }

@@ -76,7 +76,7 @@ pub fn of_contact(
 ) -> Kinematics {
     let (b, sides, n) = (c.bodies, c.sides, c.normal);
     let t = Vec2::new(-n.y, n.x);
-    let rel = relative(b, c.walls, sides, c.point);
+    let rel = relative(b, c.walls, sides, c.point, c.normal);
     let vn = rel.velocity.dot(&n);
     let (depth, energy_depth) = c.spring.depths(c.depth);
     Kinematics {
@@ -144,9 +144,16 @@ pub struct Relative {
     pub spin: f64,
 }
 
-/// The relative motion of the two sides at `point`.
+/// The relative motion of the two sides at `point` (`normal` the contact's: a drum's material
+/// point there, see [`Boundary::lever`]).
 #[inline(always)]
-pub fn relative(b: &Bodies, walls: &[Boundary], sides: Sides, point: Vec2) -> Relative {
+pub fn relative(
+    b: &Bodies,
+    walls: &[Boundary],
+    sides: Sides,
+    point: Vec2,
+    normal: Vec2,
+) -> Relative {
     let recv = sides.receiver;
     let mut velocity = b.point_velocity(recv, point - b.state[recv].pose.position);
     let mut spin = b.state[recv].omega;
@@ -157,7 +164,7 @@ pub fn relative(b: &Bodies, walls: &[Boundary], sides: Sides, point: Vec2) -> Re
         }
         Partner::Wall(w) => {
             // A turning boundary's material point moves at v + ω ẑ × (x − P).
-            velocity -= walls[w].velocity_at(point);
+            velocity -= walls[w].velocity_at(point, normal);
             spin -= walls[w].omega();
         }
     }

@@ -25,8 +25,9 @@
 //!   circle); the depth is the farthest vertex's `ρ − R`;
 //! - a **clump**: its member disks (see [`super::clump`]).
 //!
-//! No overlap area is given (the area law falls back to the spring on the depth against a drum)
-//! and no flat overlap (a rectangle takes the polygon rule above).
+//! No overlap area is given (the area law falls back to the spring on the depth against a
+//! drum); a rectangle gets its flat overlap, as against a half-plane (see
+//! [`contact_drum_polygon`]).
 
 use super::small::List;
 use super::{Contact, ContactState, Request, TOUCH_TOL, pow2_floor};
@@ -221,6 +222,15 @@ pub fn contact_drum_ellipse(
 
 /// Contact between a drum (i) and a convex polygon (j): a polygon, or a rectangle as its
 /// corners.
+///
+/// For a flat-sided body (a rectangle) a Winkler foundation, as against a half-plane, but of
+/// radial springs on the part of the polygon beyond the circle (see [`flat_overlap`]): a
+/// rectangle lying on the drum has a lobe beyond it at each bottom corner, and the resultant
+/// moves towards the deeper one when it tilts — the moment that keeps it on its face (with one
+/// point at the chord's midpoint it would rock). Then the record's normal is the resultant's,
+/// `flat.area` its magnitude over k′, `flat.centroid` where it acts (on the line through the
+/// centre), and `point` that less ȳ along the normal, so that the Winkler energy `k′ A ȳ` is
+/// the foundation's.
 pub fn contact_drum_polygon(
     drum: &Drum,
     poly: &Shape,
@@ -248,7 +258,10 @@ pub fn contact_drum_polygon(
     }
     let u = v[far] / rho;
     let world = |x: Vec2| drum.center + pose.to_world_vector(x) * scale;
-    // The crossings of the circle |x| = R with the edges, each by its angle from u.
+    // The boundary walked counter-clockwise: the vertices outside the circle and the crossings
+    // (`Some(true)`: leaving the circle, `Some(false)`: coming back), in order.
+    let mut walk: List<(Vec2, Option<bool>)> = List::new();
+    // The outermost crossings, by their angle from u.
     let (mut lo, mut hi) = (
         (f64::INFINITY, Vec2::zeros()),
         (f64::NEG_INFINITY, Vec2::zeros()),
@@ -256,6 +269,9 @@ pub fn contact_drum_polygon(
     let mut count = 0;
     for k in 0..n {
         let (p, e) = (v[k], v[(k + 1) % n] - v[k]);
+        if dist[k] > big {
+            walk.push((p, None));
+        }
         // |p + s e|² = R²: e² s² + 2 (p·e) s + (|p|² − R²) = 0.
         let (aa, bb, cc) = (
             e.norm_squared(),
@@ -263,7 +279,8 @@ pub fn contact_drum_polygon(
             (dist[k] - big) * (dist[k] + big),
         );
         let disc = bb * bb - aa * cc;
-        if aa == 0.0 || disc < 0.0 {
+        // (A tangent line, disc = 0, crosses nothing.)
+        if aa == 0.0 || disc <= 0.0 {
             continue;
         }
         let root = disc.sqrt();
@@ -274,6 +291,7 @@ pub fn contact_drum_polygon(
         } else {
             (big_root / aa, cc / big_root)
         };
+        let (s1, s2) = (s1.min(s2), s1.max(s2));
         for s in [s1, s2] {
             if (0.0..1.0).contains(&s) {
                 let x = p + e * s;
@@ -285,6 +303,7 @@ pub fn contact_drum_polygon(
                 if ang > hi.0 {
                     hi = (ang, x);
                 }
+                walk.push((x, Some(x.dot(&e) > 0.0)));
             }
         }
     }
@@ -304,11 +323,111 @@ pub fn contact_drum_polygon(
     } else {
         (ContactState::Touching, world(u * big), -u, 0.0)
     };
-    Some(record(
+    let mut c = record(
         state,
         point,
         pose.to_world_vector(normal),
         depth * scale,
         half,
-    ))
+    );
+    if poly.is_flat_sided()
+        && state == ContactState::Overlap
+        && let Some((force, energy, centroid)) = flat_overlap(&walk, big)
+    {
+        // A bed of radial springs (pressure k′(ρ − R) along −r̂): its resultant −k′ ∫ r̂ dA
+        // acts on the line through the centre (every element does), its energy is
+        // k′ ∫ (ρ − R) dA — the gradient of that energy for any motion of the body, and no work
+        // done by the drum turning under it. As a Winkler record: the area |∫ r̂ dA|, the normal
+        // along −∫ r̂ dA, acting at the centroid's foot on that line (`flat.centroid`) with the
+        // energy overlap 2ȳ, ȳ = ∫ (ρ − R) dA / |∫ r̂ dA| (the record's point ȳ along the normal
+        // from there).
+        let size = force.norm();
+        if size > 0.0 {
+            let u = force / size;
+            let foot = u * centroid.dot(&u);
+            let ybar = energy / size;
+            c.normal = pose.to_world_vector(-u);
+            c.point = world(foot - u * ybar);
+            c.flat = Some(super::FlatOverlap {
+                area: size * scale * scale,
+                centroid: world(foot),
+            });
+        }
+    }
+    Some(c)
+}
+
+/// Gauss–Legendre nodes and weights on [−1, 1], eight points (exact to degree 15).
+const GAUSS: [(f64, f64); 8] = [
+    (-0.960_289_856_497_536_3, 0.101_228_536_290_376_26),
+    (-0.796_666_477_413_626_7, 0.222_381_034_453_374_47),
+    (-0.525_532_409_916_329, 0.313_706_645_877_887_3),
+    (-0.183_434_642_495_649_8, 0.362_683_783_378_362),
+    (0.183_434_642_495_649_8, 0.362_683_783_378_362),
+    (0.525_532_409_916_329, 0.313_706_645_877_887_3),
+    (0.796_666_477_413_626_7, 0.222_381_034_453_374_47),
+    (0.960_289_856_497_536_3, 0.101_228_536_290_376_26),
+];
+
+/// The radial Winkler foundation of a polygon's part beyond the circle `|x| = big` (local,
+/// the drum's centre at the origin), from its boundary's `walk` (see [`contact_drum_polygon`]):
+/// `(∫ r̂ dA, ∫ (ρ − R) dA, ∫ x dA / ∫ dA)` over that part, `None` without a crossing.
+///
+/// Every ray from the centre through the part meets it on `R < ρ < ρ_b(θ)`, `ρ_b` the
+/// polygon's far side (convex, the centre not in it), so with `s = ρ_b − R`:
+/// `∫ r̂ dA = ∫ r̂ s (R + s/2) dθ`, `∫ (ρ − R) dA = ∫ s² (R/2 + s/3) dθ`, `∫ dA = ∫ s (R +
+/// s/2) dθ` and `∫ x dA = ∫ r̂ s (R² + R s + s²/3) dθ`, each along the runs of the boundary
+/// beyond the circle (θ increases along them), edge piece by edge piece; on a piece at distance
+/// h from the centre, `ρ_b = h / cos α` with α the angle from the piece's foot, and eight
+/// Gauss–Legendre points in α integrate it (s is small and smooth there: no cancellation).
+type Radial = (Vec2, f64, Vec2);
+fn flat_overlap(walk: &[(Vec2, Option<bool>)], big: f64) -> Option<Radial> {
+    let m = walk.len();
+    let start = walk.iter().position(|w| w.1 == Some(true))?;
+    let (mut force, mut energy, mut area, mut moment) = (Vec2::zeros(), 0.0, 0.0, Vec2::zeros());
+    let mut inside_run = false;
+    for i in 0..m {
+        let (p, kind) = walk[(start + i) % m];
+        if kind == Some(true) {
+            inside_run = true;
+        }
+        if !inside_run {
+            continue;
+        }
+        if kind == Some(false) {
+            inside_run = false;
+            continue;
+        }
+        let q = walk[(start + i + 1) % m].0;
+        let e = q - p;
+        let len = e.norm();
+        if len == 0.0 {
+            continue;
+        }
+        // The piece's foot: f̂ along the normal from the centre to its line, h its distance.
+        let t = e / len;
+        let mut f = Vec2::new(t.y, -t.x);
+        let mut h = f.dot(&p);
+        if h < 0.0 {
+            f = -f;
+            h = -h;
+        }
+        let g = Vec2::new(-f.y, f.x);
+        let angle = |x: Vec2| g.dot(&x).atan2(f.dot(&x));
+        let (a0, a1) = (angle(p), angle(q));
+        let (mid, half) = (0.5 * (a0 + a1), 0.5 * (a1 - a0));
+        for (x, w) in GAUSS {
+            let al = mid + half * x;
+            let (sn, cs) = al.sin_cos();
+            let sv = h / cs - big;
+            let r = f * cs + g * sn;
+            let dw = w * half;
+            let a = sv * (big + 0.5 * sv);
+            force += r * (a * dw);
+            area += a * dw;
+            energy += sv * sv * (0.5 * big + sv / 3.0) * dw;
+            moment += r * (sv * (big * big + big * sv + sv * sv / 3.0) * dw);
+        }
+    }
+    (area > 0.0).then(|| (force, energy, moment / area))
 }
