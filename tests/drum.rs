@@ -476,3 +476,113 @@ fn the_energy_account_closes_with_the_work_of_a_turning_paddle() {
     assert!(work.abs() > 0.0);
     assert!(rel.abs() < 1e-3, "{rel:e}");
 }
+
+/// A drum turning by a program (still, then turning) and a turning segment, with disks, an
+/// ellipse and a square: the state written part way reads back as written and continues to the
+/// uninterrupted run's bits (the turn's angle, its anchor and the loads' moments kept).
+#[test]
+fn a_turning_drum_and_a_turning_segment_continue_exactly_from_a_state_file() {
+    let text = r#"{ "version": 1, "name": "drum_restart", "gravity": [0, -980], "dt": 1e-5,
+        "duration": 1,
+        "contact": { "model": "linear", "kn_over_rho_g": 36400, "ks_over_rho_g": 36400,
+                     "restitution": 0.5, "friction": 0.5, "rolling_model": "epsd",
+                     "rolling_friction": 0.05 },
+        "walls": [{ "drum": { "center": [0, 0], "radius": 6 },
+                    "motion": [{"until": 0.01, "angular_velocity": 0}, {"angular_velocity": 3}] },
+                  { "segment": [[-1, 2], [1, 2]], "angular_velocity": 5, "pivot": [0, 2] }],
+        "bodies": [{ "shape": {"type": "circle", "r": 0.8}, "position": [-2, -4.5] },
+                   { "shape": {"type": "circle", "r": 0.6}, "position": [0, -5] },
+                   { "shape": {"type": "ellipse", "a": 1.0, "b": 0.5}, "position": [2, -4.5] },
+                   { "shape": {"type": "rectangle", "w": 1, "h": 1}, "position": [0, -3] }] }"#;
+    let file = dem2d::scene::CaseFile::from_json(text).unwrap();
+    let (b_step, c_step) = (3000u64, 6000u64);
+    let mut whole = file.build_world();
+    Simulation::new(&mut whole).for_steps(c_step).run().unwrap();
+    let mut first = file.build_world();
+    Simulation::new(&mut first).for_steps(b_step).run().unwrap();
+    let state = first.restart_state();
+    assert!(state.walls[0].turn.is_some_and(|t| t.angle != 0.0));
+    let written = dem2d::output::state::state_text(
+        &file.value,
+        file.case.duration,
+        &state,
+        None,
+        &file.case.bodies,
+        "max_steps",
+    );
+    let read = dem2d::scene::CaseFile::from_json(&written).unwrap();
+    assert_eq!(
+        format!("{:?}", read.restart.as_ref().unwrap()),
+        format!("{state:?}"),
+        "the state reads back as written"
+    );
+    let mut resumed = read.build_world();
+    Simulation::new(&mut resumed)
+        .until_step(c_step)
+        .run()
+        .unwrap();
+    assert_eq!(
+        format!("{:?}", resumed.restart_state()),
+        format!("{:?}", whole.restart_state())
+    );
+}
+
+/// The shipped case `cases/drum_disks.json`: 197 disks about half filling a drum turning at
+/// Fr = w²R/g = 1e-3 (the rolling regime). Every body stays inside the drum at every step (its
+/// centroid inside the circle, its reach beyond it no more than a contact's overlap), and at the
+/// end the free surface is a plane: the top of the bed, column by column (1 cm wide, over the
+/// middle 10 cm), lies within half a diameter (rms) of a straight line, inclined at a rolling
+/// regime's angle.
+#[test]
+fn a_half_filled_drum_in_the_rolling_regime_has_a_plane_free_surface_and_keeps_its_bodies() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/drum_disks.json");
+    let case = Case::from_json(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let fr = {
+        let w = match &case.walls[0].motion {
+            dem2d::dynamics::Motion::Program(p) => p.stages[1].angular_velocity,
+            _ => panic!("a program"),
+        };
+        w * w * 10.0 / 980.0
+    };
+    assert!((fr - 1e-3).abs() < 1e-5, "Fr = {fr}");
+    let mut wd = case.build_world();
+    let mut worst = f64::NEG_INFINITY;
+    Simulation::new(&mut wd)
+        .until_step(case.steps())
+        .run_each(|w, _| {
+            for (s, r) in w.bodies.state.iter().zip(&w.bodies.bound) {
+                worst = worst.max(s.pose.position.norm() + r - 10.0);
+            }
+        })
+        .unwrap();
+    assert!(worst < 0.01, "a body reached {worst} cm beyond the drum");
+    let mut top = std::collections::BTreeMap::new();
+    for (s, r) in wd.bodies.state.iter().zip(&wd.bodies.bound) {
+        let (x, y) = (s.pose.position.x, s.pose.position.y + r);
+        let k = x.floor() as i64;
+        if (-5..5).contains(&k) {
+            let t = top.entry(k).or_insert(f64::NEG_INFINITY);
+            *t = y.max(*t);
+        }
+    }
+    let pts: Vec<(f64, f64)> = top.iter().map(|(&k, &y)| (k as f64 + 0.5, y)).collect();
+    let n = pts.len() as f64;
+    let (mx, my) = (
+        pts.iter().map(|p| p.0).sum::<f64>() / n,
+        pts.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let slope = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>()
+        / pts.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
+    let rms = (pts
+        .iter()
+        .map(|p| (p.1 - my - slope * (p.0 - mx)).powi(2))
+        .sum::<f64>()
+        / n)
+        .sqrt();
+    let angle = slope.atan().to_degrees();
+    println!(
+        "Fr = {fr:.2e}: surface at {angle:.1}°, rms {rms:.3} cm off its line; reach {worst:.2e} cm"
+    );
+    assert!(rms < 0.4, "the free surface is not a plane: rms {rms}");
+    assert!((15.0..40.0).contains(&angle), "angle {angle}°");
+}
