@@ -161,9 +161,10 @@ pub struct WallLoad {
     /// Σ of the forces on the bodies, and of their non-elastic parts.
     pub force: Vec2,
     pub force_non_elastic: Vec2,
-    /// Σ of the moments of the forces on the bodies about the boundary's pivot (a drum's
-    /// centre; [`Boundary::pivot`]), `Σ (x_c − pivot) × F_c`, and of their non-elastic parts:
-    /// a turning boundary's power is `F·v + ω M` (see [`Turn`]).
+    /// A turning boundary's Σ of the moments of the forces and couples on the bodies about its
+    /// pivot (a drum's centre), `Σ ℓ_c × F_c + M_c` ([`Boundary::lever`]), and of their
+    /// non-elastic parts: its power is `F·v + ω M` (see [`Turn`]); 0 for one that does not
+    /// turn.
     pub torque: f64,
     pub torque_non_elastic: f64,
     /// Σ of the contacts' normal stiffness (along the wall normal).

@@ -1103,10 +1103,12 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool, const PERIODIC: boo
     {
         load.force += f;
         load.force_non_elastic += f_ne;
-        // The moment about the boundary's pivot of the force and couple on the body.
-        let r = cx.walls[w].lever(point, n_);
-        load.torque += r.perp(&f) + cf.couple;
-        load.torque_non_elastic += r.perp(&f_ne) + cf.couple_non_elastic;
+        // A turning boundary's moment about its pivot of the force and couple on the body.
+        if cx.walls[w].turn.is_some() {
+            let r = cx.walls[w].lever(point, n_);
+            load.torque += r.perp(&f) + cf.couple;
+            load.torque_non_elastic += r.perp(&f_ne) + cf.couple_non_elastic;
+        }
         load.stiffness += cf.kn;
         load.contacts += 1;
     }

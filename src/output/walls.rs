@@ -19,8 +19,9 @@
 //! - `fx,fy` the load `F` itself (dyn/cm; a drum's in particular, whose `fn,ft` refer to the
 //!   line `0,1` through its centre); `angle` the angle it has turned (rad, counter-clockwise; 0
 //!   for a wall that does not turn), `omega` its angular velocity over the step (rad/s),
-//!   `torque` the moment about its pivot (a drum's centre; else the point `x,y`) of the forces
-//!   and couples its contacts exert on the bodies, `Σ (x_c − P) × F_c + M_c` (dyn·cm/cm), and
+//!   `torque` a turning wall's moment about its pivot (a drum's centre) of the forces and
+//!   couples its contacts exert on the bodies, `Σ ℓ_c × F_c + M_c` (dyn·cm/cm; 0 for a wall
+//!   that does not turn; see `Boundary::lever`), and
 //!   `power` the work per unit time it does on the bodies, `F·v + ω torque` (erg/s per cm: what
 //!   the energy account's wall work integrates).
 //!
