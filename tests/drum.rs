@@ -586,3 +586,30 @@ fn a_half_filled_drum_in_the_rolling_regime_has_a_plane_free_surface_and_keeps_i
     assert!(rms < 0.4, "the free surface is not a plane: rms {rms}");
     assert!((15.0..40.0).contains(&angle), "angle {angle}°");
 }
+
+/// Issue 44: insertion inside a drum faked by a spinning clump placed nothing. An insertion
+/// region inside a turning drum places its bodies (the drum's signed distance, `R − |x − c|`,
+/// is the clearance the inserter asks of every wall), and they stay inside.
+#[test]
+fn an_insertion_region_inside_a_turning_drum_places_its_bodies() {
+    let text = r#"{ "version": 1, "name": "drum_insert", "gravity": [0, -980], "dt": 1e-5,
+        "duration": 0.3,
+        "contact": { "model": "linear", "kn_over_rho_g": 36400, "restitution": 0.5,
+                     "friction": 0.5 },
+        "walls": [{ "drum": { "center": [0, 0], "radius": 8 }, "angular_velocity": 1 }],
+        "bodies": [],
+        "insert": [{ "region": [-4, 4, -2, 2], "rate": 400, "count": 60, "shape": "circle",
+                     "size": 0.4 }] }"#;
+    let case = Case::from_json(text).unwrap();
+    let mut wd = case.build_world();
+    Simulation::new(&mut wd)
+        .until_step(case.steps())
+        .run()
+        .unwrap();
+    let n = wd.bodies.len();
+    println!("{n} bodies inserted in the drum");
+    assert!(n >= 50, "only {n} bodies placed");
+    for s in &wd.bodies.state {
+        assert!(s.pose.position.norm() < 8.0);
+    }
+}
