@@ -189,7 +189,9 @@ fn check(i: &Spec, j: &Spec, along: [f64; 2], k: f64) -> Result<ContactState, St
                 path: name.to_string(),
                 point: w.point,
             },
-            Object::Segment(_) => unreachable!("the generator makes no segment walls"),
+            Object::Segment(_) | Object::Drum(_) => {
+                unreachable!("the generator makes no segment walls or drums")
+            }
         })
         .collect();
     check_extent(&placed).map_err(|e| format!("generator left the ranges: {e:?}"))?;

@@ -60,7 +60,7 @@ fn r_obj(o: &Object) -> PObj {
             point: [w.point.x, w.point.y],
             normal: [w.normal.x, w.normal.y],
         },
-        Object::Segment(_) => unreachable!("no segment walls here"),
+        Object::Segment(_) | Object::Drum(_) => unreachable!("no segment walls or drums here"),
         Object::Body { shape, pose } => {
             let pos = [pose.position.x, pose.position.y];
             let angle = pose.angle();
@@ -516,7 +516,7 @@ fn force_on(i: &Object, j: &Object) -> (Vec2, f64) {
             area_spec(),
             1e-6,
         ),
-        Object::Segment(_) => unreachable!("no segment walls here"),
+        Object::Segment(_) | Object::Drum(_) => unreachable!("no segment walls or drums here"),
     };
     let k = w.bodies.len() - 1;
     (w.bodies.force[k], w.bodies.torque[k])
@@ -527,7 +527,7 @@ fn force_on(i: &Object, j: &Object) -> (Vec2, f64) {
 fn potential(i: &Object, j: &Object, area: f64) -> f64 {
     let r = |o: &Object| match o {
         Object::Body { shape, .. } => shape.equal_area_radius(),
-        Object::Wall(_) | Object::Segment(_) => f64::INFINITY,
+        Object::Wall(_) | Object::Segment(_) | Object::Drum(_) => f64::INFINITY,
     };
     let lens = dem2d::geometry::overlap_area::DiskLens::new(r(i), r(j));
     let (d, _) = lens.equivalent_depth(area);
@@ -618,7 +618,7 @@ fn force_and_moment_are_minus_the_gradient_of_the_reference_area_potential() {
         let (hx, hy, ht) = grad(0.25 * h);
         let size = match j {
             Object::Body { shape, .. } => shape.bounding_radius(),
-            Object::Wall(_) | Object::Segment(_) => unreachable!(),
+            Object::Wall(_) | Object::Segment(_) | Object::Drum(_) => unreachable!(),
         };
         // In units of the larger of |F| and |M|/size (a symmetric crossing is a pure couple).
         let scale = f.norm().max(m.abs() / size);

@@ -343,7 +343,7 @@ fn geometry_and_law(i: &Object, j: &Object, mut cache: PairCache, nf: NormalForc
     };
     let radius = |o: &Object| match o {
         Object::Body { shape, .. } => shape.equal_area_radius(),
-        Object::Wall(_) | Object::Segment(_) => f64::INFINITY,
+        Object::Wall(_) | Object::Segment(_) | Object::Drum(_) => f64::INFINITY,
     };
     let law = Law {
         normal: NormalPart::Linear { kn: 3.6e7 },

@@ -167,8 +167,8 @@ impl Frame {
         let walls: Vec<(Vec2, Vec2)> = world
             .walls
             .iter()
-            // (The box of four half-plane walls: segment walls bound no box.)
-            .filter(|w| w.segment().is_none())
+            // (The box of four half-plane walls: segment walls and drums bound no box.)
+            .filter(|w| w.is_half_plane())
             .map(|w| (w.line().point, w.line().normal))
             .collect();
         Frame {

@@ -49,8 +49,11 @@ impl Energies {
         if walls.iter().any(Boundary::moves) || slots.image_power != 0.0 {
             let (mut power, mut power_ne) = (slots.image_power, slots.image_power_ne);
             for ws in walls {
-                power += ws.load.force.dot(&ws.velocity);
-                power_ne += ws.load.force_non_elastic.dot(&ws.velocity);
+                // A turning boundary adds ω Σ (x_c − P) × F_c (see `boundary::Turn`).
+                let omega = ws.omega();
+                power += ws.load.force.dot(&ws.velocity) + omega * ws.load.torque;
+                power_ne += ws.load.force_non_elastic.dot(&ws.velocity)
+                    + omega * ws.load.torque_non_elastic;
             }
             self.dissipated -= (non_elastic_power - power_ne) * dt + slots.history_energy_change;
             self.boundary_work += power * dt;

@@ -55,7 +55,7 @@
 //! (a restart carries them).
 
 use crate::contact_law::ContactSpec;
-use crate::geometry::{Segment, Vec2, Wall};
+use crate::geometry::{Drum, Segment, Vec2, Wall};
 use crate::narrow_phase::Side;
 
 /// The servo's relaxation factor α: the fraction of the stress error corrected per step against
@@ -106,11 +106,14 @@ pub enum StageMotion {
     Servo(Servo),
 }
 
-/// One stage of a wall's program: its motion, until `until` (s; `None`: to the end).
+/// One stage of a wall's program: its motion, until `until` (s; `None`: to the end), and its
+/// angular velocity about the wall's pivot (rad/s, counter-clockwise; 0 for one that does not
+/// turn: see [`Turn`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Stage {
     pub until: Option<f64>,
     pub motion: StageMotion,
+    pub angular_velocity: f64,
 }
 
 /// A wall's program: its stages in time order.
@@ -137,6 +140,12 @@ impl Program {
             .unwrap_or(self.stages.len())
     }
 
+    /// The angular velocity of stage `s` (0 after the last).
+    #[inline]
+    pub fn angular_velocity(&self, s: usize) -> f64 {
+        self.stages.get(s).map_or(0.0, |st| st.angular_velocity)
+    }
+
     /// The motion of stage `s` (at rest after the last).
     #[inline]
     pub fn motion(&self, s: usize) -> StageMotion {
@@ -152,6 +161,12 @@ pub struct WallLoad {
     /// Σ of the forces on the bodies, and of their non-elastic parts.
     pub force: Vec2,
     pub force_non_elastic: Vec2,
+    /// A turning boundary's Σ of the moments of the forces and couples on the bodies about its
+    /// pivot (a drum's centre), `Σ ℓ_c × F_c + M_c` ([`Boundary::lever`]), and of their
+    /// non-elastic parts: its power is `F·v + ω M` (see [`Turn`]); 0 for one that does not
+    /// turn.
+    pub torque: f64,
+    pub torque_non_elastic: f64,
     /// Σ of the contacts' normal stiffness (along the wall normal).
     pub stiffness: f64,
     /// Number of contacts.
@@ -164,6 +179,8 @@ impl WallLoad {
     pub fn add(&mut self, o: &WallLoad) {
         self.force += o.force;
         self.force_non_elastic += o.force_non_elastic;
+        self.torque += o.torque;
+        self.torque_non_elastic += o.torque_non_elastic;
         self.stiffness += o.stiffness;
         self.contacts += o.contacts;
     }
@@ -178,6 +195,66 @@ pub enum BoundaryKind {
     /// A finite segment, both of whose sides are solid and whose ends are points (see
     /// [`Segment`] and `narrow_phase::segment`).
     Segment(Segment),
+    /// A drum: a circle with the bodies inside (see [`Drum`] and `narrow_phase::drum`), and
+    /// the line through its centre with the normal `(0, 1)` (what [`Boundary::line`] gives:
+    /// a drum has no line of its own, and the readers of a line — servo spans, drawings of
+    /// half-planes — are for half-planes and segments).
+    Drum(Drum, Wall),
+}
+
+impl BoundaryKind {
+    /// The drum `d` as a boundary kind.
+    pub fn drum(d: Drum) -> Self {
+        let line = Wall::new(d.center, Vec2::new(0.0, 1.0)).expect("a drum's centre is finite");
+        BoundaryKind::Drum(d, line)
+    }
+
+    /// This geometry turned by `angle` (rad, counter-clockwise) about `origin` and then
+    /// translated by `shift` (a segment's ends and a half-plane's point and normal; a drum's
+    /// centre, its circle being the same at every angle).
+    pub fn turned(&self, origin: Vec2, angle: f64, shift: Vec2) -> Self {
+        let (s, c) = angle.sin_cos();
+        let rot = |v: Vec2| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y);
+        let place = |x: Vec2| origin + shift + rot(x - origin);
+        match self {
+            BoundaryKind::Wall(w) => BoundaryKind::Wall(
+                Wall::new(place(w.point), rot(w.normal)).expect("a turned wall stays a wall"),
+            ),
+            BoundaryKind::Segment(g) => BoundaryKind::Segment(
+                Segment::new(place(g.a), place(g.b)).expect("a turned segment stays a segment"),
+            ),
+            BoundaryKind::Drum(d, _) => BoundaryKind::drum(Drum {
+                center: d.center + shift,
+                radius: d.radius,
+            }),
+        }
+    }
+}
+
+/// How a boundary turns about its pivot `P` (a drum about its centre; a half-plane or a segment
+/// given `angular_velocity` and `pivot`): its geometry now is the case's turned by `angle`
+/// about the case's pivot, then carried by the translation of the pivot (which moves as the
+/// boundary's reference point would: [`Boundary::anchor`]). The wall's velocity at a point x is
+/// `v + ω ẑ × (x − P)`, which the contact law's relative velocity reads; its spin `ω` enters the
+/// relative spin of rolling resistance; its power on the bodies is
+/// `Σ_c F_c · (v + ω ẑ × (x_c − P)) = F·v + ω Σ_c (x_c − P) × F_c` (the energy account's wall
+/// work). The angle at a constant angular velocity is `θ = θ_s + ω (t − t_s)` from the anchor
+/// of the translation (no rounding accumulates).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Turn {
+    /// The geometry at angle 0, and its pivot then.
+    pub reference: BoundaryKind,
+    pub origin: Vec2,
+    /// The pivot now.
+    pub pivot: Vec2,
+    /// The angle turned from the reference (rad, counter-clockwise).
+    pub angle: f64,
+    /// The angle at the boundary's `start_time`.
+    pub start_angle: f64,
+    /// The angular velocity of a boundary without a program (rad/s).
+    pub rate: f64,
+    /// The angular velocity of the current step's drift (rad/s).
+    pub omega: f64,
 }
 
 /// A boundary: its kind and pose, the contact parameters of contacts with it (the scene's, or
@@ -205,6 +282,8 @@ pub struct Boundary {
     pub velocity: Vec2,
     /// Its contacts in the last force evaluation.
     pub load: WallLoad,
+    /// How it turns, if it may (a drum always has one, of rate 0 when it stands still).
+    pub turn: Option<Turn>,
 }
 
 impl Boundary {
@@ -233,8 +312,13 @@ impl Boundary {
         let start = match &kind {
             BoundaryKind::Wall(w) => w.point,
             BoundaryKind::Segment(s) => s.a,
+            BoundaryKind::Drum(d, _) => d.center,
         };
-        Boundary {
+        let turn = match &kind {
+            BoundaryKind::Drum(d, _) => Some(Turn::new(kind, d.center, 0.0)),
+            BoundaryKind::Wall(_) | BoundaryKind::Segment(_) => None,
+        };
+        let mut b = Boundary {
             kind,
             start,
             start_time: 0.0,
@@ -244,6 +328,145 @@ impl Boundary {
             motion,
             velocity,
             load: WallLoad::default(),
+            turn,
+        };
+        let omega = b.angular_velocity_at_start();
+        if let Some(t) = &mut b.turn {
+            t.omega = omega;
+        }
+        b
+    }
+
+    /// The same boundary turning about `pivot` at the constant angular velocity `rate` (rad/s;
+    /// with a program, its stages' `angular_velocity` instead): a drum about its centre
+    /// whatever `pivot`.
+    pub fn turning(mut self, pivot: Vec2, rate: f64) -> Self {
+        let pivot = match &self.kind {
+            BoundaryKind::Drum(d, _) => d.center,
+            BoundaryKind::Wall(_) | BoundaryKind::Segment(_) => pivot,
+        };
+        let mut t = Turn::new(self.kind, pivot, rate);
+        self.start = pivot;
+        if let Motion::Fixed = self.motion
+            && rate != 0.0
+        {
+            // Anchored as a constant velocity of zero is: θ = ω (t − t₀).
+            self.motion = Motion::Velocity(Vec2::zeros());
+        }
+        self.turn = Some(t);
+        t.omega = self.angular_velocity_at_start();
+        self.turn = Some(t);
+        self
+    }
+
+    /// The angular velocity of the first drift.
+    fn angular_velocity_at_start(&self) -> f64 {
+        match (&self.motion, &self.turn) {
+            (Motion::Program(p), Some(_)) => p.angular_velocity(0),
+            (Motion::Velocity(_), Some(t)) => t.rate,
+            _ => 0.0,
+        }
+    }
+
+    /// The point the boundary's translation carries: its pivot when it turns, else its
+    /// reference point ([`Boundary::point`]).
+    #[inline]
+    pub fn anchor(&self) -> Vec2 {
+        match &self.turn {
+            Some(t) => t.pivot,
+            None => self.point(),
+        }
+    }
+
+    /// The pivot its moments are taken about ([`WallLoad::torque`]): a turning boundary's, or
+    /// its reference point.
+    #[inline]
+    pub fn pivot(&self) -> Vec2 {
+        self.anchor()
+    }
+
+    /// The angular velocity of the current step's drift (rad/s; 0 for a boundary that does not
+    /// turn).
+    #[inline]
+    pub fn omega(&self) -> f64 {
+        self.turn.map_or(0.0, |t| t.omega)
+    }
+
+    /// The angle the boundary has turned from the case's pose (rad).
+    #[inline]
+    pub fn angle(&self) -> f64 {
+        self.turn.map_or(0.0, |t| t.angle)
+    }
+
+    /// The lever of a contact at `x` with normal `n` (from the boundary to the body) about the
+    /// pivot: `x − P`, but for a drum `−R n`, the point of its circle on the normal's line
+    /// (where a disk's or an ellipse's contact lies; a rectangle's force acts at its overlap's
+    /// centroid, off that line, and a turning circle moves nothing along its own normals: taken
+    /// at `x`, its normal force would do work that no spring stores).
+    #[inline(always)]
+    pub fn lever(&self, x: Vec2, n: Vec2) -> Vec2 {
+        match (&self.kind, &self.turn) {
+            (BoundaryKind::Drum(d, _), _) => -n * d.radius,
+            (_, Some(t)) => x - t.pivot,
+            (_, None) => x - self.point(),
+        }
+    }
+
+    /// The velocity of the boundary's material point at the contact at `x` with normal `n`:
+    /// `v + ω ẑ × lever` ([`Boundary::lever`]).
+    #[inline(always)]
+    pub fn velocity_at(&self, x: Vec2, n: Vec2) -> Vec2 {
+        match &self.turn {
+            None => self.velocity,
+            Some(t) => {
+                let r = self.lever(x, n);
+                self.velocity + Vec2::new(-r.y, r.x) * t.omega
+            }
+        }
+    }
+
+    /// The drum, if the boundary is one.
+    #[inline]
+    pub fn drum(&self) -> Option<&Drum> {
+        match &self.kind {
+            BoundaryKind::Drum(d, _) => Some(d),
+            BoundaryKind::Wall(_) | BoundaryKind::Segment(_) => None,
+        }
+    }
+
+    /// True for a half-plane wall (not a segment, not a drum).
+    #[inline]
+    pub fn is_half_plane(&self) -> bool {
+        matches!(self.kind, BoundaryKind::Wall(_))
+    }
+
+    /// Places the boundary with its reference point ([`Boundary::point`]: a segment's first
+    /// end, a drum's centre) at `p`, turned by `angle` (a turning one; what `walls.csv` records).
+    pub fn place_by_point(&mut self, p: Vec2, angle: f64) {
+        match self.turn {
+            None => self.move_to(p),
+            Some(t) => {
+                let at = t.reference.turned(t.origin, angle, Vec2::zeros());
+                let point = match &at {
+                    BoundaryKind::Wall(w) => w.point,
+                    BoundaryKind::Segment(s) => s.a,
+                    BoundaryKind::Drum(d, _) => d.center,
+                };
+                self.place(t.origin + (p - point), angle);
+            }
+        }
+    }
+
+    /// Places the boundary with its anchor at `p` and (a turning one) turned by `angle`.
+    #[inline]
+    pub fn place(&mut self, p: Vec2, angle: f64) {
+        match &mut self.turn {
+            None => self.move_to(p),
+            Some(t) => {
+                t.pivot = p;
+                t.angle = angle;
+                self.kind = t.reference.turned(t.origin, angle, p - t.origin);
+            }
         }
     }
 
@@ -256,6 +479,7 @@ impl Boundary {
         match &self.kind {
             BoundaryKind::Wall(w) => w,
             BoundaryKind::Segment(s) => &s.front,
+            BoundaryKind::Drum(_, l) => l,
         }
     }
 
@@ -263,7 +487,7 @@ impl Boundary {
     #[inline]
     pub fn segment(&self) -> Option<&Segment> {
         match &self.kind {
-            BoundaryKind::Wall(_) => None,
+            BoundaryKind::Wall(_) | BoundaryKind::Drum(..) => None,
             BoundaryKind::Segment(s) => Some(s),
         }
     }
@@ -280,6 +504,7 @@ impl Boundary {
         match &self.kind {
             BoundaryKind::Wall(w) => Side::Wall(w),
             BoundaryKind::Segment(s) => Side::Segment(s),
+            BoundaryKind::Drum(d, _) => Side::Drum(d),
         }
     }
 
@@ -291,6 +516,7 @@ impl Boundary {
         match &self.kind {
             BoundaryKind::Wall(w) => w.signed_distance(x),
             BoundaryKind::Segment(s) => s.distance(x),
+            BoundaryKind::Drum(d, _) => d.signed_distance(x),
         }
     }
 
@@ -298,8 +524,28 @@ impl Boundary {
     /// plus a margin) can touch the boundary: within `reach` of a wall's line; inside a
     /// segment's bounding box grown by `reach` (the broad phase's test, four comparisons) and
     /// within `reach` of the segment. Returns the (signed) distance when it can.
+    ///
+    /// A turning segment: within `reach` of the disk its ends sweep about the pivot (the
+    /// distance returned that disk's, a lower bound of the segment's at every angle); a turning
+    /// half-plane: every body (−∞).
     #[inline]
     pub fn near(&self, x: Vec2, reach: f64) -> Option<f64> {
+        if let Some(t) = &self.turn {
+            match &self.kind {
+                BoundaryKind::Drum(..) => {}
+                BoundaryKind::Wall(_) => return Some(f64::NEG_INFINITY),
+                BoundaryKind::Segment(s) => {
+                    let swept = (s.a - t.pivot).norm().max((s.b - t.pivot).norm());
+                    return Some((x - t.pivot).norm() - swept).filter(|&d| d <= reach);
+                }
+            }
+        }
+        self.near_now(x, reach)
+    }
+
+    /// [`Boundary::near`] for the boundary where it is now.
+    #[inline]
+    fn near_now(&self, x: Vec2, reach: f64) -> Option<f64> {
         match &self.kind {
             BoundaryKind::Wall(w) => Some(w.signed_distance(x)).filter(|&d| d <= reach),
             BoundaryKind::Segment(s) => {
@@ -308,17 +554,22 @@ impl Boundary {
                 }
                 Some(s.distance(x)).filter(|&d| d <= reach)
             }
+            BoundaryKind::Drum(d, _) => Some(d.signed_distance(x)).filter(|&h| h <= reach),
         }
     }
 
-    /// How far the boundary has moved towards bodies since its reference point was `at`: a
-    /// wall's displacement along its normal, a segment's whole displacement (its ends move
-    /// along its line too).
+    /// How far the boundary has moved towards bodies since its anchor ([`Boundary::anchor`])
+    /// was `at`: a wall's displacement along its normal, a segment's whole displacement (its
+    /// ends move along its line too), a drum's centre's; a turning half-plane or segment, its
+    /// pivot's (its rotation moves nothing out of [`Boundary::near`]'s reach, which holds every
+    /// angle).
     #[inline]
     pub fn displacement_since(&self, at: Vec2) -> f64 {
-        match &self.kind {
-            BoundaryKind::Wall(w) => (w.point - at).dot(&w.normal).abs(),
-            BoundaryKind::Segment(s) => (s.a - at).norm(),
+        match (&self.kind, &self.turn) {
+            (BoundaryKind::Drum(d, _), _) => (d.center - at).norm(),
+            (BoundaryKind::Wall(w), None) => (w.point - at).dot(&w.normal).abs(),
+            (BoundaryKind::Segment(s), None) => (s.a - at).norm(),
+            (BoundaryKind::Wall(_) | BoundaryKind::Segment(_), Some(t)) => (t.pivot - at).norm(),
         }
     }
 
@@ -328,6 +579,10 @@ impl Boundary {
         match &mut self.kind {
             BoundaryKind::Wall(w) => w.point = p,
             BoundaryKind::Segment(s) => s.move_to(p),
+            BoundaryKind::Drum(d, l) => {
+                d.center = p;
+                l.point = p;
+            }
         }
     }
 
@@ -338,22 +593,42 @@ impl Boundary {
         match &self.motion {
             Motion::Fixed => {}
             // (t − 0 is t: the uninterrupted run's bits.)
-            Motion::Velocity(v) => self.move_to(self.start + *v * (time - self.start_time)),
+            Motion::Velocity(v) => {
+                let since = time - self.start_time;
+                let p = self.start + *v * since;
+                match self.turn {
+                    None => self.move_to(p),
+                    Some(t) => self.place(p, t.start_angle + t.rate * since),
+                }
+            }
             Motion::Servo(_) => self.move_to(self.point() + self.velocity * dt),
             Motion::Program(p) => {
                 let n = step - 1;
                 let s = p.stage_at(n, dt);
                 let motion = p.motion(s);
+                let omega = p.angular_velocity(s);
                 if s != self.stage {
                     // A new stage, anchored where the wall is as it begins.
                     self.stage = s;
-                    self.start = self.point();
+                    self.start = self.anchor();
                     self.start_time = n as f64 * dt;
+                    if let Some(t) = &mut self.turn {
+                        t.start_angle = t.angle;
+                    }
                 }
                 match motion {
                     StageMotion::Velocity(v) => {
                         self.velocity = v;
-                        self.move_to(self.start + v * (time - self.start_time));
+                        let since = time - self.start_time;
+                        let p = self.start + v * since;
+                        match &mut self.turn {
+                            None => self.move_to(p),
+                            Some(t) => {
+                                t.omega = omega;
+                                let angle = t.start_angle + omega * since;
+                                self.place(p, angle);
+                            }
+                        }
                     }
                     StageMotion::Servo(_) => self.move_to(self.point() + self.velocity * dt),
                 }
@@ -399,7 +674,24 @@ impl Boundary {
     pub fn moves(&self) -> bool {
         !matches!(self.motion, Motion::Fixed)
     }
+}
 
+impl Turn {
+    /// The turn of `kind` about `pivot` at the rate `rate`, at angle 0.
+    pub fn new(kind: BoundaryKind, pivot: Vec2, rate: f64) -> Self {
+        Turn {
+            reference: kind,
+            origin: pivot,
+            pivot,
+            angle: 0.0,
+            start_angle: 0.0,
+            rate,
+            omega: rate,
+        }
+    }
+}
+
+impl Boundary {
     /// The normal stress its contacts carry over its loaded span (servo walls), with the
     /// span; `walls` the scene's boundaries (for a span between two of them).
     pub fn measured_stress(&self, walls: &[Boundary]) -> Option<(f64, f64)> {

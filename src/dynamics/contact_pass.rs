@@ -1104,9 +1104,17 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool, const PERIODIC: boo
             p.image_power_ne += f_ne.dot(&image.velocity);
         }
     }
-    if let Some(load) = wall.and_then(|w| loads.get_mut(w)) {
+    if let Some(w) = wall
+        && let Some(load) = loads.get_mut(w)
+    {
         load.force += f;
         load.force_non_elastic += f_ne;
+        // A turning boundary's moment about its pivot of the force and couple on the body.
+        if cx.walls[w].turn.is_some() {
+            let r = cx.walls[w].lever(point, n_);
+            load.torque += r.perp(&f) + cf.couple;
+            load.torque_non_elastic += r.perp(&f_ne) + cf.couple_non_elastic;
+        }
         load.stiffness += cf.kn;
         load.contacts += 1;
     }

@@ -76,7 +76,7 @@ pub fn of_contact(
 ) -> Kinematics {
     let (b, sides, n) = (c.bodies, c.sides, c.normal);
     let t = Vec2::new(-n.y, n.x);
-    let rel = relative(b, c.walls, sides, c.point);
+    let rel = relative(b, c.walls, sides, c.point, c.normal);
     let vn = rel.velocity.dot(&n);
     let (depth, energy_depth) = c.spring.depths(c.depth);
     Kinematics {
@@ -140,13 +140,20 @@ pub fn worst_case(bodies: &Bodies, a: usize, b: Option<usize>, depth: f64) -> Ki
 pub struct Relative {
     /// Velocity of the receiver's material point minus the giver's (a wall's: its velocity).
     pub velocity: Vec2,
-    /// Relative spin `ω_receiver − ω_giver` (a wall does not turn).
+    /// Relative spin `ω_receiver − ω_giver` (a wall's: its angular velocity, 0 unless it turns).
     pub spin: f64,
 }
 
-/// The relative motion of the two sides at `point`.
+/// The relative motion of the two sides at `point` (`normal` the contact's: a drum's material
+/// point there, see [`Boundary::lever`]).
 #[inline(always)]
-pub fn relative(b: &Bodies, walls: &[Boundary], sides: Sides, point: Vec2) -> Relative {
+pub fn relative(
+    b: &Bodies,
+    walls: &[Boundary],
+    sides: Sides,
+    point: Vec2,
+    normal: Vec2,
+) -> Relative {
     let recv = sides.receiver;
     let mut velocity = b.point_velocity(recv, point - b.state[recv].pose.position);
     let mut spin = b.state[recv].omega;
@@ -155,7 +162,11 @@ pub fn relative(b: &Bodies, walls: &[Boundary], sides: Sides, point: Vec2) -> Re
             velocity -= b.point_velocity(k, point - centroid(b, k, sides));
             spin -= b.state[k].omega;
         }
-        Partner::Wall(w) => velocity -= walls[w].velocity,
+        Partner::Wall(w) => {
+            // A turning boundary's material point moves at v + ω ẑ × (x − P).
+            velocity -= walls[w].velocity_at(point, normal);
+            spin -= walls[w].omega();
+        }
     }
     if let Some(image) = sides.image {
         // The giver's periodic image moves with the cell's shear as well as with the giver.

@@ -101,8 +101,7 @@ impl Builder {
         list.built_at
             .extend(bodies.state.iter().map(|s| s.pose.position));
         list.wall_built_at.clear();
-        list.wall_built_at
-            .extend(walls.iter().map(|w| w.line().point));
+        list.wall_built_at.extend(walls.iter().map(|w| w.anchor()));
         list.lattice_built_at = cell.map(Cell::lattice);
         lost
     }

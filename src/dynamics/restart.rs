@@ -63,6 +63,17 @@ pub struct WallRestart {
     pub load: WallLoad,
     /// A program's stage (see [`super::boundary`]; `None` for a wall without a program).
     pub program: Option<ProgramRestart>,
+    /// A turning boundary's angle (`None` for one that does not turn; then `point` is its
+    /// pivot: [`super::boundary::Boundary::anchor`]).
+    pub turn: Option<TurnRestart>,
+}
+
+/// Where a turning boundary is in its turn (see [`super::boundary::Turn`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TurnRestart {
+    pub angle: f64,
+    pub start_angle: f64,
+    pub omega: f64,
 }
 
 /// Where a wall's program is: the stage of its last drift, and the point and time that stage

@@ -12,7 +12,7 @@ use super::flow::{FlowRestart, Target};
 use super::materials::{Materials, PairTable};
 use super::neighbour_list::kept;
 use super::restart::{
-    BodyRestart, ProgramRestart, RestartError, RestartState, SlotRestart, WallRestart,
+    BodyRestart, ProgramRestart, RestartError, RestartState, SlotRestart, TurnRestart, WallRestart,
 };
 use super::step::{Parts, Stepper};
 use crate::contact_law::{ContactSpec, HISTORY_LEN};
@@ -169,7 +169,11 @@ impl World {
             b.torque[k] = r.torque;
         }
         for (ws, r) in w.walls.iter_mut().zip(&saved.walls) {
-            ws.move_to(r.point);
+            ws.place(r.point, r.turn.map_or(0.0, |t| t.angle));
+            if let (Some(t), Some(r)) = (&mut ws.turn, r.turn) {
+                t.start_angle = r.start_angle;
+                t.omega = r.omega;
+            }
             ws.velocity = r.velocity;
             ws.load = r.load;
             if let Some(p) = r.program {
@@ -210,7 +214,12 @@ impl World {
                 .walls
                 .iter()
                 .map(|ws| WallRestart {
-                    point: ws.line().point,
+                    point: ws.anchor(),
+                    turn: ws.turn.map(|t| TurnRestart {
+                        angle: t.angle,
+                        start_angle: t.start_angle,
+                        omega: t.omega,
+                    }),
                     velocity: ws.velocity,
                     load: ws.load,
                     program: matches!(ws.motion, Motion::Program(_)).then_some(ProgramRestart {

@@ -6,6 +6,7 @@
 pub mod clump;
 pub mod conic;
 pub mod cubic;
+pub mod drum;
 pub mod mass;
 pub mod overlap_area;
 pub mod pencil;
@@ -15,6 +16,7 @@ pub mod shape;
 pub mod support;
 
 pub use clump::{Clump, ClumpError};
+pub use drum::Drum;
 pub use polygon::{Polygon, PolygonError};
 pub use segment::{Segment, SegmentError};
 pub use shape::{Pose, Shape, ShapeError, Vec2, Wall};

@@ -27,7 +27,7 @@ pub fn member(c: &Clump, k: usize, pose: &Pose) -> (Shape, Pose) {
 fn members(s: Side) -> usize {
     match s {
         Side::Body(Shape::Clump(c), _) => c.len(),
-        Side::Body(..) | Side::Wall(_) | Side::Segment(_) => 1,
+        Side::Body(..) | Side::Wall(_) | Side::Segment(_) | Side::Drum(_) => 1,
     }
 }
 
@@ -38,7 +38,7 @@ fn resolve<'a>(s: Side<'a>, k: usize, store: &'a mut (Shape, Pose)) -> Side<'a> 
             *store = member(c, k, pose);
             Side::Body(&store.0, &store.1)
         }
-        Side::Body(..) | Side::Wall(_) | Side::Segment(_) => s,
+        Side::Body(..) | Side::Wall(_) | Side::Segment(_) | Side::Drum(_) => s,
     }
 }
 

@@ -60,7 +60,7 @@
 //! single chord. They are never dropped: they get a defined fallback geometry and the state
 //! [`ContactState::Deep`] or [`ContactState::Contained`], which later stages count and report.
 
-use crate::geometry::{Pose, Segment, Shape, Vec2, Wall};
+use crate::geometry::{Drum, Pose, Segment, Shape, Vec2, Wall};
 use std::cell::Cell;
 
 pub use cache::PairCache;
@@ -69,6 +69,7 @@ pub mod cache;
 mod circle_circle;
 mod circle_wall;
 pub mod clump;
+pub mod drum;
 pub mod ellipse_ellipse;
 mod ellipse_wall;
 mod polygon_conic;
@@ -216,9 +217,14 @@ pub struct FlatOverlap {
 /// One side of a pair: a placed body, a wall (a half-plane) or a segment wall.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Object {
-    Body { shape: Shape, pose: Pose },
+    Body {
+        shape: Shape,
+        pose: Pose,
+    },
     Wall(Wall),
     Segment(Segment),
+    /// A drum: a circle with the bodies inside it (see [`drum`]).
+    Drum(Drum),
 }
 
 /// One side of a pair, borrowed: what a caller that keeps its bodies elsewhere (the dynamics)
@@ -228,6 +234,7 @@ pub enum Side<'a> {
     Body(&'a Shape, &'a Pose),
     Wall(&'a Wall),
     Segment(&'a Segment),
+    Drum(&'a Drum),
 }
 
 impl Object {
@@ -251,6 +258,7 @@ impl<'a> From<&'a Object> for Side<'a> {
             Object::Body { shape, pose } => Side::Body(shape, pose),
             Object::Wall(w) => Side::Wall(w),
             Object::Segment(s) => Side::Segment(s),
+            Object::Drum(d) => Side::Drum(d),
         }
     }
 }
@@ -323,7 +331,25 @@ pub fn contact_with<'a>(
         t.set(false); // (the conic pairs' kernel records whether the warm start gave the result)
     }
     match (i, j) {
-        (Side::Wall(_) | Side::Segment(_), Side::Wall(_) | Side::Segment(_)) => None,
+        (
+            Side::Wall(_) | Side::Segment(_) | Side::Drum(_),
+            Side::Wall(_) | Side::Segment(_) | Side::Drum(_),
+        ) => None,
+        // A drum as i; a clump through its members (circles).
+        (Side::Drum(d), Side::Body(sj, pj)) => match sj {
+            Circle { r: rj } => drum::contact_drum_circle(d, *rj, pj, r),
+            Ellipse { a, b } => cold(|| drum::contact_drum_ellipse(d, *a, *b, pj, r)),
+            Rectangle { .. } | Polygon(_) => cold(|| drum::contact_drum_polygon(d, sj, pj, r)),
+            Clump(_) => cold(|| clump::contact_clump(i, j, r)),
+        },
+        (Side::Body(si, pi), Side::Drum(d)) => match si {
+            Circle { r: ri } => turned(drum::contact_drum_circle(d, *ri, pi, r)),
+            Ellipse { a, b } => turned(cold(|| drum::contact_drum_ellipse(d, *a, *b, pi, r))),
+            Rectangle { .. } | Polygon(_) => {
+                turned(cold(|| drum::contact_drum_polygon(d, si, pi, r)))
+            }
+            Clump(_) => cold(|| clump::contact_clump(i, j, r)),
+        },
         // A segment as i; a clump through its members (circles).
         (Side::Segment(s), Side::Body(sj, pj)) => match sj {
             Clump(_) => cold(|| clump::contact_clump(i, j, r)),

@@ -132,6 +132,13 @@ pub fn dump_box(bodies: &[DumpBody], walls: &[Boundary], cell: Option<&Cell>) ->
         grow(&mut y, b.y + r);
     }
     for w in walls {
+        if let Some(d) = w.drum() {
+            for o in [-d.radius, d.radius] {
+                grow(&mut x, d.center.x + o);
+                grow(&mut y, d.center.y + o);
+            }
+            continue;
+        }
         if let Some(s) = w.segment() {
             for p in [s.a, s.b] {
                 grow(&mut x, p.x);

@@ -127,6 +127,10 @@ pub fn player_data(run: &RunData, frames: &[usize]) -> Result<Value, String> {
         let (ws, _) = run.walls_at(k);
         let mut w: Vec<f64> = Vec::new();
         for wall in &ws {
+            if let Some(d) = wall.drum() {
+                w.extend([2.0, d.center.x, d.center.y, d.radius, wall.angle()]);
+                continue;
+            }
             match wall.segment() {
                 Some(s) => w.extend([1.0, s.a.x, s.a.y, s.b.x, s.b.y]),
                 None => {

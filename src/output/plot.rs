@@ -456,6 +456,17 @@ fn scene_bounds(panels: &[Vec<(Drawn, ColorBy)>]) -> (f64, f64, f64, f64) {
             continue;
         };
         for wall in &d.run.walls_at(last).0 {
+            if let Some(dr) = wall.drum() {
+                // A drum: the box holds its circle.
+                let (c, r) = (dr.center, dr.radius);
+                (x0, x1, y0, y1) = (
+                    x0.min(c.x - r),
+                    x1.max(c.x + r),
+                    y0.min(c.y - r),
+                    y1.max(c.y + r),
+                );
+                continue;
+            }
             if let Some(seg) = wall.segment() {
                 // A segment wall: the box holds it whole.
                 for p in [seg.a, seg.b] {
@@ -845,7 +856,9 @@ where
         let now = d.run.walls_at(last).0;
         for &o in &d.outlines[..d.outlines.len() - 1] {
             for (w, then) in now.iter().zip(d.run.walls_at(o).0) {
-                if then.line().point == w.line().point {
+                if (then.line().point == w.line().point && then.angle() == w.angle())
+                    || then.drum().is_some()
+                {
                     continue;
                 }
                 let t = Vec2::new(-then.line().normal.y, then.line().normal.x);
@@ -864,6 +877,33 @@ where
             }
         }
         for w in &now {
+            if let Some(dr) = w.drum() {
+                // A drum: its circle, thick, with a radius marking how far it has turned.
+                let (c, r) = (dr.center, dr.radius);
+                let circle: Vec<(f64, f64)> = (0..=256)
+                    .map(|i| {
+                        let a = std::f64::consts::TAU * i as f64 / 256.0;
+                        (c.x + r * a.cos(), c.y + r * a.sin())
+                    })
+                    .collect();
+                chart
+                    .draw_series(std::iter::once(PathElement::new(
+                        circle,
+                        BLACK.stroke_width(2 * S),
+                    )))
+                    .map_err(err)?;
+                let (sn, cs) = (w.angle() - std::f64::consts::FRAC_PI_2).sin_cos();
+                chart
+                    .draw_series(std::iter::once(PathElement::new(
+                        vec![
+                            (c.x + 0.9 * r * cs, c.y + 0.9 * r * sn),
+                            (c.x + r * cs, c.y + r * sn),
+                        ],
+                        BLACK.stroke_width(2 * S),
+                    )))
+                    .map_err(err)?;
+                continue;
+            }
             if let Some(seg) = w.segment() {
                 // A segment wall: both sides solid, a thick line without hatching.
                 chart

@@ -511,7 +511,7 @@ impl RunData {
         });
         if let Some(r) = recorded {
             for (w, row) in walls.iter_mut().zip(&r.walls) {
-                w.move_to(row.point);
+                w.place_by_point(row.point, row.angle);
                 w.velocity = row.velocity;
             }
             return (walls, true);
@@ -521,7 +521,8 @@ impl RunData {
             match w.motion {
                 Motion::Fixed => {}
                 Motion::Velocity(v) => {
-                    w.move_to(w.start + v * frame.t);
+                    let angle = w.turn.map_or(0.0, |t| t.rate * frame.t);
+                    w.place(w.start + v * frame.t, angle);
                     w.velocity = v;
                 }
                 Motion::Servo(_) | Motion::Program(_) => known = false,

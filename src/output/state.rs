@@ -301,6 +301,17 @@ fn write_state_block(
                 num(p.start_time)
             );
         }
+        if let Some(t) = &w.turn {
+            let _ = write!(
+                out,
+                ", \"turn\": {{\"angle\": {}, \"start_angle\": {}, \"omega\": {}, \"torque\": {}, \"torque_non_elastic\": {}}}",
+                num(t.angle),
+                num(t.start_angle),
+                num(t.omega),
+                num(l.torque),
+                num(l.torque_non_elastic)
+            );
+        }
         out.push('}');
     });
     out.push_str(",\n    \"bodies\": [");

@@ -204,10 +204,16 @@ impl VtkWriter {
         let b = &world.bodies;
         let points = (0..b.len())
             .map(|k| (b.state[k].pose.position, b.bound[k]))
-            .chain(world.walls.iter().flat_map(|w| match w.segment() {
-                Some(s) => vec![(s.a, 0.0), (s.b, 0.0)],
-                None => vec![(w.line().point, 0.0)],
-            }));
+            .chain(
+                world
+                    .walls
+                    .iter()
+                    .flat_map(|w| match (w.segment(), w.drum()) {
+                        (Some(s), _) => vec![(s.a, 0.0), (s.b, 0.0)],
+                        (None, Some(d)) => vec![(d.center, d.radius)],
+                        (None, None) => vec![(w.line().point, 0.0)],
+                    }),
+            );
         for (p, r) in points {
             x0 = x0.min(p.x - r);
             x1 = x1.max(p.x + r);
@@ -336,6 +342,30 @@ impl VtkWriter {
             let pad = 0.05 * (x1 - x0).max(y1 - y0);
             let bx = (x0 - pad, x1 + pad, y0 - pad, y1 + pad);
             for (w, ws) in world.walls.iter().enumerate() {
+                if let Some(d) = ws.drum() {
+                    // A drum: its circle as 128 lines, each with its inward normal.
+                    const SIDES: usize = 128;
+                    let at = |i: usize| {
+                        let a = std::f64::consts::TAU * i as f64 / SIDES as f64;
+                        d.center + Vec2::new(a.cos(), a.sin()) * d.radius
+                    };
+                    for i in 0..SIDES {
+                        let (a, e) = (at(i), at(i + 1));
+                        let ia = push_point(&mut points, (a.x, a.y));
+                        let ie = push_point(&mut points, (e.x, e.y));
+                        connectivity.extend([ia, ie]);
+                        offsets.push(connectivity.len() as i64);
+                        types.push(VTK_LINE);
+                        let inward = (d.center - (a + e) * 0.5).normalize();
+                        cells.push(Cell {
+                            kind: 2,
+                            id: w as i64,
+                            normal: [inward.x, inward.y, 0.0],
+                            ..Cell::default()
+                        });
+                    }
+                    continue;
+                }
                 let (p, nrm) = (ws.line().point, ws.line().normal);
                 let drawn = match ws.segment() {
                     Some(s) => Some((s.a, s.b)),

@@ -1,9 +1,10 @@
 //! `walls.csv`: every wall's line, velocity and load at each output frame (written by every run
 //! whose case has walls), and its reader.
 //!
-//! `step,t,wall,x,y,nx,ny,vx,vy,fn,ft,contacts,span,sn,st`:
-//! - `x,y` a point of the wall's line now, `nx,ny` its unit normal (into the free side), `vx,vy`
-//!   its velocity over the step that ended here (cm/s; zero for a fixed wall);
+//! `step,t,wall,x,y,nx,ny,vx,vy,fn,ft,contacts,span,sn,st,fx,fy,angle,omega,torque,power`:
+//! - `x,y` a point of the wall's line now (a segment's first end; a drum's centre), `nx,ny` its
+//!   unit normal (into the free side; a drum: `0,1`), `vx,vy` its velocity over the step that
+//!   ended here (cm/s; zero for a fixed wall; a turning wall's pivot's);
 //! - `fn,ft` its **load**: the sum `F` of the forces its contacts exert on the bodies (dyn per
 //!   cm of thickness), `fn = F·n` (positive: the wall pushes the bodies, compression) and
 //!   `ft = F·t` with `t = (−n_y, n_x)`; `contacts` their number;
@@ -15,7 +16,17 @@
 //!   without a span). A biaxial test's stress–strain curve is `sn` of its walls against the
 //!   change of their positions.
 //!
-//! Runs written before these columns have `step,t,wall,x,y,nx,ny` only; [`read_walls`] reads both.
+//! - `fx,fy` the load `F` itself (dyn/cm; a drum's in particular, whose `fn,ft` refer to the
+//!   line `0,1` through its centre); `angle` the angle it has turned (rad, counter-clockwise; 0
+//!   for a wall that does not turn), `omega` its angular velocity over the step (rad/s),
+//!   `torque` a turning wall's moment about its pivot (a drum's centre) of the forces and
+//!   couples its contacts exert on the bodies, `Σ ℓ_c × F_c + M_c` (dyn·cm/cm; 0 for a wall
+//!   that does not turn; see `Boundary::lever`), and
+//!   `power` the work per unit time it does on the bodies, `F·v + ω torque` (erg/s per cm: what
+//!   the energy account's wall work integrates).
+//!
+//! Runs written before these columns have `step,t,wall,x,y,nx,ny` only, or end at `st`;
+//! [`read_walls`] reads all three.
 
 use super::run_data::ReadError;
 use super::trace::{FrameRows, LineFile, Written};
@@ -24,7 +35,11 @@ use crate::dynamics::boundary::{Boundary, span_length};
 use crate::geometry::Vec2;
 use std::path::Path;
 
-pub const WALLS_HEADER: &str = "step,t,wall,x,y,nx,ny,vx,vy,fn,ft,contacts,span,sn,st";
+pub const WALLS_HEADER: &str =
+    "step,t,wall,x,y,nx,ny,vx,vy,fn,ft,contacts,span,sn,st,fx,fy,angle,omega,torque,power";
+/// The header of runs written before the turning walls' columns.
+pub const WALLS_HEADER_BEFORE_TURNING: &str =
+    "step,t,wall,x,y,nx,ny,vx,vy,fn,ft,contacts,span,sn,st";
 /// The header of runs written before the walls' loads were recorded.
 pub const WALLS_HEADER_LINES_ONLY: &str = "step,t,wall,x,y,nx,ny";
 
@@ -39,6 +54,10 @@ pub fn loaded_span(k: usize, walls: &[Boundary]) -> Option<f64> {
         // A segment wall's load is spread over the segment.
         return Some(seg.length);
     }
+    if let Some(d) = me.drum() {
+        // A drum's over its circumference.
+        return Some(std::f64::consts::TAU * d.radius);
+    }
     let (p, t) = (
         me.line().point,
         Vec2::new(-me.line().normal.y, me.line().normal.x),
@@ -46,8 +65,8 @@ pub fn loaded_span(k: usize, walls: &[Boundary]) -> Option<f64> {
     // The line p + s t on the free side of wall j: s (n_j·t) ≥ n_j·(p_j − p).
     let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
     for (j, o) in walls.iter().enumerate() {
-        if j == k || o.segment().is_some() {
-            // (A segment bounds no half-plane wall's line.)
+        if j == k || !o.is_half_plane() {
+            // (A segment or a drum bounds no half-plane wall's line.)
             continue;
         }
         let (nt, gap) = (
@@ -89,8 +108,10 @@ impl FrameRows for Walls {
             let f = w.load.force;
             let (fn_, ft) = (f.dot(&n), f.x * -n.y + f.y * n.x);
             let span = loaded_span(k, &world.walls).unwrap_or(f64::NAN);
+            let omega = w.omega();
+            let power = f.dot(&v) + omega * w.load.torque;
             out.line(format_args!(
-                "{step},{t},{k},{},{},{},{},{},{},{},{},{},{},{},{}",
+                "{step},{t},{k},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                 p.x,
                 p.y,
                 n.x,
@@ -102,7 +123,13 @@ impl FrameRows for Walls {
                 w.load.contacts,
                 num(span),
                 num(fn_ / span),
-                num(ft / span)
+                num(ft / span),
+                f.x,
+                f.y,
+                w.angle(),
+                omega,
+                w.load.torque,
+                power
             ))?;
         }
         Ok(())
@@ -121,6 +148,8 @@ pub struct WallRow {
     pub span: f64,
     pub sn: f64,
     pub st: f64,
+    /// The angle the wall has turned (0 in a file written before the column).
+    pub angle: f64,
 }
 
 /// The walls of one output frame.
@@ -161,7 +190,8 @@ pub fn read_walls(dir: &Path, n_walls: usize) -> Result<Option<WallFrames>, Read
     let (whole, partial) = super::run_data::whole_lines(&text);
     let mut lines = whole.lines();
     let width = match lines.next() {
-        Some(WALLS_HEADER) => 15,
+        Some(WALLS_HEADER) => 21,
+        Some(WALLS_HEADER_BEFORE_TURNING) => 15,
         Some(WALLS_HEADER_LINES_ONLY) => 7,
         _ => return Err(bad(1, &format!("expected the header `{WALLS_HEADER}`"))),
     };
@@ -203,6 +233,7 @@ pub fn read_walls(dir: &Path, n_walls: usize) -> Result<Option<WallFrames>, Read
             span: g(12),
             sn: g(13),
             st: g(14),
+            angle: f.get(17).copied().unwrap_or(0.0),
         });
     }
     let cut_frame = out.frames.last().is_some_and(|w| w.walls.len() != n_walls);

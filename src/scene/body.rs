@@ -5,12 +5,13 @@
 //! body's `position` is the centroid's, `clump` with `disks`: `[{"center": [x, y], "r": r}, …]`,
 //! shifted to the centroid of their union — the body's `position` is that centroid's) and
 //! `{"wall": {"point": [x, y], "normal": [nx, ny]}}` or a segment wall
-//! `{"wall": {"segment": [[x0, y0], [x1, y1]]}}`.
+//! `{"wall": {"segment": [[x0, y0], [x1, y1]]}}` or a drum
+//! `{"wall": {"drum": {"center": [x, y], "radius": R}}}`.
 
 use super::fields::{FieldError, Obj, index, number, scale, type_of, vec2};
 use super::ranges::{Placed, check_extent};
 use crate::geometry::{Clump, ClumpError, Polygon, PolygonError, Pose, Segment, SegmentError};
-use crate::geometry::{Shape, Vec2, Wall};
+use crate::geometry::{Drum, Shape, Vec2, Wall};
 use crate::narrow_phase::Object;
 use serde_json::Value;
 
@@ -132,6 +133,7 @@ fn clump(v: &Value, path: &str) -> Result<Clump, FieldError> {
 pub enum WallGeometry {
     HalfPlane(Wall),
     Segment(Segment),
+    Drum(Drum),
 }
 
 /// A wall's inner object: a half-plane `{"point": [x, y], "normal": [nx, ny]}` (the normal need
@@ -144,7 +146,18 @@ pub fn parse_wall_or_segment_with<T>(
     extra: impl FnOnce(&mut Obj) -> Result<T, FieldError>,
 ) -> Result<(WallGeometry, T), FieldError> {
     let mut o = Obj::new(v, path)?;
-    let geometry = if o.has("segment") {
+    let geometry = if o.has("drum") {
+        for key in ["point", "normal", "segment"] {
+            if o.has(key) {
+                return Err(FieldError::new(
+                    o.field_path(key),
+                    "give a wall's `drum` (its centre and radius), its `segment` or its `point` \
+                     and `normal` (a half-plane): one of them",
+                ));
+            }
+        }
+        WallGeometry::Drum(o.req_with("drum", parse_drum)?)
+    } else if o.has("segment") {
         for key in ["point", "normal"] {
             if o.has(key) {
                 return Err(FieldError::new(
@@ -167,6 +180,16 @@ pub fn parse_wall_or_segment_with<T>(
     let t = extra(&mut o)?;
     o.finish()?;
     Ok((geometry, t))
+}
+
+/// A drum `{"center": [x, y], "radius": R}` (R a positive scale).
+pub fn parse_drum(v: &Value, path: &str) -> Result<Drum, FieldError> {
+    let mut o = Obj::new(v, path)?;
+    let center = o.req_with("center", vec2)?;
+    let radius = o.req_with("radius", scale)?;
+    o.finish()?;
+    Drum::new(Vec2::from(center), radius)
+        .ok_or_else(|| FieldError::new(path, "must have a finite centre and a positive radius"))
 }
 
 /// A segment's two ends `[[x0, y0], [x1, y1]]` (finite, distinct).
@@ -225,6 +248,7 @@ pub fn parse_object(v: &Value, path: &str) -> Result<Object, FieldError> {
         return Ok(match wall {
             WallGeometry::HalfPlane(w) => Object::Wall(w),
             WallGeometry::Segment(s) => Object::Segment(s),
+            WallGeometry::Drum(d) => Object::Drum(d),
         });
     }
     let (shape, pose, ()) = parse_body_with(&mut o, |_| Ok(()))?;
@@ -250,8 +274,8 @@ pub fn parse_pairs(v: &Value) -> Result<Vec<(Object, Object)>, FieldError> {
         if matches!(
             (i, j),
             (
-                Object::Wall(_) | Object::Segment(_),
-                Object::Wall(_) | Object::Segment(_)
+                Object::Wall(_) | Object::Segment(_) | Object::Drum(_),
+                Object::Wall(_) | Object::Segment(_) | Object::Drum(_)
             )
         ) {
             return Err(FieldError::new(path, "a pair of two walls has no contact"));
@@ -276,10 +300,24 @@ pub fn parse_pairs(v: &Value) -> Result<Vec<(Object, Object)>, FieldError> {
                         point,
                     })
                     .collect(),
+                Object::Drum(d) => drum_extent(d, &format!("{path}.{side}.wall.drum")),
             })
             .collect();
         check_extent(&placed)?;
         pairs.push((i, j));
     }
     Ok(pairs)
+}
+
+/// The points that bound a drum's extent (its centre and its box's corners), for
+/// [`check_extent`].
+pub fn drum_extent(d: &Drum, path: &str) -> Vec<Placed<'static>> {
+    let r = d.radius;
+    [[0.0, 0.0], [r, r], [-r, -r]]
+        .iter()
+        .map(|o| Placed::Wall {
+            path: format!("{path}.center"),
+            point: d.center + Vec2::new(o[0], o[1]),
+        })
+        .collect()
 }

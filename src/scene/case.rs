@@ -192,7 +192,7 @@ impl Case {
             let mut spans = Vec::new();
             for (k, item) in items.iter().enumerate() {
                 let path = index("walls", k);
-                let (wall, (spec, motion, material)) =
+                let (wall, (spec, motion, material, turning)) =
                     parse_wall_or_segment_with(item, &path, |w| {
                         let material = w.opt_with("material", |v, p| named.index_of(v, p))?;
                         let spec = wall_overrides(w, &contact_map)?;
@@ -202,7 +202,8 @@ impl Case {
                                 "give the wall a `material` or contact keys of its own, not both",
                             ));
                         }
-                        Ok((spec, wall_motion(w, dt)?, material))
+                        let turning = wall_turning(w)?;
+                        Ok((spec, wall_motion(w, dt)?, material, turning))
                     })?;
                 match &motion {
                     Motion::Servo(s) => spans.push((k, s.span, format!("{path}.servo.span"))),
@@ -228,8 +229,73 @@ impl Case {
                         }
                         BoundaryKind::Segment(s)
                     }
+                    WallGeometry::Drum(d) => {
+                        if let Some((_, _, at)) = spans.iter().find(|(w, ..)| *w == k) {
+                            return Err(FieldError::new(
+                                at.trim_end_matches(".span").to_string(),
+                                "a servo moves a half-plane wall (`point`, `normal`); a drum \
+                                 turns at an `angular_velocity` (or by a `motion` program)",
+                            ));
+                        }
+                        BoundaryKind::drum(d)
+                    }
                 };
-                let boundary = Boundary::of_kind(kind, spec.unwrap_or(contact), motion);
+                let stages_turn = match &motion {
+                    Motion::Program(p) => p.stages.iter().any(|s| s.angular_velocity != 0.0),
+                    _ => false,
+                };
+                let drum = matches!(kind, BoundaryKind::Drum(..));
+                match (turning, drum) {
+                    (Turning { pivot: Some(_), .. }, true) => {
+                        return Err(FieldError::new(
+                            join(&path, "pivot"),
+                            "a drum turns about its centre: give it no `pivot`",
+                        ));
+                    }
+                    (Turning { rate, pivot: None }, false) if rate.is_some() || stages_turn => {
+                        return Err(FieldError::new(
+                            join(&path, "pivot"),
+                            "is missing: a turning wall or segment turns about its `pivot` \
+                             [x, y]",
+                        ));
+                    }
+                    (
+                        Turning {
+                            rate: None,
+                            pivot: Some(_),
+                        },
+                        false,
+                    ) if !stages_turn => {
+                        return Err(FieldError::new(
+                            join(&path, "pivot"),
+                            "is given, but the wall does not turn: give its \
+                             `angular_velocity` (or stages with one in `motion`)",
+                        ));
+                    }
+                    _ => {}
+                }
+                if turning.rate.is_some() && matches!(motion, Motion::Program(_)) {
+                    return Err(FieldError::new(
+                        join(&path, "angular_velocity"),
+                        "give `motion` (its stages with their `angular_velocity`) or the wall's \
+                         own `angular_velocity`, not both",
+                    ));
+                }
+                if turning.rate.is_some() && matches!(motion, Motion::Servo(_)) {
+                    return Err(FieldError::new(
+                        join(&path, "angular_velocity"),
+                        "a servo moves a half-plane along its normal: give `servo` or \
+                         `angular_velocity`, not both",
+                    ));
+                }
+                let turns = drum || turning.rate.is_some() || stages_turn;
+                let mut boundary = Boundary::of_kind(kind, spec.unwrap_or(contact), motion);
+                if turns {
+                    boundary = boundary.turning(
+                        turning.pivot.map_or(Vec2::zeros(), Vec2::from),
+                        turning.rate.unwrap_or(0.0),
+                    );
+                }
                 walls.push(match (spec, material) {
                     // A wall of its own law.
                     (Some(_), _) => boundary,
@@ -317,6 +383,13 @@ impl Case {
             })
             .collect();
         for (w, ws) in walls.iter().enumerate() {
+            if let Some(d) = ws.drum() {
+                placed.extend(super::body::drum_extent(
+                    d,
+                    &join(&index("walls", w), "drum"),
+                ));
+                continue;
+            }
             match ws.segment() {
                 None => placed.push(Placed::Wall {
                     path: index("walls", w),
@@ -610,7 +683,29 @@ fn check_walls(walls: &[Boundary], bodies: &[BodyInit]) -> Result<(), FieldError
         .map(|b| b.shape.inscribed_radius())
         .fold(f64::INFINITY, f64::min);
     // (Segment walls: both sides solid, no free side to check; two may well share a line.)
-    let half_plane = |w: &Boundary| w.segment().is_none();
+    // A drum holds its bodies inside: one whose centroid lies on or beyond its circle starts
+    // in its solid.
+    for (w, d) in walls
+        .iter()
+        .enumerate()
+        .filter_map(|(w, b)| b.drum().map(|d| (w, d)))
+    {
+        if let Some((k, b)) = bodies
+            .iter()
+            .enumerate()
+            .find(|(_, b)| (b.position - d.center).norm() >= d.radius)
+        {
+            return Err(FieldError::new(
+                format!("{}.position", index("bodies", k)),
+                format!(
+                    "[{}, {}] lies outside the drum walls[{w}] (centre [{}, {}], radius {}): a \
+                     drum holds its bodies inside its circle",
+                    b.position.x, b.position.y, d.center.x, d.center.y, d.radius
+                ),
+            ));
+        }
+    }
+    let half_plane = |w: &Boundary| w.is_half_plane();
     for (j, b) in walls.iter().enumerate().filter(|(_, b)| half_plane(b)) {
         for (i, a) in walls[..j].iter().enumerate().filter(|(_, a)| half_plane(a)) {
             let (na, nb) = (a.line().normal, b.line().normal);
@@ -1017,6 +1112,19 @@ fn parse_cell(
         ));
     }
     for (k, w) in walls.iter().enumerate() {
+        if w.drum().is_some() {
+            return Err(FieldError::new(
+                join(&index("walls", k), "drum"),
+                "a drum is not supported in a periodic cell (a drum is not repeated across its \
+                 seams)",
+            ));
+        }
+        if w.turn.is_some() {
+            return Err(FieldError::new(
+                join(&index("walls", k), "angular_velocity"),
+                "turning walls are not supported in a periodic cell",
+            ));
+        }
         if w.segment().is_some() {
             return Err(FieldError::new(
                 format!("{}.segment", index("walls", k)),
@@ -1081,6 +1189,22 @@ fn wall_motion(w: &mut Obj, dt: f64) -> Result<Motion, FieldError> {
     servo_of(v, &w.field_path("servo")).map(Motion::Servo)
 }
 
+/// A wall's turning keys: `"angular_velocity": ω` (rad/s, counter-clockwise) and
+/// `"pivot": [x, y]` (a half-plane's or a segment's; a drum turns about its centre).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Turning {
+    rate: Option<f64>,
+    pivot: Option<[f64; 2]>,
+}
+
+/// Reads a wall's [`Turning`] keys.
+fn wall_turning(w: &mut Obj) -> Result<Turning, FieldError> {
+    Ok(Turning {
+        rate: w.opt_with("angular_velocity", number)?,
+        pivot: w.opt_with("pivot", vec2)?,
+    })
+}
+
 /// A servo object `{"stress": σ, "span": S or [a, b], "max_speed": v, "gain": G}` at `at`.
 fn servo_of(v: &Value, at: &str) -> Result<Servo, FieldError> {
     let mut o = Obj::new(v, at)?;
@@ -1142,13 +1266,22 @@ fn program(v: &Value, path: &str, dt: f64) -> Result<Program, FieldError> {
         let mut o = Obj::new(item, &at)?;
         let until = o.opt_with("until", scale)?;
         let velocity = o.opt_with("velocity", vec2)?;
+        let angular_velocity = o.opt_with("angular_velocity", number)?;
         let servo = match o.get("servo") {
             Some(s) => Some(servo_of(s, &o.field_path("servo"))?),
             None => None,
         };
+        if servo.is_some() && angular_velocity.is_some() {
+            return Err(FieldError::new(
+                o.field_path("angular_velocity"),
+                "a servo stage moves a half-plane along its normal: give it no \
+                 `angular_velocity`",
+            ));
+        }
         let motion = match (velocity, servo) {
             (Some(v), None) => StageMotion::Velocity(Vec2::from(v)),
             (None, Some(s)) => StageMotion::Servo(s),
+            (None, None) if angular_velocity.is_some() => StageMotion::Velocity(Vec2::zeros()),
             (Some(_), Some(_)) => {
                 return Err(FieldError::new(
                     o.field_path("servo"),
@@ -1158,8 +1291,8 @@ fn program(v: &Value, path: &str, dt: f64) -> Result<Program, FieldError> {
             (None, None) => {
                 return Err(FieldError::new(
                     &at,
-                    "a stage moves the wall at a `velocity` ([0, 0]: at rest) or by a `servo`: \
-                     give one",
+                    "a stage moves the wall at a `velocity` ([0, 0]: at rest), turns it at an \
+                     `angular_velocity` or moves it by a `servo`: give one",
                 ));
             }
         };
@@ -1205,7 +1338,11 @@ fn program(v: &Value, path: &str, dt: f64) -> Result<Program, FieldError> {
                 previous = Some((t, step));
             }
         }
-        stages.push(Stage { until, motion });
+        stages.push(Stage {
+            until,
+            motion,
+            angular_velocity: angular_velocity.unwrap_or(0.0),
+        });
     }
     Ok(Program { stages })
 }
@@ -1235,6 +1372,12 @@ fn check_span(walls: &[Boundary], k: usize, span: &Span, at: &str) -> Result<(),
             return Err(FieldError::new(
                 at,
                 "must name two other walls, not this one",
+            ));
+        }
+        if !walls[w].is_half_plane() {
+            return Err(FieldError::new(
+                at,
+                format!("wall {w} is not a half-plane (`point`, `normal`): it bounds no span"),
             ));
         }
         if walls[w].line().normal.dot(&t).abs() < 1e-6 {

@@ -390,7 +390,34 @@ pub fn check_regions_clear_of_walls(
             Vec2::new(r.x1 - b, r.y1 - b),
         ];
         for (w, wall) in walls.iter().enumerate() {
-            if wall.segment().is_some() || !matches!(wall.motion, Motion::Fixed) {
+            if let Some(d) = wall.drum() {
+                // A drum that does not translate: the region's point nearest its centre must
+                // lie farther than b inside its circle.
+                let still = match &wall.motion {
+                    Motion::Fixed => true,
+                    Motion::Velocity(v) => *v == Vec2::zeros(),
+                    Motion::Servo(_) | Motion::Program(_) => false,
+                };
+                let (lo, hi) = (corners[0], corners[3]);
+                let nearest = Vec2::new(
+                    d.center.x.clamp(lo.x.min(hi.x), lo.x.max(hi.x)),
+                    d.center.y.clamp(lo.y.min(hi.y), lo.y.max(hi.y)),
+                );
+                if still && d.signed_distance(nearest) <= b {
+                    return Err(FieldError::new(
+                        join(&index("insert", k), "region"),
+                        format!(
+                            "[{}, {}, {}, {}] lies outside the drum walls[{w}] (centre [{}, {}], \
+                             radius {}; or closer to its circle than its smallest body's \
+                             bounding radius, {b}): no body can be placed there; move the \
+                             region inside the drum",
+                            r.x0, r.x1, r.y0, r.y1, d.center.x, d.center.y, d.radius
+                        ),
+                    ));
+                }
+                continue;
+            }
+            if !wall.is_half_plane() || !matches!(wall.motion, Motion::Fixed) {
                 continue;
             }
             let clearest = corners

@@ -20,7 +20,8 @@ use crate::dynamics::contacts::{ContactData, Slot};
 use crate::dynamics::flow::{FlowRestart, InserterState};
 use crate::dynamics::partner::{MAX_INDEX, Partner};
 use crate::dynamics::restart::{
-    BodyRestart, ProgramRestart, RestartState, SlotRestart, WallRestart, state_from_name,
+    BodyRestart, ProgramRestart, RestartState, SlotRestart, TurnRestart, WallRestart,
+    state_from_name,
 };
 use crate::geometry::Vec2;
 use crate::narrow_phase::PairCache;
@@ -97,9 +98,22 @@ impl CaseFile {
 fn continue_walls(case: &mut Case, state: &mut RestartState) {
     for (w, r) in case.walls.iter_mut().zip(&mut state.walls) {
         if let Motion::Velocity(v) = w.motion {
-            if r.point != w.start + v * state.time {
+            // A turning one's angle too: θ = ω t from the case's, unless the state's differs;
+            // its angular velocity is the case's.
+            let turned = match (&w.turn, &mut r.turn) {
+                (Some(t), Some(rt)) => {
+                    rt.omega = t.rate;
+                    rt.angle != t.rate * state.time
+                }
+                _ => false,
+            };
+            if r.point != w.start + v * state.time || turned {
                 w.start = r.point;
                 w.start_time = state.time;
+                if let (Some(t), Some(rt)) = (&mut w.turn, &mut r.turn) {
+                    t.start_angle = rt.angle;
+                    rt.start_angle = rt.angle;
+                }
             }
             r.velocity = v;
         }
@@ -291,7 +305,7 @@ fn check_contact_list(
         .collect();
     let mut walls = case.walls.clone();
     for (w, r) in walls.iter_mut().zip(&state.walls) {
-        w.move_to(r.point);
+        w.place(r.point, r.turn.map_or(0.0, |t| t.angle));
     }
     let mut fresh = Case {
         bodies,
@@ -523,11 +537,13 @@ pub fn parse_state(
                 let mut w = Obj::new(w, &index(p, k))?;
                 let point = w.req_with("point", pair)?;
                 let velocity = w.req_with("velocity", pair)?;
-                let load = w.req_with("load", |v, p| {
+                let mut load = w.req_with("load", |v, p| {
                     object(v, p, |l| {
                         Ok(WallLoad {
                             force: l.req_with("force", pair)?,
                             force_non_elastic: l.req_with("force_non_elastic", pair)?,
+                            torque: 0.0,
+                            torque_non_elastic: 0.0,
                             stiffness: l.req_with("stiffness", float)?,
                             contacts: l.req_with("contacts", |v, p| {
                                 u32::try_from(whole(v, p)?).map_err(|_| {
@@ -549,7 +565,33 @@ pub fn parse_state(
                         })
                     })
                 })?;
+                let turn = w.opt_with("turn", |v, p| {
+                    object(v, p, |o| {
+                        load.torque = o.req_with("torque", float)?;
+                        load.torque_non_elastic = o.req_with("torque_non_elastic", float)?;
+                        Ok(TurnRestart {
+                            angle: o.req_with("angle", float)?,
+                            start_angle: o.req_with("start_angle", float)?,
+                            omega: o.req_with("omega", float)?,
+                        })
+                    })
+                })?;
                 let at = index(p, k);
+                match (case.walls.get(k).map(|w| w.turn.is_some()), &turn) {
+                    (Some(true), None) => {
+                        return Err(FieldError::new(
+                            at,
+                            "`turn` is missing: a drum or a turning wall keeps its angle",
+                        ));
+                    }
+                    (Some(false), Some(_)) => {
+                        return Err(FieldError::new(
+                            format!("{at}.turn"),
+                            "only a drum or a turning wall (`angular_velocity`) has one",
+                        ));
+                    }
+                    _ => {}
+                }
                 match (case.walls.get(k).map(|w| &w.motion), &program) {
                     (Some(Motion::Program(prog)), Some(r)) if r.stage > prog.stages.len() => {
                         return Err(FieldError::new(
@@ -581,6 +623,7 @@ pub fn parse_state(
                     velocity,
                     load,
                     program,
+                    turn,
                 })
             })
             .collect::<Result<Vec<_>, _>>()

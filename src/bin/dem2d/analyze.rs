@@ -60,8 +60,8 @@ pub fn run(dir: &Path, window: Option<&[f64]>, out: Option<&Path>) -> Result<(),
         .case
         .walls
         .iter()
-        // (The box of four half-plane walls: segment walls bound no box.)
-        .filter(|w| w.segment().is_none())
+        // (The box of four half-plane walls: segment walls and drums bound no box.)
+        .filter(|w| w.is_half_plane())
         .map(|w| (w.line().point, w.line().normal))
         .collect();
     // A periodic cell's state at each frame (its size, shift and stress: `cell.csv`).
