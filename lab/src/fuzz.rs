@@ -1048,6 +1048,83 @@ fn max_bound(bodies: &[Value]) -> Option<f64> {
     Some(m)
 }
 
+/// The first overlap at the start of a scene of circles (a pair, or a circle and a half-plane
+/// or segment wall), brute force with the nearest periodic image; `None` when there is none, or
+/// when a body is not a circle. Pairs of fixed or prescribed bodies, and such a body and a wall,
+/// have no contact and are left out.
+fn initial_overlap(case: &Value) -> Option<String> {
+    let bodies = case["bodies"].as_array()?;
+    let mut disks = Vec::new();
+    for b in bodies {
+        if b["shape"]["type"] != "circle" {
+            return None;
+        }
+        let moved = b["fixed"] == true || b["prescribed"] == true;
+        disks.push((
+            b["position"][0].as_f64()?,
+            b["position"][1].as_f64()?,
+            b["shape"]["r"].as_f64()?,
+            moved,
+        ));
+    }
+    let (lx, ly, py) = match cell_size(case) {
+        Some((lx, ly)) => (lx, ly, case["cell"]["periodic"] == "xy"),
+        None => (f64::INFINITY, f64::INFINITY, false),
+    };
+    let near = |mut d: f64, l: f64| {
+        if l.is_finite() {
+            d -= (d / l).round() * l;
+        }
+        d
+    };
+    // (A margin for the rounding of a contact's depth: a pile's resting overlaps are 1e-4 of a
+    // radius, a duplicated body's its whole diameter.)
+    for (i, a) in disks.iter().enumerate() {
+        for (j, b) in disks.iter().enumerate().skip(i + 1) {
+            if a.3 && b.3 {
+                continue;
+            }
+            let dx = near(b.0 - a.0, lx);
+            let dy = if py { near(b.1 - a.1, ly) } else { b.1 - a.1 };
+            let depth = a.2 + b.2 - dx.hypot(dy);
+            if depth > 1e-6 * a.2.min(b.2) {
+                return Some(format!("bodies {i} and {j} overlap by {depth:e}"));
+            }
+        }
+    }
+    for (k, w) in case["walls"].as_array().into_iter().flatten().enumerate() {
+        for (i, a) in disks.iter().enumerate() {
+            if a.3 {
+                continue;
+            }
+            let dist = if let Some(seg) = w.get("segment") {
+                let (x0, y0, x1, y1) = (
+                    seg[0][0].as_f64()?,
+                    seg[0][1].as_f64()?,
+                    seg[1][0].as_f64()?,
+                    seg[1][1].as_f64()?,
+                );
+                let (ex, ey) = (x1 - x0, y1 - y0);
+                let t = (((a.0 - x0) * ex + (a.1 - y0) * ey) / (ex * ex + ey * ey)).clamp(0.0, 1.0);
+                (a.0 - x0 - t * ex).hypot(a.1 - y0 - t * ey)
+            } else {
+                let (px, py, nx, ny) = (
+                    w["point"][0].as_f64()?,
+                    w["point"][1].as_f64()?,
+                    w["normal"][0].as_f64()?,
+                    w["normal"][1].as_f64()?,
+                );
+                ((a.0 - px) * nx + (a.1 - py) * ny) / nx.hypot(ny)
+            };
+            let depth = a.2 - dist;
+            if depth > 1e-6 * a.2 {
+                return Some(format!("body {i} and wall {k} overlap by {depth:e}"));
+            }
+        }
+    }
+    None
+}
+
 /// The checks of a run that exited 0; `Err` says what is silently wrong.
 fn silent_checks(m: &Mutant, dir: &Path) -> Result<(), String> {
     let summary_text = std::fs::read_to_string(dir.join("summary.json"))
@@ -1072,7 +1149,8 @@ fn silent_checks(m: &Mutant, dir: &Path) -> Result<(), String> {
         })
         .unwrap_or_default();
     // The energy account against the scale of the energy that moved (kinetic, elastic,
-    // dissipated, the boundary work), with the audit's threshold; rounding of the totals allowed.
+    // dissipated, the boundary work, the initial energy less the final potential), with the
+    // audit's threshold; rounding of the totals allowed.
     let e = &s["energies"];
     let f = |k: &str| e[k].as_f64().unwrap_or(0.0);
     let u = f("unaccounted");
@@ -1081,16 +1159,9 @@ fn silent_checks(m: &Mutant, dir: &Path) -> Result<(), String> {
         .max(f("elastic").abs())
         .max(f("dissipated").abs())
         .max(f("walls_work").abs());
-    // Without gravity (a cell periodic in x and y, or zero gravity) the initial total is the
-    // initial kinetic and elastic energy, a part of the audit's scale.
-    let no_gravity = m.case["gravity"]
-        .as_array()
-        .is_some_and(|g| g.iter().all(|x| x.as_f64() == Some(0.0)));
-    let scale = if no_gravity {
-        scale.max(f("initial_total").abs())
-    } else {
-        scale
-    };
+    // The audit's scale is K₀ + E₀ + max (P₀ − P) + max W, at least E_total,0 − P_end (its
+    // gravity term is at least P₀ − P_end): a lower bound of it.
+    let scale = scale.max(f("initial_total") - f("potential"));
     let threshold = m.case["energy_audit"].as_f64().unwrap_or(0.01).max(0.01);
     let rounding = 1e-9 * (f("initial_total").abs() + f("final_total").abs());
     // The audit judges a run from its first output frame on (before it, the energy in motion is
@@ -1105,6 +1176,14 @@ fn silent_checks(m: &Mutant, dir: &Path) -> Result<(), String> {
              no `unaccounted` warning",
             u.abs() / scale.max(f64::MIN_POSITIVE)
         ));
+    }
+    // Overlaps at the start are warned of (circles, half-plane and segment walls; a case, not a
+    // state, whose contacts overlap by design).
+    if m.case.get("state").is_none()
+        && let Some(d) = initial_overlap(&m.case)
+        && !warnings.iter().any(|w| w.contains("overlap"))
+    {
+        return Err(format!("{d} at the start, no warning"));
     }
     // Every number of the trajectory finite; bodies inside a periodic cell.
     let (th, rows) = read_csv(&dir.join("trajectory.csv")).ok_or("exit 0 and no trajectory.csv")?;
