@@ -1445,17 +1445,7 @@ pub fn run(opts: &FuzzOptions, exe: &Path) -> Result<Report, String> {
     };
     let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);
-    let results: Mutex<
-        Vec<(
-            usize,
-            String,
-            &'static str,
-            String,
-            f64,
-            Option<i32>,
-            String,
-        )>,
-    > = Mutex::new(Vec::new());
+    let results: Results = Mutex::new(Vec::new());
     let start = Instant::now();
     let errors: Mutex<Vec<String>> = Mutex::new(Vec::new());
     std::thread::scope(|scope| {
@@ -1468,7 +1458,7 @@ pub fn run(opts: &FuzzOptions, exe: &Path) -> Result<Report, String> {
                         errors.lock().unwrap_or_else(|p| p.into_inner()).push(e);
                     }
                     let n = done.fetch_add(1, Ordering::Relaxed) + 1;
-                    if opts.progress && n % 50 == 0 {
+                    if opts.progress && n.is_multiple_of(50) {
                         eprintln!(
                             "fuzz: {n}/{} mutants, {:.0} s",
                             ks.len(),

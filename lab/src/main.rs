@@ -5,9 +5,10 @@
 //! cargo run --release -p dem2d-lab -- figures --docs      # figures/ and the guide's tables
 //! cargo run --release -p dem2d-lab -- bench --docs        # the throughput table
 //! cargo run --release -p dem2d-lab -- bench --peers --steps 10000 --reps 3 --normal-force area,depth --docs
+//! cargo run --release -p dem2d-lab -- fuzz --mutants 2000 --seed 1   # a fuzzing round (fuzz.rs)
 //! ```
 //!
-//! `figures` and `bench --peers` run the `dem2d` binary itself (as a user would): [`dem2d_exe`]
+//! `figures`, `fuzz` and `bench --peers` run the `dem2d` binary itself (as a user would): [`dem2d_exe`]
 //! builds it first when the lab runs under `cargo run`.
 
 mod area_law_report;
