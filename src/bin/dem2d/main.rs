@@ -574,7 +574,7 @@ fn run(args: RunArgs) -> Result<(), Failure> {
         };
         return Err(Failure::input(format!(
             "{name}: {what}: the state is at step {} (t = {} s), already at the end of the case's \
-             duration ({} s, {} steps): give a longer `duration` or --duration to run further",
+             duration ({} s, {} steps): give --duration to run further (or a longer `duration`)",
             state.step,
             dem2d::run::time::time_text(state.step, case.dt),
             case.duration,
