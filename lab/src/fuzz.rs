@@ -522,6 +522,9 @@ fn featured(rng: &mut Rng, case: &mut Value, text: &mut Vec<(String, String)>) -
         // A duplicated body: exactly on the original, or a hair off.
         0 if n_bodies > 0 => {
             let i = rng.below(n_bodies);
+            if !case["bodies"][i].is_object() {
+                return generic(rng, case, text);
+            }
             let mut b = case["bodies"][i].clone();
             let off = *rng.pick(&[0.0, 1e-12, 1e-6, 0.01]);
             if let Some(x) = b["position"][0].as_f64() {
@@ -535,6 +538,9 @@ fn featured(rng: &mut Rng, case: &mut Value, text: &mut Vec<(String, String)>) -
         // A body moved: outside the cell by whole periods, onto a seam, behind a wall, far.
         1 | 2 if n_bodies > 0 => {
             let i = rng.below(n_bodies);
+            if !case["bodies"][i].is_object() {
+                return generic(rng, case, text);
+            }
             let (lx, ly) = cell.unwrap_or((10.0, 10.0));
             let (x, y) = (
                 case["bodies"][i]["position"][0].as_f64().unwrap_or(0.0),
@@ -564,6 +570,9 @@ fn featured(rng: &mut Rng, case: &mut Value, text: &mut Vec<(String, String)>) -
         // Extreme speeds and spins.
         3 | 4 if n_bodies > 0 => {
             let i = rng.below(n_bodies);
+            if !case["bodies"][i].is_object() {
+                return generic(rng, case, text);
+            }
             let v = *rng.pick(&SPEEDS);
             match rng.below(3) {
                 0 => case["bodies"][i]["velocity"] = json!([v, 0.0]),
@@ -663,6 +672,9 @@ fn featured(rng: &mut Rng, case: &mut Value, text: &mut Vec<(String, String)>) -
         7 | 8 if case["walls"].as_array().is_some_and(|w| !w.is_empty()) => {
             let nw = case["walls"].as_array().map_or(0, Vec::len);
             let k = rng.below(nw);
+            if !case["walls"][k].is_object() {
+                return generic(rng, case, text);
+            }
             let w = &mut case["walls"][k];
             match rng.below(8) {
                 0 => {
@@ -744,9 +756,12 @@ fn featured(rng: &mut Rng, case: &mut Value, text: &mut Vec<(String, String)>) -
             }
         }
         // Insertion.
-        9 | 10 if case["insert"].is_array() => {
+        9 | 10 if case["insert"].as_array().is_some_and(|a| !a.is_empty()) => {
             let ni = case["insert"].as_array().map_or(0, Vec::len);
             let k = rng.below(ni);
+            if !case["insert"][k].is_object() {
+                return generic(rng, case, text);
+            }
             let ins = &mut case["insert"][k];
             match rng.below(10) {
                 0 => {
@@ -825,7 +840,10 @@ fn featured(rng: &mut Rng, case: &mut Value, text: &mut Vec<(String, String)>) -
             format!("outflow over {region:?}")
         }
         // Materials.
-        12 if case["materials"].is_object() => {
+        12 if case["materials"]
+            .as_object()
+            .is_some_and(|m| !m.is_empty() && m.values().all(Value::is_object)) =>
+        {
             let names: Vec<String> = case["materials"]
                 .as_object()
                 .map(|m| m.keys().cloned().collect())
@@ -844,7 +862,7 @@ fn featured(rng: &mut Rng, case: &mut Value, text: &mut Vec<(String, String)>) -
             case["materials"][name.as_str()][key] = json!(val);
             format!("materials.{name}.{key} = {val:e}")
         }
-        12 => {
+        12 if case["contact"].is_object() => {
             let k = *rng.pick(&["kn_over_rho_g", "kn", "friction", "restitution"]);
             let v = *rng.pick(&[1e30, 1e-30, 1e12]);
             case["contact"][k] = json!(v);
