@@ -1835,3 +1835,35 @@ mod bug_a_finished_state_was_refused_naming_no_field {
         assert!(err.contains("--duration: the state is at step"), "{err}");
     }
 }
+
+/// Issue 41's fuzzing round: an inserter given `"attempts": 1000000000` hung the run (no exit in
+/// 10 s, and none in sight): each of its bodies that found no place tried a billion positions,
+/// each against every body, at every retry. `attempts` is now at most 1e6 (the case-file page's
+/// range), a larger count refused naming the field.
+mod bug_a_billion_insertion_attempts_hung_the_run {
+    use super::*;
+
+    #[test]
+    fn attempts_above_a_million_are_refused_and_a_million_runs() {
+        let dir = scratch("attempts");
+        let mut v = pouring();
+        v["duration"] = 0.02.into();
+        v["insert"][0]["attempts"] = 1_000_000_000u64.into();
+        let file = write(&dir, "billion.json", &v);
+        let out = dir.join("billion");
+        let (code, _, err) = dem2d(&["run", &file, "--out", out.to_str().unwrap()]);
+        assert_eq!(code, 2, "{err}");
+        assert!(
+            err.contains("field `insert[0].attempts`: 1000000000 tries per body is more than the 1000000 accepted"),
+            "{err}"
+        );
+        assert!(!out.exists());
+        // The largest accepted count runs (its bodies find places in their first tries).
+        v["insert"][0]["attempts"] = 1_000_000u64.into();
+        let file = write(&dir, "million.json", &v);
+        let out = dir.join("million");
+        let (code, _, err) = dem2d(&["run", &file, "--out", out.to_str().unwrap(), "--quiet"]);
+        assert_eq!(code, 0, "{err}");
+        assert!(!csv(&out.join("inserted.csv")).is_empty());
+    }
+}
