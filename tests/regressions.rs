@@ -1733,3 +1733,137 @@ mod bug_mistakes_of_units_and_insertion_ran_silently {
         );
     }
 }
+
+/// Issue 41's fuzzing round (`dem2d-lab fuzz`): an insertion region across the seam of a
+/// periodic cell placed bodies at x < 0 and left them there, outside the cell, unwrapped (exit
+/// 0, no word). Now an inserted body is brought into the cell as a case's bodies are, its image
+/// counts keeping where it was placed.
+mod bug_bodies_inserted_across_a_periodic_seam_ran_outside_the_cell {
+    use super::*;
+
+    #[test]
+    fn every_inserted_body_is_in_the_cell_and_unwraps_to_where_its_region_put_it() {
+        let dir = scratch("insert_across_seam");
+        // The guide's cell periodic in x (8 cm wide, floor at 0, lid at 10), with an inserter
+        // whose region [-2, 2] × [5, 8] straddles the seam x = 0: 20 disks at once (as many as
+        // find a place), at rest.
+        let lx = 8.0;
+        let v = serde_json::json!({
+            "version": 1, "name": "insert_across_seam", "units": "cm",
+            "gravity": [0, -980], "dt": 1e-5, "duration": 0.01, "output_every": 100,
+            "cell": { "size": [lx, 10], "periodic": "x" },
+            "contact": { "model": "linear", "kn_over_rho_g": 36400, "restitution": 0.5,
+                         "friction": 0.5 },
+            "walls": [ { "point": [0, 0], "normal": [0, 1] },
+                       { "point": [0, 10], "normal": [0, -1] } ],
+            "bodies": [ { "shape": {"type": "circle", "r": 0.6}, "position": [4, 1] } ],
+            "insert": [ { "region": [-2, 2, 5, 8], "count": 20, "size": 0.3, "seed": 3 } ]
+        });
+        let file = write(&dir, "case.json", &v);
+        let out = dir.join("run");
+        let (code, _, err) = dem2d(&["run", &file, "--out", out.to_str().unwrap(), "--quiet"]);
+        assert_eq!(code, 0, "{err}");
+        let inserted = csv(&out.join("inserted.csv"));
+        // (Each body tries 100 places: a few of the 20 may find none in the crowded region.)
+        let n = inserted.len();
+        assert!((10..=20).contains(&n), "{n} inserted");
+        let rows = csv(&out.join("trajectory.csv"));
+        let mut across = 0;
+        for ins in &inserted {
+            let id = ins["body"];
+            let r = ins["r"];
+            let mine: Vec<_> = rows.iter().filter(|row| row["body"] == id).collect();
+            assert!(!mine.is_empty(), "body {id} in no frame");
+            for row in &mine {
+                // In the cell, and (a disk at rest in x, falling freely: nothing touches it in
+                // 0.01 s) unwrapping to a place whose disk lies inside the region.
+                assert!((0.0..lx).contains(&row["x"]), "body {id}: x = {}", row["x"]);
+                let x = row["x"] + row["ix"] * lx;
+                assert!(
+                    (-2.0 + r..=2.0 - r).contains(&x),
+                    "body {id}: unwrapped x = {x}, outside the region [-2, 2] less its radius"
+                );
+                assert_eq!(row["vx"], 0.0);
+            }
+            if mine[0]["ix"] != 0.0 {
+                across += 1;
+            }
+        }
+        // The seed places some bodies left of the seam (unwrapped x < 0): the case is tested.
+        assert!(
+            across > 0 && across < n,
+            "{across} of {n} placed left of the seam"
+        );
+    }
+}
+
+/// Issue 41's fuzzing round: a state already at the end of its case's duration was refused
+/// (exit 2) with a message that named neither a field nor an option of the file; it now names
+/// the field `duration` (or the option `--duration`, when the command line gave one).
+mod bug_a_finished_state_was_refused_naming_no_field {
+    use super::*;
+
+    #[test]
+    fn the_refusal_names_the_duration_field_or_option() {
+        let dir = scratch("finished_state");
+        let mut v = settle3();
+        v["duration"] = 0.001.into();
+        v.as_object_mut().unwrap().remove("quiescence");
+        let file = write(&dir, "case.json", &v);
+        let out = dir.join("run");
+        let (code, _, err) = dem2d(&["run", &file, "--out", out.to_str().unwrap(), "--quiet"]);
+        assert_eq!(code, 0, "{err}");
+        let state = out.join("state.json");
+        let state = state.to_str().unwrap();
+        let again = dir.join("again");
+        let (code, _, err) = dem2d(&["run", state, "--out", again.to_str().unwrap()]);
+        assert_eq!(code, 2, "{err}");
+        assert!(
+            err.contains("field `duration`: the state is at step"),
+            "{err}"
+        );
+        assert!(!again.exists());
+        let (code, _, err) = dem2d(&[
+            "run",
+            state,
+            "--out",
+            again.to_str().unwrap(),
+            "--duration",
+            "0.001",
+        ]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("--duration: the state is at step"), "{err}");
+    }
+}
+
+/// Issue 41's fuzzing round: an inserter given `"attempts": 1000000000` hung the run (no exit in
+/// 10 s, and none in sight): each of its bodies that found no place tried a billion positions,
+/// each against every body, at every retry. `attempts` is now at most 1e6 (the case-file page's
+/// range), a larger count refused naming the field.
+mod bug_a_billion_insertion_attempts_hung_the_run {
+    use super::*;
+
+    #[test]
+    fn attempts_above_a_million_are_refused_and_a_million_runs() {
+        let dir = scratch("attempts");
+        let mut v = pouring();
+        v["duration"] = 0.02.into();
+        v["insert"][0]["attempts"] = 1_000_000_000u64.into();
+        let file = write(&dir, "billion.json", &v);
+        let out = dir.join("billion");
+        let (code, _, err) = dem2d(&["run", &file, "--out", out.to_str().unwrap()]);
+        assert_eq!(code, 2, "{err}");
+        assert!(
+            err.contains("field `insert[0].attempts`: 1000000000 tries per body is more than the 1000000 accepted"),
+            "{err}"
+        );
+        assert!(!out.exists());
+        // The largest accepted count runs (its bodies find places in their first tries).
+        v["insert"][0]["attempts"] = 1_000_000u64.into();
+        let file = write(&dir, "million.json", &v);
+        let out = dir.join("million");
+        let (code, _, err) = dem2d(&["run", &file, "--out", out.to_str().unwrap(), "--quiet"]);
+        assert_eq!(code, 0, "{err}");
+        assert!(!csv(&out.join("inserted.csv")).is_empty());
+    }
+}

@@ -5,13 +5,15 @@
 //! cargo run --release -p dem2d-lab -- figures --docs      # figures/ and the guide's tables
 //! cargo run --release -p dem2d-lab -- bench --docs        # the throughput table
 //! cargo run --release -p dem2d-lab -- bench --peers --steps 10000 --reps 3 --normal-force area,depth --docs
+//! cargo run --release -p dem2d-lab -- fuzz --mutants 2000 --seed 1   # a fuzzing round (fuzz.rs)
 //! ```
 //!
-//! `figures` and `bench --peers` run the `dem2d` binary itself (as a user would): [`dem2d_exe`]
+//! `figures`, `fuzz` and `bench --peers` run the `dem2d` binary itself (as a user would): [`dem2d_exe`]
 //! builds it first when the lab runs under `cargo run`.
 
 mod area_law_report;
 mod bench;
+mod fuzz;
 mod peers;
 mod report;
 
@@ -110,6 +112,35 @@ enum Command {
         /// Where every SVG is also rendered as PNG (default: WORK/png).
         #[arg(long)]
         png: Option<PathBuf>,
+    },
+    /// A seeded fuzzing round over the newer features (periodic cells, imposed pressure,
+    /// Lees–Edwards shear, relax, insertion and outflow, segments, materials, wall programs,
+    /// restarts): mutated case files run through `dem2d run` / `dem2d relax`, each classified
+    /// ok, refused, detected, PANIC, HANG, SILENT (exit 0 with wrong outputs) or BAD_EXIT.
+    /// Writes OUT/report.md, OUT/mutants.csv and the failing mutants to OUT/failures/; exit
+    /// code 1 when any mutant fails.
+    Fuzz {
+        /// Number of mutants.
+        #[arg(long, default_value_t = 2000)]
+        mutants: usize,
+        /// The seed: mutant k of a seed is always the same file.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Where the report, the list of mutants and the failures go.
+        #[arg(long, default_value = "target/fuzz")]
+        out: PathBuf,
+        /// Seconds a run may take before it counts as a hang.
+        #[arg(long, default_value_t = 10)]
+        timeout: u64,
+        /// Runs at a time.
+        #[arg(long, default_value_t = 1)]
+        jobs: usize,
+        /// Steps per run (`--max-steps`; for relax, `--max-iterations`).
+        #[arg(long, default_value_t = 20000)]
+        max_steps: u64,
+        /// Run only mutant K of the seed (a replay of a failure).
+        #[arg(long)]
+        only: Option<usize>,
     },
 }
 
@@ -391,6 +422,42 @@ fn figures(
     Ok(())
 }
 
+/// `dem2d-lab fuzz`: see [`fuzz`].
+fn fuzz(opts: &fuzz::FuzzOptions) -> Result<(), Failure> {
+    if opts.mutants == 0 && opts.only.is_none() {
+        return Err(Failure::input("--mutants: must be at least 1".into()));
+    }
+    if opts.timeout.is_zero() {
+        return Err(Failure::input("--timeout: must be at least 1 s".into()));
+    }
+    if opts.max_steps == 0 {
+        return Err(Failure::input("--max-steps: must be at least 1".into()));
+    }
+    let exe = dem2d_exe().map_err(Failure::failed)?;
+    std::fs::create_dir_all(&opts.out)
+        .map_err(|e| Failure::failed(format!("{}: {e}", opts.out.display())))?;
+    let report = fuzz::run(opts, &exe).map_err(Failure::failed)?;
+    print_out(&report.markdown)?;
+    say(&format!(
+        "dem2d-lab fuzz: {}",
+        report
+            .counts
+            .iter()
+            .map(|(c, n)| format!("{c} {n}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    ));
+    if report.failures.is_empty() {
+        Ok(())
+    } else {
+        Err(Failure::failed(format!(
+            "{} mutants failed (see {})",
+            report.failures.len(),
+            opts.out.join("failures").display()
+        )))
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
@@ -452,6 +519,25 @@ fn main() -> ExitCode {
             docs_mode(*docs, *check),
             (*quick, png.clone()),
         ),
+        Command::Fuzz {
+            mutants,
+            seed,
+            out,
+            timeout,
+            jobs,
+            max_steps,
+            only,
+        } => fuzz(&fuzz::FuzzOptions {
+            mutants: *mutants,
+            seed: *seed,
+            out: out.clone(),
+            timeout: std::time::Duration::from_secs(*timeout),
+            jobs: *jobs,
+            root: PathBuf::from("."),
+            only: *only,
+            max_steps: *max_steps,
+            progress: true,
+        }),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -465,15 +465,31 @@ impl World {
             let k = self.bodies.len();
             self.bodies.push(init, self.next_id);
             self.next_id += 1;
-            if self.cell.is_some() {
-                self.bodies.image.push([0, 0]);
+            if let Some(cell) = &self.cell {
+                // A body placed outside the cell (an insertion region across a seam, or beyond
+                // it) is brought into it, as a case's bodies are ([`World::with_cell`]), its
+                // image counts keeping where it was placed (issue 41's fuzzing: inserted bodies
+                // ran outside the cell, unwrapped).
+                let s = &mut self.bodies.state[k];
+                let mut images = [0, 0];
+                if let Some(w) = cell.wrap(s.pose.position, s.vel) {
+                    s.pose = s.pose.moved(w.position, s.pose.angle());
+                    s.vel = w.velocity;
+                    images = w.images;
+                }
+                self.bodies.image.push(images);
             }
             let b = &mut self.bodies;
             b.force[k] = self.gravity * b.mass[k];
             let s = &b.state[k];
             let kinetic =
                 0.5 * b.mass[k] * s.vel.norm_squared() + 0.5 * b.inertia[k] * s.omega * s.omega;
-            let potential = -b.mass[k] * self.gravity.dot(&s.pose.position);
+            // (At the unwrapped position, as `remove_bodies` books it.)
+            let x = match &self.cell {
+                Some(c) => c.unwrapped(s.pose.position, b.image[k]),
+                None => s.pose.position,
+            };
+            let potential = -b.mass[k] * self.gravity.dot(&x);
             self.energies.kinetic += kinetic;
             self.energies.potential += potential;
             self.energies.boundary_work += kinetic + potential;

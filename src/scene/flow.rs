@@ -19,6 +19,10 @@ use serde_json::Value;
 
 /// Positions tried per body unless `attempts` says otherwise.
 pub const ATTEMPTS: u32 = 100;
+/// The most positions a body may try (`attempts`): each try tests every body, so a body that
+/// finds no place costs `attempts` × bodies tests at every retry; at 1e9 tries a full region
+/// stalled the run for good (issue 41's fuzzing round).
+pub const MAX_ATTEMPTS: u64 = 1_000_000;
 /// Wait after a body found no place, unless `retry` says otherwise (s).
 pub const RETRY: f64 = 0.01;
 /// The densest packing of equal disks in a convex region covers at most π/√12 of it (Fejes
@@ -200,8 +204,21 @@ fn inserter(v: &Value, path: &str, named: &Named) -> Result<Inserter, FieldError
         .unwrap_or(0);
     let density = body_density(named, material, own_density, path)?;
     let attempts = o
-        .opt_with("attempts", count)?
-        .map_or(ATTEMPTS, |a| a.min(u32::MAX as u64) as u32);
+        .opt_with("attempts", |v, p| {
+            let a = count(v, p)?;
+            if a > MAX_ATTEMPTS {
+                return Err(FieldError::new(
+                    p,
+                    format!(
+                        "{a} tries per body is more than the {MAX_ATTEMPTS} accepted (each try \
+                         tests every body: a region with no place left would stall the run; a \
+                         body that finds none waits `retry` and tries again)"
+                    ),
+                ));
+            }
+            Ok(a as u32)
+        })?
+        .unwrap_or(ATTEMPTS);
     let retry = o.opt_with("retry", positive)?.unwrap_or(RETRY);
     let seed = o.opt_with("seed", |v, p| {
         v.as_u64()

@@ -626,9 +626,14 @@ fn run(args: RunArgs) -> Result<(), Failure> {
     if let Some(state) = &restart
         && state.step >= case.steps()
     {
+        // Named as the other refusals are: the field (or the option) that would have to change.
+        let what = match args.duration {
+            Some(_) => "--duration",
+            None => "field `duration`",
+        };
         return Err(Failure::input(format!(
-            "{name}: the state is at step {} (t = {} s), already at the end of the case's \
-             duration ({} s, {} steps): give --duration to run further",
+            "{name}: {what}: the state is at step {} (t = {} s), already at the end of the case's \
+             duration ({} s, {} steps): give --duration to run further (or a longer `duration`)",
             state.step,
             dem2d::run::time::time_text(state.step, case.dt),
             case.duration,
