@@ -44,7 +44,8 @@ enum Command {
         /// Which study.
         #[arg(value_enum)]
         name: study::Study,
-        /// Also write the study's case files into `cases/` (repose, biaxial, biaxial-shape, packing).
+        /// Also write the study's case files into `cases/` (repose, biaxial, biaxial-shape, packing,
+        /// jamming: its threshold packing of disks).
         #[arg(long)]
         write_cases: bool,
         /// Grains per sample for the studies that take a size (biaxial-shape: rounded to a
