@@ -130,7 +130,11 @@ fn relax_interrupted_by(sig: &str, name: &str, code: i32) {
     let iterations = summary["iterations"].as_u64().unwrap();
     assert!(iterations > 0, "{summary}");
     let state = json(&out.join("state.json"));
-    assert_eq!(state["status"], "interrupted", "{}", state["status"]);
+    assert_eq!(
+        state["state"]["status"], "interrupted",
+        "{}",
+        state["state"]
+    );
     assert!(!out.join(".dem2d.lock").exists(), "the lock is released");
     // The state reached is a state to continue from.
     let run = dir.join("continued");
@@ -175,7 +179,7 @@ fn a_second_relaxation_into_a_directory_being_written_is_refused_naming_the_lock
     assert!(
         err.contains(out.join(".dem2d.lock").to_str().unwrap())
             && err.contains(&format!("process {}", first.id()))
-            && err.contains("dem2d relax, case `pile`"),
+            && err.contains("dem2d relax, case `settle_disks_mu0_10k`"),
         "{err}"
     );
     assert!(
@@ -187,7 +191,7 @@ fn a_second_relaxation_into_a_directory_being_written_is_refused_naming_the_lock
     signal(&first, "-TERM");
     let (exit, err) = finish(first);
     assert_eq!(exit, Some(143), "{err}");
-    assert_eq!(json(&out.join("relax.json"))["name"], "pile");
+    assert_eq!(json(&out.join("relax.json"))["status"], "interrupted");
 }
 
 #[test]
@@ -243,13 +247,13 @@ fn a_relaxation_into_the_directory_of_a_run_under_way_is_refused() {
     assert_eq!(finish(relax).0, Some(130));
 }
 
-/// A jamming study of one packing of 256 disks (about a minute) into `out`.
+/// A jamming study of one packing of 256 ellipses α = 2 (about 45 s) into `out`.
 fn study(out: &Path) -> Child {
     spawn(&[
         "study",
         "jamming",
         "--aspects",
-        "1",
+        "2",
         "--packings",
         "1",
         "--threads",

@@ -18,7 +18,8 @@
 //! near φ_J), halving the bracket where the secant lands outside it or stalls; a bracket that
 //! closes (1e-9) without the band has a stale jammed side, dropped for compression by 0.1 %
 //! steps. A minimisation stops at a
-//! residual force of 1e-9, at an energy half the band's floor (unjammed: minimising only
+//! residual force of 1e-9, at the residual's round-off level (`round_off`: near φ_J, about
+//! 1e-8 for disks), at an energy half the band's floor (unjammed: minimising only
 //! lowers it), or when
 //! it stalls: its energy changes by less than [`STALL`] of itself over 1000 iterations while
 //! its residual does not halve (O'Hern's second criterion; near jamming FIRE relaxes the soft
