@@ -1046,7 +1046,8 @@ impl Simulation {
     /// relax` does; frictionless laws only, else `dem2d.InputError` naming the field). Stops
     /// when the residual force (the largest out-of-balance force on a body, |F| + |M|/r, over
     /// the mean magnitude of the forces on a body) is below `tolerance`, or after
-    /// `max_iterations` force evaluations. Returns a dict: `status` ("relaxed" or
+    /// `max_iterations` force evaluations, or when the residual stops falling at the round-off
+    /// level of the forces. Returns a dict: `status` ("relaxed", "round_off" or
     /// "max_iterations"), `iterations`, `residual`, `potential` (erg), `converged`. The step
     /// count does not change; the GIL is released while it works (it is not interrupted by
     /// Ctrl-C: give `max_iterations`).
@@ -1103,6 +1104,8 @@ impl Simulation {
             "status",
             if relaxed.converged {
                 "relaxed"
+            } else if relaxed.round_off {
+                "round_off"
             } else {
                 "max_iterations"
             },

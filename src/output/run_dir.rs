@@ -171,9 +171,10 @@ impl fmt::Display for RunError {
             ),
             RunError::Locked { dir, holder } => write!(
                 f,
-                "{}: another dem2d run is writing into this directory ({holder}); wait for it to \
-                 end, or choose another --out",
-                dir.display()
+                "{}: another dem2d run is writing into this directory ({holder}; it holds the \
+                 lock {}); wait for it to end, or choose another --out",
+                dir.display(),
+                dir.join(LOCK_FILE).display()
             ),
             RunError::Io(e) => e.fmt(f),
             RunError::State(e) => write!(f, "{e}"),
@@ -234,6 +235,12 @@ pub const LOCK_FILE: &str = ".dem2d.lock";
 impl DirLock {
     /// Takes the lock of `dir` (which exists), or says who holds it.
     pub fn acquire(dir: &Path, case_name: &str) -> Result<DirLock, RunError> {
+        Self::acquire_by(dir, &format!("case `{case_name}`"))
+    }
+
+    /// [`DirLock::acquire`] by `who` (what the lock file says of its holder after its process
+    /// id: `dem2d relax, case \`pile\``, `dem2d study jamming`).
+    pub fn acquire_by(dir: &Path, who: &str) -> Result<DirLock, RunError> {
         use std::io::{Read, Seek, Write};
         use std::os::unix::fs::MetadataExt;
         use std::os::unix::io::AsRawFd;
@@ -271,7 +278,7 @@ impl DirLock {
                 continue;
             }
             let me = format!(
-                "process {}, case `{case_name}`, started {}",
+                "process {}, {who}, started {}",
                 std::process::id(),
                 utc_now()
             );

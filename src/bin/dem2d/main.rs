@@ -44,7 +44,8 @@ enum Command {
         /// Which study.
         #[arg(value_enum)]
         name: study::Study,
-        /// Also write the study's case files into `cases/` (repose, biaxial, biaxial-shape, packing).
+        /// Also write the study's case files into `cases/` (repose, biaxial, biaxial-shape, packing,
+        /// jamming: its threshold packing of disks).
         #[arg(long)]
         write_cases: bool,
         /// Grains per sample for the studies that take a size (biaxial-shape: rounded to a
@@ -147,8 +148,9 @@ enum Command {
     /// Bring a case's bodies to rest at a minimum of their potential energy (FIRE, on positions
     /// and angles, under the law's conservative part; frictionless laws only): writes
     /// OUT/state.json, which `dem2d run` continues from, and OUT/relax.json (residual force,
-    /// potential energy, iterations). Exit code 1 when the tolerance is not reached (the state
-    /// reached is written).
+    /// potential energy, iterations). Exit code 1 when neither the tolerance nor the forces'
+    /// round-off level is reached, 130/143 on SIGINT/SIGTERM (the state reached is written
+    /// either way).
     Relax {
         /// The case file, or a run's state.json.
         case: PathBuf,

@@ -18,7 +18,8 @@
 //! near φ_J), halving the bracket where the secant lands outside it or stalls; a bracket that
 //! closes (1e-9) without the band has a stale jammed side, dropped for compression by 0.1 %
 //! steps. A minimisation stops at a
-//! residual force of 1e-9, at an energy half the band's floor (unjammed: minimising only
+//! residual force of 1e-9, at the residual's round-off level (`round_off`: near φ_J, about
+//! 1e-8 for disks), at an energy half the band's floor (unjammed: minimising only
 //! lowers it), or when
 //! it stalls: its energy changes by less than [`STALL`] of itself over 1000 iterations while
 //! its residual does not halve (O'Hern's second criterion; near jamming FIRE relaxes the soft
@@ -164,8 +165,23 @@ fn coordination(w: &World) -> (f64, f64) {
     }
 }
 
+/// The configuration a minimisation of [`jam_from`] started from: the periodic cell's size and
+/// the grains' poses.
+#[derive(Clone, Debug)]
+pub struct Start {
+    pub size: Vec2,
+    pub poses: Vec<Pose>,
+}
+
 /// Jams packing `seed` at `aspect` (see the module documentation).
 pub fn jam(n: usize, aspect: f64, seed: u64) -> Packing {
+    jam_from(n, aspect, seed).0
+}
+
+/// [`jam`], with the configuration the last minimisation started from (for a packing in the
+/// band: the affinely compressed or decompressed packing that this minimisation brought to the
+/// jamming threshold).
+pub fn jam_from(n: usize, aspect: f64, seed: u64) -> (Packing, Start) {
     let mut w = world(n, aspect, seed);
     let total: f64 = w.bodies.shape.iter().map(dem2d::geometry::mass::area).sum();
     let d = 2.0 * R_SMALL;
@@ -190,7 +206,13 @@ pub fn jam(n: usize, aspect: f64, seed: u64) -> Packing {
     let (mut width, mut step) = (f64::INFINITY, 0.05);
     let (mut minimisations, mut iterations) = (0, 0);
     let mut found = false;
+    let start_of = |w: &World| Start {
+        size: w.cell.expect("a cell").size,
+        poses: w.bodies.state.iter().map(|s| s.pose).collect(),
+    };
+    let mut start = start_of(&w);
     for _ in 0..200 {
+        start = start_of(&w);
         let mut r = relax(&mut w, &fire, &tol).expect("frictionless");
         minimisations += 1;
         iterations += r.iterations;
@@ -261,15 +283,66 @@ pub fn jam(n: usize, aspect: f64, seed: u64) -> Packing {
         scale(&mut w, (next / now).powf(-0.5));
     }
     let (z, rattlers) = coordination(&w);
-    Packing {
-        aspect,
-        phi: phi(&w, total),
-        z,
-        rattlers,
-        minimisations,
-        iterations,
-        found,
-    }
+    (
+        Packing {
+            aspect,
+            phi: phi(&w, total),
+            z,
+            rattlers,
+            minimisations,
+            iterations,
+            found,
+        },
+        start,
+    )
+}
+
+/// The case file of a threshold packing of disks (`cases/jammed_disks_N.json`, written with
+/// `--write-cases`): the grains of packing 0 at α = 1 as the last minimisation of the protocol
+/// found them, before it brought them to the threshold — what `dem2d relax` must bring to a
+/// residual force at its round-off level (issue 41, item 12).
+fn threshold_case(n: usize, start: &Start, found: &Packing) -> String {
+    let m = std::f64::consts::PI * R_SMALL * R_SMALL;
+    let bodies: Vec<serde_json::Value> = start
+        .poses
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            let r = if k % 2 == 0 { R_SMALL } else { 1.4 * R_SMALL };
+            serde_json::json!({
+                "shape": {"type": "circle", "r": r},
+                "position": [p.position.x, p.position.y],
+            })
+        })
+        .collect();
+    let case = serde_json::json!({
+        "version": 1,
+        "name": format!("jammed_disks_{n}"),
+        "description": format!(
+            "{n} frictionless bidisperse disks (r = 0.5 and 0.7 cm) in a periodic cell at the \
+             jamming threshold: packing 0 at α = 1 of `dem2d study jamming --aspects 1 \
+             --packings 1 --grains {n} --write-cases`, as its last minimisation started (it \
+             ended at φ_J = {:.6}, Z_J = {:.4} with rattlers out); `dem2d relax` brings it to the \
+             threshold, u ≈ 1e-12 k_n d² per grain (tests/relax_threshold.rs)",
+            found.phi, found.z
+        ),
+        "units": "cm",
+        "gravity": [0.0, 0.0],
+        "dt": 0.1 * (m / KN).sqrt(),
+        "duration": 1.0,
+        "cell": {"size": [start.size.x, start.size.y], "periodic": "xy"},
+        "contact": {
+            "model": "linear",
+            "normal_force": "area",
+            "kn": KN,
+            "ks": KN,
+            "eta_n": 0.0,
+            "eta_s": 0.0,
+            "friction": 0.0,
+        },
+        "bodies": bodies,
+    });
+    serde_json::to_string_pretty(&case).expect("a JSON value serialises") + "\n"
 }
 
 fn mean_sd(x: &[f64]) -> (f64, f64) {
@@ -293,7 +366,14 @@ fn published(aspect: f64) -> &'static str {
     }
 }
 
-pub fn run(n: usize, packings: usize, aspects: &[f64]) -> Result<String, dem2d::run::RunError> {
+/// The study (see the module documentation); with `write`, also the case file of a threshold
+/// packing ([`threshold_case`]) when α = 1 is among `aspects`.
+pub fn run(
+    n: usize,
+    packings: usize,
+    aspects: &[f64],
+    write: bool,
+) -> Result<String, dem2d::run::RunError> {
     let start = Instant::now();
     let jobs: Vec<(f64, u64)> = aspects
         .iter()
@@ -307,7 +387,13 @@ pub fn run(n: usize, packings: usize, aspects: &[f64]) -> Result<String, dem2d::
     let done: Vec<Packing> = jobs
         .par_iter()
         .map(|&(a, s)| {
-            let p = jam(n, a, s);
+            let (p, start) = jam_from(n, a, s);
+            if write && a == 1.0 && s == 0 {
+                super::put_case(
+                    std::path::Path::new(&format!("cases/jammed_disks_{n}.json")),
+                    &threshold_case(n, &start, &p),
+                );
+            }
             eprintln!(
                 "  α = {a}, packing {s}: φ_J = {:.4}, Z_J = {:.3}{}",
                 p.phi,

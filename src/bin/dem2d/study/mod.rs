@@ -1,6 +1,13 @@
 //! `dem2d study NAME`: the studies behind the user guide's tables that are not a single case — each
 //! runs its cases through the library and prints a Markdown table (run from the repository: the
 //! studies read `cases/`).
+//!
+//! A study holds the lock of its output directory (`DIR/.dem2d.lock`, as `dem2d run` does:
+//! `figures/` with `--docs` or `--check`, else its `--out` directory) while it runs, so that two
+//! studies never write the same figures at once (the second is refused, exit code 2, naming
+//! the lock and its holder). SIGINT or SIGTERM end it with a message and exit code 130 or 143,
+//! between two of its files, never inside one ([`WRITING`]): the files it writes at its end
+//! (its table, its figures) are then not written.
 
 pub mod biaxial;
 pub mod biaxial_shape;
@@ -16,6 +23,7 @@ pub mod silo;
 use dem2d::geometry::Shape;
 use dem2d::output::docs_tables::Mode;
 use dem2d::output::plot::{self, LinePanel};
+use dem2d::output::run_dir::DirLock;
 use dem2d::run::RunError;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -165,6 +173,52 @@ impl Table {
 /// figures, else the same directory).
 static OUT: Mutex<Option<(PathBuf, PathBuf)>> = Mutex::new(None);
 
+/// Held while a study writes one of its files (a figure, its table, a case file, the guide's
+/// table), so that a signal ends the process between two files, never inside one.
+static WRITING: Mutex<()> = Mutex::new(());
+
+/// The study's lock on its output directory (see the module documentation), released when the
+/// study ends, however it ends.
+static LOCK: Mutex<Option<DirLock>> = Mutex::new(None);
+
+/// Takes [`WRITING`] (a study thread that panicked while writing has left nothing to protect).
+fn writing() -> std::sync::MutexGuard<'static, ()> {
+    WRITING
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// Ends the process at SIGINT or SIGTERM (see the module documentation): a thread that
+/// watches the signal handlers' flag, waits until no file is being written, releases the lock,
+/// says what happened and exits with 128 + the signal's number.
+#[cfg(unix)]
+fn exit_on_signal(study: Study, started: std::time::Instant) {
+    let stop = crate::signals::install();
+    std::thread::spawn(move || {
+        loop {
+            std::thread::sleep(std::time::Duration::from_millis(50));
+            let sig = stop.load(Ordering::Relaxed);
+            if sig == 0 {
+                continue;
+            }
+            let _writing = writing();
+            drop(
+                LOCK.lock()
+                    .unwrap_or_else(std::sync::PoisonError::into_inner)
+                    .take(),
+            );
+            crate::say(&format!(
+                "dem2d: study {}: interrupted by {} after {:.0} s; the files it writes at its \
+                 end (its table, its figures) are not written",
+                study.table_name(),
+                dem2d::output::run_dir::signal_name(sig),
+                started.elapsed().as_secs_f64()
+            ));
+            std::process::exit(128 + sig);
+        }
+    });
+}
+
 /// The study's output directories (see [`OUT`]): (figures and tables, PNGs).
 fn out_dirs() -> (PathBuf, PathBuf) {
     OUT.lock()
@@ -181,6 +235,7 @@ fn write_error(path: &Path, e: impl std::fmt::Display) -> RunError {
 /// Writes a study's text file `name` (its table, `NAME.md`; an SVG) into its output directory.
 pub fn write_text(name: &str, text: &str) -> Result<(), RunError> {
     let path = out_dirs().0.join(name);
+    let _writing = writing();
     std::fs::write(&path, text).map_err(|e| write_error(&path, e))
 }
 
@@ -189,6 +244,7 @@ pub fn write_png(name: &str, png: &[u8]) -> Result<(), RunError> {
     let dir = out_dirs().1;
     std::fs::create_dir_all(&dir).map_err(|e| write_error(&dir, e))?;
     let path = dir.join(name);
+    let _writing = writing();
     std::fs::write(&path, png).map_err(|e| write_error(&path, e))
 }
 
@@ -202,6 +258,7 @@ pub fn write_figure(
 ) -> Result<(), RunError> {
     let (dir, png) = out_dirs();
     std::fs::create_dir_all(&png).map_err(|e| write_error(&png, e))?;
+    let _writing = writing();
     for path in [
         dir.join(format!("{name}.svg")),
         png.join(format!("{name}.png")),
@@ -220,6 +277,7 @@ static STALE_CASES: Mutex<Vec<String>> = Mutex::new(Vec::new());
 pub fn put_case(path: &Path, text: &str) {
     match CASE_FILES.load(Ordering::Relaxed) {
         1 => {
+            let _writing = writing();
             if let Some(dir) = path.parent() {
                 std::fs::create_dir_all(dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
             }
@@ -257,12 +315,7 @@ pub struct Options {
 /// the user guide ([`Study::table_name`]), or (checking) is compared with it, and so are the
 /// case files with `write_cases`: a difference is a failure.
 pub fn run(study: Study, options: &Options, docs: Option<Mode>) -> Result<(), crate::Failure> {
-    let Options {
-        write_cases,
-        grains,
-        packings,
-        ..
-    } = *options;
+    let write_cases = options.write_cases;
     let checking = docs == Some(Mode::Check);
     CASE_FILES.store(
         match (write_cases, checking) {
@@ -272,7 +325,6 @@ pub fn run(study: Study, options: &Options, docs: Option<Mode>) -> Result<(), cr
         },
         Ordering::Relaxed,
     );
-    let write = write_cases;
     // The tracked figures with --docs or --check; else a directory of the run's own.
     let own = match docs {
         Some(_) => None,
@@ -288,6 +340,41 @@ pub fn run(study: Study, options: &Options, docs: Option<Mode>) -> Result<(), cr
         }
     };
     *OUT.lock().expect("not poisoned") = own.clone().map(|d| (d.clone(), d));
+    // The lock of the directory the study writes (see the module documentation).
+    let locked = own.clone().unwrap_or_else(|| out_dirs().0);
+    std::fs::create_dir_all(&locked)
+        .map_err(|e| crate::Failure::failed(format!("{}: cannot create: {e}", locked.display())))?;
+    let lock = DirLock::acquire_by(&locked, &format!("dem2d study {}", study.table_name()))
+        .map_err(|e| match e {
+            dem2d::output::run_dir::RunError::Locked { .. } => crate::Failure::input(e.to_string()),
+            other => crate::Failure::failed(other.to_string()),
+        })?;
+    *LOCK.lock().expect("not poisoned") = Some(lock);
+    #[cfg(unix)]
+    exit_on_signal(study, std::time::Instant::now());
+    let result = run_locked(study, options, docs, own);
+    drop(
+        LOCK.lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .take(),
+    );
+    result
+}
+
+/// [`run`] once the output directory is locked.
+fn run_locked(
+    study: Study,
+    options: &Options,
+    docs: Option<Mode>,
+    own: Option<PathBuf>,
+) -> Result<(), crate::Failure> {
+    let Options {
+        write_cases,
+        grains,
+        packings,
+        ..
+    } = *options;
+    let write = write_cases;
     let md = match study {
         Study::RollingFig3 => rolling_fig3::run(),
         Study::Repose => repose::run(write),
@@ -300,6 +387,7 @@ pub fn run(study: Study, options: &Options, docs: Option<Mode>) -> Result<(), cr
             grains.unwrap_or(jamming::N),
             packings.unwrap_or(jamming::PACKINGS),
             options.aspects.as_deref().unwrap_or(&jamming::ASPECTS),
+            write,
         ),
         Study::Shear => shear::run(
             grains.unwrap_or(shear::N),
@@ -311,6 +399,7 @@ pub fn run(study: Study, options: &Options, docs: Option<Mode>) -> Result<(), cr
     // A run that blows up ends the study with its report.
     .map_err(|e| crate::Failure::failed(format!("dem2d study: {e}")))?;
     if let Some(mode) = docs {
+        let _writing = writing();
         crate::refresh_docs(study.table_name(), &md, mode)?;
     }
     if let Some(dir) = own
