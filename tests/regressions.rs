@@ -1867,3 +1867,30 @@ mod bug_a_billion_insertion_attempts_hung_the_run {
         assert!(!csv(&out.join("inserted.csv")).is_empty());
     }
 }
+
+/// Issue 41's fuzzing (found by hand beside it): an inserter at 1e12 bodies per second asked
+/// for 2e7 bodies in one step, each tested against every other, and never finished its first
+/// step (a SIGTERM could not stop it between steps). More than 1e5 bodies in one step is
+/// refused, naming the field; 1e5 in a step is accepted.
+mod bug_an_inserter_asking_millions_of_bodies_per_step_hung_the_run {
+    use super::*;
+
+    #[test]
+    fn a_rate_or_count_above_1e5_per_step_is_refused_naming_it() {
+        let dir = scratch("per_step");
+        let mut v = pouring();
+        let dt = v["dt"].as_f64().unwrap();
+        v["insert"][0]["rate"] = (1e12).into();
+        let file = write(&dir, "fast.json", &v);
+        let (code, _, err) = dem2d(&["run", &file, "--out", dir.join("fast").to_str().unwrap()]);
+        assert_eq!(code, 2, "{err}");
+        assert!(
+            err.contains("field `insert[0].rate`") && err.contains("per step"),
+            "{err}"
+        );
+        // Half the limit per step: read (the case is checked, not run).
+        v["insert"][0]["rate"] = (5e4 / dt).into();
+        let text = serde_json::to_string(&v).unwrap();
+        assert!(dem2d::scene::Case::from_json(&text).is_ok());
+    }
+}

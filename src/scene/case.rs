@@ -355,6 +355,7 @@ impl Case {
         let flow = super::flow::parse_flow(insert, outflow, &named, &bodies)?;
         if let Some(f) = &flow {
             super::flow::check_regions_clear_of_walls(f, &walls)?;
+            super::flow::check_bodies_per_step(f, dt)?;
         }
         let local_damping = match o.get("damping") {
             None => 0.0,

@@ -280,6 +280,33 @@ fn inserter(v: &Value, path: &str, named: &Named) -> Result<Inserter, FieldError
 
 /// The case's `insert` and `outflow` lists (either may be absent); `bodies` the case's bodies
 /// (an outflow region holding all of them is refused). `None` when neither is given.
+/// The most bodies an inserter may place in one step, or at once: each body placed is tested
+/// against every other, so a rate of 1e12 /s asked for 2e7 bodies per step and never finished
+/// its first step (issue 41's fuzzing; a SIGTERM could not stop it between steps).
+pub const MAX_INSERTED_PER_STEP: f64 = 1e5;
+
+/// Refuses an inserter that asks for more than [`MAX_INSERTED_PER_STEP`] bodies in one step of
+/// `dt`, naming its `rate` or `count`.
+pub fn check_bodies_per_step(flow: &Flow, dt: f64) -> Result<(), FieldError> {
+    for (k, ins) in flow.inserters.iter().enumerate() {
+        let (key, per_step) = match ins.target {
+            Target::Rate { rate, .. } => ("rate", rate * dt),
+            Target::Count(n) => ("count", n as f64),
+            Target::Keep { keep, .. } => ("keep", keep as f64),
+        };
+        if per_step > MAX_INSERTED_PER_STEP {
+            return Err(FieldError::new(
+                join(&index("insert", k), key),
+                format!(
+                    "asks for {per_step:.4e} bodies in one step (of {dt} s): at most \
+                     {MAX_INSERTED_PER_STEP} per step (each is tested against every other)"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 pub fn parse_flow(
     insert: Option<&Value>,
     outflow: Option<&Value>,
