@@ -161,25 +161,25 @@ fn overlaps(
         if len <= 0.0 {
             continue;
         }
-        let k = if periodic {
-            u.rem_euclid(n as i64)
-        } else if (0..n as i64).contains(&u) {
-            u
-        } else {
-            continue;
-        };
-        f(k as usize, len);
+        if let Some(k) = bin_index(u, n, periodic) {
+            f(k, len);
+        }
     }
 }
 
-/// The bin holding the coordinate `s` (None outside a range that is not a period).
-fn bin_of(s: f64, lo: f64, h: f64, n: usize, periodic: bool) -> Option<usize> {
-    let u = ((s - lo) / h).floor() as i64;
+/// The bin of the `u`-th slab from `lo` (any whole number): itself, or wrapped in a period
+/// (None outside a range that is not a period).
+fn bin_index(u: i64, n: usize, periodic: bool) -> Option<usize> {
     if periodic {
         Some(u.rem_euclid(n as i64) as usize)
     } else {
         (0..n as i64).contains(&u).then_some(u as usize)
     }
+}
+
+/// The bin holding the coordinate `s`.
+fn bin_of(s: f64, lo: f64, h: f64, n: usize, periodic: bool) -> Option<usize> {
+    bin_index(((s - lo) / h).floor() as i64, n, periodic)
 }
 
 /// The area of `body` inside each bin it overlaps: `f(k, area)`.
@@ -230,14 +230,9 @@ fn body_areas(
         if a <= 0.0 {
             continue;
         }
-        let k = if periodic {
-            u.rem_euclid(n as i64)
-        } else if (0..n as i64).contains(&u) {
-            u
-        } else {
-            continue;
-        };
-        f(k as usize, a);
+        if let Some(k) = bin_index(u, n, periodic) {
+            f(k, a);
+        }
     }
 }
 
