@@ -119,6 +119,10 @@ fn figures_quick_writes_every_figure_and_table_of_the_guide() {
                 "hopper_segments.svg",
                 "tutorial_shear_cell.png",
                 "python_pour.png",
+                // The viewers' pictures: figures/scripts/player_screenshot.sh (Chromium) and
+                // figures/scripts/ovito_render.py (OVITO) of the hopper's run (developer.md).
+                "player_hopper.png",
+                "ovito_hopper.png",
             ];
             if !name.starts_with("paraview_") && !others.contains(&name) {
                 wanted.push(name.to_string());
