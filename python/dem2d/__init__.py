@@ -143,14 +143,39 @@ def _read_csv(path):
     return table
 
 
+def _series(table, key):
+    """A long table (a row per step and `key`) as (F, K) arrays, a column per value of `key`
+    in its order of first appearance; `step` and `t` (F,), `key` (K,). A frame cut short (the
+    last one, of a run stopped while writing) is left out."""
+    import numpy as np
+
+    step, keys = table["step"], table[key]
+    order = list(dict.fromkeys(keys.tolist()))
+    k = len(order)
+    f = len(step) // k if k else 0
+    out = {"step": step[: f * k : k].astype(np.int64), "t": table["t"][: f * k : k],
+           key: np.array(order, dtype=np.int64)}
+    for name, column in table.items():
+        if name in ("step", "t", key) or not isinstance(column, np.ndarray):
+            continue
+        out[name] = column[: f * k].reshape(f, k)
+    return out
+
+
 class Run:
     """A run directory read back without running it again (`dem2d::output::run_data`).
 
     Frames of `trajectory.csv`: `step` (F,), `t` (F,), `positions` (F, N, 2), `angles` (F, N),
-    `velocities` (F, N, 2), `spins` (F, N). `increments`: `increments.csv`'s columns.
+    `velocities` (F, N, 2), `spins` (F, N). Column k is the body of identity `ids[k]`
+    (`trajectory.csv`'s `body`; `0 … N − 1` unless the case inserts or removes bodies); where
+    it does (`insert`, `outflow`), N counts every body that was ever present, `present` (F, N)
+    says which are present in each frame, and an absent body's entries are NaN.
+    `increments`: `increments.csv`'s columns.
     `contacts`: `contacts.csv`'s rows as arrays (`step`, `i` (-1 for a wall), `wall`, `j`,
     `point`, `normal`, `depth`, `force`, `fn`, `ft`, `couple`, `state`), None without the file.
-    `analysis` and `walls`: the columns of `analysis.csv` and `walls.csv`, None without them.
+    `analysis`, `walls` and `reactions`: the columns of `analysis.csv`, `walls.csv` and
+    `reactions.csv` (the prescribed bodies' loads), None without them; `wall_series()` and
+    `reaction_series()` give them as (F, W) arrays, a column per wall or prescribed body.
     In a periodic cell: `images` (F, N, 2), the bodies' image counts, `cell` the columns of
     `cell.csv`, and `unwrapped_positions` (F, N, 2); None without a cell.
     `summary`: `summary.json` as a dict. `case`: `case.json`; `state`: `state.json` as a Case
@@ -167,6 +192,8 @@ class Run:
         self.angles = d["angles"]
         self.velocities = d["velocities"]
         self.spins = d["spins"]
+        self.ids = d["ids"]
+        self.present = d["present"]
         self.increments = d["increments"]
         self.summary = json.loads(d["summary"])
         self.incomplete = d["incomplete"]
@@ -176,6 +203,8 @@ class Run:
         self.analysis = _read_csv(analysis) if analysis.exists() else None
         walls = self.path / "walls.csv"
         self.walls = _read_csv(walls) if walls.exists() else None
+        reactions = self.path / "reactions.csv"
+        self.reactions = _read_csv(reactions) if reactions.exists() else None
         self.images = d.get("images")
         cell = self.path / "cell.csv"
         self.cell = _read_csv(cell) if self.images is not None and cell.exists() else None
@@ -199,6 +228,18 @@ class Run:
         out[..., 0] += ix * lx + iy * shift
         out[..., 1] += iy * ly
         return out
+
+    def wall_series(self):
+        """`walls.csv` as (F, W) arrays: `step` and `t` (F,), every other column (`x`, `y`,
+        `nx`, `ny`, `vx`, `vy`, `fn`, `ft`, `contacts`, `fx`, `fy`, `angle`, `omega`, `torque`,
+        `power`, ...) with a column per wall in the case's order. None without the file."""
+        return None if self.walls is None else _series(self.walls, "wall")
+
+    def reaction_series(self):
+        """`reactions.csv` as (F, B) arrays: `step` and `t` (F,), `body` (B,) the prescribed
+        bodies' identities, every other column (`x`, `y`, `angle`, `fx`, `fy`, `moment`,
+        `power`) with a column per prescribed body. None without the file."""
+        return None if self.reactions is None else _series(self.reactions, "body")
 
     def export(self, format="lammps-dump", out=None):
         """`dem2d export`: the run's LAMMPS-style dump for OVITO (default `RUN/dump.lammpstrj`);

@@ -1273,56 +1273,67 @@ fn load_run<'py>(py: Python<'py>, dir: PathBuf) -> PyResult<Bound<'py, PyDict>> 
         dem2d::output::run_data::RunData::load(&dir).map_err(|e| input_error(py, e.to_string()))?;
     let d = PyDict::new(py);
     let frames = &run.frames;
-    let n = frames.first().map_or(0, |f| f.bodies.len());
-    if frames.iter().any(|f| f.ids != frames[0].ids) {
-        return Err(input_error(
-            py,
-            format!(
-                "{}: the case inserts or removes bodies (`insert`, `outflow`): its frames hold \
-                 different bodies, which load_run's arrays (frames × bodies) cannot; read \
-                 trajectory.csv by its `body` column",
-                dir.display()
-            ),
-        ));
-    }
+    // Columns are the identities present in any frame (`trajectory.csv`'s `body`), increasing:
+    // `0 … n − 1` for a case that neither inserts nor removes bodies; where it does, a body's
+    // entries are NaN (images 0) in the frames it is absent from, and `present` says which.
+    let ids = run.ids_in(&(0..frames.len()).collect::<Vec<_>>());
+    let n = ids.len();
     let f = frames.len();
-    let field = |g: &dyn Fn(&dem2d::output::run_data::BodyState) -> f64| {
-        frames
-            .iter()
-            .flat_map(|fr| fr.bodies.iter().map(g))
-            .collect::<Vec<f64>>()
-    };
-    let two = |gx: &dyn Fn(&dem2d::output::run_data::BodyState) -> f64,
-               gy: &dyn Fn(&dem2d::output::run_data::BodyState) -> f64| {
-        frames
-            .iter()
-            .flat_map(|fr| fr.bodies.iter().flat_map(|b| [gx(b), gy(b)]))
-            .collect::<Vec<f64>>()
+    // For each frame, the column of each of its bodies.
+    let columns: Vec<Vec<usize>> = frames
+        .iter()
+        .map(|fr| {
+            fr.ids
+                .iter()
+                .map(|id| ids.binary_search(id).expect("ids_in holds every frame's ids"))
+                .collect()
+        })
+        .collect();
+    let padded = |width: usize, g: &dyn Fn(&dem2d::output::run_data::BodyState) -> [f64; 2]| {
+        let mut out = vec![f64::NAN; f * n * width];
+        for (k, fr) in frames.iter().enumerate() {
+            for (b, &c) in fr.bodies.iter().zip(&columns[k]) {
+                let v = g(b);
+                out[(k * n + c) * width..(k * n + c + 1) * width].copy_from_slice(&v[..width]);
+            }
+        }
+        out
     };
     let steps: Vec<u64> = frames.iter().map(|fr| fr.step).collect();
     d.set_item("step", PyArray1::from_vec(py, steps))?;
     d.set_item("t", vector(py, frames.iter().map(|fr| fr.t))?)?;
+    d.set_item("ids", PyArray1::from_vec(py, ids.clone()))?;
+    let mut present = vec![false; f * n];
+    for (k, cols) in columns.iter().enumerate() {
+        for &c in cols {
+            present[k * n + c] = true;
+        }
+    }
+    d.set_item("present", PyArray1::from_vec(py, present).reshape([f, n])?)?;
     d.set_item(
         "positions",
-        PyArray1::from_vec(py, two(&|b| b.x, &|b| b.y)).reshape([f, n, 2])?,
+        PyArray1::from_vec(py, padded(2, &|b| [b.x, b.y])).reshape([f, n, 2])?,
     )?;
     d.set_item(
         "angles",
-        PyArray1::from_vec(py, field(&|b| b.angle)).reshape([f, n])?,
+        PyArray1::from_vec(py, padded(1, &|b| [b.angle, 0.0])).reshape([f, n])?,
     )?;
     d.set_item(
         "velocities",
-        PyArray1::from_vec(py, two(&|b| b.vx, &|b| b.vy)).reshape([f, n, 2])?,
+        PyArray1::from_vec(py, padded(2, &|b| [b.vx, b.vy])).reshape([f, n, 2])?,
     )?;
     d.set_item(
         "spins",
-        PyArray1::from_vec(py, field(&|b| b.omega)).reshape([f, n])?,
+        PyArray1::from_vec(py, padded(1, &|b| [b.omega, 0.0])).reshape([f, n])?,
     )?;
     if run.case.cell.is_some() {
-        let images: Vec<i64> = frames
-            .iter()
-            .flat_map(|fr| fr.images.iter().flat_map(|i| [i[0] as i64, i[1] as i64]))
-            .collect();
+        let mut images = vec![0i64; f * n * 2];
+        for (k, fr) in frames.iter().enumerate() {
+            for (i, &c) in fr.images.iter().zip(&columns[k]) {
+                images[(k * n + c) * 2] = i[0] as i64;
+                images[(k * n + c) * 2 + 1] = i[1] as i64;
+            }
+        }
         d.set_item("images", PyArray1::from_vec(py, images).reshape([f, n, 2])?)?;
     }
     let inc = PyDict::new(py);
