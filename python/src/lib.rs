@@ -1285,7 +1285,10 @@ fn load_run<'py>(py: Python<'py>, dir: PathBuf) -> PyResult<Bound<'py, PyDict>> 
         .map(|fr| {
             fr.ids
                 .iter()
-                .map(|id| ids.binary_search(id).expect("ids_in holds every frame's ids"))
+                .map(|id| {
+                    ids.binary_search(id)
+                        .expect("ids_in holds every frame's ids")
+                })
                 .collect()
         })
         .collect();
