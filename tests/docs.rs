@@ -231,6 +231,7 @@ fn marked_tables_are_closed_and_each_name_is_marked_once() {
         "biaxial",
         "impacts",
         "biaxial_shape",
+        "biaxial_periodic",
         "packing",
         "representation",
         "verify",

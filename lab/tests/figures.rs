@@ -103,12 +103,13 @@ fn figures_quick_writes_every_figure_and_table_of_the_guide() {
             // The ParaView picture is pvpython's (figures/scripts/paraview_render.py), the
             // tutorial's pile `dem2d plot`'s, the Python tutorial's profile its script's
             // (docs/python/pour.py, with matplotlib); the research workflows' figures are `dem2d
-            // study impacts|biaxial-shape|packing|representation|jamming|shear|silo`'s (minutes of runs); the
+            // study impacts|biaxial-shape|biaxial-periodic|packing|representation|jamming|shear|silo`'s (minutes of runs); the
             // hopper's and the shear tutorial's are `dem2d run` and `dem2d plot` of their cases
             // (physics/segments.md, tutorials/shear-cell.md).
             let others = [
                 "impacts.svg",
                 "biaxial_shape.svg",
+                "biaxial_periodic.svg",
                 "force_chains.svg",
                 "packing.svg",
                 "representation_pareto.svg",
@@ -141,6 +142,7 @@ fn figures_quick_writes_every_figure_and_table_of_the_guide() {
                 "biaxial",
                 "impacts",
                 "biaxial_shape",
+                "biaxial_periodic",
                 "packing",
                 "representation",
                 "jamming",

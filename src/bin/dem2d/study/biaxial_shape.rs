@@ -111,6 +111,48 @@ pub fn run_shear(
     Ok(())
 }
 
+/// What a biaxial test's curve says (see the module documentation).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Summary {
+    /// The point of the curve at the peak stress ratio.
+    pub peak_index: usize,
+    pub peak_ratio: f64,
+    pub peak_strain: f64,
+    /// The mean stress ratio over the last 2 % of axial strain.
+    pub residual_ratio: f64,
+    pub dilatancy_deg: f64,
+}
+
+/// The peak, residual and dilatancy of a curve of (axial strain, stress ratio, volumetric
+/// strain) points.
+pub fn summarise(curve: &[(f64, f64, f64)]) -> Summary {
+    let (k, &(e1, q, _)) = curve
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.1.total_cmp(&b.1.1))
+        .expect("a curve");
+    let last = curve.last().expect("a curve").0;
+    let tail: Vec<f64> = curve
+        .iter()
+        .filter(|c| c.0 >= last - 0.02)
+        .map(|c| c.1)
+        .collect();
+    // Slope of ε_v against ε₁ over ±1 % around the peak (least squares).
+    let pts: Vec<(f64, f64)> = curve
+        .iter()
+        .filter(|c| (c.0 - e1).abs() <= 0.0101)
+        .map(|c| (c.0, c.2))
+        .collect();
+    let (_, s) = super::line_fit(&pts);
+    Summary {
+        peak_index: k,
+        peak_ratio: q,
+        peak_strain: e1,
+        residual_ratio: tail.iter().sum::<f64>() / tail.len() as f64,
+        dilatancy_deg: (-s / (2.0 - s)).asin().to_degrees(),
+    }
+}
+
 /// One biaxial test.
 #[derive(Clone, Debug, Default)]
 pub struct Outcome {
@@ -223,39 +265,13 @@ pub fn run_one(
         frames.push(frame);
     })?;
     steps += case.steps();
-    let (k, &(e1, q, _)) = out
-        .curve
-        .iter()
-        .enumerate()
-        .max_by(|a, b| a.1.1.total_cmp(&b.1.1))
-        .expect("a curve");
-    out.peak_ratio = q;
-    out.peak_strain = e1;
-    out.peak_measures = out.measures[k];
-    out.peak_frame = frames.swap_remove(k);
-    let last = out.curve.last().expect("a curve").0;
-    let tail: Vec<f64> = out
-        .curve
-        .iter()
-        .filter(|c| c.0 >= last - 0.02)
-        .map(|c| c.1)
-        .collect();
-    out.residual_ratio = tail.iter().sum::<f64>() / tail.len() as f64;
-    // Slope of ε_v against ε₁ over ±1 % around the peak (least squares).
-    let pts: Vec<(f64, f64)> = out
-        .curve
-        .iter()
-        .filter(|c| (c.0 - e1).abs() <= 0.0101)
-        .map(|c| (c.0, c.2))
-        .collect();
-    let m = pts.len() as f64;
-    let (mx, my) = (
-        pts.iter().map(|p| p.0).sum::<f64>() / m,
-        pts.iter().map(|p| p.1).sum::<f64>() / m,
-    );
-    let s = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>()
-        / pts.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
-    out.dilatancy_deg = (-s / (2.0 - s)).asin().to_degrees();
+    let summary = summarise(&out.curve);
+    out.peak_ratio = summary.peak_ratio;
+    out.peak_strain = summary.peak_strain;
+    out.residual_ratio = summary.residual_ratio;
+    out.dilatancy_deg = summary.dilatancy_deg;
+    out.peak_measures = out.measures[summary.peak_index];
+    out.peak_frame = frames.swap_remove(summary.peak_index);
     out.wall_seconds = start.elapsed().as_secs_f64();
     out.particle_steps = steps as f64 * n as f64;
     if verbose {

@@ -10,6 +10,7 @@
 //! (its table, its figures) are then not written.
 
 pub mod biaxial;
+pub mod biaxial_periodic;
 pub mod biaxial_shape;
 pub mod impacts;
 pub mod jamming;
@@ -45,6 +46,10 @@ pub enum Study {
     /// volumetric strain, friction and dilatancy angles, fabric at the peak; writes
     /// figures/biaxial_shape.svg and figures/biaxial_shape.md.
     BiaxialShape,
+    /// The walls' influence: the biaxial test of `biaxial-shape` (400 `--grains` per aspect
+    /// ratio 1–2.5) in the servo-walled box and in a periodic cell held at its stress without
+    /// walls, side by side; writes figures/biaxial_periodic.svg and .md.
+    BiaxialPeriodic,
     /// Packing fraction and coordination of bidisperse grains poured into a box against the
     /// aspect ratio (1–3), frictionless and μ = 0.5; writes figures/packing.svg and .md.
     Packing,
@@ -98,6 +103,7 @@ impl Study {
             Study::Biaxial => "biaxial",
             Study::Impacts => "impacts",
             Study::BiaxialShape => "biaxial_shape",
+            Study::BiaxialPeriodic => "biaxial_periodic",
             Study::Packing => "packing",
             Study::Representation => "representation",
             Study::Jamming => "jamming",
@@ -381,6 +387,7 @@ fn run_locked(
         Study::Biaxial => biaxial::run(write),
         Study::Impacts => impacts::run(),
         Study::BiaxialShape => biaxial_shape::run(grains.unwrap_or(400), write),
+        Study::BiaxialPeriodic => biaxial_periodic::run(grains.unwrap_or(400)),
         Study::Packing => packing::run(grains.unwrap_or(packing::N), write),
         Study::Representation => representation::run(grains.unwrap_or(packing::N)),
         Study::Jamming => jamming::run(
