@@ -16,8 +16,8 @@
 
 use super::biaxial_shape::{self, MU, MU_COMPACTION, SIGMA_C, STRAIN_RATE};
 use dem2d::analysis::{self, Frame, Measures};
-use dem2d::dynamics::{BodyInit, World};
-use dem2d::output::plot::{LinePanel, Series};
+use dem2d::dynamics::World;
+use dem2d::output::plot::Series;
 use dem2d::output::progress::CommandProgress;
 use dem2d::run::{RunError, Simulation};
 use dem2d::scene::Case;
@@ -90,18 +90,7 @@ pub fn run_periodic(n_side: usize, aspect: f64, strain: f64) -> Result<Outcome, 
     }
     let n = w.bodies.len();
     // The shear stage from the compacted sample at rest (its bodies in the cell's frame).
-    let bodies: Vec<BodyInit> = (0..n)
-        .map(|k| BodyInit {
-            material: 0,
-            prescribed: false,
-            shape: w.bodies.shape[k],
-            position: w.bodies.state[k].pose.position,
-            angle: w.bodies.state[k].pose.angle(),
-            velocity: dem2d::geometry::Vec2::zeros(),
-            omega: 0.0,
-            density: w.bodies.density[k],
-        })
-        .collect();
+    let bodies = biaxial_shape::at_rest(&w);
     let (lx, ly, _, _) = cell_state(&w);
     let shear = ServoBox {
         friction: MU,
@@ -271,22 +260,10 @@ pub fn run(grains: usize) -> Result<String, RunError> {
             })
             .collect()
     };
-    let panels = [
-        LinePanel {
-            title: "Stress ratio: walls (lines), periodic cell (markers)".into(),
-            x_label: "axial strain ε₁ (%)".into(),
-            y_label: "(σ₁ − σ₃)/(σ₁ + σ₃) (–)".into(),
-            series: series(0),
-            ..Default::default()
-        },
-        LinePanel {
-            title: "Volumetric strain (compression positive)".into(),
-            x_label: "axial strain ε₁ (%)".into(),
-            y_label: "ε_v = 1 − A/A₀ (%)".into(),
-            series: series(1),
-            ..Default::default()
-        },
-    ];
+    let panels = biaxial_shape::curve_panels(
+        "Stress ratio: walls (lines), periodic cell (markers)",
+        series,
+    );
     super::write_figure("biaxial_periodic", (1200, 480), (1, 2), &panels)?;
     super::write_text("biaxial_periodic.md", &md)?;
     print!("{md}");

@@ -153,6 +153,22 @@ pub fn summarise(curve: &[(f64, f64, f64)]) -> Summary {
     }
 }
 
+/// The bodies of a compacted sample `w` where they are, at rest: the next stage's case.
+pub fn at_rest(w: &World) -> Vec<BodyInit> {
+    (0..w.bodies.len())
+        .map(|k| BodyInit {
+            material: 0,
+            prescribed: false,
+            shape: w.bodies.shape[k],
+            position: w.bodies.state[k].pose.position,
+            angle: w.bodies.state[k].pose.angle(),
+            velocity: dem2d::geometry::Vec2::zeros(),
+            omega: 0.0,
+            density: w.bodies.density[k],
+        })
+        .collect()
+}
+
 /// One biaxial test.
 #[derive(Clone, Debug, Default)]
 pub struct Outcome {
@@ -203,18 +219,7 @@ pub fn run_one(
             start.elapsed().as_secs_f64()
         );
     }
-    let bodies: Vec<BodyInit> = (0..n)
-        .map(|k| BodyInit {
-            material: 0,
-            prescribed: false,
-            shape: w.bodies.shape[k],
-            position: w.bodies.state[k].pose.position,
-            angle: w.bodies.state[k].pose.angle(),
-            velocity: dem2d::geometry::Vec2::zeros(),
-            omega: 0.0,
-            density: w.bodies.density[k],
-        })
-        .collect();
+    let bodies = at_rest(&w);
     let (_, height0, _, _) = wall_state(&w);
     let box_ = box_of(&w);
     let v = 0.5 * STRAIN_RATE * height0;
@@ -281,6 +286,27 @@ pub fn run_one(
         );
     }
     Ok(out)
+}
+
+/// The two panels of biaxial curves against the axial strain: the stress ratio (titled
+/// `stress_title`) and the volumetric strain; `series(0)` and `series(1)` give their series.
+pub fn curve_panels(stress_title: &str, series: impl Fn(usize) -> Vec<Series>) -> [LinePanel; 2] {
+    [
+        LinePanel {
+            title: stress_title.into(),
+            x_label: "axial strain ε₁ (%)".into(),
+            y_label: "(σ₁ − σ₃)/(σ₁ + σ₃) (–)".into(),
+            series: series(0),
+            ..Default::default()
+        },
+        LinePanel {
+            title: "Volumetric strain (compression positive)".into(),
+            x_label: "axial strain ε₁ (%)".into(),
+            y_label: "ε_v = 1 − A/A₀ (%)".into(),
+            series: series(1),
+            ..Default::default()
+        },
+    ]
 }
 
 /// An SVG of force chains: each body's outline in grey, each body–body contact a line between
@@ -442,22 +468,7 @@ pub fn run(grains: usize, write: bool) -> Result<String, RunError> {
             })
             .collect()
     };
-    let panels = [
-        LinePanel {
-            title: "Stress ratio".into(),
-            x_label: "axial strain ε₁ (%)".into(),
-            y_label: "(σ₁ − σ₃)/(σ₁ + σ₃) (–)".into(),
-            series: series(0),
-            ..Default::default()
-        },
-        LinePanel {
-            title: "Volumetric strain (compression positive)".into(),
-            x_label: "axial strain ε₁ (%)".into(),
-            y_label: "ε_v = 1 − A/A₀ (%)".into(),
-            series: series(1),
-            ..Default::default()
-        },
-    ];
+    let panels = curve_panels("Stress ratio", series);
     super::write_figure("biaxial_shape", (1200, 480), (1, 2), &panels)?;
     super::write_text("biaxial_shape.md", &md)?;
     let chains = force_chains(&[&results[0], &results[results.len() - 1]]);
