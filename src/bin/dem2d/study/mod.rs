@@ -11,6 +11,7 @@
 
 pub mod biaxial;
 pub mod biaxial_shape;
+pub mod drum;
 pub mod impacts;
 pub mod jamming;
 pub mod packing;
@@ -66,6 +67,11 @@ pub enum Study {
     /// (`--aspects`), I in 0.01–0.3 and disks at 0.001 too (`--inertial`); writes
     /// figures/shear.svg and .md.
     Shear,
+    /// A half-filled drum of disks and ellipses (α = 1.5, 2) turned through Froude numbers
+    /// 1e-5–2: the regime (Mellmann 2001), the free surface's angle and the flowing layer's
+    /// thickness (`--quick`: a small drum of disks, five Froude numbers); writes
+    /// figures/drum.svg and figures/drum.md.
+    Drum,
 }
 
 /// The `dem2d study` command's description, naming every study of [`Study`] (so that the list
@@ -103,6 +109,7 @@ impl Study {
             Study::Jamming => "jamming",
             Study::Silo => "silo",
             Study::Shear => "shear",
+            Study::Drum => "drum",
         }
     }
 }
@@ -309,6 +316,8 @@ pub struct Options {
     pub inertial: Option<Vec<f64>>,
     /// Where the figures and the table file go without `--docs` (default `runs/study/NAME`).
     pub out: Option<PathBuf>,
+    /// The study's small, fast version (drum).
+    pub quick: bool,
 }
 
 /// Runs `study` with `options`. With `docs`, the study's table goes into its marked region of
@@ -395,6 +404,7 @@ fn run_locked(
             options.inertial.as_deref(),
         ),
         Study::Silo => silo::run(),
+        Study::Drum => drum::run(options.quick, options.aspects.as_deref()),
     }
     // A run that blows up ends the study with its report.
     .map_err(|e| crate::Failure::failed(format!("dem2d study: {e}")))?;
