@@ -15,6 +15,8 @@
 
 use dem2d::dynamics::drum_flow::{self, DrumSpec, Regime};
 
+mod common;
+
 #[test]
 fn a_small_drum_rolls_with_a_plane_surface_at_low_fr_and_centrifuges_at_fr_2() {
     let t0 = std::time::Instant::now();
@@ -77,4 +79,20 @@ fn a_small_drum_rolls_with_a_plane_surface_at_low_fr_and_centrifuges_at_fr_2() {
         mid.angle,
         high.angle
     );
+}
+
+#[test]
+fn the_drum_study_refuses_an_aspect_ratio_below_one_naming_the_option() {
+    let dir = std::env::temp_dir().join(format!("dem2d_drum_study_{}", std::process::id()));
+    for bad in ["0", "0.5", "nan", "7"] {
+        let out = std::process::Command::new(common::bin())
+            .args(["study", "drum", "--quick", "--aspects", bad, "--out"])
+            .arg(&dir)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "--aspects {bad}: {err}");
+        assert!(err.contains("--aspects"), "{err}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -384,6 +384,16 @@ fn run_locked(
         ..
     } = *options;
     let write = write_cases;
+    // The drum's grains are built from a/b ≥ 1 (a lattice of ellipses lying flat).
+    if let (Study::Drum, Some(aspects)) = (study, options.aspects.as_deref())
+        && let Some(bad) = aspects
+            .iter()
+            .find(|a| !(a.is_finite() && (1.0..=5.0).contains(*a)))
+    {
+        return Err(crate::Failure::input(format!(
+            "--aspects: the drum study's aspect ratios must be in [1, 5], got {bad}"
+        )));
+    }
     let md = match study {
         Study::RollingFig3 => rolling_fig3::run(),
         Study::Repose => repose::run(write),
