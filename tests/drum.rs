@@ -5,6 +5,7 @@
 //! closed-form rotation about its pivot, and a restart that continues a turning drum exactly.
 
 use dem2d::dynamics::World;
+use dem2d::dynamics::drum_flow::{fit_line, surface_tops};
 use dem2d::geometry::{Drum, Pose, Shape, Vec2};
 use dem2d::narrow_phase::drum::ellipse_farthest;
 use dem2d::narrow_phase::{Object, contact};
@@ -556,29 +557,10 @@ fn a_half_filled_drum_in_the_rolling_regime_has_a_plane_free_surface_and_keeps_i
         })
         .unwrap();
     assert!(worst < 0.01, "a body reached {worst} cm beyond the drum");
-    let mut top = std::collections::BTreeMap::new();
-    for (s, r) in wd.bodies.state.iter().zip(&wd.bodies.bound) {
-        let (x, y) = (s.pose.position.x, s.pose.position.y + r);
-        let k = x.floor() as i64;
-        if (-5..5).contains(&k) {
-            let t = top.entry(k).or_insert(f64::NEG_INFINITY);
-            *t = y.max(*t);
-        }
-    }
-    let pts: Vec<(f64, f64)> = top.iter().map(|(&k, &y)| (k as f64 + 0.5, y)).collect();
-    let n = pts.len() as f64;
-    let (mx, my) = (
-        pts.iter().map(|p| p.0).sum::<f64>() / n,
-        pts.iter().map(|p| p.1).sum::<f64>() / n,
-    );
-    let slope = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>()
-        / pts.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
-    let rms = (pts
-        .iter()
-        .map(|p| (p.1 - my - slope * (p.0 - mx)).powi(2))
-        .sum::<f64>()
-        / n)
-        .sqrt();
+    // The bed's top in 1 cm columns over the middle 10 cm, and its line (the library's, which
+    // `dem2d study drum` reads the surface with).
+    let pts = surface_tops(&wd, Vec2::zeros(), 1.0, 5);
+    let (_, slope, rms) = fit_line(&pts);
     let angle = slope.atan().to_degrees();
     println!(
         "Fr = {fr:.2e}: surface at {angle:.1}°, rms {rms:.3} cm off its line; reach {worst:.2e} cm"

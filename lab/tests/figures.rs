@@ -103,7 +103,7 @@ fn figures_quick_writes_every_figure_and_table_of_the_guide() {
             // The ParaView picture is pvpython's (figures/scripts/paraview_render.py), the
             // tutorial's pile `dem2d plot`'s, the Python tutorial's profile its script's
             // (docs/python/pour.py, with matplotlib); the research workflows' figures are `dem2d
-            // study impacts|biaxial-shape|biaxial-periodic|packing|representation|jamming|shear|silo`'s (minutes of runs); the
+            // study impacts|biaxial-shape|biaxial-periodic|packing|representation|jamming|shear|silo|drum`'s (minutes of runs); the
             // hopper's and the shear tutorial's are `dem2d run` and `dem2d plot` of their cases
             // (physics/segments.md, tutorials/shear-cell.md).
             let others = [
@@ -116,6 +116,7 @@ fn figures_quick_writes_every_figure_and_table_of_the_guide() {
                 "jamming.svg",
                 "shear.svg",
                 "silo.svg",
+                "drum.svg",
                 "tutorial_pile.png",
                 "hopper_segments.svg",
                 "tutorial_shear_cell.png",
@@ -148,6 +149,7 @@ fn figures_quick_writes_every_figure_and_table_of_the_guide() {
                 "jamming",
                 "shear",
                 "silo",
+                "drum",
                 "verify",
                 "verify_full",
             ];

@@ -67,6 +67,9 @@ enum Command {
         /// parallel).
         #[arg(long)]
         threads: Option<usize>,
+        /// The study's small, fast version (drum: a small drum of disks, five Froude numbers).
+        #[arg(long)]
+        quick: bool,
         /// Also put the table into its marked region of the user guide (README.md, docs/src;
         /// run from the repository).
         #[arg(long)]
@@ -1121,6 +1124,7 @@ fn main() -> ExitCode {
             aspects,
             inertial,
             threads,
+            quick,
             docs,
             check,
             out,
@@ -1134,6 +1138,7 @@ fn main() -> ExitCode {
                     aspects: aspects.clone(),
                     inertial: inertial.clone(),
                     out: out.clone(),
+                    quick: *quick,
                 },
                 docs_mode(*docs, *check),
             )

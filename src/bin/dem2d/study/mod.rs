@@ -12,6 +12,7 @@
 pub mod biaxial;
 pub mod biaxial_periodic;
 pub mod biaxial_shape;
+pub mod drum;
 pub mod impacts;
 pub mod jamming;
 pub mod packing;
@@ -71,6 +72,11 @@ pub enum Study {
     /// (`--aspects`), I in 0.01–0.3 and disks at 0.001 too (`--inertial`); writes
     /// figures/shear.svg and .md.
     Shear,
+    /// A half-filled drum of disks and ellipses (α = 1.5, 2) turned through Froude numbers
+    /// 1e-5–2: the regime (Mellmann 2001), the free surface's angle and the flowing layer's
+    /// thickness (`--quick`: a small drum of disks, five Froude numbers); writes
+    /// figures/drum.svg and figures/drum.md.
+    Drum,
 }
 
 /// The `dem2d study` command's description, naming every study of [`Study`] (so that the list
@@ -109,6 +115,7 @@ impl Study {
             Study::Jamming => "jamming",
             Study::Silo => "silo",
             Study::Shear => "shear",
+            Study::Drum => "drum",
         }
     }
 }
@@ -315,6 +322,8 @@ pub struct Options {
     pub inertial: Option<Vec<f64>>,
     /// Where the figures and the table file go without `--docs` (default `runs/study/NAME`).
     pub out: Option<PathBuf>,
+    /// The study's small, fast version (drum).
+    pub quick: bool,
 }
 
 /// Runs `study` with `options`. With `docs`, the study's table goes into its marked region of
@@ -381,6 +390,16 @@ fn run_locked(
         ..
     } = *options;
     let write = write_cases;
+    // The drum's grains are built from a/b ≥ 1 (a lattice of ellipses lying flat).
+    if let (Study::Drum, Some(aspects)) = (study, options.aspects.as_deref())
+        && let Some(bad) = aspects
+            .iter()
+            .find(|a| !(a.is_finite() && (1.0..=5.0).contains(*a)))
+    {
+        return Err(crate::Failure::input(format!(
+            "--aspects: the drum study's aspect ratios must be in [1, 5], got {bad}"
+        )));
+    }
     let md = match study {
         Study::RollingFig3 => rolling_fig3::run(),
         Study::Repose => repose::run(write),
@@ -402,6 +421,7 @@ fn run_locked(
             options.inertial.as_deref(),
         ),
         Study::Silo => silo::run(),
+        Study::Drum => drum::run(options.quick, options.aspects.as_deref()),
     }
     // A run that blows up ends the study with its report.
     .map_err(|e| crate::Failure::failed(format!("dem2d study: {e}")))?;
