@@ -493,6 +493,8 @@ pub fn run(
             y_errors: rows
                 .iter()
                 .map(|r| if k == 0 { r.2 } else { r.4 })
+                // (One packing has no error bar: none drawn.)
+                .map(|e| if e.is_finite() { e } else { 0.0 })
                 .collect(),
             ..Default::default()
         }]

@@ -327,6 +327,8 @@ pub fn run(
                     .zip(&errors)
                     .filter(|(p, _)| p.friction == mu)
                     .map(|(_, e)| if k == 0 { e.0 } else { e.1 })
+                    // (One pour has no error bar: none drawn.)
+                    .map(|e| if e.is_finite() { e } else { 0.0 })
                     .collect(),
                 color: c,
                 line: true,
