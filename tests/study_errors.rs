@@ -1,7 +1,8 @@
 //! Error bars of `dem2d study shear` (issue 45, item 3): two seeds of a small shear cell give
 //! values of μ that agree within their standard errors, `|μ₁ − μ₂| < 3 √(se₁² + se₂²)`; a run
 //! with a loose `--precision` stops before the fixed strain with its se at most the precision;
-//! bad `--precision` and `--seed` values are refused (exit code 2, naming the option).
+//! bad `--precision` and `--seed` values are refused (exit code 2, naming the option); and
+//! `study jamming --precision` adds rounds of packings until se(φ_J) reaches it.
 
 mod common;
 use common::{dem2d, scratch};
@@ -108,4 +109,48 @@ fn bad_values_are_refused() {
         assert!(err.contains(field), "{args:?}: {err}");
         assert!(!err.contains("panicked"), "{err}");
     }
+}
+
+/// `dem2d study jamming --precision`: an aspect ratio whose first round of packings leaves
+/// se(φ_J) above the precision gets more rounds, until it is at most the precision; its se is
+/// the packings' sd (printed beside it) over √m.
+#[test]
+fn jamming_adds_packings_until_the_precision() {
+    let out = scratch("jamming_precision");
+    let (code, stdout, stderr) = dem2d(&[
+        "study",
+        "jamming",
+        "--grains",
+        "32",
+        "--packings",
+        "2",
+        "--aspects",
+        "2",
+        "--seed",
+        "5",
+        "--precision",
+        "0.002",
+        "--threads",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let row = stdout
+        .lines()
+        .find(|l| l.starts_with("| 2 |"))
+        .unwrap_or_else(|| panic!("no row in {stdout}"));
+    let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+    // | α | φ_J | Z_J | sd of φ_J, of Z_J | rattlers | packings in the band | …
+    let (phi, se, converged) = pm(cells[2]);
+    let sd: f64 = cells[4].split(',').next().unwrap().trim().parse().unwrap();
+    let m: f64 = cells[6].split_whitespace().next().unwrap().parse().unwrap();
+    eprintln!("φ_J = {phi} ± {se} over {m} packings, sd {sd}");
+    assert!(converged && se <= 0.002, "{row}");
+    assert!(m > 2.0 && m % 2.0 == 0.0, "rounds of 2 packings: {row}");
+    // The table's 4 decimals: se and sd/√m agree to their rounding.
+    assert!(
+        (se - sd / m.sqrt()).abs() <= 0.5e-4 * (1.0 + 1.0 / m.sqrt()),
+        "{row}"
+    );
 }
