@@ -21,6 +21,7 @@ pub mod fabric;
 pub mod fields;
 pub mod forces;
 pub mod packing;
+pub mod statistics;
 pub mod stress;
 
 use crate::dynamics::cell::Cell;

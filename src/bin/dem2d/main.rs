@@ -52,7 +52,9 @@ enum Command {
         /// square number, default 400; packing: default 300).
         #[arg(long)]
         grains: Option<usize>,
-        /// Packings per aspect ratio (jamming; default 10).
+        /// Independent samples per row, each number then given as mean ± standard error:
+        /// packings per aspect ratio (jamming, default 10), samples per aspect ratio
+        /// (biaxial-shape, default 3), pours per row (packing, default 3).
         #[arg(long)]
         packings: Option<usize>,
         /// Aspect ratios a/b, comma-separated (jamming and shear; default: each study's own
@@ -82,6 +84,16 @@ enum Command {
         /// --check they go into figures/, the user guide's.
         #[arg(long, conflicts_with_all = ["docs", "check"])]
         out: Option<PathBuf>,
+        /// The first seed of the study's random draws, a non-negative integer (shear: the
+        /// grains' sizes, places and orientations; jamming: the first packing's; default 0,
+        /// the guide's tables).
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Stop when the standard error of the study's headline number is at most this
+        /// (positive): shear, se(μ) of each run (measuring up to 10 times the fixed strain);
+        /// jamming, se(φ_J) over the packings of each aspect ratio (up to 10 times --packings).
+        #[arg(long, value_parser = positive_precision)]
+        precision: Option<f64>,
     },
     /// Contact geometry of pairs of bodies: reads a JSON array of {"i": BODY, "j": BODY} from FILE
     /// (or standard input for `-`) and prints one JSON result per pair.
@@ -455,6 +467,17 @@ enum PlotKind {
     Scene,
     Series,
     Quiescence,
+}
+
+/// `--precision`: a positive, finite number (a standard error to stop at).
+fn positive_precision(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(p) if p > 0.0 && p.is_finite() => Ok(p),
+        Ok(p) => Err(format!(
+            "--precision must be a positive standard error, got {p}"
+        )),
+        Err(e) => Err(format!("--precision: not a number ({e})")),
+    }
 }
 
 /// An error for the user, with its exit code.
@@ -1128,6 +1151,8 @@ fn main() -> ExitCode {
             docs,
             check,
             out,
+            seed,
+            precision,
         } => set_threads(*threads).and_then(|()| {
             study::run(
                 *name,
@@ -1139,6 +1164,8 @@ fn main() -> ExitCode {
                     inertial: inertial.clone(),
                     out: out.clone(),
                     quick: *quick,
+                    seed: *seed,
+                    precision: *precision,
                 },
                 docs_mode(*docs, *check),
             )

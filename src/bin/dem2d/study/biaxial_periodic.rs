@@ -174,7 +174,7 @@ pub fn run(grains: usize) -> Result<String, RunError> {
     let n_side = ((grains as f64).sqrt().round() as usize).max(2);
     let mut rows = Vec::new();
     for &a in &aspects {
-        let walled = biaxial_shape::run_one(n_side, a, 0.1, true)?;
+        let walled = biaxial_shape::run_one(n_side, a, 0.1, 11, true)?;
         let walled = Outcome {
             aspect: a,
             grains: walled.grains,

@@ -20,6 +20,7 @@
 //! 2 % (residual); dilatancy angle `sin ψ = −ε̇_v/(2ε̇₁ − ε̇_v)` from the slope of ε_v against
 //! ε₁ over ±1 % around the peak.
 
+use dem2d::analysis::statistics::mean_se;
 use dem2d::analysis::{self, Frame, Measures};
 use dem2d::dynamics::World;
 use dem2d::dynamics::boundary::span_length;
@@ -193,11 +194,12 @@ pub struct Outcome {
 }
 
 /// Compacts and shears a sample of `n_side²` grains of aspect ratio `aspect` to axial strain
-/// `strain`.
+/// `strain`, the grains drawn from `seed` (the study's first sample is seed 11).
 pub fn run_one(
     n_side: usize,
     aspect: f64,
     strain: f64,
+    seed: u64,
     verbose: bool,
 ) -> Result<Outcome, RunError> {
     let start = Instant::now();
@@ -206,7 +208,7 @@ pub fn run_one(
         aspect,
         friction: MU_COMPACTION,
         sigma: SIGMA_C,
-        seed: 11,
+        seed,
     };
     let case = Case::from_json(&prep.compaction_case(5.0)).expect("valid case");
     let mut w = case.build_world();
@@ -396,15 +398,45 @@ fn force_chains(results: &[&Outcome]) -> String {
     )
 }
 
-/// Runs the study with samples of about `grains` grains (the nearest square number); `write`
-/// also writes each α's shear stage to `cases/biaxial_shape/shear_a{α}.json`.
-pub fn run(grains: usize, write: bool) -> Result<String, RunError> {
+/// Samples per aspect ratio by default: each number of the table is the mean over them ± its
+/// standard error.
+pub const SAMPLES: usize = 3;
+/// With `--precision`, samples are added until the se of the peak stress ratio is at most it, up
+/// to this many times the samples asked for.
+pub const PRECISION_CAP: usize = 10;
+
+/// Runs the study with samples of about `grains` grains (the nearest square number), `samples`
+/// per aspect ratio (seeds 11 + `seed`, 12 + `seed`, …; with `precision`, more until the se of
+/// the peak stress ratio is at most it); `write` also writes each α's shear stage (its first
+/// sample's) to `cases/biaxial_shape/shear_a{α}.json`.
+pub fn run(
+    grains: usize,
+    write: bool,
+    samples: usize,
+    seed: u64,
+    precision: Option<f64>,
+) -> Result<String, RunError> {
     let aspects = [1.0, 1.5, 2.0, 2.5];
     let n_side = ((grains as f64).sqrt().round() as usize).max(2);
-    let results: Vec<Outcome> = aspects
-        .iter()
-        .map(|&a| run_one(n_side, a, 0.1, true))
-        .collect::<Result<_, _>>()?;
+    let samples = samples.max(1);
+    let mut all: Vec<Vec<Outcome>> = Vec::new();
+    for &a in &aspects {
+        let mut of = Vec::new();
+        while of.len() < samples
+            || precision.is_some_and(|p| {
+                let e = mean_se(
+                    &of.iter()
+                        .map(|r: &Outcome| r.peak_ratio)
+                        .collect::<Vec<_>>(),
+                );
+                !(e.converged && e.se <= p) && of.len() < PRECISION_CAP * samples
+            })
+        {
+            of.push(run_one(n_side, a, 0.1, 11 + seed + of.len() as u64, true)?);
+        }
+        all.push(of);
+    }
+    let results: Vec<&Outcome> = all.iter().map(|of| &of[0]).collect();
     if write {
         for r in &results {
             let path = format!("cases/biaxial_shape/shear_a{}.json", r.aspect);
@@ -412,44 +444,76 @@ pub fn run(grains: usize, write: bool) -> Result<String, RunError> {
         }
     }
     let mut md = String::from(
-        "| α | grains | φ after compaction | Z (no rattlers) | peak (σ₁−σ₃)/(σ₁+σ₃) | φ_peak (°) | φ_res (°) | ψ (°) | a_c | a_n | a_t | ½(a_c+a_n+a_t) | LW q/p at peak | orientation order at peak | wall time (s) | particle-steps/s |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+        "| α | grains | samples | φ after compaction | Z (no rattlers) | peak (σ₁−σ₃)/(σ₁+σ₃) | φ_peak (°) | φ_res (°) | ψ (°) | a_c | a_n | a_t | ½(a_c+a_n+a_t) | LW q/p at peak | orientation order at peak | wall time (s) | particle-steps/s |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
-    for r in &results {
-        let f = &r.peak_measures.fabric;
-        let (s1, s3, _) = analysis::stress::principal(r.peak_measures.stress);
-        writeln!(
-            md,
-            "| {} | {} | {:.4} | {:.2} | {:.3} | {:.1} | {:.1} | {:.1} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {} | {:.0} | {:.2e} |",
-            r.aspect,
-            r.grains,
-            r.initial.packing_fraction,
-            r.initial.coordination_no_rattlers,
-            r.peak_ratio,
-            r.peak_ratio.asin().to_degrees(),
-            r.residual_ratio.asin().to_degrees(),
-            r.dilatancy_deg,
-            f.a_c,
-            f.a_n,
-            f.a_t,
-            0.5 * (f.a_c + f.a_n + f.a_t),
-            (s1 - s3) / (s1 + s3),
-            if r.peak_measures.orientation_order.is_nan() {
+    for of in &all {
+        // Each number over the samples (independent seeds): mean ± s/√m.
+        let over = |f: &dyn Fn(&Outcome) -> f64, digits: usize| -> String {
+            let x: Vec<f64> = of.iter().map(f).collect();
+            if x.iter().any(|v| v.is_nan()) {
                 "–".to_string()
             } else {
-                format!("{:.3}", r.peak_measures.orientation_order)
-            },
-            r.wall_seconds,
-            r.particle_steps / r.wall_seconds
+                mean_se(&x).pm(digits)
+            }
+        };
+        let q = |r: &Outcome| {
+            let (s1, s3, _) = analysis::stress::principal(r.peak_measures.stress);
+            (s1 - s3) / (s1 + s3)
+        };
+        let wall: f64 = of.iter().map(|r| r.wall_seconds).sum();
+        let particle_steps: f64 = of.iter().map(|r| r.particle_steps).sum();
+        writeln!(
+            md,
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.0} | {:.2e} |",
+            of[0].aspect,
+            of[0].grains,
+            of.len(),
+            over(&|r| r.initial.packing_fraction, 4),
+            over(&|r| r.initial.coordination_no_rattlers, 2),
+            over(&|r| r.peak_ratio, 3),
+            over(&|r| r.peak_ratio.asin().to_degrees(), 1),
+            over(&|r| r.residual_ratio.asin().to_degrees(), 1),
+            over(&|r| r.dilatancy_deg, 1),
+            over(&|r| r.peak_measures.fabric.a_c, 3),
+            over(&|r| r.peak_measures.fabric.a_n, 3),
+            over(&|r| r.peak_measures.fabric.a_t, 3),
+            over(
+                &|r| {
+                    let f = &r.peak_measures.fabric;
+                    0.5 * (f.a_c + f.a_n + f.a_t)
+                },
+                3
+            ),
+            over(&q, 3),
+            over(&|r| r.peak_measures.orientation_order, 3),
+            wall,
+            particle_steps / wall
         )
         .expect("string");
     }
     writeln!(
         md,
+        "\n± one standard error over the samples (independent seeds from {}; \
+         `analysis::statistics::mean_se`){}; the curves and the force chains are each α's first \
+         sample's.",
+        11 + seed,
+        precision.map_or(String::new(), |p| format!(
+            ", samples added until the se of the peak stress ratio is at most {p}"
+        ))
+    )
+    .expect("string");
+    writeln!(
+        md,
         "\nσ_c = {SIGMA_C:e} dyn/cm², grain friction {MU} (compaction {MU_COMPACTION}), frictionless \
          walls, axial strain rate {STRAIN_RATE} /s: inertial number I = ε̇ d √(ρ/σ_c) = {:.1e} \
-         (d = 2 cm, ρ = 2.65 g/cm³). Written by `dem2d study biaxial-shape --grains {}`.",
+         (d = 2 cm, ρ = 2.65 g/cm³). Written by `dem2d study biaxial-shape --grains {}{}`.",
         STRAIN_RATE * 2.0 * (2.65 / SIGMA_C).sqrt(),
-        n_side * n_side
+        n_side * n_side,
+        if samples == SAMPLES {
+            String::new()
+        } else {
+            format!(" --packings {samples}")
+        }
     )
     .expect("string");
     let series = |k: usize| -> Vec<Series> {
@@ -471,7 +535,7 @@ pub fn run(grains: usize, write: bool) -> Result<String, RunError> {
     let panels = curve_panels("Stress ratio", series);
     super::write_figure("biaxial_shape", (1200, 480), (1, 2), &panels)?;
     super::write_text("biaxial_shape.md", &md)?;
-    let chains = force_chains(&[&results[0], &results[results.len() - 1]]);
+    let chains = force_chains(&[results[0], results[results.len() - 1]]);
     super::write_text("force_chains.svg", &chains)?;
     let png = plot::png_of_svg(&chains, 1.0)
         .map_err(|e| dem2d::run::RunError::Observer(format!("force_chains.png: {e}").into()))?;

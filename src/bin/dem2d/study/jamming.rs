@@ -29,6 +29,7 @@
 //! [`PACKINGS`] packings per α (different seeds), in parallel.
 
 use super::{Table, grain};
+use dem2d::analysis::statistics::mean_se;
 use dem2d::contact_law::{ContactSpec, LinearDamping, NormalForce, Scaled};
 use dem2d::dynamics::BodyInit;
 use dem2d::dynamics::World;
@@ -47,7 +48,9 @@ use std::time::Instant;
 pub const N: usize = 256;
 /// Packings per aspect ratio.
 pub const PACKINGS: usize = 10;
-/// The aspect ratios.
+/// With `--precision`, the most rounds of `--packings` packings per aspect ratio.
+pub const PRECISION_CAP: usize = 10;
+/// The aspect ratios by default.
 pub const ASPECTS: [f64; 8] = [1.0, 1.1, 1.2, 1.3, 1.5, 2.0, 2.5, 3.0];
 /// Equal-area radius of the small grains (cm).
 pub const R_SMALL: f64 = 0.5;
@@ -345,13 +348,6 @@ fn threshold_case(n: usize, start: &Start, found: &Packing) -> String {
     serde_json::to_string_pretty(&case).expect("a JSON value serialises") + "\n"
 }
 
-fn mean_sd(x: &[f64]) -> (f64, f64) {
-    let n = x.len() as f64;
-    let m = x.iter().sum::<f64>() / n;
-    let v = x.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / (n - 1.0).max(1.0);
-    (m, v.sqrt())
-}
-
 /// The published values beside each aspect ratio: φ_J and Z_J (VanderWerf et al. 2018, Fig. 2
 /// and 4; O'Hern et al. 2003 for disks), as text.
 fn published(aspect: f64) -> &'static str {
@@ -367,81 +363,126 @@ fn published(aspect: f64) -> &'static str {
 }
 
 /// The study (see the module documentation); with `write`, also the case file of a threshold
-/// packing ([`threshold_case`]) when α = 1 is among `aspects`.
+/// packing ([`threshold_case`]) when α = 1 is among `aspects`. The packings of an aspect ratio
+/// are seeds `seed`, `seed + 1`, …: `packings` of them, and with `precision` more in rounds of
+/// `packings` until the standard error of φ_J over them is at most `precision` (at most
+/// [`PRECISION_CAP`] rounds).
 pub fn run(
     n: usize,
     packings: usize,
     aspects: &[f64],
     write: bool,
+    seed: u64,
+    precision: Option<f64>,
 ) -> Result<String, dem2d::run::RunError> {
     let start = Instant::now();
-    let jobs: Vec<(f64, u64)> = aspects
-        .iter()
-        .flat_map(|&a| (0..packings as u64).map(move |s| (a, s)))
-        .collect();
     eprintln!(
-        "dem2d study jamming: {} packings of {n} grains ({} aspect ratios)",
-        jobs.len(),
-        aspects.len()
+        "dem2d study jamming: {} packings of {n} grains ({} aspect ratios), seeds from {seed}{}",
+        packings * aspects.len(),
+        aspects.len(),
+        precision.map_or(String::new(), |p| format!(", more until se(φ_J) ≤ {p}"))
     );
-    let done: Vec<Packing> = jobs
-        .par_iter()
-        .map(|&(a, s)| {
-            let (p, start) = jam_from(n, a, s);
-            if write && a == 1.0 && s == 0 {
-                super::put_case(
-                    std::path::Path::new(&format!("cases/jammed_disks_{n}.json")),
-                    &threshold_case(n, &start, &p),
+    let mut done: Vec<Packing> = Vec::new();
+    let phi_j = |done: &[Packing], a: f64| {
+        let phis: Vec<f64> = done
+            .iter()
+            .filter(|p| p.aspect == a && p.found)
+            .map(|p| p.phi)
+            .collect();
+        mean_se(&phis)
+    };
+    for round in 0..PRECISION_CAP {
+        // The aspect ratios that still want packings: all in the first round, then those whose
+        // se(φ_J) is above the precision.
+        let want: Vec<f64> = aspects
+            .iter()
+            .copied()
+            .filter(|&a| {
+                round == 0
+                    || precision.is_some_and(|p| {
+                        let e = phi_j(&done, a);
+                        !(e.converged && e.se <= p)
+                    })
+            })
+            .collect();
+        if want.is_empty() {
+            break;
+        }
+        let first = seed + (round * packings) as u64;
+        let jobs: Vec<(f64, u64)> = want
+            .iter()
+            .flat_map(|&a| (first..first + packings as u64).map(move |s| (a, s)))
+            .collect();
+        let more: Vec<Packing> = jobs
+            .par_iter()
+            .map(|&(a, s)| {
+                let (p, start) = jam_from(n, a, s);
+                if write && a == 1.0 && s == seed {
+                    super::put_case(
+                        std::path::Path::new(&format!("cases/jammed_disks_{n}.json")),
+                        &threshold_case(n, &start, &p),
+                    );
+                }
+                eprintln!(
+                    "  α = {a}, packing {s}: φ_J = {:.4}, Z_J = {:.3}{}",
+                    p.phi,
+                    p.z,
+                    if p.found { "" } else { " (band not reached)" }
                 );
-            }
-            eprintln!(
-                "  α = {a}, packing {s}: φ_J = {:.4}, Z_J = {:.3}{}",
-                p.phi,
-                p.z,
-                if p.found { "" } else { " (band not reached)" }
-            );
-            p
-        })
-        .collect();
+                p
+            })
+            .collect();
+        done.extend(more);
+        if precision.is_none() {
+            break;
+        }
+    }
     let mut table = Table::new(
-        "| α | φ_J (mean ± sd, in the band) | Z_J, rattlers out (mean ± sd, in the band) | rattlers | packings in the band | minimisations, FIRE iterations (mean) | published |\n|---|---|---|---|---|---|---|",
+        "| α | φ_J (mean ± se, in the band) | Z_J, rattlers out (mean ± se, in the band) | sd of φ_J, of Z_J | rattlers | packings in the band | minimisations, FIRE iterations (mean) | published |\n|---|---|---|---|---|---|---|---|",
     );
     let mut rows = Vec::new();
     for &a in aspects {
         let ps: Vec<&Packing> = done.iter().filter(|p| p.aspect == a).collect();
         // The means are over the packings that reached the band (a packing whose bracket
-        // closed on a rearrangement without it is counted, not averaged).
-        let phis: Vec<f64> = ps.iter().filter(|p| p.found).map(|p| p.phi).collect();
+        // closed on a rearrangement without it is counted, not averaged); the packings are
+        // independent (one seed each): se = sd/√m.
         let zs: Vec<f64> = ps.iter().filter(|p| p.found).map(|p| p.z).collect();
-        let (pm, psd) = mean_sd(&phis);
-        let (zm, zsd) = mean_sd(&zs);
+        let phi = phi_j(&done, a);
+        let z = mean_se(&zs);
+        let (psd, zsd) = (phi.se * (phi.n as f64).sqrt(), z.se * (z.n as f64).sqrt());
         let rat = ps.iter().map(|p| p.rattlers).sum::<f64>() / ps.len() as f64;
         let found = ps.iter().filter(|p| p.found).count();
         let k = ps.len() as f64;
         let mins = ps.iter().map(|p| p.minimisations as f64).sum::<f64>() / k;
         let its = ps.iter().map(|p| p.iterations as f64).sum::<f64>() / k;
         table.row(format!(
-            "| {a} | {pm:.4} ± {psd:.4} | {zm:.3} ± {zsd:.3} | {:.1} % | {found} of {} | {mins:.0}, {its:.0} | {} |",
+            "| {a} | {} | {} | {psd:.4}, {zsd:.3} | {:.1} % | {found} of {} | {mins:.0}, {its:.0} | {} |",
+            phi.pm(4),
+            z.pm(3),
             100.0 * rat,
             ps.len(),
             published(a)
         ));
         if found > 0 {
-            rows.push((a, pm, psd, zm, zsd));
+            rows.push((a, phi.mean, phi.se, z.mean, z.se));
         }
     }
     let wall = start.elapsed().as_secs_f64();
     let mut md = table.text();
     let _ = writeln!(
         md,
-        "\n{} packings of {n} grains, {:.0} s of wall time on {}.",
+        "\n± one standard error over the packings (independent seeds, from {seed}; \
+         `analysis::statistics::mean_se`){}. {} packings of {n} grains, {:.0} s of wall time on {}.",
+        precision.map_or(String::new(), |p| format!(
+            ", packings added until se(φ_J) ≤ {p}"
+        )),
         done.len(),
         wall,
         super::threads()
     );
     let series = |k: usize| {
         vec![Series {
-            label: "dem2d, FIRE, mean ± sd".into(),
+            label: "dem2d, FIRE, mean ± se".into(),
             points: rows
                 .iter()
                 .map(|r| (r.0, if k == 0 { r.1 } else { r.3 }))
@@ -452,6 +493,8 @@ pub fn run(
             y_errors: rows
                 .iter()
                 .map(|r| if k == 0 { r.2 } else { r.4 })
+                // (One packing has no error bar: none drawn.)
+                .map(|e| if e.is_finite() { e } else { 0.0 })
                 .collect(),
             ..Default::default()
         }]

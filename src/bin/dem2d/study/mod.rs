@@ -324,6 +324,11 @@ pub struct Options {
     pub out: Option<PathBuf>,
     /// The study's small, fast version (drum).
     pub quick: bool,
+    /// The first seed of the study's random draws (default 0, the tables' draw).
+    pub seed: Option<u64>,
+    /// The standard error of the study's headline number at which a run (or the series of
+    /// repetitions) stops (positive and finite; checked by the command line).
+    pub precision: Option<f64>,
 }
 
 /// Runs `study` with `options`. With `docs`, the study's table goes into its marked region of
@@ -405,22 +410,38 @@ fn run_locked(
         Study::Repose => repose::run(write),
         Study::Biaxial => biaxial::run(write),
         Study::Impacts => impacts::run(),
-        Study::BiaxialShape => biaxial_shape::run(grains.unwrap_or(400), write),
+        Study::BiaxialShape => biaxial_shape::run(
+            grains.unwrap_or(400),
+            write,
+            packings.unwrap_or(biaxial_shape::SAMPLES),
+            options.seed.unwrap_or(0),
+            options.precision,
+        ),
         Study::BiaxialPeriodic => biaxial_periodic::run(grains.unwrap_or(400)),
-        Study::Packing => packing::run(grains.unwrap_or(packing::N), write),
+        Study::Packing => packing::run(
+            grains.unwrap_or(packing::N),
+            write,
+            packings.unwrap_or(packing::POURS),
+            options.seed.unwrap_or(0),
+            options.precision,
+        ),
         Study::Representation => representation::run(grains.unwrap_or(packing::N)),
         Study::Jamming => jamming::run(
             grains.unwrap_or(jamming::N),
             packings.unwrap_or(jamming::PACKINGS),
             options.aspects.as_deref().unwrap_or(&jamming::ASPECTS),
             write,
+            options.seed.unwrap_or(0),
+            options.precision,
         ),
         Study::Shear => shear::run(
             grains.unwrap_or(shear::N),
             options.aspects.as_deref().unwrap_or(&shear::ASPECTS),
             options.inertial.as_deref(),
+            options.seed.unwrap_or(0),
+            options.precision,
         ),
-        Study::Silo => silo::run(),
+        Study::Silo => silo::run(options.seed.unwrap_or(0), options.precision),
         Study::Drum => drum::run(options.quick, options.aspects.as_deref()),
     }
     // A run that blows up ends the study with its report.

@@ -17,6 +17,7 @@
 //! --window …` with the table's window gives the row again.
 
 use super::Table;
+use dem2d::analysis::statistics::mean_se;
 use dem2d::analysis::{self, Frame, Window};
 use dem2d::contact_law::NormalForce;
 use dem2d::dynamics::BodyInit;
@@ -34,6 +35,14 @@ pub const N: usize = 300;
 /// that the pile keeps its shape.
 pub const WIDTH: f64 = 30.0;
 pub const MARGIN: f64 = 4.0;
+/// The seed of the first pile of each row (its grains' sizes, orientations and velocities).
+pub const SEED: u64 = 5;
+/// Pours per row by default: each number of the table is the mean over them ± its standard
+/// error.
+pub const POURS: usize = 3;
+/// With `--precision`, pours are added until the se of φ is at most it, up to this many times
+/// the pours asked for.
+pub const PRECISION_CAP: usize = 10;
 pub const DURATION: f64 = 3.0;
 
 /// One pile.
@@ -107,7 +116,7 @@ fn bodies(aspect: f64, seed: u64, spacing: f64, n: usize, width: f64) -> Vec<Bod
 /// Pours and measures one pile of `n` grains; with `write` its case file also goes to
 /// `cases/packing/`.
 pub fn pour(aspect: f64, friction: f64, n: usize, write: bool) -> Result<Pile, RunError> {
-    pour_shaped(aspect, friction, n, write, &|s| s)
+    pour_shaped(aspect, friction, n, write, SEED, &|s| s)
 }
 
 /// [`pour`] with each grain's shape passed through `shape` first (the representation study
@@ -118,6 +127,7 @@ pub fn pour_shaped(
     friction: f64,
     n: usize,
     write: bool,
+    seed: u64,
     shape: &dyn Fn(Shape) -> Shape,
 ) -> Result<Pile, RunError> {
     let start = Instant::now();
@@ -141,7 +151,7 @@ pub fn pour_shaped(
         &format!("packing_a{aspect}_mu{friction}"),
         "packing study pile",
         width,
-        &bodies(aspect, 5, spacing, n, width)
+        &bodies(aspect, seed, spacing, n, width)
             .into_iter()
             .map(|b| BodyInit {
                 shape: shape(b.shape),
@@ -199,52 +209,104 @@ pub fn pour_shaped(
     })
 }
 
-/// Runs the study with piles of `n` grains; `write` also writes their case files.
-pub fn run(n: usize, write: bool) -> Result<String, RunError> {
+/// Runs the study with piles of `n` grains, `pours` per row (seeds [`SEED`] + `seed`, …; with
+/// `precision`, more until the se of φ is at most it); `write` also writes their case files
+/// (each row's first pile's).
+pub fn run(
+    n: usize,
+    write: bool,
+    pours: usize,
+    seed: u64,
+    precision: Option<f64>,
+) -> Result<String, RunError> {
     let aspects = [1.0, 1.2, 1.5, 2.0, 3.0];
     let width = width_for(n);
-    let mut piles = Vec::new();
+    let pours = pours.max(1);
+    let mut rows: Vec<Vec<Pile>> = Vec::new();
     for mu in [0.0, 0.5] {
         for &a in &aspects {
-            let p = pour(a, mu, n, write)?;
-            eprintln!(
-                "α = {a}, μ = {mu}: φ = {:.4}, {:.0} s",
-                p.packing, p.wall_seconds
-            );
-            piles.push(p);
+            let mut of: Vec<Pile> = Vec::new();
+            while of.len() < pours
+                || precision.is_some_and(|p| {
+                    let e = mean_se(&of.iter().map(|q| q.packing).collect::<Vec<_>>());
+                    !(e.converged && e.se <= p) && of.len() < PRECISION_CAP * pours
+                })
+            {
+                let k = of.len() as u64;
+                let p = pour_shaped(a, mu, n, write && k == 0, SEED + seed + k, &|s| s)?;
+                eprintln!(
+                    "α = {a}, μ = {mu}, pour {}: φ = {:.4}, {:.0} s",
+                    k + 1,
+                    p.packing,
+                    p.wall_seconds
+                );
+                of.push(p);
+            }
+            rows.push(of);
         }
     }
     let mut table = Table::new(
-        "| α | μ | φ (window) | Z | Z (no rattlers) | rattlers | orientation order | window (cm) | at rest (t, s) | wall time (s) | particle-steps/s |\n|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---:|",
+        "| α | μ | pours | φ (window) | Z | Z (no rattlers) | rattlers (%) | orientation order | window of the first pour (cm) | at rest (t, s) | wall time (s) | particle-steps/s |\n|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---:|",
     );
-    for p in &piles {
+    let mut piles = Vec::new();
+    for of in &rows {
+        // Each number over the pours (independent seeds): mean ± s/√m.
+        let over = |f: &dyn Fn(&Pile) -> f64| mean_se(&of.iter().map(f).collect::<Vec<_>>());
+        let p = &of[0];
+        let wall: f64 = of.iter().map(|q| q.wall_seconds).sum();
+        let steps: f64 = of.iter().map(|q| q.steps as f64).sum();
+        let order = over(&|q| q.order);
         table.row(format!(
-            "| {} | {} | {:.4} | {:.2} | {:.2} | {:.1} % | {} | [{}, {}] × [{}, {:.1}] | {} ({:.2}) | {:.0} | {:.2e} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | [{}, {}] × [{}, {:.1}] | {} of {} ({}) | {:.0} | {:.2e} |",
             p.aspect,
             p.friction,
-            p.packing,
-            p.z,
-            p.z_no_rattlers,
-            100.0 * p.rattlers,
-            if p.order.is_nan() { "–".into() } else { format!("{:.2}", p.order) },
+            of.len(),
+            over(&|q| q.packing).pm(4),
+            over(&|q| q.z).pm(2),
+            over(&|q| q.z_no_rattlers).pm(2),
+            over(&|q| 100.0 * q.rattlers).pm(1),
+            if order.mean.is_nan() { "–".into() } else { order.pm(2) },
             p.window.x0,
             p.window.x1,
             p.window.y0,
             p.window.y1,
-            if p.at_rest { "yes" } else { "no" },
-            p.time,
-            p.wall_seconds,
-            p.particle_steps_per_second
+            of.iter().filter(|q| q.at_rest).count(),
+            of.len(),
+            over(&|q| q.time).pm(2),
+            wall,
+            n as f64 * steps / wall
         ));
+        piles.push(Pile {
+            packing: over(&|q| q.packing).mean,
+            z_no_rattlers: over(&|q| q.z_no_rattlers).mean,
+            ..*p
+        });
     }
+    let errors: Vec<(f64, f64)> = rows
+        .iter()
+        .map(|of| {
+            let over = |f: &dyn Fn(&Pile) -> f64| mean_se(&of.iter().map(f).collect::<Vec<_>>());
+            (over(&|q| q.packing).se, over(&|q| q.z_no_rattlers).se)
+        })
+        .collect();
     let note = format!(
         "\n{n} bidisperse grains (1:1.4, equal numbers) per pile in a box {width} cm wide, poured \
-         under gravity; window {MARGIN} cm from the walls, the floor and the surface. Written by \
-         `dem2d study packing{}`.\n",
+         under gravity; window {MARGIN} cm from the walls, the floor and the surface. ± one \
+         standard error over the pours (independent seeds from {}; \
+         `analysis::statistics::mean_se`){}. Written by `dem2d study packing{}{}`.\n",
+        SEED + seed,
+        precision.map_or(String::new(), |p| format!(
+            ", pours added until the se of φ is at most {p}"
+        )),
         if n == N {
             String::new()
         } else {
             format!(" --grains {n}")
+        },
+        if pours == POURS {
+            String::new()
+        } else {
+            format!(" --packings {pours}")
         }
     );
     print!("{note}");
@@ -259,6 +321,14 @@ pub fn run(n: usize, write: bool) -> Result<String, RunError> {
                     .iter()
                     .filter(|p| p.friction == mu)
                     .map(|p| (p.aspect, if k == 0 { p.packing } else { p.z_no_rattlers }))
+                    .collect(),
+                y_errors: piles
+                    .iter()
+                    .zip(&errors)
+                    .filter(|(p, _)| p.friction == mu)
+                    .map(|(_, e)| if k == 0 { e.0 } else { e.1 })
+                    // (One pour has no error bar: none drawn.)
+                    .map(|e| if e.is_finite() { e } else { 0.0 })
                     .collect(),
                 color: c,
                 line: true,

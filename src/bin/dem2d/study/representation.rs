@@ -472,7 +472,7 @@ pub fn run(grains: usize) -> Result<String, RunError> {
     let alpha = 1.5;
     let mut piles = Vec::new();
     for &rep in &reps[..=PILE_NS.len()] {
-        let pile = packing::pour_shaped(alpha, 0.5, grains, false, &|s| match s {
+        let pile = packing::pour_shaped(alpha, 0.5, grains, false, packing::SEED, &|s| match s {
             Shape::Ellipse { a, b } => rep.shape(a, b, false),
             Shape::Circle { .. }
             | Shape::Rectangle { .. }

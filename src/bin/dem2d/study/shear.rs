@@ -18,6 +18,7 @@
 //! orientation `θ̄ = ½ arg⟨e^{2iθ}⟩` of the long axes against the flow (x).
 
 use super::{Table, grain, line_fit};
+use dem2d::analysis::statistics::{self, Estimate, ratio_se, series_se};
 use dem2d::contact_law::{ContactSpec, LinearDamping, Scaled};
 use dem2d::dynamics::BodyInit;
 use dem2d::dynamics::World;
@@ -58,22 +59,38 @@ pub const STRAIN_SETTLE: f64 = 0.5;
 /// Shear strain over which the averages run.
 pub const STRAIN_MEASURE: f64 = 1.5;
 
-/// One steady shear run.
+/// With `--precision`, a run measures until the standard error of μ is at most the precision,
+/// or until this many times [`STRAIN_MEASURE`] (the table then says the precision was not
+/// reached).
+pub const PRECISION_CAP: f64 = 10.0;
+/// The samples (chunk means) over [`STRAIN_MEASURE`]: a run averages its steps in chunks of
+/// `STRAIN_MEASURE / SAMPLES` of strain and the error bars are read from the chunks' series.
+pub const SAMPLES: u64 = 4096;
+
+/// One steady shear run: each number with its standard error (`analysis::statistics`: the
+/// chunk series blocked at the length chosen from its autocorrelation; μ by the delta method).
 #[derive(Clone, Copy, Debug)]
 pub struct Flow {
     pub aspect: f64,
     pub target: f64,
-    pub inertial: f64,
-    pub mu: f64,
-    pub phi: f64,
-    pub order: f64,
-    pub angle: f64,
+    pub inertial: Estimate,
+    pub mu: Estimate,
+    pub phi: Estimate,
+    pub order: Estimate,
+    /// The mean angle of the long axes to the flow (°).
+    pub angle: Estimate,
     pub steps: u64,
+    /// The strain the averages ran over.
+    pub strain: f64,
+    /// With a precision: whether the se of μ reached it.
+    pub reached: Option<bool>,
 }
 
-/// The world of a run at `aspect` sheared at `rate`.
-fn world(n: usize, aspect: f64, rate: f64) -> World {
-    let mut rng = Xorshift(0x9E37_79B9_7F4A_7C15 ^ aspect.to_bits());
+/// The world of a run at `aspect` sheared at `rate`, its grains drawn from `seed` (seed 0 is the
+/// study's historical draw).
+fn world(n: usize, aspect: f64, rate: f64, seed: u64) -> World {
+    let state = 0x9E37_79B9_7F4A_7C15 ^ aspect.to_bits() ^ seed.wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    let mut rng = Xorshift(if state == 0 { 1 } else { state });
     let side_count = (n as f64).sqrt().ceil() as usize;
     let longest = 0.6 * D * aspect.sqrt();
     let spacing = 2.1 * longest;
@@ -121,10 +138,40 @@ fn world(n: usize, aspect: f64, rate: f64) -> World {
         .build_world()
 }
 
-/// Shears `n` grains of aspect ratio `aspect` at the target inertial number `target`.
-pub fn shear(n: usize, aspect: f64, target: f64) -> Result<Flow, RunError> {
+/// The orientation order `S = |⟨e^{2iθ}⟩|` and the mean angle `½ arg⟨e^{2iθ}⟩` (°) from the
+/// series of the grains' mean `cos 2θ` and `sin 2θ`, with their se by the delta method on the
+/// linearised series (`S`: `(c̄ c_t + s̄ s_t)/S`; the angle: `(c̄ s_t − s̄ c_t)/(2 S²)` rad).
+fn orientation(c: &[f64], s: &[f64]) -> (Estimate, Estimate) {
+    let (cm, sm) = (statistics::mean(c), statistics::mean(s));
+    let order = cm.hypot(sm);
+    let lin = |f: &dyn Fn(f64, f64) -> f64| -> Vec<f64> {
+        c.iter().zip(s).map(|(&x, &y)| f(x, y)).collect()
+    };
+    let u = series_se(&lin(&|x, y| (cm * x + sm * y) / order));
+    let v = series_se(&lin(&|x, y| (cm * y - sm * x) / (2.0 * order * order)));
+    (
+        Estimate { mean: order, ..u },
+        Estimate {
+            mean: 0.5 * sm.atan2(cm).to_degrees(),
+            se: v.se.to_degrees(),
+            ..v
+        },
+    )
+}
+
+/// Shears `n` grains of aspect ratio `aspect` at the target inertial number `target`, the
+/// grains drawn from `seed`; with `precision`, measures until the se of μ is at most it (at
+/// least 1/16 of [`STRAIN_MEASURE`], at most [`PRECISION_CAP`] times it), else over
+/// [`STRAIN_MEASURE`].
+pub fn shear(
+    n: usize,
+    aspect: f64,
+    target: f64,
+    seed: u64,
+    precision: Option<f64>,
+) -> Result<Flow, RunError> {
     let rate = target * (P / RHO).sqrt() / D;
-    let mut w = world(n, aspect, rate);
+    let mut w = world(n, aspect, rate, seed);
     let total_area: f64 = w.bodies.shape.iter().map(Shape::area).sum();
     let mean_d = w
         .bodies
@@ -139,47 +186,88 @@ pub fn shear(n: usize, aspect: f64, target: f64) -> Result<Flow, RunError> {
     let phi0 = total_area / w.cell.as_ref().expect("a cell").area();
     let shrink = 3.0 * (0.85 / phi0).ln() / dem2d::dynamics::cell::MAX_STRETCH;
     let settle = ((STRAIN_SETTLE / (rate * w.dt)).max(shrink)).ceil() as u64;
-    let steps = settle + (STRAIN_MEASURE / (rate * w.dt)).ceil() as u64;
-    let sample = (steps / 2000).max(1);
-    let (mut s_xy, mut s_yy, mut phi, mut count) = (0.0, 0.0, 0.0, 0.0);
-    let (mut c2, mut s2, mut samples) = (0.0, 0.0, 0.0);
-    Simulation::new(&mut w).until_step(steps).run_each(|w, _| {
+    let measure = (STRAIN_MEASURE / (rate * w.dt)).ceil() as u64;
+    let chunk = (measure / SAMPLES).max(1);
+    let last = settle
+        + match precision {
+            Some(_) => (PRECISION_CAP * measure as f64).ceil() as u64,
+            None => measure,
+        };
+    // Per chunk: the means of σ_xy, σ_yy and φ over its steps, and the grains' mean cos 2θ and
+    // sin 2θ at its end.
+    let (mut xy, mut yy, mut ph, mut c2, mut s2) = (vec![], vec![], vec![], vec![], vec![]);
+    let (mut a_xy, mut a_yy, mut a_ph) = (0.0, 0.0, 0.0);
+    let mut check = (SAMPLES / 16) as usize;
+    let mut reached = false;
+    Simulation::new(&mut w).until_step(last).run_until(|w, _| {
         if w.step <= settle {
-            return;
+            return false;
         }
         let c = w.cell.as_ref().expect("a cell");
-        s_xy += c.shear_stress();
-        s_yy += c.normal_stress();
-        phi += total_area / c.area();
-        count += 1.0;
-        if aspect != 1.0 && w.step % sample == 0 {
-            for s in &w.bodies.state {
-                let t = 2.0 * s.pose.angle();
-                c2 += t.cos();
-                s2 += t.sin();
-                samples += 1.0;
-            }
+        a_xy += c.shear_stress();
+        a_yy += c.normal_stress();
+        a_ph += total_area / c.area();
+        if !(w.step - settle).is_multiple_of(chunk) {
+            return false;
         }
+        let k = chunk as f64;
+        xy.push(-a_xy / k);
+        yy.push(a_yy / k);
+        ph.push(a_ph / k);
+        (a_xy, a_yy, a_ph) = (0.0, 0.0, 0.0);
+        if aspect != 1.0 {
+            let (mut c, mut s) = (0.0, 0.0);
+            for b in &w.bodies.state {
+                let t = 2.0 * b.pose.angle();
+                c += t.cos();
+                s += t.sin();
+            }
+            c2.push(c / n as f64);
+            s2.push(s / n as f64);
+        }
+        // The se of μ, at chunk counts growing by a tenth (the check costs a pass over the
+        // series per lag of its window).
+        if let Some(p) = precision
+            && xy.len() >= check
+        {
+            check = (check + check / 10).max(check + 64);
+            let e = ratio_se(&xy, &yy);
+            reached = e.converged && e.se <= p;
+            return reached;
+        }
+        false
     })?;
-    let (s_xy, s_yy) = (s_xy / count, s_yy / count);
-    let (c2, s2) = (c2 / samples, s2 / samples);
+    let steps = w.step;
+    let mu = ratio_se(&xy, &yy);
+    let s_yy = series_se(&yy);
+    let inertial = rate * mean_d / (s_yy.mean / RHO).sqrt();
+    // I ∝ σ_yy^(−1/2): se(I) = I se(σ_yy) / (2 σ_yy).
+    let inertial = Estimate {
+        mean: inertial,
+        se: 0.5 * inertial * s_yy.se / s_yy.mean,
+        ..s_yy
+    };
+    let (order, angle) = if aspect == 1.0 {
+        let none = Estimate {
+            mean: f64::NAN,
+            se: f64::NAN,
+            ..mu
+        };
+        (none, none)
+    } else {
+        orientation(&c2, &s2)
+    };
     Ok(Flow {
         aspect,
         target,
-        inertial: rate * mean_d / (s_yy / RHO).sqrt(),
-        mu: -s_xy / s_yy,
-        phi: phi / count,
-        order: if aspect == 1.0 {
-            f64::NAN
-        } else {
-            c2.hypot(s2)
-        },
-        angle: if aspect == 1.0 {
-            f64::NAN
-        } else {
-            0.5 * s2.atan2(c2).to_degrees()
-        },
+        inertial,
+        mu,
+        phi: series_se(&ph),
+        order,
+        angle,
         steps,
+        strain: (xy.len() as u64 * chunk) as f64 * rate * w.dt,
+        reached: precision.map(|p| reached || (mu.converged && mu.se <= p)),
     })
 }
 
@@ -196,41 +284,65 @@ pub fn jobs(aspects: &[f64], targets: Option<&[f64]>) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// Runs the study's `jobs` (see [`jobs`] and the module documentation).
-pub fn run(n: usize, aspects: &[f64], targets: Option<&[f64]>) -> Result<String, RunError> {
+/// Runs the study's `jobs` (see [`jobs`] and the module documentation), the grains drawn from
+/// `seed`, each run measuring to `precision` on μ when given (see [`shear`]).
+pub fn run(
+    n: usize,
+    aspects: &[f64],
+    targets: Option<&[f64]>,
+    seed: u64,
+    precision: Option<f64>,
+) -> Result<String, RunError> {
     let start = Instant::now();
     let mut jobs = jobs(aspects, targets);
     eprintln!(
-        "dem2d study shear: {} runs of {n} grains ({} aspect ratios)",
+        "dem2d study shear: {} runs of {n} grains ({} aspect ratios), seed {seed}{}",
         jobs.len(),
         aspects.len(),
+        precision.map_or(String::new(), |p| format!(", to se(μ) ≤ {p}"))
     );
     // The slowest runs (a run's steps go as 1/I) start first, so that they do not end alone.
     jobs.sort_by(|x, y| x.1.total_cmp(&y.1));
     let mut done: Vec<Flow> = jobs
         .par_iter()
         .map(|&(a, i)| {
-            let f = shear(n, a, i)?;
+            let f = shear(n, a, i, seed, precision)?;
             eprintln!(
-                "  α = {a}, I = {i}: μ = {:.3}, φ = {:.4} ({} steps)",
-                f.mu, f.phi, f.steps
+                "  α = {a}, I = {i}: μ = {} (g = {:.0} chunks, blocks of {}), φ = {} ({} steps, \
+                 strain {:.2})",
+                f.mu.pm(4),
+                f.mu.inefficiency,
+                f.mu.block,
+                f.phi.pm(4),
+                f.steps,
+                f.strain
             );
             Ok(f)
         })
         .collect::<Result<_, RunError>>()?;
     done.sort_by(|x, y| (x.aspect.total_cmp(&y.aspect)).then(x.target.total_cmp(&y.target)));
     let mut table = Table::new(
-        "| α | I (target) | I (measured) | μ = −σ_xy/σ_yy | φ | nematic order S | mean angle to the flow (°) | steps |\n|---:|---:|---:|---:|---:|---:|---:|---:|",
+        "| α | I (target) | I (measured) | μ = −σ_xy/σ_yy | φ | nematic order S | mean angle to the flow (°) | strain averaged | steps |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
     );
     for f in &done {
         let (s, t) = if f.aspect == 1.0 {
             ("—".to_string(), "—".to_string())
         } else {
-            (format!("{:.3}", f.order), format!("{:.1}", f.angle))
+            (f.order.pm(3), f.angle.pm(1))
+        };
+        let short = match f.reached {
+            Some(false) => " (precision not reached)",
+            _ => "",
         };
         table.row(format!(
-            "| {} | {} | {:.4} | {:.3} | {:.4} | {s} | {t} | {} |",
-            f.aspect, f.target, f.inertial, f.mu, f.phi, f.steps
+            "| {} | {} | {} | {} | {} | {s} | {t} | {:.2}{short} | {} |",
+            f.aspect,
+            f.target,
+            f.inertial.pm(4),
+            f.mu.pm(4),
+            f.phi.pm(4),
+            f.strain,
+            f.steps
         ));
     }
     let mut md = table.text();
@@ -240,8 +352,8 @@ pub fn run(n: usize, aspects: &[f64], targets: Option<&[f64]>) -> Result<String,
         if of.len() < 2 {
             continue;
         }
-        let mu: Vec<(f64, f64)> = of.iter().map(|f| (f.inertial, f.mu)).collect();
-        let phi: Vec<(f64, f64)> = of.iter().map(|f| (f.inertial, f.phi)).collect();
+        let mu: Vec<(f64, f64)> = of.iter().map(|f| (f.inertial.mean, f.mu.mean)).collect();
+        let phi: Vec<(f64, f64)> = of.iter().map(|f| (f.inertial.mean, f.phi.mean)).collect();
         let (mu0, b) = line_fit(&mu);
         let (phi0, a_phi) = line_fit(&phi);
         let _ = writeln!(
@@ -254,7 +366,15 @@ pub fn run(n: usize, aspects: &[f64], targets: Option<&[f64]>) -> Result<String,
     let wall = start.elapsed().as_secs_f64();
     let _ = writeln!(
         md,
-        "\n{} runs of {n} grains, {wall:.0} s of wall time on {}.",
+        "\n± one standard error: each run's chunk series blocked at the length chosen from its \
+         autocorrelation (Flyvbjerg–Petersen blocking, `analysis::statistics`; μ by the delta \
+         method){}. Seed {seed}{}. {} runs of {n} grains, {wall:.0} s of wall time on {}.",
+        if done.iter().any(|f| !f.mu.converged) {
+            "; † a series shorter than its correlation time wants (its se may be low)"
+        } else {
+            ""
+        },
+        precision.map_or(String::new(), |p| format!(", each run to se(μ) ≤ {p}")),
         done.len(),
         super::threads()
     );
@@ -267,7 +387,12 @@ pub fn run(n: usize, aspects: &[f64], targets: Option<&[f64]>) -> Result<String,
                 points: done
                     .iter()
                     .filter(|f| f.aspect == a)
-                    .map(|f| (f.inertial, if phi { f.phi } else { f.mu }))
+                    .map(|f| (f.inertial.mean, if phi { f.phi.mean } else { f.mu.mean }))
+                    .collect(),
+                y_errors: done
+                    .iter()
+                    .filter(|f| f.aspect == a)
+                    .map(|f| if phi { f.phi.se } else { f.mu.se })
                     .collect(),
                 color: k,
                 line: true,

@@ -36,6 +36,7 @@
 //! [`GAP`]).
 
 use super::line_fit;
+use dem2d::analysis::statistics::{Estimate, mean_se, ratio_se, series_se};
 use dem2d::analysis::{self, Frame, Window};
 use dem2d::dynamics::World;
 use dem2d::output::plot::{self, LinePanel, Series};
@@ -74,6 +75,13 @@ pub const MIN_GRAINS: usize = 50;
 /// A pause in the discharge longer than this (s) ends an avalanche (a temporary clog): twice a
 /// grain's mean passage at the smallest outlets' rates between clogs (about 20 grains/s).
 pub const GAP: f64 = 0.1;
+/// The bins of the discharge (s) whose series gives a rate's standard error.
+pub const BIN: f64 = 0.01;
+/// The column's packing fraction is sampled this often from T0 (s).
+pub const PHI_EVERY: f64 = 0.05;
+/// With `--precision`, a discharge measures until the se of its rate is at most the precision,
+/// or for at most this many times T1 − T0.
+pub const PRECISION_CAP: f64 = 10.0;
 const DENSITY: f64 = 2.5;
 const DT: f64 = 1e-4;
 const G: f64 = 981.0;
@@ -133,11 +141,15 @@ pub fn case_text(d_out: f64, alpha: f64, seed: u64, duration: f64, shake: bool) 
 pub struct Discharge {
     pub d_out: f64,
     pub alpha: f64,
-    /// Mass rate over [T0, T1] (g/s per cm of thickness), and grains per second.
-    pub rate: f64,
-    pub grains_per_s: f64,
-    /// Packing fraction in the column (a window 10 cm wide, 4–12 cm above the floor) at T1.
-    pub phi: f64,
+    /// Mass rate over [T0, T1] (g/s per cm of thickness), and grains per second, with their
+    /// standard errors (the discharge in bins of [`BIN`] s, blocked).
+    pub rate: Estimate,
+    pub grains_per_s: Estimate,
+    /// Packing fraction in the column (a window 10 cm wide, 4–12 cm above the floor), every
+    /// [`PHI_EVERY`] s from T0.
+    pub phi: Estimate,
+    /// The end of the averages (T1, or later with a precision).
+    pub t_end: f64,
     /// It paused (no discharge for CLOG_WAIT s after SETTLED: an arch) before T1.
     pub clogged: bool,
     /// Grains above the floor at T1 (the inserter keeps N in the scene: fewer in the silo
@@ -162,8 +174,14 @@ fn world(d_out: f64, alpha: f64, seed: u64, duration: f64, shake: bool) -> World
 /// A silo run: its discharges (time, mass), whether it clogged, and the world as it ended.
 type Drained = (Vec<(f64, f64)>, bool, World);
 
-/// Runs the silo until `until` s, or until it clogs when `stop_at_clog`.
-fn run_silo(mut w: World, until: f64, stop_at_clog: bool) -> Result<Drained, RunError> {
+/// Runs the silo until `until` s, or until it clogs when `stop_at_clog`, or until `more`
+/// (called after every step with the world and the discharges so far) returns true.
+fn run_silo(
+    mut w: World,
+    until: f64,
+    stop_at_clog: bool,
+    mut more: impl FnMut(&mut World, &[(f64, f64)]) -> bool,
+) -> Result<Drained, RunError> {
     let mut out = Vec::new();
     let mut last_flow: Option<f64> = None;
     let mut clogged = false;
@@ -183,7 +201,7 @@ fn run_silo(mut w: World, until: f64, stop_at_clog: bool) -> Result<Drained, Run
             if w.time > SETTLED && w.time - since > CLOG_WAIT {
                 clogged = true;
             }
-            stop_at_clog && clogged
+            (stop_at_clog && clogged) || more(w, &out)
         })?;
     debug_assert!(matches!(stop, Stop::Completed | Stop::Asked));
     Ok((out, clogged, w))
@@ -205,26 +223,71 @@ fn column_phi(w: &mut World) -> f64 {
     m.packing_fraction
 }
 
-/// The discharge rate of one outlet.
-pub fn discharge(d_out: f64, alpha: f64) -> Result<Discharge, RunError> {
+/// The mass rate and the grains per second of the discharges `log` over `(T0, t_end]`, each the
+/// mean of the bins of [`BIN`] s with its blocked standard error.
+fn binned_rates(log: &[(f64, f64)], t_end: f64) -> (Estimate, Estimate) {
+    let bins = ((t_end - T0) / BIN).round() as usize;
+    let (mut mass, mut count) = (vec![0.0; bins], vec![0.0; bins]);
+    for &(t, m) in log.iter().filter(|(t, _)| *t > T0 && *t <= t_end) {
+        let k = (((t - T0) / BIN) as usize).min(bins - 1);
+        mass[k] += m / BIN;
+        count[k] += 1.0 / BIN;
+    }
+    (series_se(&mass), series_se(&count))
+}
+
+/// The discharge rate of one outlet, the silo filled with `seed`; with `precision`, measured
+/// until the se of the mass rate is at most it (from T1 on, at most until [`PRECISION_CAP`]
+/// times T1 − T0 after T0).
+pub fn discharge(
+    d_out: f64,
+    alpha: f64,
+    seed: u64,
+    precision: Option<f64>,
+) -> Result<Discharge, RunError> {
     let start = Instant::now();
-    let (log, clogged, mut w) = run_silo(world(d_out, alpha, 1, T1, false), T1, false)?;
-    let mass: f64 = log
-        .iter()
-        .filter(|(t, _)| *t > T0 && *t <= T1)
-        .map(|(_, m)| m)
-        .sum();
-    let count = log.iter().filter(|(t, _)| *t > T0 && *t <= T1).count();
-    let phi = column_phi(&mut w);
+    let until = match precision {
+        Some(_) => T0 + PRECISION_CAP * (T1 - T0),
+        None => T1,
+    };
+    let mut phis = Vec::new();
+    let mut next_phi = T0;
+    let mut next_check = T1;
+    let mut t_end = until;
+    let (log, clogged, w) = run_silo(
+        world(d_out, alpha, seed, until, false),
+        until,
+        false,
+        |w, log| {
+            if w.time >= next_phi {
+                phis.push(column_phi(w));
+                next_phi += PHI_EVERY;
+            }
+            if let Some(p) = precision
+                && w.time >= next_check
+            {
+                next_check += 0.1 * (T1 - T0);
+                let (rate, _) = binned_rates(log, w.time);
+                if rate.converged && rate.se <= p {
+                    t_end = w.time;
+                    return true;
+                }
+            }
+            false
+        },
+    )?;
+    let t_end = t_end.min(w.time);
+    let (rate, grains_per_s) = binned_rates(&log, t_end);
     let in_silo = (0..w.bodies.len())
         .filter(|&k| w.bodies.state[k].pose.position.y > 0.0)
         .count();
     Ok(Discharge {
         d_out,
         alpha,
-        rate: mass / (T1 - T0) + 0.0,
-        grains_per_s: count as f64 / (T1 - T0),
-        phi,
+        rate,
+        grains_per_s,
+        phi: series_se(&phis),
+        t_end,
         clogged,
         in_silo,
         wall_seconds: start.elapsed().as_secs_f64(),
@@ -234,7 +297,12 @@ pub fn discharge(d_out: f64, alpha: f64) -> Result<Discharge, RunError> {
 /// Whether a silo of outlet `d_out` filled with `seed` clogs within T_CLOG, and the grains
 /// discharged before.
 pub fn clogs(d_out: f64, alpha: f64, seed: u64) -> Result<(bool, usize), RunError> {
-    let (log, clogged, _) = run_silo(world(d_out, alpha, seed, T_CLOG, false), T_CLOG, true)?;
+    let (log, clogged, _) = run_silo(
+        world(d_out, alpha, seed, T_CLOG, false),
+        T_CLOG,
+        true,
+        |_, _| false,
+    )?;
     Ok((clogged, log.len()))
 }
 
@@ -244,8 +312,17 @@ pub fn clogs(d_out: f64, alpha: f64, seed: u64) -> Result<(bool, usize), RunErro
 /// over the avalanches. Returns (rate, time flowing, avalanches); an avalanche of one grain has
 /// no duration and counts for neither.
 pub fn between_clogs(log: &[(f64, f64)], t0: f64, gap: f64) -> (f64, f64, usize) {
+    let each = avalanches(log, t0, gap);
+    let mass: f64 = each.iter().map(|a| a.0).sum();
+    let flowing: f64 = each.iter().map(|a| a.1).sum();
+    let rate = if flowing > 0.0 { mass / flowing } else { 0.0 };
+    (rate, flowing, each.len())
+}
+
+/// The avalanches of [`between_clogs`], in order: (mass after the first grain, duration).
+pub fn avalanches(log: &[(f64, f64)], t0: f64, gap: f64) -> Vec<(f64, f64)> {
     let events: Vec<(f64, f64)> = log.iter().copied().filter(|(t, _)| *t > t0).collect();
-    let (mut mass, mut flowing, mut avalanches) = (0.0, 0.0, 0);
+    let mut out = Vec::new();
     let mut i = 0;
     while i < events.len() {
         let mut j = i;
@@ -253,14 +330,14 @@ pub fn between_clogs(log: &[(f64, f64)], t0: f64, gap: f64) -> (f64, f64, usize)
             j += 1;
         }
         if j > i {
-            flowing += events[j].0 - events[i].0;
-            mass += events[i + 1..=j].iter().map(|e| e.1).sum::<f64>();
-            avalanches += 1;
+            out.push((
+                events[i + 1..=j].iter().map(|e| e.1).sum::<f64>(),
+                events[j].0 - events[i].0,
+            ));
         }
         i = j + 1;
     }
-    let rate = if flowing > 0.0 { mass / flowing } else { 0.0 };
-    (rate, flowing, avalanches)
+    out
 }
 
 /// The fits of one kind of grain's rates with the floor shaken: `ln W = ln_a + κ D` through the
@@ -286,8 +363,10 @@ pub struct Intermittent {
     pub d_out: f64,
     pub alpha: f64,
     /// The rate between clogs (g/s per cm), the time flowing (s) out of the run's after T0,
-    /// the avalanches, and the grains discharged after T0.
-    pub rate: f64,
+    /// the avalanches, and the grains discharged after T0. The rate's se: the avalanches'
+    /// (mass, duration) pairs as a series, the ratio of their sums by the delta method
+    /// ([`ratio_se`]).
+    pub rate: Estimate,
     pub flowing: f64,
     pub avalanches: usize,
     pub grains: usize,
@@ -302,12 +381,27 @@ pub fn shake_duration(d_out: f64) -> f64 {
     if d_out <= 3.0 { 3.0 * T_SHAKE } else { T_SHAKE }
 }
 
-/// The rate between clogs of one outlet with the floor shaken.
-pub fn intermittent(d_out: f64, alpha: f64) -> Result<Intermittent, RunError> {
+/// The rate between clogs of one outlet with the floor shaken, the silo filled with `seed`.
+pub fn intermittent(d_out: f64, alpha: f64, seed: u64) -> Result<Intermittent, RunError> {
     let start = Instant::now();
     let until = shake_duration(d_out);
-    let (log, ..) = run_silo(world(d_out, alpha, 1, until, true), until, false)?;
+    let (log, ..) = run_silo(
+        world(d_out, alpha, seed, until, true),
+        until,
+        false,
+        |_, _| false,
+    )?;
     let (rate, flowing, avalanches) = between_clogs(&log, T0, GAP);
+    let each = self::avalanches(&log, T0, GAP);
+    let (m, d): (Vec<f64>, Vec<f64>) = each.into_iter().unzip();
+    let rate = if flowing > 0.0 {
+        Estimate {
+            mean: rate,
+            ..ratio_se(&m, &d)
+        }
+    } else {
+        mean_se(&[0.0])
+    };
     Ok(Intermittent {
         d_out,
         alpha,
@@ -343,7 +437,7 @@ pub fn beverloo_fit(points: &[(f64, f64)], rho_b: f64) -> (f64, f64) {
 }
 
 /// Runs the study on `threads` worker threads (its runs in parallel).
-pub fn run() -> Result<String, RunError> {
+pub fn run(seed: u64, precision: Option<f64>) -> Result<String, RunError> {
     let start = Instant::now();
     let disk_outlets = [3.0, 4.0, 5.0, 6.0, 8.0, 10.0];
     let ellipse_outlets = [4.0, 5.0, 6.0, 8.0, 10.0];
@@ -355,13 +449,13 @@ pub fn run() -> Result<String, RunError> {
     let rates: Vec<Discharge> = jobs
         .par_iter()
         .map(|&(d, a)| {
-            let r = discharge(d, a);
+            let r = discharge(d, a, 1 + seed, precision);
             if let Ok(r) = &r {
                 eprintln!(
-                    "α = {a}, D = {d}: W = {:.1} g/s ({:.1} grains/s), φ = {:.3}, {} in the silo{}, {:.0} s",
-                    r.rate,
-                    r.grains_per_s,
-                    r.phi,
+                    "α = {a}, D = {d}: W = {} g/s ({} grains/s), φ = {}, {} in the silo{}, {:.0} s",
+                    r.rate.pm(1),
+                    r.grains_per_s.pm(1),
+                    r.phi.pm(3),
                     r.in_silo,
                     if r.clogged { ", clogged" } else { "" },
                     r.wall_seconds
@@ -372,7 +466,7 @@ pub fn run() -> Result<String, RunError> {
         .collect::<Result<_, _>>()?;
     let clog_jobs: Vec<(f64, u64)> = clog_outlets
         .iter()
-        .flat_map(|&d| (0..TRIALS).map(move |s| (d, 100 + s)))
+        .flat_map(|&d| (0..TRIALS).map(move |s| (d, 100 + seed + s)))
         .collect();
     let trials: Vec<(f64, bool, usize)> = clog_jobs
         .par_iter()
@@ -394,12 +488,16 @@ pub fn run() -> Result<String, RunError> {
     let mut shaken: Vec<Intermittent> = shaken_jobs
         .par_iter()
         .map(|&(d, a)| {
-            let r = intermittent(d, a);
+            let r = intermittent(d, a, 1 + seed);
             if let Ok(r) = &r {
                 eprintln!(
-                    "shaken floor, α = {a}, D = {d}: W = {:.1} g/s between clogs, flowing {:.2} s, \
+                    "shaken floor, α = {a}, D = {d}: W = {} g/s between clogs, flowing {:.2} s, \
                      {} avalanches, {} grains, {:.0} s",
-                    r.rate, r.flowing, r.avalanches, r.grains, r.wall_seconds
+                    r.rate.pm(1),
+                    r.flowing,
+                    r.avalanches,
+                    r.grains,
+                    r.wall_seconds
                 );
             }
             r
@@ -415,9 +513,9 @@ pub fn run() -> Result<String, RunError> {
     // Beverloo on the disks.
     let disks: Vec<&Discharge> = rates.iter().filter(|r| r.alpha == 1.0).collect();
     let steady: Vec<&&Discharge> = disks.iter().filter(|r| r.steady()).collect();
-    let phi = steady.iter().map(|r| r.phi).sum::<f64>() / steady.len() as f64;
+    let phi = steady.iter().map(|r| r.phi.mean).sum::<f64>() / steady.len() as f64;
     let rho_b = DENSITY * phi;
-    let points: Vec<(f64, f64)> = steady.iter().map(|r| (r.d_out, r.rate)).collect();
+    let points: Vec<(f64, f64)> = steady.iter().map(|r| (r.d_out, r.rate.mean)).collect();
     let (c, k) = beverloo_fit(&points, rho_b);
     // Ellipses: Beverloo over D ≥ 4 d, exp(κ D) over D ≤ 3 d.
     let mut ellipse_fits = Vec::new();
@@ -429,12 +527,16 @@ pub fn run() -> Result<String, RunError> {
         let big: Vec<(f64, f64)> = of
             .iter()
             .filter(|r| r.d_out >= 4.0)
-            .map(|r| (r.d_out, r.rate))
+            .map(|r| (r.d_out, r.rate.mean))
             .collect();
-        let phi_a = of.iter().map(|r| r.phi).sum::<f64>() / of.len().max(1) as f64;
+        let phi_a = of.iter().map(|r| r.phi.mean).sum::<f64>() / of.len().max(1) as f64;
         let (ca, ka) = beverloo_fit(&big, DENSITY * phi_a);
         // The exponential over the smallest outlets that flowed (the three smallest).
-        let small: Vec<(f64, f64)> = of.iter().take(3).map(|r| (r.d_out, r.rate.ln())).collect();
+        let small: Vec<(f64, f64)> = of
+            .iter()
+            .take(3)
+            .map(|r| (r.d_out, r.rate.mean.ln()))
+            .collect();
         let kappa = if small.len() >= 2 {
             line_fit(&small).1
         } else {
@@ -444,7 +546,7 @@ pub fn run() -> Result<String, RunError> {
     }
 
     let mut md = String::from(
-        "| grains | D/d | W (g/s) | grains/s | φ column | in the silo at the end | Beverloo fit (g/s) | steady |\n|---|---:|---:|---:|---:|---:|---:|---|\n",
+        "| grains | D/d | W (g/s) | grains/s | φ column | averaged over t (s) | in the silo at the end | Beverloo fit (g/s) | steady |\n|---|---:|---:|---:|---:|---:|---:|---:|---|\n",
     );
     let bev = |c: f64, k: f64, rho: f64, d: f64| c * rho * G.sqrt() * (d - k).max(0.0).powf(1.5);
     for r in &rates {
@@ -459,12 +561,13 @@ pub fn run() -> Result<String, RunError> {
         };
         writeln!(
             md,
-            "| {} | {} | {:.1} | {:.1} | {:.3} | {} | {:.1} | {} |",
+            "| {} | {} | {} | {} | {} | {T0}–{:.1} | {} | {:.1} | {} |",
             grains(r.alpha),
             r.d_out,
-            r.rate,
-            r.grains_per_s,
-            r.phi,
+            r.rate.pm(1),
+            r.grains_per_s.pm(1),
+            r.phi.pm(3),
+            r.t_end,
             r.in_silo,
             bev(cc, kk, rho, r.d_out),
             if r.steady() {
@@ -493,20 +596,27 @@ pub fn run() -> Result<String, RunError> {
         )
         .expect("string");
     }
-    md.push_str("\n| D/d (disks) | clogged within 2 s | probability | grains discharged before the clog (mean) |\n|---:|---:|---:|---:|\n");
+    md.push_str("\n| D/d (disks) | clogged within 2 s | probability (± se over the fillings) | grains discharged before the clog (mean ± se) |\n|---:|---:|---:|---:|\n");
     for &d in &clog_outlets {
         let of: Vec<&(f64, bool, usize)> = trials.iter().filter(|t| t.0 == d).collect();
         let n = of.iter().filter(|t| t.1).count();
-        let mean = of.iter().filter(|t| t.1).map(|t| t.2 as f64).sum::<f64>() / n.max(1) as f64;
+        // Each filling clogs or not: the probability is the mean of 0/1 over independent
+        // fillings, its se s/√m.
+        let p = mean_se(
+            &of.iter()
+                .map(|t| f64::from(u8::from(t.1)))
+                .collect::<Vec<_>>(),
+        );
+        let before: Vec<f64> = of.iter().filter(|t| t.1).map(|t| t.2 as f64).collect();
         writeln!(
             md,
-            "| {d} | {n} of {} | {:.2} | {} |",
+            "| {d} | {n} of {} | {} | {} |",
             of.len(),
-            n as f64 / of.len() as f64,
-            if n > 0 {
-                format!("{mean:.0}")
-            } else {
-                "–".into()
+            p.pm(2),
+            match before.len() {
+                0 => "–".into(),
+                1 => format!("{:.0}", before[0]),
+                _ => mean_se(&before).pm(0),
             }
         )
         .expect("string");
@@ -521,12 +631,12 @@ pub fn run() -> Result<String, RunError> {
     for alpha in [1.0, 2.0, 3.0] {
         let of: Vec<&Intermittent> = shaken
             .iter()
-            .filter(|r| r.alpha == alpha && r.rate > 0.0 && r.grains >= MIN_GRAINS)
+            .filter(|r| r.alpha == alpha && r.rate.mean > 0.0 && r.grains >= MIN_GRAINS)
             .collect();
         let small: Vec<(f64, f64)> = of
             .iter()
             .filter(|r| r.d_out <= 3.0)
-            .map(|r| (r.d_out, r.rate.ln()))
+            .map(|r| (r.d_out, r.rate.mean.ln()))
             .collect();
         let (ln_a, kappa) = if small.len() >= 2 {
             line_fit(&small)
@@ -550,7 +660,7 @@ pub fn run() -> Result<String, RunError> {
         let big: Vec<(f64, f64)> = of
             .iter()
             .filter(|r| r.d_out >= 3.5)
-            .map(|r| (r.d_out, r.rate.powf(2.0 / 3.0)))
+            .map(|r| (r.d_out, r.rate.mean.powf(2.0 / 3.0)))
             .collect();
         let (b0, slope) = line_fit(&big);
         let k_pow = -b0 / slope;
@@ -573,10 +683,10 @@ pub fn run() -> Result<String, RunError> {
         for r in shaken.iter().filter(|r| r.alpha == alpha) {
             writeln!(
                 md,
-                "| {} | {} | {:.1}{} | {:.2} | {} | {} | {} | {:.1} |",
+                "| {} | {} | {}{} | {:.2} | {} | {} | {} | {:.1} |",
                 grains(alpha),
                 r.d_out,
-                r.rate,
+                r.rate.pm(1),
                 if r.grains < MIN_GRAINS {
                     " (few grains: not fitted)"
                 } else {
@@ -659,11 +769,21 @@ pub fn run() -> Result<String, RunError> {
          with a flat floor of two segment walls, rates over t = {T0}–{T1} s, {TRIALS} \
          fillings per outlet for clogging; the floor shaken at ±{SHAKE_SPEED} cm/s (period \
          {SHAKE_PERIOD} s) for {T_SHAKE} s ({} s for D/d ≤ 3), rates between pauses longer \
-         than {GAP} s after t = {T0} s; {} runs in all, wall time {:.0} s on {}. Written by `dem2d study silo`.",
+         than {GAP} s after t = {T0} s; {} runs in all, wall time {:.0} s on {}. Written by `dem2d study silo`.\n\n\
+         ± one standard error (`analysis::statistics`): a rate from the discharge in bins of {BIN} s, \
+         φ from the column every {PHI_EVERY} s, each series blocked at the length chosen from its \
+         autocorrelation (Flyvbjerg–Petersen); a clogging probability and the grains before a clog \
+         over the independent fillings; a rate between clogs over the avalanches (the ratio of \
+         their mass to their duration, by the delta method); † a series too short for its \
+         correlation time (its se may be low). Fillings from seed {seed}{}; the fits' C, k and κ \
+         carry no error bar.",
         3.0 * T_SHAKE,
         jobs.len() + clog_jobs.len() + shaken_jobs.len(),
         wall,
-        super::threads()
+        super::threads(),
+        precision.map_or(String::new(), |p| format!(
+            "; each discharge measured until the se of W is at most {p} g/s"
+        ))
     )
     .expect("string");
 
@@ -674,12 +794,18 @@ pub fn run() -> Result<String, RunError> {
         let pts: Vec<(f64, f64)> = rates
             .iter()
             .filter(|r| r.alpha == *alpha && r.steady())
-            .map(|r| (r.d_out, r.rate))
+            .map(|r| (r.d_out, r.rate.mean))
+            .collect();
+        let errors: Vec<f64> = rates
+            .iter()
+            .filter(|r| r.alpha == *alpha && r.steady())
+            .map(|r| r.rate.se)
             .collect();
         let label = grains(*alpha);
         rate_series.push(Series {
             label: label.clone(),
             points: pts.clone(),
+            y_errors: errors,
             color: c_i,
             markers: true,
             ..Default::default()
@@ -761,8 +887,8 @@ pub fn run() -> Result<String, RunError> {
             label,
             points: shaken
                 .iter()
-                .filter(|r| r.alpha == alpha && r.rate > 0.0 && r.grains >= MIN_GRAINS)
-                .map(|r| (r.d_out, r.rate))
+                .filter(|r| r.alpha == alpha && r.rate.mean > 0.0 && r.grains >= MIN_GRAINS)
+                .map(|r| (r.d_out, r.rate.mean))
                 .collect(),
             color: c_i,
             markers: true,
