@@ -801,9 +801,9 @@ mod tests {
     fn restitution_inverts_alpha() {
         // T12: η = 2α√(m k) gives back e.
         for e in [0.1, 0.5, 0.9] {
-            let m = 0.7;
+            let m: f64 = 0.7;
             let k = 1e6;
-            let eta = 2.0 * alpha(e) * (m * k as f64).sqrt();
+            let eta = 2.0 * alpha(e) * (m * k).sqrt();
             assert!((restitution_of(eta, m, k) - e).abs() < 1e-12);
         }
     }

@@ -304,7 +304,7 @@ fn cross_check(mut o: crosscheck::CrossOptions, docs: bool) -> Result<(), Failur
             return Err(Failure::input(format!("{name}: must be positive, got {v}")));
         }
     }
-    if !(o.phi < 1.0) {
+    if o.phi >= 1.0 {
         return Err(Failure::input(format!(
             "--phi: must be below 1, got {}",
             o.phi
