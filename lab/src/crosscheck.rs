@@ -11,7 +11,7 @@
 //! sphere`, a triclinic box whose tilt `fix deform … xy erate γ̇ remap v` advances).
 //!
 //! The contact law is the same term by term in the two codes (docs/src/physics/contact-laws.md;
-//! LAMMPS's `pair_granular.cpp`, 2022):
+//! LAMMPS's `pair_granular.cpp`, 29 Sep 2021):
 //! - normal: `F_n = max(0, k_n δ − η_n v_n)` (dem2d's linear Voigt law, T6, on the depth;
 //!   LAMMPS `hooke k_n η_n … damping velocity limit_damping`: constant η_n, clamped at zero);
 //! - tangential: `δ_t += v_t Δt`, `F_t = −k_t δ_t` capped at `μ F_n` with the spring reset to
@@ -24,6 +24,10 @@
 //!   constant; `mass_velocity`: ∝ m*; `tsuji`: 2α√(m* k_n) only with its own α(e) and a
 //!   non-linear form). Both codes get the constant η_n of the restitution `--restitution` for
 //!   the small–large pair; the restitutions it gives the other pairs are printed.
+//!
+//! What is left different: this LAMMPS's `fix deform` moves the box at the end of a step, so
+//! the forces of step n + 1 see the images' shift of step n (`γ̇ L_y Δt` behind; dem2d's shift
+//! moves with the positions): the shear runs at each `--dt`. The lever arms differ by O(δ).
 
 use serde_json::{Value, json};
 use std::fmt::Write as _;
