@@ -129,6 +129,11 @@ fn read_packing(path: &Path) -> Result<(f64, f64, Vec<Disk>), String> {
     Ok((lx, ly, disks))
 }
 
+/// Whether `path` is a packing the cross-check can start from (the error names the field).
+pub fn check_packing(path: &Path) -> Result<(), String> {
+    read_packing(path).map(|_| ())
+}
+
 /// The packing scaled about the origin by `s` (positions and cell), at rest or moving with the
 /// affine shear flow `γ̇ (y − L_y/2)`.
 fn scaled(name: &'static str, packing: &(f64, f64, Vec<Disk>), s: f64, shear_rate: f64) -> State {

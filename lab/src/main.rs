@@ -337,6 +337,7 @@ fn cross_check(mut o: crosscheck::CrossOptions, docs: bool) -> Result<(), Failur
             o.strain, o.sample_strain
         )));
     }
+    crosscheck::check_packing(&o.case).map_err(|e| Failure::input(format!("--case: {e}")))?;
     o.lmp = peers::find_executable(&["lmp", "lmp_serial", "lmp_mpi"]).ok_or_else(|| {
         Failure::input("LAMMPS (`lmp`) is not on PATH (Debian: apt-get install lammps)".into())
     })?;
