@@ -213,7 +213,8 @@ fn marked_tables_are_closed_and_each_name_is_marked_once() {
             rest = &after[after.find(&close).unwrap()..];
         }
     }
-    // The tables the generators write (dem2d figures, bench, study, verify; cargo bench).
+    // The tables the generators write (dem2d figures, bench, study, verify; cargo bench;
+    // dem2d-lab cross-check).
     for name in [
         "paper_cases",
         "fig3_comparison",
@@ -226,6 +227,7 @@ fn marked_tables_are_closed_and_each_name_is_marked_once() {
         "kernel_speed",
         "bench",
         "peers",
+        "lammps",
         "rolling_fig3",
         "repose",
         "biaxial",

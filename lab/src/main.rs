@@ -6,6 +6,7 @@
 //! cargo run --release -p dem2d-lab -- bench --docs        # the throughput table
 //! cargo run --release -p dem2d-lab -- bench --peers --steps 10000 --reps 3 --normal-force area,depth --docs
 //! cargo run --release -p dem2d-lab -- fuzz --mutants 2000 --seed 1   # a fuzzing round (fuzz.rs)
+//! cargo run --release -p dem2d-lab -- cross-check --fire 10000   # against LAMMPS (crosscheck.rs)
 //! ```
 //!
 //! `figures`, `fuzz` and `bench --peers` run the `dem2d` binary itself (as a user would): [`dem2d_exe`]
@@ -13,6 +14,7 @@
 
 mod area_law_report;
 mod bench;
+mod crosscheck;
 mod fuzz;
 mod peers;
 mod report;
@@ -112,6 +114,56 @@ enum Command {
         /// Where every SVG is also rendered as PNG (default: WORK/png).
         #[arg(long)]
         png: Option<PathBuf>,
+    },
+    /// The same physics in another code: a constant-volume Lees–Edwards shear of frictional
+    /// bidisperse disks in `dem2d run` and in LAMMPS (`lmp`, pair_style granular) from the same
+    /// initial states, μ, σ_yy, Z and I side by side with standard errors and their ratios,
+    /// and the first steps from a static state (docs/src/validation/lammps.md). Prints
+    /// Markdown; exit code 2 without `lmp`.
+    CrossCheck {
+        /// The packing (disks, a cell periodic in x and y) the states are made from.
+        #[arg(long, default_value = "cases/jammed_disks_256.json")]
+        case: PathBuf,
+        /// The shear run's packing fraction (the packing and its cell scaled).
+        #[arg(long, default_value_t = 0.7855)]
+        phi: f64,
+        /// The static state's scale of the packing (below 1: overlapping).
+        #[arg(long, default_value_t = 0.99)]
+        static_scale: f64,
+        /// γ̇ (1/s).
+        #[arg(long, default_value_t = 3.0)]
+        shear_rate: f64,
+        /// Time steps (s): the static states run at the first, the shear at each.
+        #[arg(long, value_delimiter = ',', default_values_t = [5e-5, 2e-5])]
+        dt: Vec<f64>,
+        /// Strain of each shear run.
+        #[arg(long, default_value_t = 21.0)]
+        strain: f64,
+        /// Strain between samples.
+        #[arg(long, default_value_t = 0.03)]
+        sample_strain: f64,
+        /// Strain left out of the means.
+        #[arg(long, default_value_t = 3.0)]
+        transient_strain: f64,
+        /// k_n = k_t (dyn/cm).
+        #[arg(long, default_value_t = 1e6)]
+        kn: f64,
+        /// Coulomb friction μ.
+        #[arg(long, default_value_t = 0.4)]
+        friction: f64,
+        /// The restitution whose dashpot (for the small–large pair) both codes use.
+        #[arg(long, default_value_t = 0.5)]
+        restitution: f64,
+        /// Where the runs go.
+        #[arg(long, default_value = "target/cross-check")]
+        work: PathBuf,
+        /// Also LAMMPS's FIRE against `dem2d relax` on --case, this many iterations each.
+        #[arg(long)]
+        fire: Option<u64>,
+        /// Refresh the user guide's `<!-- figures:lammps -->` section
+        /// (docs/src/validation/lammps.md); run from the repository.
+        #[arg(long)]
+        docs: bool,
     },
     /// A seeded fuzzing round over the newer features (periodic cells, imposed pressure,
     /// Lees–Edwards shear, relax, insertion and outflow, segments, materials, wall programs,
@@ -229,6 +281,69 @@ pub fn dem2d_exe() -> Result<PathBuf, String> {
             exe.display()
         ))
     }
+}
+
+/// `cross-check`: checks the options, finds `dem2d` and `lmp`, prints the report.
+fn cross_check(mut o: crosscheck::CrossOptions, docs: bool) -> Result<(), Failure> {
+    let positive = [
+        ("--phi", o.phi),
+        ("--static-scale", o.static_scale),
+        ("--kn", o.kn),
+        ("--strain", o.strain),
+        ("--sample-strain", o.sample_strain),
+        ("--shear-rate", o.shear_rate),
+    ];
+    if o.dt.is_empty() || o.dt.iter().any(|d| !(d.is_finite() && *d > 0.0)) {
+        return Err(Failure::input(format!(
+            "--dt: positive time steps, got {:?}",
+            o.dt
+        )));
+    }
+    for (name, v) in positive {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(Failure::input(format!("{name}: must be positive, got {v}")));
+        }
+    }
+    if o.phi >= 1.0 {
+        return Err(Failure::input(format!(
+            "--phi: must be below 1, got {}",
+            o.phi
+        )));
+    }
+    if !(o.restitution > 0.0 && o.restitution < 1.0) {
+        return Err(Failure::input(format!(
+            "--restitution: must be in (0, 1), got {}",
+            o.restitution
+        )));
+    }
+    if !(o.friction.is_finite() && o.friction >= 0.0) {
+        return Err(Failure::input(format!(
+            "--friction: must be non-negative, got {}",
+            o.friction
+        )));
+    }
+    if !(o.transient_strain.is_finite()
+        && o.transient_strain >= 0.0
+        && o.transient_strain < o.strain)
+    {
+        return Err(Failure::input(format!(
+            "--transient-strain: in [0, --strain), got {}",
+            o.transient_strain
+        )));
+    }
+    if o.sample_strain > o.strain {
+        return Err(Failure::input(format!(
+            "--sample-strain: at most --strain ({}), got {}",
+            o.strain, o.sample_strain
+        )));
+    }
+    crosscheck::check_packing(&o.case).map_err(|e| Failure::input(format!("--case: {e}")))?;
+    o.lmp = peers::find_executable(&["lmp", "lmp_serial", "lmp_mpi"]).ok_or_else(|| {
+        Failure::input("LAMMPS (`lmp`) is not on PATH (Debian: apt-get install lammps)".into())
+    })?;
+    o.dem2d = dem2d_exe().map_err(Failure::failed)?;
+    let md = crosscheck::run(&o).map_err(Failure::failed)?;
+    publish_table(md, "lammps", None, docs_mode(docs, false))
 }
 
 /// What `--docs` and `--check` ask of the user guide's tables.
@@ -518,6 +633,41 @@ fn main() -> ExitCode {
             work.clone(),
             docs_mode(*docs, *check),
             (*quick, png.clone()),
+        ),
+        Command::CrossCheck {
+            case,
+            phi,
+            static_scale,
+            shear_rate,
+            dt,
+            strain,
+            sample_strain,
+            transient_strain,
+            kn,
+            friction,
+            restitution,
+            work,
+            fire,
+            docs,
+        } => cross_check(
+            crosscheck::CrossOptions {
+                case: case.clone(),
+                phi: *phi,
+                static_scale: *static_scale,
+                shear_rate: *shear_rate,
+                dt: dt.clone(),
+                strain: *strain,
+                sample_strain: *sample_strain,
+                transient_strain: *transient_strain,
+                kn: *kn,
+                friction: *friction,
+                restitution: *restitution,
+                work: work.clone(),
+                dem2d: PathBuf::new(),
+                lmp: PathBuf::new(),
+                fire: *fire,
+            },
+            *docs,
         ),
         Command::Fuzz {
             mutants,

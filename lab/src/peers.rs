@@ -149,7 +149,7 @@ pub fn find_executable(names: &[&str]) -> Option<PathBuf> {
 }
 
 /// User + system CPU seconds of the children waited for so far.
-fn children_cpu_seconds() -> f64 {
+pub fn children_cpu_seconds() -> f64 {
     // SAFETY: getrusage writes into the zeroed struct we own; RUSAGE_CHILDREN is a valid who.
     let ru = unsafe {
         let mut ru: libc::rusage = std::mem::zeroed();

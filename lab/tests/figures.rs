@@ -133,10 +133,12 @@ fn figures_quick_writes_every_figure_and_table_of_the_guide() {
         for part in text.split("<!-- figures:").skip(1) {
             let name = part.split(" -->").next().unwrap();
             // The throughput, peer and kernel-speed tables are `dem2d bench [--peers]`'s and
-            // `cargo bench`'s (minutes of timing); the studies' and verify's are theirs.
+            // `cargo bench`'s (minutes of timing); the studies' and verify's are theirs; the
+            // LAMMPS cross-check's is `dem2d-lab cross-check`'s (LAMMPS installed).
             let others = [
                 "bench",
                 "peers",
+                "lammps",
                 "kernel_speed",
                 "rolling_fig3",
                 "repose",
