@@ -176,24 +176,36 @@ pub fn fields_forces(opts: &Options) -> Result<String, String> {
         .sum::<f64>()
         / ys.iter().map(|y| (y - my).powi(2)).sum::<f64>();
     let mean = |c: &str| f[c].iter().sum::<f64>() / n;
+    let temps = &f["temperature"];
+    let inner = &temps[1..temps.len() - 1];
+    let last = ys.len() - 1;
+    let phis = &f["phi"];
     report.push_str(&format!(
-        "sheared disks (dem2d fields {} --bins 10 --from 0.4): dvx/dy = {slope:.3} /s \
-         (imposed 3 /s), mean phi = {:.4}, mean sxy = {:.1} dyn/cm, mean syy = {:.1} dyn/cm, \
-         T from {:.1} to {:.1} cm²/s² (the two bins at the seam: {:.1}, {:.1})\n",
+        "sheared disks (dem2d fields {} --bins 10 --from 0.4): {} frames; dvx/dy = {slope:.3} /s \
+         (imposed 3 /s); mean phi = {:.4} (slabs from {:.4} to {:.4}); mean sxy = {:.1} dyn/cm, \
+         mean syy = {:.1} dyn/cm, slabs' -sxy/syy from {:.3} to {:.3}; T from {:.1} to {:.1} \
+         cm²/s² but {:.1} and {:.1} in the two slabs at the seam; vx of the top slab {:.1} cm/s \
+         against the imposed {:.1} (gamma_dot L_y = {:.1} cm/s)\n",
         work("shear_disks"),
+        f["frames"][0],
         mean("phi"),
+        phis.iter().copied().fold(f64::INFINITY, f64::min),
+        phis.iter().copied().fold(0.0, f64::max),
         mean("sxy"),
         mean("syy"),
-        f["temperature"][1..f["temperature"].len() - 1]
-            .iter()
-            .copied()
+        (0..ys.len())
+            .map(|k| -f["sxy"][k] / f["syy"][k])
             .fold(f64::INFINITY, f64::min),
-        f["temperature"][1..f["temperature"].len() - 1]
-            .iter()
-            .copied()
+        (0..ys.len())
+            .map(|k| -f["sxy"][k] / f["syy"][k])
             .fold(0.0, f64::max),
-        f["temperature"][0],
-        f["temperature"][f["temperature"].len() - 1],
+        inner.iter().copied().fold(f64::INFINITY, f64::min),
+        inner.iter().copied().fold(0.0, f64::max),
+        temps[0],
+        temps[last],
+        f["vx"][last],
+        3.0 * (ys[last] - my),
+        3.0 * 2.0 * my,
     ));
     let profile = |col: &str, title: &str, label: &str, color: usize| {
         let points: Vec<(f64, f64)> = ys.iter().zip(&f[col]).map(|(y, v)| (*y, *v)).collect();
