@@ -123,6 +123,20 @@ fn a_sheared_cells_profiles_add_up_to_the_whole_cell_and_follow_the_imposed_shea
         / ys.iter().map(|y| (y - my).powi(2)).sum::<f64>();
     eprintln!("dvx/dy: {slope:.3} /s against γ̇ = {rate} /s");
     assert!((slope - rate).abs() < 0.1 * rate, "dvx/dy {slope}");
+    // The granular temperature is uniform across a Lees–Edwards cell (no slab is special, the
+    // seam included): every slab's T below twice the median slab's (they spread by about ±25 %
+    // over this window). A slab at the seam that took a straddling body's own velocity for its
+    // image's (v ∓ γ̇ L_y) had 3 to 4 times the others' T.
+    let mut temps = f["temperature"].clone();
+    temps.sort_by(f64::total_cmp);
+    let median = 0.5 * (temps[bins / 2 - 1] + temps[bins / 2]);
+    eprintln!("T: {temps:.2?} cm²/s²");
+    for (k, t) in f["temperature"].iter().enumerate() {
+        assert!(
+            *t < 2.0 * median,
+            "bin {k}: T {t} against the median {median}"
+        );
+    }
     // About the imposed profile (--relative) the mean flow is gone.
     let (code, out, err) = dem2d(&[
         "fields",
