@@ -573,4 +573,36 @@ mod tests {
         );
         assert!(out[2..7].iter().all(|b| b.syy == 0.0), "{out:?}");
     }
+
+    /// In a Lees–Edwards cell the part of a body beyond the horizontal seam is its image, which
+    /// moves at `v ∓ γ̇ L_y` (Lees & Edwards 1972): a disk at rest in the flow's frame at the
+    /// top, half across the seam, gives the bottom bin the image's velocity and no temperature.
+    #[test]
+    fn across_a_lees_edwards_seam_a_body_moves_as_its_image() {
+        let (rate, l) = (3.0, 4.0);
+        let cell = Cell::new(Vec2::new(l, l), Periodic::XY, rate, None);
+        // Centred on the top edge: half of it above, binned at the bottom as its image.
+        let v = Vec2::new(rate * (l - 0.5 * l), 0.0);
+        let frame = FieldFrame {
+            bodies: vec![disk(2.0, l, 0.4, v)],
+            contacts: Vec::new(),
+            cell: Some(cell),
+        };
+        let out = fields(
+            std::slice::from_ref(&frame),
+            &binning(Axis::Y, 4, 0.0, 0.0, 0.0),
+        );
+        // Top bin: the body itself, at +γ̇ L_y/2; bottom bin: its image, at −γ̇ L_y/2.
+        assert!((out[3].vx - 0.5 * rate * l).abs() < 1e-12, "{out:?}");
+        assert!((out[0].vx + 0.5 * rate * l).abs() < 1e-12, "{out:?}");
+        assert!(out[0].temperature.abs() < 1e-12 && out[3].temperature.abs() < 1e-12);
+        // About the imposed profile both halves are at rest.
+        let mut relative = binning(Axis::Y, 4, 0.0, 0.0, 0.0);
+        relative.relative = true;
+        let out = fields(std::slice::from_ref(&frame), &relative);
+        assert!(
+            out[0].vx.abs() < 1e-12 && out[3].vx.abs() < 1e-12,
+            "{out:?}"
+        );
+    }
 }
