@@ -109,6 +109,34 @@ fn a_sheared_cells_profiles_add_up_to_the_whole_cell_and_follow_the_imposed_shea
         );
         assert!(f["temperature"][k] > 0.0 && f["nematic"][k].is_nan());
     }
+    // The shear rate: the least-squares slope of vx(y) over the bins is γ̇ within 10 %.
+    let ys = &f["y"];
+    let (my, mv) = (
+        ys.iter().sum::<f64>() / bins as f64,
+        f["vx"].iter().sum::<f64>() / bins as f64,
+    );
+    let slope = ys
+        .iter()
+        .zip(&f["vx"])
+        .map(|(y, v)| (y - my) * (v - mv))
+        .sum::<f64>()
+        / ys.iter().map(|y| (y - my).powi(2)).sum::<f64>();
+    eprintln!("dvx/dy: {slope:.3} /s against γ̇ = {rate} /s");
+    assert!((slope - rate).abs() < 0.1 * rate, "dvx/dy {slope}");
+    // The granular temperature is uniform across a Lees–Edwards cell (no slab is special, the
+    // seam included): every slab's T below twice the median slab's (they spread by about ±25 %
+    // over this window). A slab at the seam that took a straddling body's own velocity for its
+    // image's (v ∓ γ̇ L_y) had 3 to 4 times the others' T.
+    let mut temps = f["temperature"].clone();
+    temps.sort_by(f64::total_cmp);
+    let median = 0.5 * (temps[bins / 2 - 1] + temps[bins / 2]);
+    eprintln!("T: {temps:.2?} cm²/s²");
+    for (k, t) in f["temperature"].iter().enumerate() {
+        assert!(
+            *t < 2.0 * median,
+            "bin {k}: T {t} against the median {median}"
+        );
+    }
     // About the imposed profile (--relative) the mean flow is gone.
     let (code, out, err) = dem2d(&[
         "fields",
@@ -126,6 +154,109 @@ fn a_sheared_cells_profiles_add_up_to_the_whole_cell_and_follow_the_imposed_shea
     for (k, vx) in r["vx"].iter().enumerate() {
         assert!(vx.abs() < 0.1 * rate * ly, "bin {k}: {vx}");
     }
+}
+
+/// A pile at rest carries its weight: 96 disks (ρ = 1, radii 0.4 and 0.5 cm) settled under
+/// gravity in a box 12 cm wide (a floor, frictionless side walls, a lid far above), 2 s. With
+/// the contact stress spread along the branch vectors, the force across a horizontal line at
+/// height y is the weight of the bodies whose centres lie above it (their force balance at
+/// rest; frictionless side walls carry no weight), so `σ_yy(y) L = Σ_b m_b g [y_b > y]`, and a
+/// bin [y₀, y₀ + h) holds the mean over its height, `Σ_b m_b g clamp(y_b − y₀, 0, h) / (h L)`
+/// (computed here from trajectory.csv). The bottom bin carries nearly the whole weight, W / L.
+#[test]
+fn a_pile_at_rest_carries_the_weight_of_the_bodies_above() {
+    let dir = scratch("fields_pile");
+    let (width, height, g) = (12.0, 14.0, 981.0);
+    let mut bodies = Vec::new();
+    for k in 0..96 {
+        let (row, col) = (k / 12, k % 12);
+        let r = if (k * 7) % 3 == 0 { 0.5 } else { 0.4 };
+        let x: f64 = 0.5 + col as f64 + if row % 2 == 1 { 0.25 } else { 0.0 };
+        // Deterministic velocities of up to 5 cm/s, to break the lattice.
+        let (u, v) = (((k * 37) % 11) as f64 - 5.0, ((k * 53) % 11) as f64 - 5.0);
+        bodies.push(serde_json::json!({
+            "shape": {"type": "circle", "r": r},
+            "position": [x.min(width - 0.5), 0.6 + 1.1 * row as f64],
+            "velocity": [u, v],
+        }));
+    }
+    let case = serde_json::json!({
+        "version": 1, "name": "pile", "units": "cm", "gravity": [0, -g], "dt": 1e-4,
+        "duration": 2.0, "output_every": 500,
+        "contact": {"model": "linear", "kn": 1e6, "restitution": 0.3, "friction": 0.5},
+        "walls": [
+            {"point": [0, 0], "normal": [0, 1]},
+            {"point": [0, 0], "normal": [1, 0], "friction": 0},
+            {"point": [width, 0], "normal": [-1, 0], "friction": 0},
+            {"point": [0, height], "normal": [0, -1]},
+        ],
+        "bodies": bodies,
+    });
+    let file = dir.join("pile.json");
+    std::fs::write(&file, case.to_string()).unwrap();
+    let run = dir.join("run");
+    let (code, out, err) = dem2d(&[
+        "run",
+        file.to_str().unwrap(),
+        "--out",
+        run.to_str().unwrap(),
+        "--contacts",
+        "--quiet",
+        "--overwrite",
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    let bins = 28;
+    let (code, out, err) = dem2d(&[
+        "fields",
+        run.to_str().unwrap(),
+        "--bins",
+        &bins.to_string(),
+        "--from",
+        "1.5",
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    let f = columns(&run.join("fields.csv"));
+    // The masses from the case, the positions of the window's frames from trajectory.csv.
+    let mass: Vec<f64> = bodies_of(&case)
+        .iter()
+        .map(|r| std::f64::consts::PI * r * r)
+        .collect();
+    let weight = g * mass.iter().sum::<f64>();
+    let t = columns(&run.join("trajectory.csv"));
+    let rows: Vec<usize> = (0..t["t"].len()).filter(|&k| t["t"][k] >= 1.5).collect();
+    let frames = f["frames"][0];
+    assert_eq!(rows.len() as f64, frames * mass.len() as f64);
+    let h = height / bins as f64;
+    for (k, y) in f["y"].iter().enumerate() {
+        let y0 = y - 0.5 * h;
+        let want = rows
+            .iter()
+            .map(|&i| mass[t["body"][i] as usize] * g * (t["y"][i] - y0).clamp(0.0, h))
+            .sum::<f64>()
+            / (h * width * frames);
+        // At rest to within the residual accelerations (|v| ~ 1e-4 cm/s): 0.1 % of W / L.
+        assert!(
+            (f["syy"][k] - want).abs() < 1e-3 * weight / width,
+            "bin {k} at y = {y}: σ_yy {} against {want}",
+            f["syy"][k]
+        );
+    }
+    let bottom = f["syy"][0];
+    eprintln!(
+        "bottom bin σ_yy {bottom:.1} dyn/cm against W/L = {:.1}",
+        weight / width
+    );
+    assert!((bottom - weight / width).abs() < 0.1 * weight / width);
+}
+
+/// The radii of a case's disks.
+fn bodies_of(case: &serde_json::Value) -> Vec<f64> {
+    case["bodies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| b["shape"]["r"].as_f64().unwrap())
+        .collect()
 }
 
 #[test]

@@ -5,6 +5,7 @@
 //! cargo run --release -p dem2d-lab -- figures --docs      # figures/ and the guide's tables
 //! cargo run --release -p dem2d-lab -- bench --docs        # the throughput table
 //! cargo run --release -p dem2d-lab -- bench --peers --steps 10000 --reps 3 --normal-force area,depth --docs
+//! cargo run --release -p dem2d-lab -- fields-forces   # docs/src/results/fields-forces.md
 //! cargo run --release -p dem2d-lab -- fuzz --mutants 2000 --seed 1   # a fuzzing round (fuzz.rs)
 //! cargo run --release -p dem2d-lab -- cross-check --fire 10000   # against LAMMPS (crosscheck.rs)
 //! ```
@@ -15,6 +16,7 @@
 mod area_law_report;
 mod bench;
 mod crosscheck;
+mod fields_forces;
 mod fuzz;
 mod peers;
 mod report;
@@ -164,6 +166,21 @@ enum Command {
         /// (docs/src/validation/lammps.md); run from the repository.
         #[arg(long)]
         docs: bool,
+    },
+    /// The figures and numbers of docs/src/results/fields-forces.md: the sheared cell's
+    /// profiles (`dem2d fields`) and the contact-force distributions (`dem2d forces`) of
+    /// relaxed and sheared disks and ellipses, with the fitted tail exponent α of each (about a
+    /// minute of runs: not part of `figures`).
+    FieldsForces {
+        /// Output directory for the SVGs.
+        #[arg(long, default_value = "figures")]
+        out: PathBuf,
+        /// Case directory.
+        #[arg(long, default_value = "cases")]
+        cases: PathBuf,
+        /// Where the runs (and PNG copies of the figures) go.
+        #[arg(long, default_value = "target/figure-runs/fields-forces")]
+        work: PathBuf,
     },
     /// A seeded fuzzing round over the newer features (periodic cells, imposed pressure,
     /// Lees–Edwards shear, relax, insertion and outflow, segments, materials, wall programs,
@@ -669,6 +686,15 @@ fn main() -> ExitCode {
             },
             *docs,
         ),
+        Command::FieldsForces { out, cases, work } => {
+            fields_forces::fields_forces(&fields_forces::Options {
+                cases: cases.clone(),
+                out: out.clone(),
+                work: work.clone(),
+            })
+            .map_err(Failure::failed)
+            .and_then(|r| print_out(&r))
+        }
         Command::Fuzz {
             mutants,
             seed,

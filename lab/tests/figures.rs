@@ -125,6 +125,9 @@ fn figures_quick_writes_every_figure_and_table_of_the_guide() {
                 // figures/scripts/ovito_render.py (OVITO) of the hopper's run (developer.md).
                 "player_hopper.png",
                 "ovito_hopper.png",
+                // `dem2d-lab fields-forces`'s (a minute of runs; results/fields-forces.md).
+                "fields_profiles.svg",
+                "forces_pdf.svg",
             ];
             if !name.starts_with("paraview_") && !others.contains(&name) {
                 wanted.push(name.to_string());

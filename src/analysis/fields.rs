@@ -27,7 +27,8 @@
 //! # Domains
 //! In a periodic cell the bins divide the cell's side along the axis as it is at each frame
 //! (its size may follow a stress), a body or branch vector across that side's seam is shared
-//! between the bins at both ends, and a contact across a seam is counted once, through the
+//! between the bins at both ends (across a Lees–Edwards seam the part beyond it moves as the
+//! body's image, at `v ∓ γ̇ L_y`), and a contact across a seam is counted once, through the
 //! nearest image. Elsewhere the caller gives the range `[lo, hi)` and the width across, and
 //! what lies outside the range is not binned. (Bins along x in a cell periodic in y: a body
 //! across the horizontal seam is binned at its own x, not at its Lees–Edwards image's.)
@@ -182,7 +183,9 @@ fn bin_of(s: f64, lo: f64, h: f64, n: usize, periodic: bool) -> Option<usize> {
     bin_index(((s - lo) / h).floor() as i64, n, periodic)
 }
 
-/// The area of `body` inside each bin it overlaps: `f(k, area)`.
+/// The area of `body` inside each bin it overlaps: `f(k, area, wraps)`, `wraps` the number of
+/// periods the slab lies above the range (−1: the part of a body below a periodic range's
+/// bottom, binned at the top; 0 inside).
 fn body_areas(
     body: &FieldBody,
     axis: Axis,
@@ -190,7 +193,7 @@ fn body_areas(
     h: f64,
     n: usize,
     periodic: bool,
-    mut f: impl FnMut(usize, f64),
+    mut f: impl FnMut(usize, f64, i64),
 ) {
     let fb = super::FrameBody {
         shape: body.shape,
@@ -231,7 +234,7 @@ fn body_areas(
             continue;
         }
         if let Some(k) = bin_index(u, n, periodic) {
-            f(k, a);
+            f(k, a, u.div_euclid(n as i64));
         }
     }
 }
@@ -247,9 +250,17 @@ pub fn fields(frames: &[FieldFrame], binning: &Binning) -> Vec<Bin> {
     let mut contact = vec![[0.0; 3]; n];
     let mut order = vec![(0.0, 0.0, 0.0); n];
     let mut centre = vec![0.0; n];
-    let relative_to = |frame: &FieldFrame, b: &FieldBody| -> Vec2 {
+    // The velocity of the part of body b in a slab `wraps` periods above the range: across the
+    // horizontal seam of a Lees–Edwards cell that part is the body's image, which moves at
+    // `v − wraps γ̇ L_y` (the image at y − L_y of a body above the top, at y + L_y of one below
+    // the bottom: Lees & Edwards 1972); about the imposed profile it is the body's own.
+    let relative_to = |frame: &FieldFrame, b: &FieldBody, wraps: i64| -> Vec2 {
         match &frame.cell {
             Some(c) if binning.relative => b.velocity - Vec2::new(c.mean_flow(b.position.y), 0.0),
+            Some(c) if axis == Axis::Y && wraps != 0 => {
+                let jump = c.mean_flow(c.size.y) - c.mean_flow(0.0);
+                b.velocity - Vec2::new(wraps as f64 * jump, 0.0)
+            }
             _ => b.velocity,
         }
     };
@@ -261,9 +272,9 @@ pub fn fields(frames: &[FieldFrame], binning: &Binning) -> Vec<Bin> {
             *c += lo + (k as f64 + 0.5) * h;
         }
         for b in &frame.bodies {
-            let v = relative_to(frame, b);
             let axis_of = long_axis(&b.shape, b.angle);
-            body_areas(b, axis, lo, h, n, periodic, |k, a| {
+            body_areas(b, axis, lo, h, n, periodic, |k, a, wraps| {
+                let v = relative_to(frame, b, wraps);
                 phi[k] += a / area;
                 let m = b.density * a;
                 mass[k] += m;
@@ -319,8 +330,8 @@ pub fn fields(frames: &[FieldFrame], binning: &Binning) -> Vec<Bin> {
         let h = (hi - lo) / n as f64;
         let area = h * across;
         for b in &frame.bodies {
-            let v = relative_to(frame, b);
-            body_areas(b, axis, lo, h, n, periodic, |k, a| {
+            body_areas(b, axis, lo, h, n, periodic, |k, a, wraps| {
+                let v = relative_to(frame, b, wraps);
                 let m = b.density * a;
                 let d = v - mean[k];
                 fluct[k] += 0.5 * m * d.norm_squared();
@@ -561,5 +572,37 @@ mod tests {
             "{out:?}"
         );
         assert!(out[2..7].iter().all(|b| b.syy == 0.0), "{out:?}");
+    }
+
+    /// In a Lees–Edwards cell the part of a body beyond the horizontal seam is its image, which
+    /// moves at `v ∓ γ̇ L_y` (Lees & Edwards 1972): a disk at rest in the flow's frame at the
+    /// top, half across the seam, gives the bottom bin the image's velocity and no temperature.
+    #[test]
+    fn across_a_lees_edwards_seam_a_body_moves_as_its_image() {
+        let (rate, l) = (3.0, 4.0);
+        let cell = Cell::new(Vec2::new(l, l), Periodic::XY, rate, None);
+        // Centred on the top edge: half of it above, binned at the bottom as its image.
+        let v = Vec2::new(rate * (l - 0.5 * l), 0.0);
+        let frame = FieldFrame {
+            bodies: vec![disk(2.0, l, 0.4, v)],
+            contacts: Vec::new(),
+            cell: Some(cell),
+        };
+        let out = fields(
+            std::slice::from_ref(&frame),
+            &binning(Axis::Y, 4, 0.0, 0.0, 0.0),
+        );
+        // Top bin: the body itself, at +γ̇ L_y/2; bottom bin: its image, at −γ̇ L_y/2.
+        assert!((out[3].vx - 0.5 * rate * l).abs() < 1e-12, "{out:?}");
+        assert!((out[0].vx + 0.5 * rate * l).abs() < 1e-12, "{out:?}");
+        assert!(out[0].temperature.abs() < 1e-12 && out[3].temperature.abs() < 1e-12);
+        // About the imposed profile both halves are at rest.
+        let mut relative = binning(Axis::Y, 4, 0.0, 0.0, 0.0);
+        relative.relative = true;
+        let out = fields(std::slice::from_ref(&frame), &relative);
+        assert!(
+            out[0].vx.abs() < 1e-12 && out[3].vx.abs() < 1e-12,
+            "{out:?}"
+        );
     }
 }
