@@ -135,3 +135,101 @@ impl CohesionPart {
         out.elastic_energy -= c * k.area;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact_law::{
+        ContactSpec, History, Kinematics, LinearDamping, LinearDashpots, RollingKinematics, Scaled,
+    };
+
+    fn spec(c: Option<f64>) -> ContactSpec {
+        ContactSpec::linear(
+            Scaled::Absolute(100.0),
+            Scaled::Absolute(100.0),
+            LinearDamping::Dashpots {
+                eta_n: Scaled::Absolute(2.0),
+                eta_s: Scaled::Absolute(2.0),
+            },
+            0.5,
+        )
+        .with_cohesion(c.map(|cohesion| CohesionPart { cohesion }))
+    }
+
+    fn kinematics(depth: f64, cohesion: Option<CohesionKinematics>) -> Kinematics {
+        let nan = f64::NAN;
+        Kinematics {
+            depth,
+            energy_depth: depth,
+            vn: -0.5,
+            vt: 0.1,
+            m_eff: nan,
+            r_eff: nan,
+            dt: 1e-3,
+            area: None,
+            spin: 0.0,
+            rolling: RollingKinematics {
+                radius: nan,
+                inertia: nan,
+                spin_inertia: nan,
+            },
+            cohesion,
+        }
+    }
+
+    #[test]
+    fn a_law_with_cohesion_is_not_of_the_linear_fast_paths_kind() {
+        let law = spec(None).resolve(&spec(None), 1.0, 980.0);
+        assert!(LinearDashpots::of(&law).is_some());
+        let law = spec(Some(3.0)).resolve(&spec(Some(3.0)), 1.0, 980.0);
+        assert!(LinearDashpots::of(&law).is_none());
+        assert!(law.needs().cohesion);
+    }
+
+    #[test]
+    fn the_pull_is_c_times_the_chord_after_the_clamped_spring_and_the_slider() {
+        // k δ − η v_n = 100 × 0.01 + 2 × 0.5 = 2 (repulsive); the pull c ℓ = 3 × 0.4 = 1.2;
+        // the slider's cap μ × 2 = 1 reads the repulsive part only.
+        let ck = CohesionKinematics {
+            length: 0.4,
+            area: 0.1,
+            couple: 0.25,
+        };
+        let law = spec(Some(3.0)).resolve(&spec(None), 1.0, 980.0);
+        let plain = spec(None).resolve(&spec(None), 1.0, 980.0);
+        let with = law.force(&kinematics(0.01, Some(ck)), &mut History::default());
+        let without = plain.force(&kinematics(0.01, None), &mut History::default());
+        assert_eq!(without.normal, 2.0);
+        assert_eq!(with.normal, 2.0 - 3.0 * 0.4);
+        assert_eq!(with.tangential, without.tangential);
+        assert_eq!(with.normal_non_elastic, without.normal_non_elastic);
+        assert_eq!(with.elastic_energy, without.elastic_energy - 3.0 * 0.1);
+        assert_eq!(with.couple, without.couple - 3.0 * 0.25);
+        // A separating contact whose dashpot cancels the spring still pulls: −c ℓ.
+        let mut k = kinematics(0.01, Some(ck));
+        k.vn = 10.0;
+        assert_eq!(law.force(&k, &mut History::default()).normal, -(3.0 * 0.4));
+    }
+
+    #[test]
+    fn materials_mix_by_the_geometric_mean_and_a_material_keeps_its_own() {
+        let c = |v: f64| Some(CohesionPart { cohesion: v });
+        assert_eq!(CohesionPart::mix(c(4.0), c(9.0)), c(6.0));
+        assert_eq!(CohesionPart::mix(c(0.3), c(0.3)), c(0.3));
+        assert_eq!(CohesionPart::mix(c(4.0), None), None);
+        assert_eq!(
+            spec(Some(4.0)).mix(&spec(Some(9.0))).unwrap().cohesion,
+            c(6.0)
+        );
+        // Mixed keys and given keys carry it (a pair written back reads back the same).
+        let (keys, errors) = spec(Some(4.0)).mixed_keys(&spec(Some(9.0)));
+        assert!(errors.is_empty());
+        assert!(keys.contains(&("cohesion", Given::Number(6.0))));
+        assert!(
+            spec(Some(4.0))
+                .given()
+                .contains(&("cohesion", Given::Number(4.0)))
+        );
+        assert!(!spec(None).given().iter().any(|(k, _)| *k == "cohesion"));
+    }
+}

@@ -1487,7 +1487,8 @@ fn check_cohesion_boundaries(
             at,
             format!(
                 "cohesion is not available against {kind} (walls[{k}]): its contacts give no \
-                 overlap area to pull on; give that wall `\"cohesion\": 0`"
+                 overlap area to pull on; give that wall a law without it (its own \
+                 `\"cohesion\": 0`, or a material without cohesion)"
             ),
         ));
     }
