@@ -93,10 +93,14 @@ impl CohesionPart {
     /// The keys this part reads.
     pub const KEYS: &[&str] = &["cohesion"];
 
-    /// Reads `cohesion` (≥ 0; `None` when not given or zero: no part at all).
+    /// Reads `cohesion` (≥ 0, and when not zero within a scale's accepted range; `None` when
+    /// not given or zero: no part at all).
     pub fn parse(k: &impl Keys) -> Result<Option<Self>, ParamError> {
         match k.number("cohesion", Check::NonNegative)? {
-            Some(c) if c > 0.0 => Ok(Some(CohesionPart { cohesion: c })),
+            Some(c) if c > 0.0 => {
+                let c = k.number("cohesion", Check::Scale)?.unwrap_or(c);
+                Ok(Some(CohesionPart { cohesion: c }))
+            }
             Some(_) | None => Ok(None),
         }
     }
