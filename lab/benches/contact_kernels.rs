@@ -356,6 +356,7 @@ fn geometry_and_law(i: &Object, j: &Object, mut cache: PairCache, nf: NormalForc
             friction: 0.3,
         },
         rolling: None,
+        cohesion: None,
     };
     let kin = Kinematics {
         depth: g.depth,
@@ -378,6 +379,7 @@ fn geometry_and_law(i: &Object, j: &Object, mut cache: PairCache, nf: NormalForc
             inertia: f64::NAN,
             spin_inertia: f64::NAN,
         },
+        cohesion: None,
     };
     law.force(&kin, &mut History::default()).normal
 }

@@ -15,6 +15,9 @@
 //!   value for contacts with itself, and the softer material dominates.
 //! - **Young's modulus and Poisson's ratio** (Hertz–Mindlin): not averaged; the contact moduli
 //!   E* and G* are formed from both materials' (T11, T19), as for a wall of another material.
+//! - **Cohesion** `c`: the geometric mean `√(c_a c_b)` (Berthelot's rule; surface energies
+//!   combine so, `W_ab = 2√(γ_a γ_b)`, Girifalco & Good 1957); a material without cohesion has
+//!   c = 0: the pair has none.
 //! - The **model** and **normal force** are the scene's (`contact`): a material cannot change
 //!   them.
 //!
@@ -107,6 +110,7 @@ impl ContactSpec {
             damping: self.damping.mix(&other.damping)?,
             tangential: self.tangential.mix(&other.tangential)?,
             rolling: super::RollingPart::mix(self.rolling, other.rolling)?,
+            cohesion: super::CohesionPart::mix(self.cohesion, other.cohesion),
         })
     }
 
@@ -143,6 +147,9 @@ impl ContactSpec {
                 .map(|r| r.map_or(vec![], |r| r.given())),
             own_rolling,
         ));
+        if let Some(c) = super::CohesionPart::mix(self.cohesion, other.cohesion) {
+            keys.extend(c.given());
+        }
         (keys, errors)
     }
 
@@ -154,6 +161,9 @@ impl ContactSpec {
         keys.extend(self.tangential.given());
         if let Some(r) = &self.rolling {
             keys.extend(r.given());
+        }
+        if let Some(c) = &self.cohesion {
+            keys.extend(c.given());
         }
         keys
     }

@@ -10,7 +10,8 @@
 //!   gives it (the depth, or the area potential's equivalent overlap);
 //! - [`damping`]: the normal and shear dashpots (given, or from a restitution coefficient);
 //! - [`tangential`]: the shear spring and Coulomb's slider, written once for every spring;
-//! - [`rolling`] (optional): the rolling-resistance couple (Ai et al. 2011's CDT or EPSD).
+//! - [`rolling`] (optional): the rolling-resistance couple (Ai et al. 2011's CDT or EPSD);
+//! - [`cohesion`] (optional): a pull `c ℓ` on the overlap chord, the gradient of `−c A`.
 //!
 //! Each part owns its parameters and its per-contact history, as LAMMPS's granular sub-models
 //! do: it reads its own keys from the case's contact object through [`Keys`] (the core never
@@ -25,7 +26,8 @@
 //! Conventions: `n` points from i to j; `t = (−n_y, n_x)` (n turned a quarter counter-clockwise);
 //! the relative velocity is that of j's material point minus i's, at the contact point, with
 //! components `v_n` (negative when approaching) and `v_t`. The force on j is `F_n n + F_t t`, on
-//! i its opposite; `F_n ≥ 0` always (a contact pushes, never pulls).
+//! i its opposite; `F_n ≥ 0` always (a contact pushes, never pulls) but for the [`cohesion`]
+//! part's pull.
 //!
 //! T writes the Voigt element for the force on i with `n_ij` pointing from j to i and the overlap
 //! negative (T6–T9); with our n (i → j) and δ > 0 the same law reads `F_n = k_n δ − η_n v_n` for
@@ -49,6 +51,7 @@
 //!   radius of curvature is R*_t has ρ ≈ (R*_t/R*_eq)^{1/3} and stiffness `k_n ρ²` against its
 //!   depth). See [`EquivalentOverlap`] for two flat faces.
 
+pub mod cohesion;
 pub mod damping;
 pub mod keys;
 pub mod mixing;
@@ -58,6 +61,7 @@ pub mod params;
 pub mod rolling;
 pub mod tangential;
 
+pub use cohesion::{CohesionKinematics, CohesionPart};
 pub use damping::{
     DampingPart, DampingSpec, LinearDamping, damping_factor_hertz, damping_ratio_linear,
 };
@@ -140,6 +144,8 @@ pub struct Kinematics {
     pub spin: f64,
     /// Rolling radius and inertia (read only by a rolling part; NaN when none is needed).
     pub rolling: RollingKinematics,
+    /// The overlap chord and area (read only by a cohesion part; `None` when none is needed).
+    pub cohesion: Option<CohesionKinematics>,
 }
 
 /// The overlap a normal spring acts on, for one contact (see [`Kinematics::spring_overlap`]).
@@ -278,6 +284,7 @@ pub struct ContactSpec {
     pub damping: DampingSpec,
     pub tangential: TangentialSpec,
     pub rolling: Option<RollingPart>,
+    pub cohesion: Option<CohesionPart>,
 }
 
 impl ContactSpec {
@@ -288,6 +295,7 @@ impl ContactSpec {
             DampingSpec::KEYS,
             TangentialSpec::KEYS,
             RollingPart::KEYS,
+            CohesionPart::KEYS,
         ]
         .into_iter()
         .flatten()
@@ -320,11 +328,13 @@ impl ContactSpec {
         let tangential = TangentialSpec::parse(k, &normal)?;
         let rolling = RollingPart::parse(k)?;
         let damping = DampingSpec::parse(k, &normal)?;
+        let cohesion = CohesionPart::parse(k)?;
         Ok(ContactSpec {
             normal,
             damping,
             tangential,
             rolling,
+            cohesion,
         })
     }
 
@@ -342,6 +352,7 @@ impl ContactSpec {
                 friction,
             },
             rolling: None,
+            cohesion: None,
         }
     }
 
@@ -359,6 +370,7 @@ impl ContactSpec {
                 friction,
             },
             rolling: None,
+            cohesion: None,
         }
     }
 
@@ -381,6 +393,17 @@ impl ContactSpec {
     /// The same spec with rolling resistance `rolling`.
     pub fn with_rolling(mut self, rolling: Option<RollingPart>) -> Self {
         self.rolling = rolling;
+        self
+    }
+
+    /// Cohesion, if any.
+    pub fn cohesion(&self) -> Option<CohesionPart> {
+        self.cohesion
+    }
+
+    /// The same spec with cohesion `cohesion`.
+    pub fn with_cohesion(mut self, cohesion: Option<CohesionPart>) -> Self {
+        self.cohesion = cohesion;
         self
     }
 
@@ -419,6 +442,7 @@ impl ContactSpec {
                 .tangential
                 .resolve(&self.normal, &other_material.normal, rho, g),
             rolling: self.rolling,
+            cohesion: self.cohesion,
         }
     }
 
@@ -436,6 +460,7 @@ pub struct Law {
     pub damping: DampingPart,
     pub tangential: TangentialPart,
     pub rolling: Option<RollingPart>,
+    pub cohesion: Option<CohesionPart>,
 }
 
 /// The stiffness and damping of a contact's modes, for the critical time step: along the
@@ -457,6 +482,8 @@ pub struct Needs {
     pub r_eff: bool,
     /// The rolling radius and inertias ([`RollingKinematics`]): a rolling part.
     pub rolling: bool,
+    /// The overlap chord and area ([`CohesionKinematics`]): a cohesion part.
+    pub cohesion: bool,
 }
 
 impl Law {
@@ -467,6 +494,7 @@ impl Law {
             m_eff: !matches!(self.damping, DampingPart::Dashpots { .. }) || self.rolling.is_some(),
             r_eff: matches!(self.normal, NormalPart::Hertz { .. }),
             rolling: self.rolling.is_some(),
+            cohesion: self.cohesion.is_some(),
         }
     }
 
@@ -474,7 +502,9 @@ impl Law {
     /// the normal spring on its overlap ([`Kinematics::spring_overlap`]: the depth, or the
     /// area law's δ_eq with `F_n = ρ F_s(δ_eq) + η δ̇_eq`), `F_n = max(0, ρ F_s + η_n δ̇)` (T6,
     /// clamped so that the contact never pulls); the tangential part (T15–T20) with the
-    /// damping part's shear dashpot; the rolling part, if any. Elastic energy `e k δ²` (with
+    /// damping part's shear dashpot; the rolling part, if any; last the cohesion part's pull
+    /// `c ℓ` (after the slider and the rolling cap, which read the repulsive part only).
+    /// Elastic energy `e k δ²` (with
     /// `δ²` → `δ·energy_depth`) plus the history springs'.
     #[inline(always)]
     pub fn force(&self, k: &Kinematics, h: &mut History) -> ContactForce {
@@ -514,6 +544,13 @@ impl Law {
             if let Some(r) = &self.rolling {
                 let zeta = self.damping.ratio(&s, k.m_eff);
                 r.apply(&k.rolling, k.spin, kt, zeta, k.dt, rolling, &mut out);
+            }
+        }
+        if let Some(c) = &self.cohesion {
+            // The pass gives the chord to every contact whose law has cohesion (`needs`).
+            debug_assert!(k.cohesion.is_some(), "a cohesive contact without its chord");
+            if let Some(ck) = &k.cohesion {
+                c.apply(ck, &mut out);
             }
         }
         out
@@ -571,8 +608,13 @@ pub struct LinearDashpots {
 
 impl LinearDashpots {
     /// The law's numbers, when it is of this kind. Every part's kinds are named (a new kind
-    /// of part must say here whether it is of this kind).
+    /// of part must say here whether it is of this kind): a law with cohesion is not (its
+    /// contacts need the chord, which this kind's copies never ask for).
     pub fn of(law: &Law) -> Option<Self> {
+        match law.cohesion {
+            None => {}
+            Some(CohesionPart { .. }) => return None,
+        }
         let kn = match law.normal {
             NormalPart::Linear { kn } => kn,
             NormalPart::Hertz { .. } => return None,
@@ -611,6 +653,7 @@ impl LinearDashpots {
                 friction: self.friction,
             },
             rolling: None,
+            cohesion: None,
         }
     }
 }

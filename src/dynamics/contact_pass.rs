@@ -32,8 +32,9 @@ use super::kinematics::{self, Contact};
 use super::materials::PairTable;
 use super::members;
 use super::partner::{Partner, Sides};
-use crate::contact_law::{ContactSpec, History, Law, LinearDashpots, NormalForce, PairSpec};
+use crate::contact_law::{CohesionKinematics, ContactSpec, History, Law, LinearDashpots};
 use crate::contact_law::{HISTORY_LEN, Needs, PairFacts, SpringOn};
+use crate::contact_law::{NormalForce, PairSpec};
 use crate::geometry::overlap_area::DiskLens;
 use crate::geometry::{Pose, Shape, Vec2};
 use crate::narrow_phase::{self, ContactState, PairCache, Request, Side, contact_with};
@@ -430,6 +431,9 @@ pub(crate) struct PassContext<'a> {
     pub near_seam: &'a [bool],
     /// With rolling resistance, each body's contacts (the last pass's): the CDT limiter's share.
     pub touching: &'a [u32],
+    /// Some pair's law has cohesion: the contacts ask the narrow phase for their chord and
+    /// overlap area ([`CohesionKinematics`]).
+    pub cohesive: bool,
 }
 
 impl<'a> PassContext<'a> {
@@ -445,7 +449,32 @@ impl<'a> PassContext<'a> {
             cell: input.cell,
             near_seam,
             touching,
+            cohesive: input.pairs.all().any(|p| p.spec.cohesion.is_some()),
         }
+    }
+
+    /// What a circle pair's or a clump member pair's query asks besides the depth: nothing, but
+    /// in a cohesive scene the chord and the overlap area.
+    #[inline(always)]
+    fn lean_request(&self) -> Request<'static> {
+        if self.cohesive {
+            Request::FULL
+        } else {
+            Request::LEAN
+        }
+    }
+
+    /// The cohesion's view of the contact `c` whose force acts at `point` along `normal` (in a
+    /// cohesive scene; `None` otherwise).
+    #[inline(always)]
+    fn cohesion_of(
+        &self,
+        c: &narrow_phase::Contact,
+        point: Vec2,
+        normal: Vec2,
+    ) -> Option<CohesionKinematics> {
+        self.cohesive
+            .then(|| CohesionKinematics::of(c, point, normal))
     }
 
     /// The sides of a slot's pair as the narrow phase takes them: the giver as i, the receiver
@@ -721,9 +750,16 @@ impl<'a> SlotOut<'a> {
     }
 }
 
-/// A slot's contact as the geometry found it: state, point, normal, depth and what the spring
-/// acts on.
-type Found = (ContactState, Vec2, Vec2, f64, SpringOn);
+/// A slot's contact as the geometry found it: state, point, normal, depth, what the spring
+/// acts on, and in a cohesive scene the chord and area the pull reads.
+type Found = (
+    ContactState,
+    Vec2,
+    Vec2,
+    f64,
+    SpringOn,
+    Option<CohesionKinematics>,
+);
 
 /// Where a slot's geometry comes from (see the module documentation).
 pub(crate) trait Geometry {
@@ -741,25 +777,28 @@ pub(crate) trait Geometry {
 struct Disks;
 
 impl Disks {
-    /// The slot's contact, from an empty pair cache (a circle pair keeps nothing).
+    /// The slot's contact, from an empty pair cache (a circle pair keeps nothing), computing what
+    /// `request` asks.
     #[inline(always)]
-    fn contact(self, sides: Sides, cx: &PassContext) -> Option<narrow_phase::Contact> {
+    fn contact(
+        self,
+        sides: Sides,
+        cx: &PassContext,
+        request: Request,
+    ) -> Option<narrow_phase::Contact> {
         let b = cx.bodies;
         let recv = sides.receiver;
         let circle_j = Shape::Circle { r: b.bound[recv] };
         let j = Side::Body(&circle_j, &b.state[recv].pose);
         match sides.giver {
-            Partner::Wall(w) => contact_with(
-                cx.walls[w].side(),
-                j,
-                &mut PairCache::default(),
-                Request::LEAN,
-            ),
+            Partner::Wall(w) => {
+                contact_with(cx.walls[w].side(), j, &mut PairCache::default(), request)
+            }
             Partner::Body(k) => {
                 let circle_i = Shape::Circle { r: b.bound[k] };
                 let mut store = Pose::IDENTITY;
                 let i = Side::Body(&circle_i, cx.giver_pose(k, sides, &mut store));
-                contact_with(i, j, &mut PairCache::default(), Request::LEAN)
+                contact_with(i, j, &mut PairCache::default(), request)
             }
         }
     }
@@ -769,8 +808,9 @@ impl Geometry for Disks {
     const DISKS: bool = true;
     #[inline(always)]
     fn find(self, sides: Sides, cx: &PassContext) -> Option<Found> {
-        self.contact(sides, cx)
-            .map(|c| (c.state, c.point, c.normal, c.depth, SpringOn::Depth))
+        // (Only in a scene whose laws are all linear with constant dashpots: no cohesion.)
+        self.contact(sides, cx, Request::LEAN)
+            .map(|c| (c.state, c.point, c.normal, c.depth, SpringOn::Depth, None))
     }
 }
 
@@ -783,9 +823,18 @@ struct Lean(Option<narrow_phase::Contact>);
 impl Geometry for Lean {
     const DISKS: bool = false;
     #[inline(always)]
-    fn find(self, _: Sides, _: &PassContext) -> Option<Found> {
-        self.0
-            .map(|c| (c.state, c.point, c.normal, c.depth, SpringOn::Depth))
+    fn find(self, _: Sides, cx: &PassContext) -> Option<Found> {
+        self.0.map(|c| {
+            let cohesion = cx.cohesion_of(&c, c.point, c.normal);
+            (
+                c.state,
+                c.point,
+                c.normal,
+                c.depth,
+                SpringOn::Depth,
+                cohesion,
+            )
+        })
     }
 }
 
@@ -811,8 +860,8 @@ impl Geometry for Dispatch<'_> {
         let mut store = Pose::IDENTITY;
         let (i, j) = cx.sides(sides, &mut store);
         let request = Request {
-            area: area_law,
-            chord: false,
+            area: area_law || cx.cohesive,
+            chord: cx.cohesive,
             trace: None,
         };
         // (Not `Option::map` with a closure: the compiler kept that closure out of line, and
@@ -821,7 +870,13 @@ impl Geometry for Dispatch<'_> {
         // `World::step` over 50 steps as the lab notebook takes it.)
         let c = contact_with(i, j, cache, request)?;
         let spring = SpringOn::of(&c, area_law, &facts);
-        Some((c.state, c.point, c.normal, c.depth, spring))
+        let cohesion = if cx.cohesive {
+            let (point, normal) = spring.point_normal(c.point, c.normal);
+            Some(CohesionKinematics::of(&c, point, normal))
+        } else {
+            None
+        };
+        Some((c.state, c.point, c.normal, c.depth, spring, cohesion))
     }
 }
 
@@ -1004,7 +1059,7 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool, const PERIODIC: boo
     let sides = cx.slot_sides::<PAIR, PERIODIC>(slot);
     let recv = sides.receiver;
     let (wall, giver) = (sides.wall(), sides.giving_body());
-    let (state, geo_point, geo_normal, depth, spring) = match geometry.find(sides, cx) {
+    let (state, geo_point, geo_normal, depth, spring, cohesion) = match geometry.find(sides, cx) {
         Some(l) if l.3 > 0.0 => l,
         // Separated, or touching without overlap: no force, no history.
         _ => {
@@ -1045,6 +1100,7 @@ fn contact_slot<G: Geometry, L: LawSource, const PAIR: bool, const PERIODIC: boo
             normal: n_,
             depth,
             spring: &spring,
+            cohesion,
         },
         m_eff,
         needs,
@@ -1161,11 +1217,17 @@ fn lean_of<const PERIODIC: bool>(
 ) -> Option<Option<narrow_phase::Contact>> {
     let sides = cx.slot_sides::<false, PERIODIC>(slot);
     if slot.sub != 0 {
-        return Some(members::lean_contact(cx.bodies, cx.walls, slot, sides));
+        return Some(members::lean_contact(
+            cx.bodies,
+            cx.walls,
+            slot,
+            sides,
+            cx.lean_request(),
+        ));
     }
     let b = cx.bodies;
     let circles = b.is_circle[sides.receiver] && sides.giving_body().is_none_or(|k| b.is_circle[k]);
-    circles.then(|| Disks.contact(sides, cx))
+    circles.then(|| Disks.contact(sides, cx, cx.lean_request()))
 }
 
 /// Asks the processor to fetch the state of slot `s`'s second body (`j`, not a wall) and its

@@ -45,7 +45,7 @@ use super::body::Bodies;
 use super::boundary::Boundary;
 use super::partner::{Partner, Sides};
 use crate::contact_law::params::pair_density;
-use crate::contact_law::{Kinematics, Needs, RollingKinematics, SpringOn};
+use crate::contact_law::{CohesionKinematics, Kinematics, Needs, RollingKinematics, SpringOn};
 use crate::geometry::Vec2;
 use crate::geometry::overlap_area::DiskLens;
 
@@ -59,6 +59,8 @@ pub struct Contact<'a> {
     pub normal: Vec2,
     pub depth: f64,
     pub spring: &'a SpringOn,
+    /// The overlap chord and area, where the pass asked for them (a cohesive scene).
+    pub cohesion: Option<CohesionKinematics>,
 }
 
 /// What the law reads of the contact `c` (T5–T22: [`Kinematics`]): the overlap its spring acts
@@ -102,6 +104,7 @@ pub fn of_contact(
                 spin_inertia: f64::NAN,
             }
         },
+        cohesion: if needs.cohesion { c.cohesion } else { None },
     }
 }
 
@@ -132,6 +135,7 @@ pub fn worst_case(bodies: &Bodies, a: usize, b: Option<usize>, depth: f64) -> Ki
             inertia: if b.is_some() { 0.5 * pivot } else { pivot },
             spin_inertia: bodies.inertia[a],
         },
+        cohesion: None,
     }
 }
 

@@ -11,7 +11,8 @@ use crate::geometry::{Clump, Pose, Shape};
 use crate::narrow_phase::{Contact, PairCache, Request, Side, clump, contact_with};
 
 /// A clump slot's member pair's contact, from the dispatcher on the member (a circle at its
-/// world centre) and the other side, from an empty pair cache, without a chord or an area. The
+/// world centre) and the other side, from an empty pair cache, computing what `request` asks
+/// (nothing but in a cohesive scene, whose pull reads the chord and the area). The
 /// contact pass takes it with the spring on its depth: a member is a disk, whose area potential
 /// against a wall or a disk *is* that spring; against an ellipse, a rectangle or a polygon the
 /// area law would take the lens potential, which clump members do not (a documented
@@ -23,10 +24,11 @@ pub(crate) fn lean_contact(
     walls: &[Boundary],
     slot: &Slot,
     sides: Sides,
+    request: Request,
 ) -> Option<Contact> {
     let store = placed(b, slot, sides);
     let (i, j) = sides_of(b, walls, sides, &store);
-    contact_with(i, j, &mut PairCache::default(), Request::LEAN)
+    contact_with(i, j, &mut PairCache::default(), request)
 }
 
 /// The member circles of a clump slot's two sides, `[giver, receiver]`, each placed at its

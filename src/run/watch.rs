@@ -120,9 +120,11 @@ impl BlowupWatch {
     }
 
     /// The energy that could be in motion, as of the last check: the initial kinetic and
-    /// elastic energy, the most gravity and the walls have supplied.
+    /// elastic energy, the most gravity and the walls have supplied. (Cohesion stores a
+    /// negative energy, `−c A`: the initial elastic energy counts by its size, the binding
+    /// energy held now by [`BlowupWatch::check`]; both are the spring energy alone without it.)
     pub fn available(&self) -> f64 {
-        self.kinetic0 + self.elastic0 + self.gravity_supplied + self.boundary_supplied
+        self.kinetic0 + self.elastic0.abs() + self.gravity_supplied + self.boundary_supplied
     }
 
     /// Checks the world after a step; O(1).
@@ -145,7 +147,8 @@ impl BlowupWatch {
         }
         self.boundary_supplied = self.boundary_supplied.max(e.boundary_work);
         self.gravity_supplied = self.gravity_supplied.max(self.potential0 - e.potential);
-        let available = self.available();
+        // (A cohesive contact's binding energy can be set in motion too.)
+        let available = self.available() + (-e.elastic).max(0.0);
         self.dissipated_max = self.dissipated_max.max(e.dissipated);
         let created =
             e.total() - self.total0 - e.boundary_work + (self.dissipated_max - e.dissipated);
@@ -154,12 +157,12 @@ impl BlowupWatch {
             * (self.potential0.abs()
                 + e.potential.abs()
                 + e.kinetic
-                + e.elastic
+                + e.elastic.abs()
                 + e.dissipated.abs()
                 + self.dissipated_max.abs()
                 + e.boundary_work.abs()
                 + self.kinetic0
-                + self.elastic0);
+                + self.elastic0.abs());
         if created > ENERGY_GROWTH * available + rounding {
             return Some(Trigger::Energy { created, available });
         }

@@ -185,7 +185,8 @@ impl Case {
         let mut named = read_materials(o.get("materials"), &contact_map)?;
         read_pairs(o.get("pairs"), &mut named, (&contact, &contact_map))?;
         let mut walls = Vec::new();
-        if let Some(list) = o.get("walls") {
+        let wall_items = o.get("walls");
+        if let Some(list) = wall_items {
             let items = list.as_array().ok_or_else(|| {
                 FieldError::new("walls", format!("must be an array, got {}", type_of(list)))
             })?;
@@ -420,6 +421,13 @@ impl Case {
         check_walls(&walls, &bodies)?;
         let meets = meeting(&checked, &walls);
         check_mixing(&named, (&contact, &contact_map), &meets)?;
+        check_cohesion_boundaries(
+            &walls,
+            &checked,
+            &named,
+            (&contact, &contact_map),
+            wall_items,
+        )?;
         check_contact_ranges(&contact, &named, &meets, &walls, &checked, gravity)?;
         Ok(Case {
             name,
@@ -1431,4 +1439,58 @@ fn analysis_window(v: &Value) -> Result<[f64; 4], FieldError> {
         return Err(bad());
     }
     Ok([x[0], x[1], x[2], x[3]])
+}
+
+/// Refuses cohesion against a drum or a segment wall: their kernels give no overlap area for
+/// every contact (a drum none; a segment none at its ends), so the pull `c ℓ` and its energy
+/// `−c A` have no chord to act on there (see `contact_law::cohesion`). The error names the key
+/// that gives the pair its cohesion: the wall's own `cohesion`, its material's, or the scene's.
+fn check_cohesion_boundaries(
+    walls: &[Boundary],
+    bodies: &[BodyInit],
+    named: &Named,
+    (contact, contact_map): (&ContactSpec, &Map<String, Value>),
+    items: Option<&Value>,
+) -> Result<(), FieldError> {
+    for (k, w) in walls.iter().enumerate() {
+        let kind = match (w.drum(), w.segment()) {
+            (Some(_), _) => "a drum",
+            (None, Some(_)) => "a segment wall",
+            (None, None) => continue,
+        };
+        let own = items
+            .and_then(|v| v.get(k))
+            .is_some_and(|item| item.get("cohesion").is_some());
+        let cohesive = match w.material {
+            None => w.spec.cohesion.is_some(),
+            Some(a) => bodies.iter().any(|b| {
+                named
+                    .materials
+                    .pair(contact, a, b.material)
+                    .is_ok_and(|p| p.spec.cohesion.is_some())
+            }),
+        };
+        if !cohesive {
+            continue;
+        }
+        let at = if own {
+            join(&index("walls", k), "cohesion")
+        } else {
+            match w.material {
+                Some(m) if m != 0 && named.map(contact_map, m).contains_key("cohesion") => {
+                    join(&named.path(m), "cohesion")
+                }
+                _ => "contact.cohesion".to_string(),
+            }
+        };
+        return Err(FieldError::new(
+            at,
+            format!(
+                "cohesion is not available against {kind} (walls[{k}]): its contacts give no \
+                 overlap area to pull on; give that wall a law without it (its own \
+                 `\"cohesion\": 0`, or a material without cohesion)"
+            ),
+        ));
+    }
+    Ok(())
 }

@@ -42,7 +42,7 @@ impl Named {
     }
 
     /// The path of material `m`'s object (`contact` for material 0).
-    fn path(&self, m: u16) -> String {
+    pub(crate) fn path(&self, m: u16) -> String {
         match m {
             0 => "contact".to_string(),
             _ => join("materials", &self.names[m as usize - 1]),
@@ -50,7 +50,11 @@ impl Named {
     }
 
     /// Material `m`'s contact object (`scene` for material 0).
-    fn map<'a>(&'a self, scene: &'a Map<String, Value>, m: u16) -> &'a Map<String, Value> {
+    pub(crate) fn map<'a>(
+        &'a self,
+        scene: &'a Map<String, Value>,
+        m: u16,
+    ) -> &'a Map<String, Value> {
         match m {
             0 => scene,
             _ => &self.maps[m as usize - 1],

@@ -235,11 +235,12 @@ fn check_account(
 fn check_closure(e: &Energies, run: &RunProgress) -> Result<(), FieldError> {
     use crate::run::watch::ENERGY_GROWTH;
     let w = &run.watch;
+    // (Sizes: a cohesive contact stores a negative energy, −c A.)
     let moved = w.kinetic0
-        + w.elastic0
+        + w.elastic0.abs()
         + (w.potential0 - e.potential).abs()
         + e.kinetic
-        + e.elastic
+        + e.elastic.abs()
         + e.dissipated.abs();
     let rounding = 1e-9
         * (moved
