@@ -5,7 +5,7 @@
 //! closed-form rotation about its pivot, and a restart that continues a turning drum exactly.
 
 use dem2d::dynamics::World;
-use dem2d::dynamics::drum_flow::{fit_line, surface_tops};
+use dem2d::scene::drum_flow::{fit_line, surface_tops};
 use dem2d::geometry::{Drum, Pose, Shape, Vec2};
 use dem2d::narrow_phase::drum::ellipse_farthest;
 use dem2d::narrow_phase::{Object, contact};

@@ -1,6 +1,6 @@
 //! `dem2d study drum --quick` (issue 44, item 3): a small drum (R = 4 cm) half filled with 53
 //! disks, turned through Fr = 1e-3, 1e-2, 0.3, 1 and 2 in one run
-//! ([`dem2d::dynamics::drum_flow`]). Facts that do not come from the code measured:
+//! ([`dem2d::scene::drum_flow`]). Facts that do not come from the code measured:
 //! - geometry: no disk reaches beyond the drum's circle by more than a contact's overlap (a
 //!   disk's reach |x − c| + r − R is its wall contact's depth);
 //! - at Fr = 1e-3 the free surface is a plane (within a grain: its rms off its line under half a
@@ -13,7 +13,7 @@
 //! - the free surface steepens with Fr where the bed flows steadily (rolling, Fr = 1e-2 to 0.3):
 //!   the flowing layer's inertia (GDR MiDi 2004, Eur. Phys. J. E 14, 341, rotating drums).
 
-use dem2d::dynamics::drum_flow::{self, DrumSpec, Regime};
+use dem2d::scene::drum_flow::{self, DrumSpec, Regime};
 
 mod common;
 

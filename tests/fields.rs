@@ -27,6 +27,33 @@ fn columns(path: &Path) -> std::collections::HashMap<String, Vec<f64>> {
     out
 }
 
+/// `dem2d run CASE --out RUN --contacts`, which must succeed.
+fn run_case(case: &Path, run: &Path) {
+    let (code, out, err) = dem2d(&[
+        "run",
+        case.to_str().unwrap(),
+        "--out",
+        run.to_str().unwrap(),
+        "--contacts",
+        "--quiet",
+        "--overwrite",
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+}
+
+/// `dem2d fields RUN --bins N --from T`, which must succeed (writes RUN/fields.csv).
+fn fields(run: &Path, bins: usize, from: &str) {
+    let (code, out, err) = dem2d(&[
+        "fields",
+        run.to_str().unwrap(),
+        "--bins",
+        &bins.to_string(),
+        "--from",
+        from,
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+}
+
 #[test]
 fn a_sheared_cells_profiles_add_up_to_the_whole_cell_and_follow_the_imposed_shear() {
     let dir = scratch("fields_shear");
@@ -37,26 +64,9 @@ fn a_sheared_cells_profiles_add_up_to_the_whole_cell_and_follow_the_imposed_shea
     let file = dir.join("shear.json");
     std::fs::write(&file, case.to_string()).unwrap();
     let run = dir.join("run");
-    let (code, out, err) = dem2d(&[
-        "run",
-        file.to_str().unwrap(),
-        "--out",
-        run.to_str().unwrap(),
-        "--contacts",
-        "--quiet",
-        "--overwrite",
-    ]);
-    assert_eq!(code, 0, "{out}{err}");
+    run_case(&file, &run);
     let bins = 10;
-    let (code, out, err) = dem2d(&[
-        "fields",
-        run.to_str().unwrap(),
-        "--bins",
-        &bins.to_string(),
-        "--from",
-        "0.4",
-    ]);
-    assert_eq!(code, 0, "{out}{err}");
+    fields(&run, bins, "0.4");
     let f = columns(&run.join("fields.csv"));
     assert_eq!(f["y"].len(), bins);
     let frames = f["frames"][0];
@@ -195,26 +205,9 @@ fn a_pile_at_rest_carries_the_weight_of_the_bodies_above() {
     let file = dir.join("pile.json");
     std::fs::write(&file, case.to_string()).unwrap();
     let run = dir.join("run");
-    let (code, out, err) = dem2d(&[
-        "run",
-        file.to_str().unwrap(),
-        "--out",
-        run.to_str().unwrap(),
-        "--contacts",
-        "--quiet",
-        "--overwrite",
-    ]);
-    assert_eq!(code, 0, "{out}{err}");
+    run_case(&file, &run);
     let bins = 28;
-    let (code, out, err) = dem2d(&[
-        "fields",
-        run.to_str().unwrap(),
-        "--bins",
-        &bins.to_string(),
-        "--from",
-        "1.5",
-    ]);
-    assert_eq!(code, 0, "{out}{err}");
+    fields(&run, bins, "1.5");
     let f = columns(&run.join("fields.csv"));
     // The masses from the case, the positions of the window's frames from trajectory.csv.
     let mass: Vec<f64> = bodies_of(&case)

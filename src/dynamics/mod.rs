@@ -11,7 +11,6 @@ pub mod broad_phase;
 pub mod cell;
 pub mod contact_pass;
 pub mod contacts;
-pub mod drum_flow;
 pub mod flow;
 pub mod kinematics;
 pub mod local_damping;

@@ -3,6 +3,7 @@
 
 pub mod body;
 pub mod case;
+pub mod drum_flow;
 pub mod fields;
 pub mod flow;
 pub mod generate;

@@ -1,14 +1,14 @@
 //! A half-filled drum of disks and of ellipses (α = 1.5, 2) over Froude numbers
 //! Fr = ω²R/g from 1e-5 to 2 (issue 44, item 3): the regime (Mellmann 2001), the free surface's
 //! angle and the flowing layer's thickness. The runs and the measurements are the library's
-//! ([`dem2d::dynamics::drum_flow`]); this prints the table and draws the figure.
+//! ([`dem2d::scene::drum_flow`]); this prints the table and draws the figure.
 //!
 //! Each aspect ratio is one run: the bed settles, then the drum turns through the Froude
 //! numbers in [`CHAIN`]'s order, each stage continuing from the last (down from 1e-3 to 1e-5,
 //! then up from 3e-3 to 2). The runs of the aspect ratios go in parallel.
 
 use super::Table;
-use dem2d::dynamics::drum_flow::{self, DrumRun, DrumSpec, Regime};
+use dem2d::scene::drum_flow::{self, DrumRun, DrumSpec, Regime};
 use dem2d::output::plot::{self, LinePanel, Series};
 use dem2d::run::RunError;
 use rayon::prelude::*;

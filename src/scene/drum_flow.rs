@@ -14,7 +14,7 @@
 //! a stage is then one change of slope, not the whole rise of the bed from rest). Each stage
 //! waits out a transient and then samples the bed every `sample` seconds ([`Meter`]).
 
-use super::World;
+use crate::dynamics::World;
 use crate::geometry::{Shape, Vec2};
 use crate::run::{RunError, Simulation};
 use crate::scene::Case;
@@ -497,7 +497,7 @@ impl Meter {
         for (slot, _) in w.contacts.slots.iter().zip(&w.contacts.data) {
             if slot.active {
                 touching[slot.i as usize] = true;
-                if let super::Partner::Body(j) = slot.partner() {
+                if let crate::dynamics::Partner::Body(j) = slot.partner() {
                     touching[j] = true;
                 }
             }
