@@ -632,3 +632,63 @@ fn a_cohesive_disk_sliding_past_a_segments_end_keeps_its_energy() {
     );
     assert!(coarse < 1e-3 * jump, "{coarse} against {jump}");
 }
+
+#[test]
+fn a_disks_overlap_with_a_drum_and_a_segments_end_is_the_closed_form_area() {
+    // The records the pull and −cA read, against the textbook forms: a drum's A = πr² − lens
+    // with lens(r, R, d) = r² acos((d² + r² − R²)/(2dr)) + R² acos((d² + R² − r²)/(2dR))
+    // − ½√((−d + r + R)(d + r − R)(d − r + R)(d + r + R)), ℓ = 2√(R² − x²); a segment end's
+    // cap A = r² acos(1 − δ/r) − (r − δ)√(δ(2r − δ)), ℓ = 2√(δ(2r − δ)).
+    use dem2d::geometry::{Drum, Pose, Segment};
+    use dem2d::narrow_phase::{Object, contact};
+    let (r, big) = (1.0, 5.0);
+    let drum = Drum::new(Vec2::new(0.3, -0.2), big).unwrap();
+    let seg = Segment::new(Vec2::new(-2.0, 0.0), Vec2::new(2.0, 0.0)).unwrap();
+    let u = Vec2::new(0.6, -0.8);
+    for delta in [1e-3, 0.02, 0.3, 0.9] {
+        let d = big - r + delta;
+        let disk = Object::Body {
+            shape: Shape::Circle { r },
+            pose: Pose::new(drum.center + u * d, 0.0),
+        };
+        let c = contact(&Object::Drum(drum), &disk).unwrap();
+        let a = c.area.expect("a disk's area against a drum");
+        let lens = r * r * ((d * d + r * r - big * big) / (2.0 * d * r)).acos()
+            + big * big * ((d * d + big * big - r * r) / (2.0 * d * big)).acos()
+            - 0.5 * ((-d + r + big) * (d + r - big) * (d - r + big) * (d + r + big)).sqrt();
+        let x = (d * d + big * big - r * r) / (2.0 * d);
+        let (want_a, want_l) = (PI * r * r - lens, 2.0 * (big * big - x * x).sqrt());
+        eprintln!(
+            "drum δ = {delta}: A = {:.15e} (closed form {want_a:.15e}), ℓ = {:.15e} ({want_l:.15e})",
+            a.area, a.length
+        );
+        // The textbook form subtracts terms of size R² whose acos arguments lie near ±1, which
+        // amplifies their rounding by 1/sin ≈ R/(ℓ/2) (≈ 100 at δ = 1e-3): about
+        // 25 × 100 × 1e-16 ≈ 3e-13 cm² of the reference's own error, hence the absolute bar.
+        // (At δ = 1e-3 it errs by 1.5e-13 cm² (2.3e-9 relative); the same form in 40-digit
+        // arithmetic, mpmath, gives 6.66511677354041e-5 cm², which the kernel's
+        // 6.665116773543750e-5 meets to 5e-13.)
+        assert!((a.area - want_a).abs() < 1e-12, "{delta}");
+        assert!((a.length / want_l - 1.0).abs() < 1e-9, "{delta}");
+        assert!((c.depth - delta).abs() < 1e-14);
+        // The segment's end (2, 0), the centre beyond it on a slant.
+        let v = Vec2::new(0.6, 0.8);
+        let disk = Object::Body {
+            shape: Shape::Circle { r },
+            pose: Pose::new(seg.b + v * (r - delta), 0.0),
+        };
+        let c = contact(&Object::Segment(seg), &disk).unwrap();
+        assert_eq!(c.point, seg.b, "an end contact");
+        let a = c.area.expect("a disk's area at a segment's end");
+        let want_a =
+            r * r * (1.0 - delta / r).acos() - (r - delta) * (delta * (2.0 * r - delta)).sqrt();
+        let want_l = 2.0 * (delta * (2.0 * r - delta)).sqrt();
+        eprintln!(
+            "segment end δ = {delta}: A = {:.15e} (closed form {want_a:.15e}), ℓ = {:.15e} \
+             ({want_l:.15e})",
+            a.area, a.length
+        );
+        assert!((a.area - want_a).abs() < 1e-14, "{delta}");
+        assert!((a.length / want_l - 1.0).abs() < 1e-12, "{delta}");
+    }
+}
