@@ -81,7 +81,9 @@ pub fn contact_drum_circle(drum: &Drum, r: f64, pose: &Pose, request: &Request) 
     // The two circles cross (|r − R| < d): the chord and the overlap (the disk's part beyond
     // the drum's circle). Only cohesion reads the area (it asks for the chord too): the area
     // law's spring stays on the depth against a drum, and pays for no area it would not read.
-    if request.chord && state == ContactState::Overlap && d > (r - big).abs() {
+    // (A touching disk, δ at rounding, takes its chord as against a half-plane.)
+    if request.chord && state != ContactState::Contained && d > (r - big).abs() {
+        let depth = depth.max(0.0);
         // The crossings lie at x = (d² + R² − r²)/(2d) from c along u; the drum's cap beyond
         // that line has sagitta h_D = R − x = (r² − (R − d)²)/(2d) = δ(2r − δ)/(2d) (written
         // with the depth δ = d + r − R: no cancellation at small overlaps), the disk's cap
@@ -89,7 +91,7 @@ pub fn contact_drum_circle(drum: &Drum, r: f64, pose: &Pose, request: &Request) 
         let h_drum = depth * (2.0 * r - depth) / (2.0 * d);
         let half = (h_drum * (2.0 * big - h_drum)).max(0.0).sqrt();
         c.half_chord = half;
-        if request.area {
+        if request.area && state == ContactState::Overlap {
             // The disk's part outside the drum: its cap beyond the chord less the drum's cap
             // beyond it (which lies inside the disk), A = πr² − lens(r, R, d). Moving the disk
             // by dp changes A by ℓ u·dp (the chord sweeps out the lens's boundary on the drum's

@@ -163,7 +163,7 @@ pub fn contact_point_body(
     };
     // (Only cohesion reads them, and it asks for the chord: under the area law alone a disk's
     // end contact stays the spring on this depth, which its area potential is.)
-    if let (Shape::Circle { r }, ContactState::Overlap, true) = (*shape, state, request.chord) {
+    if let (Shape::Circle { r }, true) = (*shape, request.chord) {
         circle_end(&mut c, r, request);
     }
     Some(c)
@@ -178,10 +178,11 @@ pub fn contact_point_body(
 /// of centres at E (no couple), and it equals the face's half-plane cap where the centre
 /// projects on an end.
 fn circle_end(c: &mut Contact, r: f64, request: &Request) {
-    let depth = c.depth;
+    // (A touching disk, δ at rounding, takes its chord as against a half-plane, no area.)
+    let depth = c.depth.max(0.0);
     let half = (depth * (2.0 * r - depth)).max(0.0).sqrt();
     c.half_chord = half;
-    if request.area {
+    if request.area && c.state == ContactState::Overlap {
         c.area = Some(super::OverlapArea {
             area: crate::geometry::overlap_area::ellipse_cap_at_depth(r, r, [1.0, 0.0], depth),
             length: 2.0 * half,
