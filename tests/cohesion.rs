@@ -364,8 +364,12 @@ fn bad_cohesion_is_refused_naming_the_field() {
         ),
         (
             "drum",
-            case_text(&format!(r#"{linear}, "cohesion": 1e5 }}"#), drum, ""),
-            "field `contact.cohesion`: cohesion is not available against a drum",
+            case_text(&format!(r#"{linear}, "cohesion": 1e5 }}"#), drum, "").replace(
+                r#"{ "type": "circle", "r": 1 }"#,
+                r#"{ "type": "ellipse", "a": 1, "b": 0.5 }"#,
+            ),
+            "field `contact.cohesion`: cohesion is not available against a drum (walls[0]) for \
+             bodies[0], of shape `ellipse`",
         ),
     ] {
         let path = dir.join(format!("{name}.json"));
@@ -375,7 +379,7 @@ fn bad_cohesion_is_refused_naming_the_field() {
         assert_eq!(code, 2, "{name}: {err}");
         assert!(err.contains(want), "{name}: {err}");
     }
-    // A drum wall may switch it off for itself.
+    // A drum wall may switch it off for itself (and a disk needs no switch).
     let path = dir.join("drum_off.json");
     let drum_off = r#"[ { "drum": { "center": [0, 1], "radius": 5 }, "cohesion": 0 } ]"#;
     std::fs::write(
@@ -416,4 +420,275 @@ fn cohesion_is_read_per_material_and_per_pair() {
     assert_eq!(c(0, 1), Some(2e5)); // √(4e5 × 1e5)
     assert_eq!(c(2, 3), None); // dry has none
     assert_eq!(c(1, 3), Some(7e3)); // the pair's own
+}
+
+// ---------------------------------------------------------------------------------------------
+// Against a drum and a segment wall (disks and clumps).
+//
+// - **Drum** (centre c, radius R) and a disk (radius r, centre at distance d from c, depth
+//   `δ = d + r − R`): the overlap is the disk's part beyond the circle, `A = πr² − lens(r, R,
+//   d)`, and `dA/dd = ℓ`, the chord through the two circles' crossings, which lie at
+//   `x = (d² + R² − r²)/(2d)` from c on the line of centres, `ℓ = 2√(R² − x²)`. At rest on the
+//   bottom of a still drum under a weight W: `k δ − c ℓ(δ) = W`   (5), solved below by
+//   bisection from these formulas (not the kernel's).
+// - **Segment**: over the face the half-plane's cap at the depth `r − h`; at an end E the cap
+//   at the depth `r − |p − E|`: one potential `−c cap(r − dist(p, segment))`, continuously
+//   differentiable, so a disk sliding past an end keeps its energy to the integrator's error.
+
+/// A world from a case with `walls` and `bodies` under the linear law (k_n = `KN`, frictionless,
+/// cohesion `c`, its `restitution`), gravity `g` down, step `dt`.
+fn cohesive_world(walls: &str, bodies: &str, c: f64, restitution: f64, g: f64, dt: f64) -> World {
+    let text = format!(
+        r#"{{ "version": 1, "name": "cohesion", "gravity": [0, {}], "dt": {dt}, "duration": 10,
+        "contact": {{ "model": "linear", "kn": {KN}, "ks": {KN}, "restitution": {restitution},
+                      "friction": 0, "cohesion": {c} }},
+        "walls": {walls}, "bodies": {bodies} }}"#,
+        -g
+    );
+    dem2d::scene::Case::from_json(&text)
+        .unwrap_or_else(|e| panic!("{e}\n{text}"))
+        .build_world()
+}
+
+/// A disk of radius `r` at `p` as a case's body.
+fn disk_at(r: f64, p: Vec2) -> String {
+    format!(
+        r#"[ {{ "shape": {{ "type": "circle", "r": {r} }}, "position": [{}, {}] }} ]"#,
+        p.x, p.y
+    )
+}
+
+#[test]
+fn against_a_drum_and_a_segment_the_force_is_minus_the_gradient_of_the_stored_energy() {
+    // F = −∂E/∂x (and M = −∂E/∂θ for a clump) by a fourth-order central difference, E the
+    // stored energy (½kδ² − cA), the pull from the kernels' chord: the drum's A = πr² − lens,
+    // the segment's face cap and end cap.
+    let fd4 = |f: &dyn Fn(f64) -> f64, h: f64| {
+        (-f(2.0 * h) + 8.0 * f(h) - 8.0 * f(-h) + f(-2.0 * h)) / (12.0 * h)
+    };
+    let drum = r#"[ { "drum": { "center": [0.3, -0.2], "radius": 5 } } ]"#;
+    let segment = r#"[ { "segment": [[-2, 0], [2, 0]] } ]"#;
+    let clump = |p: Vec2, th: f64| {
+        format!(
+            r#"[ {{ "shape": {{ "type": "clump", "disks": [ {{ "center": [-0.4, 0], "r": 0.6 }},
+                {{ "center": [0.5, 0.1], "r": 0.8 }} ] }}, "position": [{}, {}], "angle": {th} }} ]"#,
+            p.x, p.y
+        )
+    };
+    // The drum's centre plus (R − r + δ) along a direction: δ = 0.02 (r = 1, d = 4.02).
+    let u = Vec2::new(0.6, -0.8);
+    let in_drum = Vec2::new(0.3, -0.2) + u * 4.02;
+    type Bodies = Box<dyn Fn(Vec2, f64) -> String>;
+    let cases: Vec<(&str, &str, Vec2, Bodies)> = vec![
+        ("disk–drum", drum, in_drum, Box::new(|p, _| disk_at(1.0, p))),
+        (
+            "clump–drum (one member beyond the circle)",
+            drum,
+            // Its second member (r = 0.8 at (0.5, 0.1)) 0.03 beyond: √(0.25 + (y + 0.1)²) = 4.23.
+            Vec2::new(0.3, -0.2) + Vec2::new(0.0, -0.1 - (4.23f64 * 4.23 - 0.25).sqrt()),
+            Box::new(clump),
+        ),
+        (
+            "disk–segment face",
+            segment,
+            Vec2::new(0.5, 0.95),
+            Box::new(|p, _| disk_at(1.0, p)),
+        ),
+        (
+            "disk–segment end",
+            segment,
+            Vec2::new(2.3, 0.85),
+            Box::new(|p, _| disk_at(1.0, p)),
+        ),
+        (
+            "clump–segment end",
+            segment,
+            // Its second member at (2.3, 0.72), 0.02 into the end (2, 0); the first clear.
+            Vec2::new(1.8, 0.62),
+            Box::new(clump),
+        ),
+    ];
+    for (name, walls, p0, bodies) in cases {
+        let at = |dx: f64, dy: f64, dth: f64| {
+            let w = cohesive_world(
+                walls,
+                &bodies(p0 + Vec2::new(dx, dy), dth),
+                C,
+                1.0,
+                0.0,
+                1e-6,
+            );
+            assert!(!w.contacts.is_empty(), "{name}: a contact");
+            (w.bodies.force[0], w.bodies.torque[0], w.energies.elastic)
+        };
+        let (f, m, e) = at(0.0, 0.0, 0.0);
+        let h = 1e-6;
+        let want = Vec2::new(
+            -fd4(&|d| at(d, 0.0, 0.0).2, h),
+            -fd4(&|d| at(0.0, d, 0.0).2, h),
+        );
+        let want_m = -fd4(&|d| at(0.0, 0.0, d).2, h);
+        let err = ((f - want).norm() + (m - want_m).abs()) / (f.norm() + m.abs());
+        eprintln!(
+            "{name}: E = {e:.6e}, F = ({:.9e}, {:.9e}), M = {m:.6e}; −∇E = ({:.9e}, {:.9e}), \
+             {want_m:.6e}; rel {err:.1e}",
+            f.x, f.y, want.x, want.y
+        );
+        // (The difference's rounding, ε E/h ≈ 4e-5 dyn at most here, is below 1e-10 of F.)
+        assert!(err < 2e-9, "{name}: {err}");
+    }
+}
+
+/// (5)'s left side less W: the net push of a disk of radius r at depth δ in a drum of radius R.
+fn drum_push(k: f64, c: f64, r: f64, big: f64, delta: f64) -> f64 {
+    let d = big - r + delta;
+    let x = (d * d + big * big - r * r) / (2.0 * d);
+    k * delta - c * 2.0 * (big * big - x * x).sqrt()
+}
+
+#[test]
+fn a_cohesive_disk_rests_in_a_drum_at_the_closed_form_overlap() {
+    let (r, big) = (1.0, 5.0);
+    let weight = PI * r * r * G;
+    // (5) by bisection on [0, r]: the push is −cℓ < 0 near δ = 0 (below W) and kr − … > W at r.
+    let (mut lo, mut hi) = (1e-12, r);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if drum_push(KN, C, r, big, mid) > weight {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let want = 0.5 * (lo + hi);
+    let flat = rest_depth(KN, C, r, weight);
+    // Released touching the bottom, at rest; damped (restitution 0.5).
+    let walls = r#"[ { "drum": { "center": [0, 0], "radius": 5 } } ]"#;
+    let mut w = cohesive_world(
+        walls,
+        &disk_at(r, Vec2::new(0.0, -(big - r))),
+        C,
+        0.5,
+        G,
+        1e-5,
+    );
+    Simulation::new(&mut w).until_time(0.2).run().unwrap();
+    let got = w.bodies.state[0].pose.position.norm() + r - big;
+    eprintln!(
+        "drum: rest depth {got:.12e} cm, closed form (5) {want:.12e} (rel {:.1e}); \
+         on a flat floor (2) {flat:.12e}",
+        got / want - 1.0
+    );
+    assert!((got / want - 1.0).abs() < 1e-6, "{got} vs {want}");
+    assert!(w.bodies.state[0].vel.norm() < 1e-9);
+}
+
+/// The worst relative energy error of a cohesive disk (r = 1, no gravity, frictionless,
+/// undamped) that slides along the segment y = 0, x ∈ [−4, 0], at the no-gravity rest depth
+/// with speed 20 cm/s, past the end x = 0 (and round it: the pull holds it), over 0.15 s at the
+/// step `dt`; and the cohesive energy cA at the start, over |E₀|.
+fn slide_past_an_end(dt: f64) -> (f64, f64) {
+    let r = 1.0;
+    let delta = rest_depth(KN, C, r, 0.0);
+    let walls = r#"[ { "segment": [[-4, 0], [0, 0]] } ]"#;
+    let bodies = format!(
+        r#"[ {{ "shape": {{ "type": "circle", "r": {r} }}, "position": [-1, {}],
+            "velocity": [20, 0] }} ]"#,
+        r - delta
+    );
+    let mut w = cohesive_world(walls, &bodies, C, 1.0, 0.0, dt);
+    let e0 = w.energies.total();
+    // The cap of the rest overlap (the sagitta δ ≪ r): A = r² acos(1 − δ/r) − (r − δ)√(δ(2r−δ)).
+    let area = r * r * (1.0 - delta / r).acos() - (r - delta) * (delta * (2.0 * r - delta)).sqrt();
+    let sim = Simulation::new(&mut w).until_time(0.15);
+    let worst = worst_energy_error(sim);
+    let end = w.bodies.state[0].pose.position;
+    eprintln!(
+        "dt {dt:.1e}: worst |E − E₀|/|E₀| = {worst:.3e}; the body ends at ({:.4}, {:.4}), \
+         {} contact(s)",
+        end.x,
+        end.y,
+        w.contacts.len()
+    );
+    assert!(end.x > 0.0, "it went past the end");
+    (worst, C * area / e0.abs())
+}
+
+#[test]
+fn a_cohesive_disk_sliding_past_a_segments_end_keeps_its_energy() {
+    // Velocity Verlet's energy error is O(Δt²) for a smooth potential: halving the step
+    // quarters it. A jump in the potential where the contact goes from the face to the end
+    // would not shrink with the step: it would be of the cohesive energy cA itself (the whole
+    // of it if the end's pull were missing).
+    let (coarse, jump) = slide_past_an_end(1e-5);
+    let (fine, _) = slide_past_an_end(5e-6);
+    eprintln!(
+        "ratio {:.2} (Δt² gives 4); cA/|E₀| = {jump:.3e}",
+        coarse / fine
+    );
+    assert!(
+        coarse / fine > 3.5 && coarse / fine < 4.5,
+        "{coarse} {fine}"
+    );
+    assert!(coarse < 1e-3 * jump, "{coarse} against {jump}");
+}
+
+#[test]
+fn a_disks_overlap_with_a_drum_and_a_segments_end_is_the_closed_form_area() {
+    // The records the pull and −cA read, against the textbook forms: a drum's A = πr² − lens
+    // with lens(r, R, d) = r² acos((d² + r² − R²)/(2dr)) + R² acos((d² + R² − r²)/(2dR))
+    // − ½√((−d + r + R)(d + r − R)(d − r + R)(d + r + R)), ℓ = 2√(R² − x²); a segment end's
+    // cap A = r² acos(1 − δ/r) − (r − δ)√(δ(2r − δ)), ℓ = 2√(δ(2r − δ)).
+    use dem2d::geometry::{Drum, Pose, Segment};
+    use dem2d::narrow_phase::{Object, contact};
+    let (r, big) = (1.0, 5.0);
+    let drum = Drum::new(Vec2::new(0.3, -0.2), big).unwrap();
+    let seg = Segment::new(Vec2::new(-2.0, 0.0), Vec2::new(2.0, 0.0)).unwrap();
+    let u = Vec2::new(0.6, -0.8);
+    for delta in [1e-3, 0.02, 0.3, 0.9] {
+        let d = big - r + delta;
+        let disk = Object::Body {
+            shape: Shape::Circle { r },
+            pose: Pose::new(drum.center + u * d, 0.0),
+        };
+        let c = contact(&Object::Drum(drum), &disk).unwrap();
+        let a = c.area.expect("a disk's area against a drum");
+        let lens = r * r * ((d * d + r * r - big * big) / (2.0 * d * r)).acos()
+            + big * big * ((d * d + big * big - r * r) / (2.0 * d * big)).acos()
+            - 0.5 * ((-d + r + big) * (d + r - big) * (d - r + big) * (d + r + big)).sqrt();
+        let x = (d * d + big * big - r * r) / (2.0 * d);
+        let (want_a, want_l) = (PI * r * r - lens, 2.0 * (big * big - x * x).sqrt());
+        eprintln!(
+            "drum δ = {delta}: A = {:.15e} (closed form {want_a:.15e}), ℓ = {:.15e} ({want_l:.15e})",
+            a.area, a.length
+        );
+        // The textbook form subtracts terms of size R² whose acos arguments lie near ±1, which
+        // amplifies their rounding by 1/sin ≈ R/(ℓ/2) (≈ 100 at δ = 1e-3): about
+        // 25 × 100 × 1e-16 ≈ 3e-13 cm² of the reference's own error, hence the absolute bar.
+        // (At δ = 1e-3 it errs by 1.5e-13 cm² (2.3e-9 relative); the same form in 40-digit
+        // arithmetic, mpmath, gives 6.66511677354041e-5 cm², which the kernel's
+        // 6.665116773543750e-5 meets to 5e-13.)
+        assert!((a.area - want_a).abs() < 1e-12, "{delta}");
+        assert!((a.length / want_l - 1.0).abs() < 1e-9, "{delta}");
+        assert!((c.depth - delta).abs() < 1e-14);
+        // The segment's end (2, 0), the centre beyond it on a slant.
+        let v = Vec2::new(0.6, 0.8);
+        let disk = Object::Body {
+            shape: Shape::Circle { r },
+            pose: Pose::new(seg.b + v * (r - delta), 0.0),
+        };
+        let c = contact(&Object::Segment(seg), &disk).unwrap();
+        assert_eq!(c.point, seg.b, "an end contact");
+        let a = c.area.expect("a disk's area at a segment's end");
+        let want_a =
+            r * r * (1.0 - delta / r).acos() - (r - delta) * (delta * (2.0 * r - delta)).sqrt();
+        let want_l = 2.0 * (delta * (2.0 * r - delta)).sqrt();
+        eprintln!(
+            "segment end δ = {delta}: A = {:.15e} (closed form {want_a:.15e}), ℓ = {:.15e} \
+             ({want_l:.15e})",
+            a.area, a.length
+        );
+        assert!((a.area - want_a).abs() < 1e-14, "{delta}");
+        assert!((a.length / want_l - 1.0).abs() < 1e-12, "{delta}");
+    }
 }

@@ -30,9 +30,13 @@
 //! law has cohesion ([`CohesionKinematics::of`]): ℓ and A are the area record's (every kernel
 //! of two bodies, and of a body and a half-plane wall, gives it for two crossings and for the
 //! deep overlaps it computes the gradient of); a touching pair (δ below rounding) takes its
-//! chord `2 × half_chord` and the parabolic segment's area `(2/3) ℓ δ`. A drum and a segment
-//! wall give no overlap area for every contact (a drum: none; a segment: none at its ends):
-//! cohesion against them is refused by the case reader, naming the field.
+//! chord `2 × half_chord` and the parabolic segment's area `(2/3) ℓ δ`. Against a drum and a
+//! segment wall only a disk (a clump's member among them) has it: the disk's part beyond the
+//! drum's circle, `πr² − lens(r, R, d)` with `dA/dd = ℓ` the circles' common chord
+//! (`narrow_phase::drum`); over a segment's face the half-plane's cap, at an end the cap at the
+//! end's depth `r − |p − E|` (`narrow_phase::segment`: one C¹ potential over face and ends).
+//! Cohesion between them and an ellipse or a polygon is refused by the case reader, naming the
+//! field.
 
 use super::ContactForce;
 use super::keys::{Check, Given, Keys, ParamError};

@@ -869,7 +869,11 @@ impl Geometry for Dispatch<'_> {
         // on the settled 10⁴-ellipse pile under the area law, callgrind's count of
         // `World::step` over 50 steps as the lab notebook takes it.)
         let c = contact_with(i, j, cache, request)?;
-        let spring = SpringOn::of(&c, area_law, &facts);
+        // Against a drum a disk's record carries its overlap area for cohesion alone: the
+        // area law's spring stays on the depth there (as for the drum's other bodies).
+        let area_spring = area_law
+            && (c.area.is_none() || sides.wall().is_none_or(|w| cx.walls[w].drum().is_none()));
+        let spring = SpringOn::of(&c, area_spring, &facts);
         let cohesion = if cx.cohesive {
             let (point, normal) = spring.point_normal(c.point, c.normal);
             Some(CohesionKinematics::of(&c, point, normal))

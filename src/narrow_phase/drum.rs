@@ -25,12 +25,15 @@
 //!   circle); the depth is the farthest vertex's `ρ − R`;
 //! - a **clump**: its member disks (see [`super::clump`]).
 //!
-//! No overlap area is given (the area law falls back to the spring on the depth against a
-//! drum); a rectangle gets its flat overlap, as against a half-plane (see
-//! [`contact_drum_polygon`]).
+//! A disk's overlap area (the part of it beyond the circle, `πr² − lens(r, R, d)`) and chord
+//! are given when asked (cohesion reads them: `contact_law::cohesion`; a disk's spring stays
+//! on its depth). An ellipse and a polygon get no overlap area (the area law falls back to
+//! the spring on the depth against a drum); a rectangle gets its flat overlap, as against a
+//! half-plane (see [`contact_drum_polygon`]).
 
 use super::small::List;
-use super::{Contact, ContactState, Request, TOUCH_TOL, pow2_floor};
+use super::{Contact, ContactState, OverlapArea, Request, TOUCH_TOL, pow2_floor};
+use crate::geometry::overlap_area::ellipse_cap_at_depth;
 use crate::geometry::{Drum, Pose, Shape, Vec2};
 
 /// The record, from the world quantities.
@@ -73,14 +76,38 @@ pub fn contact_drum_circle(drum: &Drum, r: f64, pose: &Pose, request: &Request) 
     let u = if d > 0.0 { v / d } else { Vec2::new(0.0, -1.0) };
     let point = drum.center + u * drum.radius;
     let state = state_of(depth, d - r - drum.radius, r);
-    let mut half = 0.0;
-    if request.chord && state == ContactState::Overlap && d > 0.0 {
-        // The two circles' crossings: at x = (d² + R² − r²)/(2d) from c along u.
-        let big = drum.radius;
-        let x = (d - r) * (d + r) / (2.0 * d) + big * big / (2.0 * d);
-        half = ((big - x) * (big + x)).max(0.0).sqrt();
+    let big = drum.radius;
+    let mut c = record(state, point, -u, depth, 0.0);
+    // The two circles cross (|r − R| < d): the chord and the overlap (the disk's part beyond
+    // the drum's circle). Only cohesion reads the area (it asks for the chord too): the area
+    // law's spring stays on the depth against a drum, and pays for no area it would not read.
+    // (A touching disk, δ at rounding, takes its chord as against a half-plane.)
+    if request.chord && state != ContactState::Contained && d > (r - big).abs() {
+        let depth = depth.max(0.0);
+        // The crossings lie at x = (d² + R² − r²)/(2d) from c along u; the drum's cap beyond
+        // that line has sagitta h_D = R − x = (r² − (R − d)²)/(2d) = δ(2r − δ)/(2d) (written
+        // with the depth δ = d + r − R: no cancellation at small overlaps), the disk's cap
+        // beyond it h_d = d + r − x = δ + h_D, and the half chord is √(h_D(2R − h_D)).
+        let h_drum = depth * (2.0 * r - depth) / (2.0 * d);
+        let half = (h_drum * (2.0 * big - h_drum)).max(0.0).sqrt();
+        c.half_chord = half;
+        if request.area && state == ContactState::Overlap {
+            // The disk's part outside the drum: its cap beyond the chord less the drum's cap
+            // beyond it (which lies inside the disk), A = πr² − lens(r, R, d). Moving the disk
+            // by dp changes A by ℓ u·dp (the chord sweeps out the lens's boundary on the drum's
+            // side: d(lens)/dd = −ℓ for two circles), so |∂A/∂p| = ℓ = 2·half along u = −n, at
+            // the contact point on the line of centres (no couple).
+            let cap = |rad: f64, h: f64| ellipse_cap_at_depth(rad, rad, [1.0, 0.0], h);
+            c.area = Some(OverlapArea {
+                area: cap(r, depth + h_drum) - cap(big, h_drum),
+                length: 2.0 * half,
+                normal: -u,
+                point,
+                couple: 0.0,
+            });
+        }
     }
-    Some(record(state, point, -u, depth, half))
+    Some(c)
 }
 
 /// `f(t) = |x(t) − q|²` and `g(t) = f′(t)/2` for the ellipse `x(t) = (a cos t, b sin t)`.

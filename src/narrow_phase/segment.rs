@@ -19,7 +19,8 @@
 //!   depth is the distance from E to the body's boundary (positive with E inside the body), the
 //!   normal the body's inward normal at its boundary point q closest to E (from E towards q
 //!   when E is outside: for a circle the line of centres), the contact point E itself. A point
-//!   has no overlap area: under the area law a circle's end contact is a spring on this depth
+//!   has no overlap area (but a disk's, for cohesion: [`circle_end`]): under the area law a
+//!   circle's end contact is a spring on this depth
 //!   (for a disk that is the area law's own force); a polygon's is its least cut (below).
 //!
 //! An ellipse under the area law (`request.area`) takes its own rule instead, whose potential
@@ -114,7 +115,8 @@ pub fn deepest_point(shape: &Shape, pose: &Pose, normal: Vec2) -> Vec2 {
 
 /// Contact between the point `e` (i) and a body (j): the depth of `e` inside the body (negative
 /// outside: `None` beyond the touching tolerance), the normal the body's inward normal at its
-/// boundary point closest to `e`, the contact point `e`. No chord, no overlap area.
+/// boundary point closest to `e`, the contact point `e`. No chord, no overlap area, but for a
+/// disk ([`circle_end`]).
 pub fn contact_point_body(
     e: Vec2,
     shape: &Shape,
@@ -150,7 +152,7 @@ pub fn contact_point_body(
     } else {
         ContactState::Overlap
     };
-    Some(Contact {
+    let mut c = Contact {
         state,
         point: e,
         normal: frame.vector([n.x, n.y]),
@@ -158,7 +160,37 @@ pub fn contact_point_body(
         half_chord: 0.0,
         area: None,
         flat: None,
-    })
+    };
+    // (Only cohesion reads them, and it asks for the chord: under the area law alone a disk's
+    // end contact stays the spring on this depth, which its area potential is.)
+    if let (Shape::Circle { r }, true) = (*shape, request.chord) {
+        circle_end(&mut c, r, request);
+    }
+    Some(c)
+}
+
+/// A disk's contact with a segment's end E (`c`, of depth `δ = r − |p − E|`): the chord and
+/// the overlap area of the cap that the half-plane through E normal to the contact's normal
+/// cuts off it at that depth, `A = cap(r, δ)`, `ℓ = 2√(δ(2r − δ))`. The disk's distance to
+/// the segment (a closed convex set) is continuously differentiable, the line's distance over
+/// the face and `|p − E|` beyond it, so `A(r − dist)` is one C¹ potential over face and ends:
+/// its gradient is `ℓ ∂δ/∂p = −ℓ n` (n from E towards the centre), the pull `c ℓ` on the line
+/// of centres at E (no couple), and it equals the face's half-plane cap where the centre
+/// projects on an end.
+fn circle_end(c: &mut Contact, r: f64, request: &Request) {
+    // (A touching disk, δ at rounding, takes its chord as against a half-plane, no area.)
+    let depth = c.depth.max(0.0);
+    let half = (depth * (2.0 * r - depth)).max(0.0).sqrt();
+    c.half_chord = half;
+    if request.area && c.state == ContactState::Overlap {
+        c.area = Some(super::OverlapArea {
+            area: crate::geometry::overlap_area::ellipse_cap_at_depth(r, r, [1.0, 0.0], depth),
+            length: 2.0 * half,
+            normal: c.normal,
+            point: c.point,
+            couple: 0.0,
+        });
+    }
 }
 
 /// The depth of the point `p` inside the ellipse `x²/a² + y²/b² = 1` (its distance to the

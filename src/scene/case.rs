@@ -33,7 +33,7 @@ use crate::dynamics::boundary::{BoundaryKind, Program, Stage, StageMotion};
 use crate::dynamics::cell::{Cell, PRESSURE_RELAXATION, Periodic, Pressure, SideControl};
 use crate::dynamics::neighbour_list::pair_reach;
 use crate::dynamics::{BodyInit, Boundary, Flow, Materials, Motion, Servo, Span};
-use crate::geometry::Vec2;
+use crate::geometry::{Shape, Vec2};
 use serde_json::{Map, Value};
 
 /// The densest material, in g/cm³ (osmium, 22.6, rounded up): a denser body is most likely given
@@ -1441,10 +1441,13 @@ fn analysis_window(v: &Value) -> Result<[f64; 4], FieldError> {
     Ok([x[0], x[1], x[2], x[3]])
 }
 
-/// Refuses cohesion against a drum or a segment wall: their kernels give no overlap area for
-/// every contact (a drum none; a segment none at its ends), so the pull `c ℓ` and its energy
-/// `−c A` have no chord to act on there (see `contact_law::cohesion`). The error names the key
-/// that gives the pair its cohesion: the wall's own `cohesion`, its material's, or the scene's.
+/// Refuses cohesion against a drum or a segment wall for a body that is not a disk (nor a
+/// clump, whose members are disks): a disk's overlap with them has a closed form (a drum: the
+/// disk's part beyond the circle, `πr² − lens`; a segment: the half-plane's cap over the face,
+/// the cap at the same depth at an end), an ellipse's or a polygon's has none that the kernels
+/// give for every contact, so the pull `c ℓ` and its energy `−c A` would have no chord to act on
+/// (see `contact_law::cohesion`). The error names the key that gives the pair its cohesion: the
+/// wall's own `cohesion`, its material's, or the scene's.
 fn check_cohesion_boundaries(
     walls: &[Boundary],
     bodies: &[BodyInit],
@@ -1461,18 +1464,20 @@ fn check_cohesion_boundaries(
         let own = items
             .and_then(|v| v.get(k))
             .is_some_and(|item| item.get("cohesion").is_some());
-        let cohesive = match w.material {
-            None => w.spec.cohesion.is_some(),
-            Some(a) => bodies.iter().any(|b| {
-                named
-                    .materials
-                    .pair(contact, a, b.material)
-                    .is_ok_and(|p| p.spec.cohesion.is_some())
-            }),
-        };
-        if !cohesive {
+        // The first body that is not made of disks and meets this wall with cohesion.
+        let offending = bodies.iter().enumerate().find(|(_, b)| {
+            !matches!(b.shape, Shape::Circle { .. } | Shape::Clump(_))
+                && match w.material {
+                    None => w.spec.cohesion.is_some(),
+                    Some(a) => named
+                        .materials
+                        .pair(contact, a, b.material)
+                        .is_ok_and(|p| p.spec.cohesion.is_some()),
+                }
+        });
+        let Some((i, body)) = offending else {
             continue;
-        }
+        };
         let at = if own {
             join(&index("walls", k), "cohesion")
         } else {
@@ -1486,9 +1491,11 @@ fn check_cohesion_boundaries(
         return Err(FieldError::new(
             at,
             format!(
-                "cohesion is not available against {kind} (walls[{k}]): its contacts give no \
-                 overlap area to pull on; give that wall a law without it (its own \
-                 `\"cohesion\": 0`, or a material without cohesion)"
+                "cohesion is not available against {kind} (walls[{k}]) for bodies[{i}], of shape \
+                 `{}`: only disks and clumps have a closed-form overlap area with it to pull on; give \
+                 that wall a law without it (its own `\"cohesion\": 0`, or a material without \
+                 cohesion)",
+                body.shape.type_name()
             ),
         ));
     }
