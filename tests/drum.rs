@@ -5,12 +5,12 @@
 //! closed-form rotation about its pivot, and a restart that continues a turning drum exactly.
 
 use dem2d::dynamics::World;
-use dem2d::scene::drum_flow::{fit_line, surface_tops};
 use dem2d::geometry::{Drum, Pose, Shape, Vec2};
 use dem2d::narrow_phase::drum::ellipse_farthest;
 use dem2d::narrow_phase::{Object, contact};
 use dem2d::run::Simulation;
 use dem2d::scene::Case;
+use dem2d::scene::drum_flow::{fit_line, surface_tops};
 
 mod common;
 use common::Rng;

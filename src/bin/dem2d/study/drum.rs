@@ -8,9 +8,9 @@
 //! then up from 3e-3 to 2). The runs of the aspect ratios go in parallel.
 
 use super::Table;
-use dem2d::scene::drum_flow::{self, DrumRun, DrumSpec, Regime};
 use dem2d::output::plot::{self, LinePanel, Series};
 use dem2d::run::RunError;
+use dem2d::scene::drum_flow::{self, DrumRun, DrumSpec, Regime};
 use rayon::prelude::*;
 use std::fmt::Write as _;
 use std::time::Instant;
