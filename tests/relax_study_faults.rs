@@ -13,7 +13,7 @@ use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 mod common;
-use common::{bin, case_path, dem2d, scratch};
+use common::{bin, case_path, dem2d, scratch, signal};
 
 /// A frictionless pile of 10 000 disks under gravity, between walls (`dem2d generate`): its
 /// relaxation to a residual of 1e-15 takes minutes, so that it is still running when signalled.
@@ -85,15 +85,6 @@ fn wait_for_lock(child: &mut Child, dir: &Path) {
         std::thread::sleep(Duration::from_millis(10));
     }
     std::thread::sleep(Duration::from_millis(500));
-}
-
-fn signal(child: &Child, sig: &str) {
-    let ok = Command::new("kill")
-        .args([sig, &child.id().to_string()])
-        .status()
-        .unwrap()
-        .success();
-    assert!(ok, "kill {sig}");
 }
 
 /// Waits for `child`: its exit code and standard error.

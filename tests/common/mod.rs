@@ -244,3 +244,13 @@ pub fn sheared_cell() -> String {
         bodies.join(", ")
     )
 }
+
+/// Sends `sig` (`-INT`, `-TERM`, `-KILL`) to `child` with `kill`, which must succeed.
+pub fn signal(child: &std::process::Child, sig: &str) {
+    let ok = Command::new("kill")
+        .args([sig, &child.id().to_string()])
+        .status()
+        .unwrap()
+        .success();
+    assert!(ok, "kill {sig}");
+}
