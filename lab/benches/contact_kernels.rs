@@ -20,8 +20,8 @@
 
 use criterion::{BenchmarkId, Criterion};
 use dem2d::contact_law::{
-    AreaKinematics, DampingPart, EquivalentOverlap, History, Kinematics, Law, NormalForce,
-    NormalPart, RollingKinematics, ShearStiffness, TangentialPart,
+    AreaKinematics, EquivalentOverlap, History, Kinematics, LinearDashpots, NormalForce,
+    RollingKinematics,
 };
 use dem2d::geometry::cubic::{one_real_root, solve_cubic};
 use dem2d::geometry::overlap_area::DiskLens;
@@ -345,19 +345,14 @@ fn geometry_and_law(i: &Object, j: &Object, mut cache: PairCache, nf: NormalForc
         Object::Body { shape, .. } => shape.equal_area_radius(),
         Object::Wall(_) | Object::Segment(_) | Object::Drum(_) => f64::INFINITY,
     };
-    let law = Law {
-        normal: NormalPart::Linear { kn: 3.6e7 },
-        damping: DampingPart::Dashpots {
-            eta_n: 1e4,
-            eta_s: 1e4,
-        },
-        tangential: TangentialPart {
-            stiffness: ShearStiffness::Constant(3.6e7),
-            friction: 0.3,
-        },
-        rolling: None,
-        cohesion: None,
-    };
+    let law = LinearDashpots {
+        kn: 3.6e7,
+        eta_n: 1e4,
+        eta_s: 1e4,
+        ks: 3.6e7,
+        friction: 0.3,
+    }
+    .law();
     let kin = Kinematics {
         depth: g.depth,
         energy_depth: g.depth,

@@ -40,6 +40,7 @@
 
 use super::ContactForce;
 use super::keys::{Check, Given, Keys, ParamError};
+use super::mixing::MixError;
 use crate::geometry::Vec2;
 use crate::narrow_phase::Contact;
 
@@ -141,6 +142,20 @@ impl CohesionPart {
         out.normal -= c * k.length;
         out.couple -= c * k.couple;
         out.elastic_energy -= c * k.area;
+    }
+}
+
+/// The cohesion part as a case gives it: none (c = 0), or the part. It keeps no history and
+/// replaces no other key.
+impl super::Part for Option<CohesionPart> {
+    const KEYS: &[&str] = CohesionPart::KEYS;
+
+    fn given(&self) -> Vec<(&'static str, Given)> {
+        self.map_or(vec![], |c| c.given())
+    }
+
+    fn mix(&self, other: &Self) -> Result<Self, MixError> {
+        Ok(CohesionPart::mix(*self, *other))
     }
 }
 

@@ -26,25 +26,6 @@ pub enum DampingSpec {
 }
 
 impl DampingSpec {
-    /// The keys this part reads.
-    pub const KEYS: &[&str] = &[
-        "eta_n",
-        "eta_n_over_rho_g",
-        "eta_s",
-        "eta_s_over_rho_g",
-        "restitution",
-    ];
-
-    /// The inherited keys a wall's override `key` replaces (see
-    /// [`super::ContactSpec::replaced_by`]): dashpots and a restitution are one choice.
-    pub fn replaced_by(key: &str) -> &'static [&'static str] {
-        if Self::KEYS.contains(&key) {
-            Self::KEYS
-        } else {
-            &[]
-        }
-    }
-
     /// Reads the dashpots or the restitution for the normal spring `normal`.
     pub fn parse(k: &impl Keys, normal: &NormalSpec) -> Result<Self, ParamError> {
         let restitution = |required: bool| -> Result<Option<f64>, ParamError> {
@@ -101,10 +82,55 @@ impl DampingSpec {
         }
     }
 
+    /// The dashpots for a pair of density `rho` under |g| `g`.
+    pub fn resolve(&self, rho: f64, g: f64) -> DampingPart {
+        match *self {
+            DampingSpec::Linear(LinearDamping::Dashpots { eta_n, eta_s }) => {
+                DampingPart::Dashpots {
+                    eta_n: eta_n.value(rho, g),
+                    eta_s: eta_s.value(rho, g),
+                }
+            }
+            DampingSpec::Linear(LinearDamping::Restitution(e)) => DampingPart::Restitution {
+                alpha: damping_ratio_linear(e),
+            },
+            DampingSpec::Hertz { restitution } => DampingPart::Hertz {
+                beta: damping_factor_hertz(restitution),
+            },
+        }
+    }
+
+    /// True when the dashpots depend on the pair's effective mass (restitution-tuned linear
+    /// dashpots), so that the law cannot be resolved once for every pair.
+    pub fn depends_on_mass(&self) -> bool {
+        matches!(self, DampingSpec::Linear(LinearDamping::Restitution(_)))
+    }
+}
+
+impl super::Part for DampingSpec {
+    /// The keys this part reads.
+    const KEYS: &[&str] = &[
+        "eta_n",
+        "eta_n_over_rho_g",
+        "eta_s",
+        "eta_s_over_rho_g",
+        "restitution",
+    ];
+
+    /// The inherited keys a wall's override `key` replaces (see
+    /// [`super::ContactSpec::replaced_by`]): dashpots and a restitution are one choice.
+    fn replaced_by(key: &str) -> &'static [&'static str] {
+        if Self::KEYS.contains(&key) {
+            Self::KEYS
+        } else {
+            &[]
+        }
+    }
+
     /// The damping of contacts between the materials `self` and `other` ([`super::mixing`]):
     /// the harmonic mean of the dashpots, or of the restitutions; dashpots and a restitution
     /// have no common rule.
-    pub fn mix(&self, other: &DampingSpec) -> Result<DampingSpec, MixError> {
+    fn mix(&self, other: &DampingSpec) -> Result<DampingSpec, MixError> {
         use LinearDamping::{Dashpots, Restitution};
         Ok(match (*self, *other) {
             (
@@ -142,7 +168,7 @@ impl DampingSpec {
     }
 
     /// Its keys as a case file gives them (what [`DampingSpec::parse`] reads back).
-    pub fn given(&self) -> Vec<(&'static str, Given)> {
+    fn given(&self) -> Vec<(&'static str, Given)> {
         match *self {
             DampingSpec::Linear(LinearDamping::Dashpots { eta_n, eta_s }) => vec![
                 eta_n.given("eta_n", "eta_n_over_rho_g"),
@@ -151,30 +177,6 @@ impl DampingSpec {
             DampingSpec::Linear(LinearDamping::Restitution(e))
             | DampingSpec::Hertz { restitution: e } => vec![("restitution", Given::Number(e))],
         }
-    }
-
-    /// The dashpots for a pair of density `rho` under |g| `g`.
-    pub fn resolve(&self, rho: f64, g: f64) -> DampingPart {
-        match *self {
-            DampingSpec::Linear(LinearDamping::Dashpots { eta_n, eta_s }) => {
-                DampingPart::Dashpots {
-                    eta_n: eta_n.value(rho, g),
-                    eta_s: eta_s.value(rho, g),
-                }
-            }
-            DampingSpec::Linear(LinearDamping::Restitution(e)) => DampingPart::Restitution {
-                alpha: damping_ratio_linear(e),
-            },
-            DampingSpec::Hertz { restitution } => DampingPart::Hertz {
-                beta: damping_factor_hertz(restitution),
-            },
-        }
-    }
-
-    /// True when the dashpots depend on the pair's effective mass (restitution-tuned linear
-    /// dashpots), so that the law cannot be resolved once for every pair.
-    pub fn depends_on_mass(&self) -> bool {
-        matches!(self, DampingSpec::Linear(LinearDamping::Restitution(_)))
     }
 }
 

@@ -1,5 +1,5 @@
 //! Contacts between two materials: the pair's parameters from each material's, by one rule per
-//! parameter ([`ContactSpec::mix`]), unless the case gives the pair its own (a case's `pairs`,
+//! parameter (each part's [`super::Part::mix`], which [`super::ContactSpec::mix`] applies), unless the case gives the pair its own (a case's `pairs`,
 //! as LIGGGHTS's per-type-pair matrices).
 //!
 //! # The rules
@@ -94,77 +94,5 @@ impl PairSpec {
     #[inline]
     pub fn resolve(&self, rho: f64, g: f64) -> super::Law {
         self.spec.resolve(&self.other, rho, g)
-    }
-}
-
-impl ContactSpec {
-    /// The parameters of contacts between the materials `self` and `other` by the rules of the
-    /// module documentation (the model and the normal force are `self`'s: a case's materials
-    /// share the scene's).
-    pub fn mix(&self, other: &ContactSpec) -> Result<ContactSpec, MixError> {
-        if self == other {
-            return Ok(*self);
-        }
-        Ok(ContactSpec {
-            normal: self.normal.mix(&other.normal)?,
-            damping: self.damping.mix(&other.damping)?,
-            tangential: self.tangential.mix(&other.tangential)?,
-            rolling: super::RollingPart::mix(self.rolling, other.rolling)?,
-            cohesion: super::CohesionPart::mix(self.cohesion, other.cohesion),
-        })
-    }
-
-    /// The keys of contacts between the materials `self` and `other`, part by part: each
-    /// part's mixed keys, or where a part's two values have no rule, `self`'s with the error
-    /// (a pair given in a case must then give that key itself).
-    pub fn mixed_keys(
-        &self,
-        other: &ContactSpec,
-    ) -> (Vec<(&'static str, super::Given)>, Vec<MixError>) {
-        let mut errors = Vec::new();
-        let mut keep = |r: Result<Vec<(&'static str, super::Given)>, MixError>, own| match r {
-            Ok(k) => k,
-            Err(e) => {
-                errors.push(e);
-                own
-            }
-        };
-        let mut keys = keep(
-            self.normal.mix(&other.normal).map(|p| p.given()),
-            self.normal.given(),
-        );
-        keys.extend(keep(
-            self.damping.mix(&other.damping).map(|p| p.given()),
-            self.damping.given(),
-        ));
-        keys.extend(keep(
-            self.tangential.mix(&other.tangential).map(|p| p.given()),
-            self.tangential.given(),
-        ));
-        let own_rolling = self.rolling.map_or(vec![], |r| r.given());
-        keys.extend(keep(
-            super::RollingPart::mix(self.rolling, other.rolling)
-                .map(|r| r.map_or(vec![], |r| r.given())),
-            own_rolling,
-        ));
-        if let Some(c) = super::CohesionPart::mix(self.cohesion, other.cohesion) {
-            keys.extend(c.given());
-        }
-        (keys, errors)
-    }
-
-    /// Every key of the spec as a case file gives it (what [`ContactSpec::parse`] reads back
-    /// to the same spec), each part's.
-    pub fn given(&self) -> Vec<(&'static str, super::Given)> {
-        let mut keys = self.normal.given();
-        keys.extend(self.damping.given());
-        keys.extend(self.tangential.given());
-        if let Some(r) = &self.rolling {
-            keys.extend(r.given());
-        }
-        if let Some(c) = &self.cohesion {
-            keys.extend(c.given());
-        }
-        keys
     }
 }

@@ -16,10 +16,12 @@
 //! Each part owns its parameters and its per-contact history, as LAMMPS's granular sub-models
 //! do: it reads its own keys from the case's contact object through [`Keys`] (the core never
 //! sees JSON: the scene implements it), resolves them for a pair, and declares the history
-//! values its contacts carry (their names in a restart file). This file is the one place where
-//! the parts are registered: [`ContactSpec`] (the parts as given, [`ContactSpec::parse`],
-//! [`ContactSpec::resolve`], [`ContactSpec::keys`]), [`Law`] and [`Law::force`] (the parts in
-//! order), and the history's layout ([`History`]). Adding a part touches its file and this one.
+//! values its contacts carry (their names in a restart file): the [`Part`] trait. This file is
+//! the one place where the parts are registered: [`ContactSpec`] lists them once (its keys,
+//! `given`, `mix`, `mixed_keys` and the history's layout, [`History`], are generated from the
+//! list), [`ContactSpec::parse`], [`ContactSpec::resolve`], [`Law`] and [`Law::force`] (the
+//! parts in order). Every reader of a spec or a law destructures it, so adding a part touches
+//! its file and this one, and the compiler names every place here that must handle it.
 //! A case names a model (`linear`, `hertz_mindlin`: the normal part's key, which the damping
 //! and tangential parts follow) with its parameters, plus the optional rolling keys.
 //!
@@ -212,13 +214,26 @@ impl Kinematics {
     }
 }
 
-/// Where each part's history values sit in a contact's [`History`]: the tangential part's first,
-/// then the rolling part's (each part declares how many, and their names: `HISTORY`).
-const AT_TANGENTIAL: usize = 0;
-const AT_ROLLING: usize = AT_TANGENTIAL + TangentialPart::HISTORY.len();
+/// Where each part's history values sit in a contact's [`History`]: the parts' in the order of
+/// [`ContactSpec`]'s fields (each part declares how many, and their names: [`Part::HISTORY`]),
+/// so the tangential part's first, then the rolling part's.
+const AT_TANGENTIAL: usize = history_at(PartField::tangential as usize);
+const AT_ROLLING: usize = history_at(PartField::rolling as usize);
 
 /// How many history values a contact can carry: every part's.
-pub const HISTORY_LEN: usize = AT_ROLLING + RollingPart::HISTORY.len();
+pub const HISTORY_LEN: usize = history_at(PART_HISTORIES.len());
+
+/// Where the history of the `k`-th part of [`ContactSpec`] starts: the count of every earlier
+/// part's values.
+const fn history_at(k: usize) -> usize {
+    let mut at = 0;
+    let mut p = 0;
+    while p < k {
+        at += PART_HISTORIES[p].len();
+        p += 1;
+    }
+    at
+}
 
 /// The per-contact state carried from step to step while the contact lasts (T16), every part's
 /// values at its place (dropped when the contact ends): the shear spring's elongation along the
@@ -238,8 +253,22 @@ fn history_kept(rolling: Option<RollingPart>) -> usize {
 }
 
 impl History {
-    /// The name of each value, as a restart file writes it.
-    pub const NAMES: [&str; HISTORY_LEN] = [TangentialPart::HISTORY[0], RollingPart::HISTORY[0]];
+    /// The name of each value, as a restart file writes it: every part's [`Part::HISTORY`], in
+    /// order.
+    pub const NAMES: [&str; HISTORY_LEN] = {
+        let mut names = [""; HISTORY_LEN];
+        let (mut k, mut p) = (0, 0);
+        while p < PART_HISTORIES.len() {
+            let mut i = 0;
+            while i < PART_HISTORIES[p].len() {
+                names[k] = PART_HISTORIES[p][i];
+                k += 1;
+                i += 1;
+            }
+            p += 1;
+        }
+        names
+    };
 }
 
 /// Force on j (components along n and t), the elastic energy stored in the contact and its
@@ -277,50 +306,120 @@ pub struct ContactForce {
     pub couple_non_elastic: f64,
 }
 
-/// A contact law as a case gives it: its parts' parameters.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ContactSpec {
-    pub normal: NormalSpec,
-    pub damping: DampingSpec,
-    pub tangential: TangentialSpec,
-    pub rolling: Option<RollingPart>,
-    pub cohesion: Option<CohesionPart>,
+/// One part of a contact law as a case gives it, in its own file: its keys, its history, how a
+/// wall's override replaces inherited keys, how two materials' parts combine
+/// ([`mixing`]). [`ContactSpec`] lists the parts once (the [`parts!`] declaration below); what
+/// reads every part (the keys, the history's layout, [`ContactSpec::given`],
+/// [`ContactSpec::mix`], [`ContactSpec::mixed_keys`]) is generated from that list, so a new
+/// part cannot be left out of any of them.
+pub trait Part: Copy + Sized {
+    /// The keys this part reads in a contact object.
+    const KEYS: &'static [&'static str];
+    /// The names of the values its contacts carry from step to step (a restart file's), if
+    /// any.
+    const HISTORY: &'static [&'static str] = &[];
+
+    /// The inherited keys a wall's override `key` replaces ([`ContactSpec::replaced_by`]):
+    /// keys that give the same parameter another way, and what depends on the key.
+    fn replaced_by(key: &str) -> &'static [&'static str] {
+        let _ = key;
+        &[]
+    }
+
+    /// Its keys as a case file gives them (what its parser reads back).
+    fn given(&self) -> Vec<(&'static str, Given)>;
+
+    /// The part of contacts between the materials `self` and `other` by its rule
+    /// ([`mixing`]), or the key whose two values no rule combines.
+    fn mix(&self, other: &Self) -> Result<Self, MixError>;
+}
+
+/// Declares [`ContactSpec`] from its list of parts (each a field of a type that implements
+/// [`Part`]) and everything that visits every part.
+macro_rules! parts {
+    ($(#[$meta:meta])* pub struct ContactSpec { $($(#[$doc:meta])* $field:ident: $part:ty,)* }) => {
+        $(#[$meta])*
+        pub struct ContactSpec {
+            $($(#[$doc])* pub $field: $part,)*
+        }
+
+        /// The parts by their field's name, numbered in order (for the history's layout).
+        #[allow(non_camel_case_types, dead_code)]
+        enum PartField {
+            $($field),*
+        }
+
+        /// Each part's [`Part::HISTORY`], in the order of [`ContactSpec`]'s fields.
+        const PART_HISTORIES: &[&[&str]] = &[$(<$part as Part>::HISTORY),*];
+
+        impl ContactSpec {
+            /// Every key of a contact object, each part's.
+            pub fn keys() -> impl Iterator<Item = &'static str> {
+                [$(<$part as Part>::KEYS),*].into_iter().flatten().copied()
+            }
+
+            /// The keys a wall's override `key` replaces in the scene's contact object it
+            /// inherits: every key for `model` (a wall naming a model starts afresh), else each
+            /// part's rule ([`Part::replaced_by`]).
+            pub fn replaced_by(key: &str) -> Vec<&'static str> {
+                if key == "model" {
+                    return Self::keys().collect();
+                }
+                [$(<$part as Part>::replaced_by(key)),*].into_iter().flatten().copied().collect()
+            }
+
+            /// Every key of the spec as a case file gives it (what [`ContactSpec::parse`] reads
+            /// back to the same spec), each part's.
+            pub fn given(&self) -> Vec<(&'static str, Given)> {
+                let mut keys = Vec::new();
+                $(keys.extend(self.$field.given());)*
+                keys
+            }
+
+            /// The parameters of contacts between the materials `self` and `other` by each
+            /// part's rule ([`mixing`]; the model and the normal force are `self`'s: a case's
+            /// materials share the scene's). A material with itself keeps its own spec.
+            pub fn mix(&self, other: &ContactSpec) -> Result<ContactSpec, MixError> {
+                if self == other {
+                    return Ok(*self);
+                }
+                Ok(ContactSpec {
+                    $($field: self.$field.mix(&other.$field)?,)*
+                })
+            }
+
+            /// The keys of contacts between the materials `self` and `other`, part by part: each
+            /// part's mixed keys, or where a part's two values have no rule, `self`'s with the
+            /// error (a pair given in a case must then give that key itself).
+            pub fn mixed_keys(&self, other: &ContactSpec) -> (Vec<(&'static str, Given)>, Vec<MixError>) {
+                let (mut keys, mut errors) = (Vec::new(), Vec::new());
+                $(match self.$field.mix(&other.$field) {
+                    Ok(p) => keys.extend(p.given()),
+                    Err(e) => {
+                        errors.push(e);
+                        keys.extend(self.$field.given());
+                    }
+                })*
+                (keys, errors)
+            }
+        }
+    };
+}
+
+parts! {
+    /// A contact law as a case gives it: its parts' parameters. The parts are listed here once
+    /// (see [`Part`]); their order is the history's.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct ContactSpec {
+        normal: NormalSpec,
+        damping: DampingSpec,
+        tangential: TangentialSpec,
+        rolling: Option<RollingPart>,
+        cohesion: Option<CohesionPart>,
+    }
 }
 
 impl ContactSpec {
-    /// Every key of a contact object, each part's.
-    pub fn keys() -> impl Iterator<Item = &'static str> {
-        [
-            NormalSpec::KEYS,
-            DampingSpec::KEYS,
-            TangentialSpec::KEYS,
-            RollingPart::KEYS,
-            CohesionPart::KEYS,
-        ]
-        .into_iter()
-        .flatten()
-        .copied()
-    }
-
-    /// The keys a wall's override `key` replaces in the scene's contact object it inherits:
-    /// every key for `model` (a wall naming a model starts afresh), else each part's rule (the
-    /// keys that give the same parameter another way, and what depends on the key).
-    pub fn replaced_by(key: &str) -> Vec<&'static str> {
-        if key == "model" {
-            return Self::keys().collect();
-        }
-        [
-            NormalSpec::replaced_by(key),
-            DampingSpec::replaced_by(key),
-            TangentialSpec::replaced_by(key),
-            RollingPart::replaced_by(key),
-        ]
-        .into_iter()
-        .flatten()
-        .copied()
-        .collect()
-    }
-
     /// Every part read from a contact object (the normal part first: the damping and the
     /// tangential part follow its model).
     pub fn parse(k: &impl Keys) -> Result<Self, ParamError> {
@@ -410,7 +509,14 @@ impl ContactSpec {
     /// Whether a contact's force depends on its path, not on the configuration alone (a
     /// Coulomb slider, rolling resistance): no energy to minimise.
     pub fn path_dependent(&self) -> bool {
-        self.tangential.friction > 0.0 || self.rolling.is_some()
+        let ContactSpec {
+            normal: _,
+            damping: _,
+            tangential,
+            rolling,
+            cohesion: _, // a potential's gradient
+        } = self;
+        tangential.friction > 0.0 || rolling.is_some()
     }
 
     /// Whether the law reads each body's number of contacts (the CDT rolling limiter's share:
@@ -490,11 +596,18 @@ impl Law {
     /// What the law reads of a contact (see [`Needs`]).
     #[inline(always)]
     pub fn needs(&self) -> Needs {
+        let Law {
+            normal,
+            damping,
+            tangential: _, // reads the normal spring's stiffness and the relative velocity only
+            rolling,
+            cohesion,
+        } = self;
         Needs {
-            m_eff: !matches!(self.damping, DampingPart::Dashpots { .. }) || self.rolling.is_some(),
-            r_eff: matches!(self.normal, NormalPart::Hertz { .. }),
-            rolling: self.rolling.is_some(),
-            cohesion: self.cohesion.is_some(),
+            m_eff: !matches!(damping, DampingPart::Dashpots { .. }) || rolling.is_some(),
+            r_eff: matches!(normal, NormalPart::Hertz { .. }),
+            rolling: rolling.is_some(),
+            cohesion: cohesion.is_some(),
         }
     }
 
@@ -508,9 +621,16 @@ impl Law {
     /// `δ²` → `δ·energy_depth`) plus the history springs'.
     #[inline(always)]
     pub fn force(&self, k: &Kinematics, h: &mut History) -> ContactForce {
+        let Law {
+            normal,
+            damping,
+            tangential,
+            rolling,
+            cohesion,
+        } = self;
         let o = k.spring_overlap();
-        let s = self.normal.spring(o.depth, k.r_eff);
-        let eta_n = self.damping.normal(&s, k.m_eff);
+        let s = normal.spring(o.depth, k.r_eff);
+        let eta_n = damping.normal(&s, k.m_eff);
         let spring = o.rho * (s.k * o.depth);
         let fn_ = (spring + eta_n * o.rate).max(0.0); // T(6)
         let (couple, couple_non_elastic) = o.couple(s.k * o.depth, eta_n);
@@ -530,23 +650,31 @@ impl Law {
             couple,
             couple_non_elastic,
         };
-        if self.tangential.friction > 0.0 || self.rolling.is_some() {
-            let kt = self.tangential.stiffness(&s);
-            let (tangential, rolling) = h.0.split_at_mut(AT_ROLLING);
-            self.tangential.apply(
+        if tangential.friction > 0.0 || rolling.is_some() {
+            let kt = tangential.stiffness(&s);
+            let (shear_history, rolling_history) = h.0.split_at_mut(AT_ROLLING);
+            tangential.apply(
                 kt,
-                self.damping.tangential(eta_n),
+                damping.tangential(eta_n),
                 k.vt,
                 k.dt,
-                &mut tangential[AT_TANGENTIAL..],
+                &mut shear_history[AT_TANGENTIAL..],
                 &mut out,
             );
-            if let Some(r) = &self.rolling {
-                let zeta = self.damping.ratio(&s, k.m_eff);
-                r.apply(&k.rolling, k.spin, kt, zeta, k.dt, rolling, &mut out);
+            if let Some(r) = rolling {
+                let zeta = damping.ratio(&s, k.m_eff);
+                r.apply(
+                    &k.rolling,
+                    k.spin,
+                    kt,
+                    zeta,
+                    k.dt,
+                    rolling_history,
+                    &mut out,
+                );
             }
         }
-        if let Some(c) = &self.cohesion {
+        if let Some(c) = cohesion {
             // The pass gives the chord to every contact whose law has cohesion (`needs`).
             debug_assert!(k.cohesion.is_some(), "a cohesive contact without its chord");
             if let Some(ck) = &k.cohesion {
@@ -560,21 +688,28 @@ impl Law {
     /// rolling kinematics), each part's stiffness and dashpot as [`Law::force`] reports them
     /// (`ρ = 1`: the caller scales the normal mode for the geometry it assumes).
     pub fn modes(&self, k: &Kinematics) -> Modes {
-        let s = self.normal.spring(k.depth, k.r_eff);
-        let eta_n = self.damping.normal(&s, k.m_eff);
-        let kt = self.tangential.stiffness(&s);
-        let tangential = if self.tangential.friction > 0.0 {
-            (kt, self.damping.tangential(eta_n))
+        let Law {
+            normal,
+            damping,
+            tangential,
+            rolling,
+            cohesion: _, // stiffens nothing: its pull's derivative in δ is not a spring's
+        } = self;
+        let s = normal.spring(k.depth, k.r_eff);
+        let eta_n = damping.normal(&s, k.m_eff);
+        let kt = tangential.stiffness(&s);
+        let shear = if tangential.friction > 0.0 {
+            (kt, damping.tangential(eta_n))
         } else {
             (0.0, 0.0)
         };
-        let rotation = match &self.rolling {
-            Some(r) => r.mode(&k.rolling, kt, self.damping.ratio(&s, k.m_eff)),
+        let rotation = match rolling {
+            Some(r) => r.mode(&k.rolling, kt, damping.ratio(&s, k.m_eff)),
             None => (0.0, 0.0),
         };
         Modes {
             normal: (s.tangent * s.k, eta_n),
-            tangential,
+            tangential: shear,
             rotation,
         }
     }
@@ -607,36 +742,52 @@ pub struct LinearDashpots {
 }
 
 impl LinearDashpots {
-    /// The law's numbers, when it is of this kind. Every part's kinds are named (a new kind
-    /// of part must say here whether it is of this kind): a law with cohesion is not (its
-    /// contacts need the chord, which this kind's copies never ask for).
+    /// The law's numbers, when it is of this kind. Every part is read and every kind of each
+    /// named: a part added to [`Law`] is a compile error here until it says whether it is of
+    /// this kind (`deny(unused_variables)`: a part bound and not read is an error too). A law
+    /// with cohesion is not (its contacts need the chord, which this kind's copies never ask
+    /// for). `tests/law_parts.rs` checks that [`LinearDashpots::law`] rebuilds every law this
+    /// accepts exactly, so no part is dropped on the fast path.
+    #[deny(unused_variables)]
     pub fn of(law: &Law) -> Option<Self> {
-        match law.cohesion {
+        let Law {
+            normal,
+            damping,
+            tangential,
+            rolling,
+            cohesion,
+        } = *law;
+        match cohesion {
             None => {}
             Some(CohesionPart { .. }) => return None,
         }
-        let kn = match law.normal {
+        match rolling {
+            None => {}
+            Some(RollingPart { .. }) => return None,
+        }
+        let kn = match normal {
             NormalPart::Linear { kn } => kn,
             NormalPart::Hertz { .. } => return None,
         };
-        let (eta_n, eta_s) = match law.damping {
+        let (eta_n, eta_s) = match damping {
             DampingPart::Dashpots { eta_n, eta_s } => (eta_n, eta_s),
             DampingPart::Restitution { .. } | DampingPart::Hertz { .. } => return None,
         };
-        let ks = match law.tangential.stiffness {
+        let TangentialPart {
+            stiffness,
+            friction,
+        } = tangential;
+        let ks = match stiffness {
             ShearStiffness::Constant(ks) => ks,
             ShearStiffness::Mindlin { .. } => return None,
         };
-        match law.rolling {
-            None => Some(LinearDashpots {
-                kn,
-                eta_n,
-                eta_s,
-                ks,
-                friction: law.tangential.friction,
-            }),
-            Some(RollingPart { .. }) => None,
-        }
+        Some(LinearDashpots {
+            kn,
+            eta_n,
+            eta_s,
+            ks,
+            friction,
+        })
     }
 
     /// The law itself.

@@ -100,25 +100,6 @@ pub struct NormalSpec {
 }
 
 impl NormalSpec {
-    /// The keys this part reads.
-    pub const KEYS: &[&str] = &[
-        "model",
-        "kn",
-        "kn_over_rho_g",
-        "young",
-        "poisson",
-        "normal_force",
-    ];
-
-    /// The inherited keys a wall's override `key` replaces (see
-    /// [`super::ContactSpec::replaced_by`]): a stiffness given one way replaces it given the other.
-    pub fn replaced_by(key: &str) -> &'static [&'static str] {
-        match key {
-            "kn" | "kn_over_rho_g" => &["kn", "kn_over_rho_g"],
-            _ => &[],
-        }
-    }
-
     /// The contact model's name (`linear`, `hertz_mindlin`).
     pub fn model(&self) -> &'static str {
         match self.spring {
@@ -199,10 +180,39 @@ impl NormalSpec {
         }
     }
 
+    /// Young's modulus and Poisson's ratio of a Hertz material.
+    pub fn moduli(&self) -> Option<(f64, f64)> {
+        match self.spring {
+            SpringSpec::Hertz { young, poisson } => Some((young, poisson)),
+            SpringSpec::Linear { .. } => None,
+        }
+    }
+}
+
+impl super::Part for NormalSpec {
+    /// The keys this part reads.
+    const KEYS: &[&str] = &[
+        "model",
+        "kn",
+        "kn_over_rho_g",
+        "young",
+        "poisson",
+        "normal_force",
+    ];
+
+    /// The inherited keys a wall's override `key` replaces (see
+    /// [`super::ContactSpec::replaced_by`]): a stiffness given one way replaces it given the other.
+    fn replaced_by(key: &str) -> &'static [&'static str] {
+        match key {
+            "kn" | "kn_over_rho_g" => &["kn", "kn_over_rho_g"],
+            _ => &[],
+        }
+    }
+
     /// The normal part of contacts between the materials `self` and `other`
     /// ([`super::mixing`]): the harmonic mean of the linear stiffnesses; a Hertz material keeps
     /// its moduli (E* is formed from both at [`NormalSpec::resolve`], T11).
-    pub fn mix(&self, other: &NormalSpec) -> Result<NormalSpec, MixError> {
+    fn mix(&self, other: &NormalSpec) -> Result<NormalSpec, MixError> {
         let spring = match (self.spring, other.spring) {
             (SpringSpec::Linear { kn: a }, SpringSpec::Linear { kn: b }) => SpringSpec::Linear {
                 kn: harmonic_scaled(a, b, "kn")?,
@@ -220,7 +230,7 @@ impl NormalSpec {
     }
 
     /// Its keys as a case file gives them (what [`NormalSpec::parse`] reads back).
-    pub fn given(&self) -> Vec<(&'static str, Given)> {
+    fn given(&self) -> Vec<(&'static str, Given)> {
         let mut keys = vec![
             ("model", Given::Text(self.model())),
             ("normal_force", Given::Text(self.normal_force.as_str())),
@@ -233,13 +243,5 @@ impl NormalSpec {
             }
         }
         keys
-    }
-
-    /// Young's modulus and Poisson's ratio of a Hertz material.
-    pub fn moduli(&self) -> Option<(f64, f64)> {
-        match self.spring {
-            SpringSpec::Hertz { young, poisson } => Some((young, poisson)),
-            SpringSpec::Linear { .. } => None,
-        }
     }
 }

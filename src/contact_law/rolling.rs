@@ -281,3 +281,21 @@ impl RollingPart {
         }
     }
 }
+
+/// The rolling part as a case gives it: none (μ_r = 0), or the part.
+impl super::Part for Option<RollingPart> {
+    const KEYS: &[&str] = RollingPart::KEYS;
+    const HISTORY: &[&str] = RollingPart::HISTORY;
+
+    fn replaced_by(key: &str) -> &'static [&'static str] {
+        RollingPart::replaced_by(key)
+    }
+
+    fn given(&self) -> Vec<(&'static str, Given)> {
+        self.map_or(vec![], |r| r.given())
+    }
+
+    fn mix(&self, other: &Self) -> Result<Self, MixError> {
+        RollingPart::mix(*self, *other)
+    }
+}

@@ -28,18 +28,6 @@ pub struct TangentialSpec {
 }
 
 impl TangentialSpec {
-    /// The keys this part reads.
-    pub const KEYS: &[&str] = &["friction", "ks", "ks_over_rho_g"];
-
-    /// The inherited keys a wall's override `key` replaces (see
-    /// [`super::ContactSpec::replaced_by`]).
-    pub fn replaced_by(key: &str) -> &'static [&'static str] {
-        match key {
-            "ks" | "ks_over_rho_g" => &["ks", "ks_over_rho_g"],
-            _ => &[],
-        }
-    }
-
     /// Reads `friction` and, for the linear model, `ks` (default: the normal spring's `k_n`).
     pub fn parse(k: &impl Keys, normal: &NormalSpec) -> Result<Self, ParamError> {
         let friction = k
@@ -58,35 +46,6 @@ impl TangentialSpec {
             stiffness,
             friction,
         })
-    }
-
-    /// The tangential part of contacts between the materials `self` and `other`
-    /// ([`super::mixing`]): the smaller friction (Yade), the harmonic mean of the shear
-    /// stiffnesses (Mindlin's is formed from both materials' moduli at resolution, T19).
-    pub fn mix(&self, other: &TangentialSpec) -> Result<TangentialSpec, MixError> {
-        let stiffness = match (self.stiffness, other.stiffness) {
-            (ShearSpec::Constant(a), ShearSpec::Constant(b)) => {
-                ShearSpec::Constant(harmonic_scaled(a, b, "ks")?)
-            }
-            (ShearSpec::Mindlin, ShearSpec::Mindlin) => ShearSpec::Mindlin,
-            (ShearSpec::Constant(_), ShearSpec::Mindlin)
-            | (ShearSpec::Mindlin, ShearSpec::Constant(_)) => {
-                return Err(MixError::new("model", "the two materials' models differ"));
-            }
-        };
-        Ok(TangentialSpec {
-            stiffness,
-            friction: self.friction.min(other.friction),
-        })
-    }
-
-    /// Its keys as a case file gives them (what [`TangentialSpec::parse`] reads back).
-    pub fn given(&self) -> Vec<(&'static str, Given)> {
-        let mut keys = vec![("friction", Given::Number(self.friction))];
-        if let ShearSpec::Constant(ks) = self.stiffness {
-            keys.push(ks.given("ks", "ks_over_rho_g"));
-        }
-        keys
     }
 
     /// The part for a pair: `normal` this side's normal spec, `other` the other side's (Mindlin
@@ -118,6 +77,52 @@ impl TangentialSpec {
             stiffness,
             friction: self.friction,
         }
+    }
+}
+
+impl super::Part for TangentialSpec {
+    /// The keys this part reads.
+    const KEYS: &[&str] = &["friction", "ks", "ks_over_rho_g"];
+
+    /// The shear spring's elongation ([`TangentialPart::HISTORY`]).
+    const HISTORY: &[&str] = TangentialPart::HISTORY;
+
+    /// The inherited keys a wall's override `key` replaces (see
+    /// [`super::ContactSpec::replaced_by`]).
+    fn replaced_by(key: &str) -> &'static [&'static str] {
+        match key {
+            "ks" | "ks_over_rho_g" => &["ks", "ks_over_rho_g"],
+            _ => &[],
+        }
+    }
+
+    /// The tangential part of contacts between the materials `self` and `other`
+    /// ([`super::mixing`]): the smaller friction (Yade), the harmonic mean of the shear
+    /// stiffnesses (Mindlin's is formed from both materials' moduli at resolution, T19).
+    fn mix(&self, other: &TangentialSpec) -> Result<TangentialSpec, MixError> {
+        let stiffness = match (self.stiffness, other.stiffness) {
+            (ShearSpec::Constant(a), ShearSpec::Constant(b)) => {
+                ShearSpec::Constant(harmonic_scaled(a, b, "ks")?)
+            }
+            (ShearSpec::Mindlin, ShearSpec::Mindlin) => ShearSpec::Mindlin,
+            (ShearSpec::Constant(_), ShearSpec::Mindlin)
+            | (ShearSpec::Mindlin, ShearSpec::Constant(_)) => {
+                return Err(MixError::new("model", "the two materials' models differ"));
+            }
+        };
+        Ok(TangentialSpec {
+            stiffness,
+            friction: self.friction.min(other.friction),
+        })
+    }
+
+    /// Its keys as a case file gives them (what [`TangentialSpec::parse`] reads back).
+    fn given(&self) -> Vec<(&'static str, Given)> {
+        let mut keys = vec![("friction", Given::Number(self.friction))];
+        if let ShearSpec::Constant(ks) = self.stiffness {
+            keys.push(ks.given("ks", "ks_over_rho_g"));
+        }
+        keys
     }
 }
 
