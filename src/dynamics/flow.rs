@@ -261,9 +261,10 @@ pub struct Flow {
     /// Bodies removed so far, and their mass.
     pub discharged: u64,
     pub discharged_mass: f64,
-    /// The removals not yet taken by a reader ([`Flow::take_log`]).
+    /// The removals of the last application ([`World::apply_flow`] at step
+    /// [`Flow::applied_step`]; emptied by the next): what a reader takes after each step.
     pub log: Vec<Discharge>,
-    /// The insertions not yet taken by a reader ([`Flow::take_insertions`]).
+    /// The insertions of the last application, likewise.
     pub inserted_log: Vec<Insertion>,
 }
 
@@ -312,16 +313,6 @@ impl Flow {
                 (due > 0).then_some((k, due))
             })
             .collect()
-    }
-
-    /// The removals logged since the last call.
-    pub fn take_log(&mut self) -> Vec<Discharge> {
-        std::mem::take(&mut self.log)
-    }
-
-    /// The insertions logged since the last call.
-    pub fn take_insertions(&mut self) -> Vec<Insertion> {
-        std::mem::take(&mut self.inserted_log)
     }
 
     /// Where the flow is, for a restart.

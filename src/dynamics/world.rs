@@ -336,6 +336,8 @@ impl World {
         };
         if flow.applied_step != Some(self.step) {
             flow.applied_step = Some(self.step);
+            flow.log.clear();
+            flow.inserted_log.clear();
             self.outflow(&mut flow);
             self.inflow(&mut flow);
         }

@@ -18,7 +18,7 @@ use crate::analysis::{self, Frame, FrameContact, Measures, Window};
 use crate::dynamics::{Partner, World};
 use crate::geometry::Vec2;
 use crate::run::time::time_text;
-use crate::run::{End, Observer, ObserverError, Plan, StepInfo};
+use crate::run::{End, Moment, Observer, ObserverError, Plan, StepInfo};
 use std::path::Path;
 
 pub const ANALYSIS_HEADER: &str = "t,area,sxx,syy,sxy,p,q,q_over_p,boundary_sxx,boundary_syy,\
@@ -142,14 +142,15 @@ impl AnalysisOutput {
         })
     }
 
-    /// Writes the frame of the world's current state, labelled `step` (once per label). Refreshes
-    /// the contact extras (normals, depths), which the step does not keep.
-    pub fn write(&mut self, world: &mut World, step: u64) -> Result<(), WriteError> {
+    /// Writes the frame of the world's current state, labelled `step` (once per label). Reads
+    /// the contact extras (normals, depths), which the step does not keep: the caller refreshes
+    /// them ([`World::refresh_contact_extras`]; a run's driver does when
+    /// [`Observer::reads_extras`] asks).
+    pub fn write(&mut self, world: &World, step: u64) -> Result<(), WriteError> {
         if self.last_step == Some(step) {
             return Ok(());
         }
         self.last_step = Some(step);
-        world.refresh_contact_extras();
         let frame = Frame::from_world(world);
         let t = time_text(step, world.dt);
         if let Some(a) = &mut self.analysis {
@@ -192,18 +193,26 @@ impl AnalysisOutput {
 }
 
 impl Observer for AnalysisOutput {
-    fn start(&mut self, world: &mut World, _: &Plan) -> Result<(), ObserverError> {
+    fn reads_extras(&self, moment: Moment) -> bool {
+        match moment {
+            Moment::Start(_) => true,
+            Moment::Step(info) => !info.blowup && info.step.is_multiple_of(self.every),
+            Moment::Finish(end) => end.finite && self.last_step != Some(end.step),
+        }
+    }
+
+    fn start(&mut self, world: &World, _: &Plan) -> Result<(), ObserverError> {
         Ok(self.write(world, world.step)?)
     }
 
-    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+    fn after_step(&mut self, world: &World, info: &StepInfo) -> Result<(), ObserverError> {
         if !info.blowup && info.step.is_multiple_of(self.every) {
             self.write(world, info.step)?;
         }
         Ok(())
     }
 
-    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
+    fn finish(&mut self, world: &World, end: &End) -> Result<(), ObserverError> {
         if end.finite {
             self.write(world, end.step)?;
         }

@@ -29,6 +29,8 @@ pub struct DischargeWriter {
     out: Option<LineFile>,
     inserted: Option<LineFile>,
     every: u64,
+    /// The flow application whose rows were written last ([`crate::dynamics::Flow::applied_step`]).
+    taken: Option<u64>,
 }
 
 impl DischargeWriter {
@@ -48,15 +50,22 @@ impl DischargeWriter {
             out: open(outflow, "discharge.csv", DISCHARGE_HEADER)?,
             inserted: open(insert, "inserted.csv", INSERTED_HEADER)?,
             every: every.max(1),
+            taken: None,
         })
     }
 
-    fn take(&mut self, world: &mut World) -> Result<(), WriteError> {
+    /// Writes the rows of the flow's last application (once: a writer called again at the same
+    /// application, at a run's end or a continued run's start, writes nothing).
+    fn take(&mut self, world: &World) -> Result<(), WriteError> {
         let dt = world.dt;
-        let Some(flow) = world.flow.as_mut() else {
+        let Some(flow) = world.flow.as_ref() else {
             return Ok(());
         };
-        let (removed, placed) = (flow.take_log(), flow.take_insertions());
+        if flow.applied_step.is_none() || self.taken == flow.applied_step {
+            return Ok(());
+        }
+        self.taken = flow.applied_step;
+        let (removed, placed) = (&flow.log, &flow.inserted_log);
         if let Some(out) = &mut self.out {
             for d in removed {
                 out.line(format_args!(
@@ -93,12 +102,12 @@ impl DischargeWriter {
 }
 
 impl Observer for DischargeWriter {
-    fn start(&mut self, world: &mut World, _: &crate::run::Plan) -> Result<(), ObserverError> {
+    fn start(&mut self, world: &World, _: &crate::run::Plan) -> Result<(), ObserverError> {
         self.take(world)?;
         Ok(self.flush()?)
     }
 
-    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+    fn after_step(&mut self, world: &World, info: &StepInfo) -> Result<(), ObserverError> {
         self.take(world)?;
         if info.step.is_multiple_of(self.every) {
             self.flush()?;
@@ -106,7 +115,7 @@ impl Observer for DischargeWriter {
         Ok(())
     }
 
-    fn finish(&mut self, world: &mut World, _: &End) -> Result<(), ObserverError> {
+    fn finish(&mut self, world: &World, _: &End) -> Result<(), ObserverError> {
         self.take(world)?;
         Ok(self.flush()?)
     }

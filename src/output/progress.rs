@@ -92,7 +92,7 @@ impl ProgressLines {
 }
 
 impl Observer for ProgressLines {
-    fn start(&mut self, _: &mut World, _: &Plan) -> Result<(), ObserverError> {
+    fn start(&mut self, _: &World, _: &Plan) -> Result<(), ObserverError> {
         self.shown = Some((
             Progress::new(self.enabled, Duration::from_secs(2)),
             Instant::now(),
@@ -100,7 +100,7 @@ impl Observer for ProgressLines {
         Ok(())
     }
 
-    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+    fn after_step(&mut self, world: &World, info: &StepInfo) -> Result<(), ObserverError> {
         if let Some((progress, start)) = &mut self.shown
             && !info.stopping
             && progress.due()
@@ -119,7 +119,7 @@ impl Observer for ProgressLines {
         Ok(())
     }
 
-    fn finish(&mut self, _: &mut World, _: &End) -> Result<(), ObserverError> {
+    fn finish(&mut self, _: &World, _: &End) -> Result<(), ObserverError> {
         if let Some((progress, _)) = &self.shown {
             progress.finish();
         }
@@ -226,12 +226,12 @@ impl CommandProgress {
 }
 
 impl Observer for CommandProgress {
-    fn start(&mut self, world: &mut World, plan: &Plan) -> Result<(), ObserverError> {
+    fn start(&mut self, world: &World, plan: &Plan) -> Result<(), ObserverError> {
         (self.first, self.last, self.start) = (world.step, plan.last, Instant::now());
         Ok(())
     }
 
-    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+    fn after_step(&mut self, world: &World, info: &StepInfo) -> Result<(), ObserverError> {
         if !info.stopping && self.due() {
             let text = line(&Fields {
                 name: &self.name,
@@ -248,7 +248,7 @@ impl Observer for CommandProgress {
         Ok(())
     }
 
-    fn finish(&mut self, _: &mut World, _: &End) -> Result<(), ObserverError> {
+    fn finish(&mut self, _: &World, _: &End) -> Result<(), ObserverError> {
         if std::mem::take(&mut self.shown) && self.tty {
             let _ = writeln!(std::io::stderr());
         }

@@ -58,7 +58,7 @@ use crate::output::vtk::VtkWriter;
 use crate::output::walls::Walls;
 use crate::output::write_atomically;
 use crate::run::time::time_value;
-use crate::run::{CriticalStepSampler, EnergyAudit, RunProgress, Simulation, Stop, watch};
+use crate::run::{EnergyAudit, RunProgress, Simulation, Stop, watch};
 use crate::run::{ObserverError, RunError as RunFailure};
 use crate::scene::Case;
 use std::fmt;
@@ -461,7 +461,8 @@ struct Writers {
     reactions: Option<Frames<Reactions>>,
     discharge: Option<DischargeWriter>,
     dump: Option<DumpWriter>,
-    sampler: CriticalStepSampler,
+    /// Every how many steps the network's critical step is sampled ([`Simulation::sample_critical_dt`]).
+    critical_dt_every: u64,
     audit: EnergyAudit,
     analysis: Option<AnalysisOutput>,
     vtk: Option<VtkWriter>,
@@ -605,7 +606,7 @@ impl RunDir {
                 reactions,
                 discharge,
                 dump,
-                sampler: CriticalStepSampler { every },
+                critical_dt_every: every,
                 audit: EnergyAudit::new(&progress, case.energy_audit, every),
                 analysis,
                 vtk,
@@ -668,7 +669,9 @@ impl RunDir {
         if let Some(x) = w.dump.as_mut() {
             sim = sim.observe(x);
         }
-        sim = sim.observe(&mut w.sampler).observe(&mut w.audit);
+        sim = sim
+            .sample_critical_dt(w.critical_dt_every)
+            .observe(&mut w.audit);
         if let Some(a) = w.analysis.as_mut() {
             sim = sim.observe(a);
         }

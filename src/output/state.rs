@@ -527,7 +527,7 @@ impl StateWriter {
 }
 
 impl Observer for StateWriter {
-    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+    fn after_step(&mut self, world: &World, info: &StepInfo) -> Result<(), ObserverError> {
         // (Not at the last step: the run's end writes it with how it ended.)
         if let Some(n) = self.checkpoint_every
             && info.step.is_multiple_of(n)
@@ -538,7 +538,7 @@ impl Observer for StateWriter {
         Ok(())
     }
 
-    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
+    fn finish(&mut self, world: &World, end: &End) -> Result<(), ObserverError> {
         if matches!(end.outcome, Err(RunError::Blowup(_))) {
             return Ok(());
         }

@@ -166,19 +166,19 @@ impl<R: FrameRows> Frames<R> {
 }
 
 impl<R: FrameRows> Observer for Frames<R> {
-    fn start(&mut self, world: &mut World, _: &Plan) -> Result<(), ObserverError> {
+    fn start(&mut self, world: &World, _: &Plan) -> Result<(), ObserverError> {
         self.write(world)?;
         Ok(self.flush()?)
     }
 
-    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+    fn after_step(&mut self, world: &World, info: &StepInfo) -> Result<(), ObserverError> {
         if !info.blowup && info.step.is_multiple_of(self.every) {
             self.write_labelled(world, info.step)?;
         }
         Ok(())
     }
 
-    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
+    fn finish(&mut self, world: &World, end: &End) -> Result<(), ObserverError> {
         self.write_labelled(world, end.step)?;
         Ok(self.flush()?)
     }
@@ -296,14 +296,14 @@ impl IncrementsWriter {
 }
 
 impl Observer for IncrementsWriter {
-    fn start(&mut self, _: &mut World, plan: &Plan) -> Result<(), ObserverError> {
+    fn start(&mut self, _: &World, plan: &Plan) -> Result<(), ObserverError> {
         self.thin = plan
             .last
             .map_or(1, |last| last.div_ceil(MAX_INCREMENT_ROWS).max(1));
         Ok(())
     }
 
-    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+    fn after_step(&mut self, world: &World, info: &StepInfo) -> Result<(), ObserverError> {
         let s = info.step;
         let last = info.last == Some(s);
         if info.blowup {
@@ -318,7 +318,7 @@ impl Observer for IncrementsWriter {
         Ok(())
     }
 
-    fn finish(&mut self, _: &mut World, _: &End) -> Result<(), ObserverError> {
+    fn finish(&mut self, _: &World, _: &End) -> Result<(), ObserverError> {
         Ok(self.flush()?)
     }
 }

@@ -53,7 +53,7 @@ use super::trace::WriteError;
 use crate::dynamics::{Partner, World};
 use crate::geometry::{Shape, Vec2};
 use crate::run::time::{time_text, time_value};
-use crate::run::{End, Observer, ObserverError, Plan, StepInfo};
+use crate::run::{End, Moment, Observer, ObserverError, Plan, StepInfo};
 use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::io;
@@ -148,20 +148,21 @@ impl VtkWriter {
     }
 
     /// Writes the world's current state as the next frame (once per step).
-    pub fn write(&mut self, world: &mut World) -> Result<(), WriteError> {
+    pub fn write(&mut self, world: &World) -> Result<(), WriteError> {
         let step = world.step;
         self.write_labelled(world, step)
     }
 
     /// Writes the world's current state labelled as step `step` (once per label; see
-    /// [`super::trace::TrajectoryWriter::write_labelled`]), then rewrites `run.pvd`.
-    pub fn write_labelled(&mut self, world: &mut World, step: u64) -> Result<(), WriteError> {
+    /// [`super::trace::TrajectoryWriter::write_labelled`]), then rewrites `run.pvd`. Reads the
+    /// contact extras (normals, depths), which the step does not keep: the caller refreshes them
+    /// ([`World::refresh_contact_extras`]; a run's driver does when [`Observer::reads_extras`]
+    /// asks).
+    pub fn write_labelled(&mut self, world: &World, step: u64) -> Result<(), WriteError> {
         if self.last_step == Some(step) {
             return Ok(());
         }
         self.last_step = Some(step);
-        // The contact normals and depths are not kept by the step.
-        world.refresh_contact_extras();
         self.outlines = outlines_by_id(world, std::mem::take(&mut self.outlines));
         self.grow_bbox(world);
         let name = format!("vtk/frame_{:05}.vtu", self.frames.len());
@@ -610,18 +611,26 @@ pub fn base64(bytes: &[u8], out: &mut String) {
 }
 
 impl Observer for VtkWriter {
-    fn start(&mut self, world: &mut World, _: &Plan) -> Result<(), ObserverError> {
+    fn reads_extras(&self, moment: Moment) -> bool {
+        match moment {
+            Moment::Start(_) => true,
+            Moment::Step(info) => !info.blowup && info.step.is_multiple_of(self.every),
+            Moment::Finish(end) => end.finite && self.last_step != Some(end.step),
+        }
+    }
+
+    fn start(&mut self, world: &World, _: &Plan) -> Result<(), ObserverError> {
         Ok(self.write(world)?)
     }
 
-    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+    fn after_step(&mut self, world: &World, info: &StepInfo) -> Result<(), ObserverError> {
         if !info.blowup && info.step.is_multiple_of(self.every) {
             self.write(world)?;
         }
         Ok(())
     }
 
-    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
+    fn finish(&mut self, world: &World, end: &End) -> Result<(), ObserverError> {
         // A non-finite state is not drawn (VTK readers choke on it); the trajectory has it.
         if end.finite {
             self.write_labelled(world, end.step)?;

@@ -160,7 +160,7 @@ impl EnergyAudit {
 }
 
 impl Observer for EnergyAudit {
-    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
+    fn after_step(&mut self, world: &World, info: &StepInfo) -> Result<(), ObserverError> {
         if !info.blowup && info.step.is_multiple_of(self.every) {
             self.check(world, info.step);
         }
@@ -171,7 +171,7 @@ impl Observer for EnergyAudit {
     /// few steps the scale is what gravity has supplied so far, next to nothing, and the
     /// account's rounding and a contact's first swing would read as a large fraction of it
     /// (P's three ellipses, 10 steps in: 1.5e-3 erg of 0.06).
-    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
+    fn finish(&mut self, world: &World, end: &End) -> Result<(), ObserverError> {
         if end.finite && end.step >= self.every {
             self.check(world, end.step);
         }

@@ -15,8 +15,10 @@
 //!    step budget).
 //! 5. The observers ([`Observer`], in the order added): the writers of the run's files are in
 //!    [`crate::output`] (trajectory, increments, walls, analysis and contacts, VTK, progress
-//!    lines, the saved state); [`CriticalStepSampler`] samples the contact network's critical
-//!    step.
+//!    lines, the saved state). They read the world (`&World`); the contacts' extras that some
+//!    of them read are computed once before them, when any asks ([`Observer::reads_extras`]),
+//!    as is the sample of the contact network's critical step
+//!    ([`Simulation::sample_critical_dt`]).
 //!
 //! Before the first step the observers see the start ([`Observer::start`]: the first frame);
 //! when the run ends, however it ends, their last word ([`Observer::finish`]: the last frame,
@@ -36,7 +38,7 @@ pub mod time;
 pub mod watch;
 
 pub use audit::{AuditFinding, EnergyAudit};
-pub use observer::{CriticalStepSampler, End, Observer, ObserverError, Plan, StepInfo};
+pub use observer::{End, Moment, Observer, ObserverError, Plan, StepInfo};
 pub use progress::RunProgress;
 pub use quiescence::Quiescence;
 pub use simulation::Simulation;

@@ -50,36 +50,39 @@ pub struct End<'e> {
     pub progress: &'e RunProgress,
 }
 
-/// An observer of a run (the writers of a run's files are in [`crate::output`]).
+/// A moment at which the observers are called: what [`Observer::reads_extras`] is asked
+/// about.
+#[derive(Clone, Copy, Debug)]
+pub enum Moment<'m> {
+    Start(&'m Plan),
+    Step(&'m StepInfo),
+    Finish(&'m End<'m>),
+}
+
+/// An observer of a run (the writers of a run's files are in [`crate::output`]). It reads the
+/// world and never changes it: what an observer needs computed that the step does not keep —
+/// the contacts' extras ([`World::refresh_contact_extras`]: each contact's depth, stiffness
+/// and damping) — it asks for ([`Observer::reads_extras`]), and the driver computes it once,
+/// before the observers, for all who asked.
 pub trait Observer {
+    /// Whether this observer reads the contacts' extras at `moment` (default: never).
+    fn reads_extras(&self, moment: Moment) -> bool {
+        let _ = moment;
+        false
+    }
+
     /// Before the first step (the world at its start: the first frame).
-    fn start(&mut self, world: &mut World, plan: &Plan) -> Result<(), ObserverError> {
+    fn start(&mut self, world: &World, plan: &Plan) -> Result<(), ObserverError> {
         let _ = (world, plan);
         Ok(())
     }
 
     /// After every step taken (not after a step that stopped part-way).
-    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError>;
+    fn after_step(&mut self, world: &World, info: &StepInfo) -> Result<(), ObserverError>;
 
     /// When the run has ended, however it ended (the last frame, flushing).
-    fn finish(&mut self, world: &mut World, end: &End) -> Result<(), ObserverError> {
+    fn finish(&mut self, world: &World, end: &End) -> Result<(), ObserverError> {
         let _ = (world, end);
-        Ok(())
-    }
-}
-
-/// Samples the contact network's critical time step
-/// ([`World::network_critical_dt`], kept in the world's diagnostics) every `every` steps.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CriticalStepSampler {
-    pub every: u64,
-}
-
-impl Observer for CriticalStepSampler {
-    fn after_step(&mut self, world: &mut World, info: &StepInfo) -> Result<(), ObserverError> {
-        if !info.blowup && info.step.is_multiple_of(self.every.max(1)) {
-            world.network_critical_dt();
-        }
         Ok(())
     }
 }

@@ -1,6 +1,6 @@
 //! The run driver: [`Simulation`].
 
-use super::observer::{End, Observer, Plan, StepInfo};
+use super::observer::{End, Moment, Observer, Plan, StepInfo};
 use super::progress::RunProgress;
 use super::quiescence::Quiescence;
 use super::watch::{self, BlowupReport, BlowupWatch};
@@ -25,6 +25,8 @@ pub struct Simulation<'a> {
     flag: Option<&'a AtomicI32>,
     watching: bool,
     observers: Vec<&'a mut dyn Observer>,
+    /// Every how many steps the contact network's critical step is sampled.
+    critical_dt_every: Option<u64>,
     progress: RunProgress,
     quiescent_step: Option<u64>,
     start_step: u64,
@@ -57,6 +59,7 @@ impl<'a> Simulation<'a> {
             flag: None,
             watching: true,
             observers: Vec::new(),
+            critical_dt_every: None,
             progress,
             quiescent_step: None,
             start_step,
@@ -116,6 +119,14 @@ impl<'a> Simulation<'a> {
     /// Adds an observer (called in the order added).
     pub fn observe(mut self, observer: &'a mut dyn Observer) -> Self {
         self.observers.push(observer);
+        self
+    }
+
+    /// Samples the contact network's critical time step ([`World::network_critical_dt`], its
+    /// smallest kept in the world's diagnostics) after every `every`-th step (not after a
+    /// blow-up).
+    pub fn sample_critical_dt(mut self, every: u64) -> Self {
+        self.critical_dt_every = Some(every.max(1));
         self
     }
 
@@ -200,6 +211,9 @@ impl<'a> Simulation<'a> {
         // Insertion and outflow at the start (at most once a step: see `dynamics::flow`).
         self.world.apply_flow();
         let plan = Plan { first, last };
+        if asks_extras(&self.observers, Moment::Start(&plan)) {
+            self.world.refresh_contact_extras();
+        }
         let started = self
             .observers
             .iter_mut()
@@ -216,6 +230,16 @@ impl<'a> Simulation<'a> {
             Err(RunError::Blowup(b)) => (b.step, !b.within_step),
             _ => (self.world.step, true),
         };
+        let end = End {
+            step,
+            finite,
+            outcome: &outcome,
+            progress: &self.progress,
+        };
+        // Not on a state a step stopped part-way on: its contacts are not those of a whole step.
+        if finite && asks_extras(&self.observers, Moment::Finish(&end)) {
+            self.world.refresh_contact_extras();
+        }
         for o in self.observers.iter_mut() {
             let end = End {
                 step,
@@ -307,6 +331,15 @@ impl<'a> Simulation<'a> {
                 blowup: blowup.is_some(),
                 progress: *progress,
             };
+            let sampled = info
+                .step
+                .is_multiple_of(self.critical_dt_every.unwrap_or(u64::MAX))
+                && !info.blowup;
+            if sampled {
+                world.network_critical_dt(); // (it refreshes the extras)
+            } else if asks_extras(&self.observers, Moment::Step(&info)) {
+                world.refresh_contact_extras();
+            }
             for o in self.observers.iter_mut() {
                 o.after_step(world, &info).map_err(RunError::Observer)?;
             }
@@ -321,4 +354,9 @@ impl<'a> Simulation<'a> {
             }
         }
     }
+}
+
+/// Whether some observer reads the contacts' extras at `moment`.
+fn asks_extras(observers: &[&mut dyn Observer], moment: Moment) -> bool {
+    observers.iter().any(|o| o.reads_extras(moment))
 }

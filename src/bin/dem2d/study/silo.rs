@@ -188,7 +188,7 @@ fn run_silo(
     let stop = Simulation::new(&mut w)
         .until_time(until)
         .run_until(|w, _| {
-            let log = w.flow.as_mut().expect("a flow").take_log();
+            let log = w.flow.as_ref().expect("a flow").log.clone();
             for d in &log {
                 out.push((d.time, d.mass));
             }
