@@ -1,10 +1,11 @@
 //! The angle of repose of a 2D heap of cohesive disks against the Bond number.
 //!
-//! `dem2d study repose-cohesion` prints a Markdown table.
+//! `dem2d study repose-cohesion` prints a Markdown table (about 14 min on one thread).
 //!
 //! Protocol: `dem2d study repose`'s dam break ([`super::repose`]: the same 300 disks, radii
-//! uniform in 0.8–1.2 cm, ρ = 2.65, Coulomb friction 0.5, e = 0.5, the area law, the same column
-//! settled without cohesion nor rolling resistance), with a fixed rolling resistance (EPSD,
+//! uniform in 0.8–1.2 cm, ρ = 2.65, Coulomb friction 0.5, e = 0.5, the area law, a column
+//! settled without cohesion nor rolling resistance; each Bo on three columns, [`SEEDS`], the
+//! first `repose`'s), with a fixed rolling resistance (EPSD,
 //! μ_r = 0.1, so that the cohesionless heap comes to rest) and cohesion `contact.cohesion` c
 //! switched on when the right wall starts to withdraw, between the grains and with the floor
 //! (not with the side walls: [`ColumnSpec::cohesive_case_json`]). The heap is measured as in
