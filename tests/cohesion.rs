@@ -692,3 +692,110 @@ fn a_disks_overlap_with_a_drum_and_a_segments_end_is_the_closed_form_area() {
         assert!((a.length / want_l - 1.0).abs() < 1e-12, "{delta}");
     }
 }
+
+/// The pull-off force of two equal disks (the Bond number's force in `dem2d study
+/// repose-cohesion`), against its closed form. Two disks of radius r at centre distance `2r − δ`
+/// meet on the chord `ℓ = 2√((δ/2)(2r − δ/2))`, so with `u = δ/2` the net push apart
+/// `F = kδ − cℓ = 2(k u − c√(u(2r − u)))` is twice (1) for a wall with cohesion c/2: its least
+/// value gives `P = 2 r(√(k² + c²) − k)` (at `δ* = 2(r − kr/√(k² + c²))`), and a disk hanging
+/// by W ≤ P rests at twice (4)'s depth for (c/2, W/2). The disk-disk chord is the lens's
+/// (`narrow_phase::circle_circle`, Heron), not the wall's cap: this is not (3) again.
+#[test]
+fn a_disk_hanging_under_a_fixed_disk_leaves_at_the_two_disk_pull_off_force() {
+    let r = 1.0;
+    let m = PI * r * r;
+    let s = (KN * KN + C * C).sqrt();
+    let (d_star, p) = (2.0 * (r - KN * r / s), 2.0 * r * (s - KN));
+    // The same from the wall's (3) with c/2, doubled.
+    let (u_star, half) = pull_off(KN, C / 2.0, r);
+    assert!((2.0 * u_star / d_star - 1.0).abs() < 1e-12 && (2.0 * half / p - 1.0).abs() < 1e-12);
+    eprintln!(
+        "two disks: pull-off P = {p:.6} dyn at δ* = {d_star:.6e} cm (a disk on a wall: {:.6})",
+        pull_off(KN, C, r).1
+    );
+    let hanging = |weight: f64| {
+        let spec = spec(NormalForce::Area, C, Some(0.5));
+        let mut top = body(Shape::Circle { r }, Vec2::zeros(), 0.0);
+        top.prescribed = true;
+        let below = body(
+            Shape::Circle { r },
+            Vec2::new(0.0, -(2.0 * r - d_star)),
+            0.0,
+        );
+        let mut w = World::new(
+            &[top, below],
+            vec![],
+            Vec2::new(0.0, -weight / m),
+            spec,
+            1e-5,
+        );
+        Simulation::new(&mut w).until_time(0.3).run().unwrap();
+        w.bodies.state[1].pose.position.y
+    };
+    // 0.1 % below P: it holds, at twice (4)'s depth for (c/2, W/2).
+    let y = hanging(0.999 * p);
+    let got = 2.0 * r + y;
+    let want = 2.0 * hang_depth(KN, C / 2.0, r, 0.999 * p / 2.0);
+    eprintln!(
+        "W = 0.999 P: hangs at depth {got:.10e} cm, closed form {want:.10e} (rel {:.1e})",
+        got / want - 1.0
+    );
+    assert!((got / want - 1.0).abs() < 1e-6, "{got} vs {want}");
+    // 0.1 % above P: it leaves and falls free.
+    let y = hanging(1.001 * p);
+    eprintln!("W = 1.001 P: centre at y = {y:.4} cm after 0.3 s (it hung at y = -{r}·2)");
+    assert!(y < -4.0 * r, "still hanging at y = {y}");
+}
+
+/// `dem2d study repose-cohesion`'s protocol on a small column (100 disks released from their
+/// lattice, as `tests/rolling.rs`'s heap, EPSD μ_r = 0.1): with cohesion between the grains and
+/// with the floor at Bo = 10 (the pull-off force of two disks of the mean radius, above, ten
+/// weights: `c = √((k + Bo W/(2r))² − k²)`) the heap stands steeper, higher and shorter than
+/// without. Cohesion is switched on at the release and only acts while grains overlap, so
+/// nothing in the law itself makes a heap steeper: the grains must hold together in the flow.
+#[test]
+fn a_cohesive_heap_stands_steeper_than_a_cohesionless_one() {
+    use dem2d::contact_law::{RollingModel, RollingPart};
+    use dem2d::dynamics::analysis::heap_surface;
+    use dem2d::run::Stop;
+    use dem2d::scene::generate::{ColumnSpec, DENSITY, KN_OVER_RHO_G};
+    let column = ColumnSpec {
+        n: 100,
+        width: 12.5,
+        seed: 5,
+        friction: 0.5,
+    };
+    let rolling = RollingPart {
+        model: RollingModel::Epsd,
+        friction: 0.1,
+        damping: None,
+    };
+    let (k, weight) = (KN_OVER_RHO_G * DENSITY * G, DENSITY * G * PI);
+    let bodies = column.lattice_bodies();
+    let mut heaps = Vec::new();
+    for bo in [0.0, 10.0] {
+        let s = k + bo * weight / 2.0;
+        let c = ((s - k) * (s + k)).sqrt();
+        let text =
+            column.cohesive_case_json("heap", &bodies, 100.0, &rolling.given(), c, "EPSD, 0.1.");
+        let case = dem2d::scene::Case::from_json(&text).unwrap();
+        let mut w = case.build_world();
+        let stop = Simulation::new(&mut w)
+            .until_time(3.0)
+            .quiescence(case.quiescence_criterion())
+            .run()
+            .unwrap();
+        let (angle, h, toe) = heap_surface(&w, 2.0);
+        eprintln!(
+            "Bo = {bo} (c = {c:.4e}): angle {angle:.1}°, height {h:.1} cm, toe {toe:.1} cm, {}",
+            match stop {
+                Stop::AtRest { since } => format!("at rest at t = {:.2} s", since as f64 * 1e-5),
+                _ => "not at rest in 3 s".to_string(),
+            }
+        );
+        heaps.push((angle, h, toe));
+    }
+    let ((a0, h0, t0), (a1, h1, t1)) = (heaps[0], heaps[1]);
+    assert!(a1 > a0 + 4.0, "angle {a1} against {a0} without cohesion");
+    assert!(h1 > h0 && t1 < t0, "height {h1} vs {h0}, toe {t1} vs {t0}");
+}

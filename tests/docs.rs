@@ -230,6 +230,7 @@ fn marked_tables_are_closed_and_each_name_is_marked_once() {
         "lammps",
         "rolling_fig3",
         "repose",
+        "repose_cohesion",
         "biaxial",
         "impacts",
         "biaxial_shape",

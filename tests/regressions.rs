@@ -815,6 +815,7 @@ mod bug_messages_did_not_say_what_was_meant {
         for study in [
             "rolling-fig3",
             "repose",
+            "repose-cohesion",
             "biaxial",
             "impacts",
             "biaxial-shape",

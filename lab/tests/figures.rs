@@ -145,6 +145,7 @@ fn figures_quick_writes_every_figure_and_table_of_the_guide() {
                 "kernel_speed",
                 "rolling_fig3",
                 "repose",
+                "repose_cohesion",
                 "biaxial",
                 "impacts",
                 "biaxial_shape",

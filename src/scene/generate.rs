@@ -368,20 +368,32 @@ impl PileSpec {
         });
         let right = json!({"point": [width, 0.0], "normal": [-1.0, 0.0]});
         let run = [self.dt, self.duration, self.quiescence];
-        settling_case_text(name, description, run, contact, right, bodies)
+        settling_case_text(
+            name,
+            description,
+            run,
+            contact,
+            [left_wall(), right],
+            bodies,
+        )
     }
 }
 
-/// The text of a case settling under gravity in a box (a floor, a left wall at x = 0 and the
-/// wall `right`; `dem2d generate`'s fields in their order): `name`, `description`, the
-/// step, duration and rest criterion `run` (Δt, duration, quiescence), the `contact` law,
-/// holding `bodies`.
+/// The left wall of a settling box, x = 0.
+fn left_wall() -> Value {
+    json!({"point": [0.0, 0.0], "normal": [1.0, 0.0]})
+}
+
+/// The text of a case settling under gravity in a box (a floor, the side walls `[left, right]`:
+/// a left wall at x = 0, [`left_wall`], and a right wall; `dem2d generate`'s fields in their
+/// order): `name`, `description`, the step, duration and rest criterion `run` (Δt, duration,
+/// quiescence), the `contact` law, holding `bodies`.
 fn settling_case_text(
     name: &str,
     description: &str,
     [dt, duration, quiescence]: [f64; 3],
     contact: Value,
-    right: Value,
+    [left, right]: [Value; 2],
     bodies: &[BodyInit],
 ) -> String {
     let head: [(&str, Value); 12] = [
@@ -400,7 +412,7 @@ fn settling_case_text(
             "walls",
             json!([
                 {"point": [0.0, 0.0], "normal": [0.0, 1.0]},
-                {"point": [0.0, 0.0], "normal": [1.0, 0.0]},
+                left,
                 right,
             ]),
         ),
@@ -504,6 +516,35 @@ impl ColumnSpec {
         extra: &[(&'static str, Given)],
         note: &str,
     ) -> String {
+        self.column_case(name, bodies, gate_speed, extra, None, note)
+    }
+
+    /// The case of [`ColumnSpec::case_json`] with cohesion `cohesion` (dyn/cm², `contact.cohesion`)
+    /// between the grains and with the floor, and none with the side walls (the left wall and
+    /// the gate are given `"cohesion": 0`, so that the heap does not hang on the wall it leans
+    /// against): `dem2d study repose-cohesion`'s runs.
+    pub fn cohesive_case_json(
+        &self,
+        name: &str,
+        bodies: &[BodyInit],
+        gate_speed: f64,
+        extra: &[(&'static str, Given)],
+        cohesion: f64,
+        note: &str,
+    ) -> String {
+        self.column_case(name, bodies, gate_speed, extra, Some(cohesion), note)
+    }
+
+    /// [`ColumnSpec::case_json`], and with `cohesion` [`ColumnSpec::cohesive_case_json`].
+    fn column_case(
+        &self,
+        name: &str,
+        bodies: &[BodyInit],
+        gate_speed: f64,
+        extra: &[(&'static str, Given)],
+        cohesion: Option<f64>,
+        note: &str,
+    ) -> String {
         let eta = {
             let m = DENSITY * std::f64::consts::PI;
             let kn = KN_OVER_RHO_G * DENSITY * G;
@@ -523,10 +564,20 @@ impl ColumnSpec {
         if gate_speed != 0.0 {
             gate["velocity"] = json!([gate_speed, 0.0]);
         }
+        let mut left = left_wall();
+        let study = match cohesion {
+            None => "repose",
+            Some(c) => {
+                contact["cohesion"] = json!(c);
+                left["cohesion"] = json!(0.0);
+                gate["cohesion"] = json!(0.0);
+                "repose-cohesion"
+            }
+        };
         let description = format!(
-            "Angle of repose (dem2d study repose): {} disks in a column {} cm wide; the right wall \
-             withdraws at {gate_speed} cm/s and the grains flow out over the floor until at rest. \
-             {note}",
+            "Angle of repose (dem2d study {study}): {} disks in a column {} cm wide; the right \
+             wall withdraws at {gate_speed} cm/s and the grains flow out over the floor until at \
+             rest. {note}",
             bodies.len(),
             self.width
         );
@@ -535,7 +586,7 @@ impl ColumnSpec {
             &description,
             [DT, 6.0, QUIESCENCE],
             contact,
-            gate,
+            [left, gate],
             bodies,
         )
     }

@@ -17,6 +17,7 @@ pub mod impacts;
 pub mod jamming;
 pub mod packing;
 pub mod repose;
+pub mod repose_cohesion;
 pub mod representation;
 pub mod rolling_fig3;
 pub mod shear;
@@ -38,6 +39,9 @@ pub enum Study {
     RollingFig3,
     /// The angle of repose of a 2D heap of disks against μ_r (CDT and EPSD).
     Repose,
+    /// The angle of repose of the same heap with cohesion between the grains and with the floor
+    /// (EPSD μ_r = 0.1) against the Bond number (pull-off force of two grains over a weight).
+    ReposeCohesion,
     /// Servo compaction of 400 disks, then a biaxial test with servo side walls.
     Biaxial,
     /// Impact benchmarks (Chung & Ooi 2011) of a disk on a wall against closed forms; writes
@@ -98,7 +102,10 @@ pub fn about() -> String {
 impl Study {
     /// Whether the study draws figures or writes a table file (see [`OUT`]).
     pub fn writes_figures(self) -> bool {
-        !matches!(self, Study::RollingFig3 | Study::Repose | Study::Biaxial)
+        !matches!(
+            self,
+            Study::RollingFig3 | Study::Repose | Study::ReposeCohesion | Study::Biaxial
+        )
     }
 
     /// The name of the study's marked table in the user guide (`--docs`).
@@ -106,6 +113,7 @@ impl Study {
         match self {
             Study::RollingFig3 => "rolling_fig3",
             Study::Repose => "repose",
+            Study::ReposeCohesion => "repose_cohesion",
             Study::Biaxial => "biaxial",
             Study::Impacts => "impacts",
             Study::BiaxialShape => "biaxial_shape",
@@ -408,6 +416,7 @@ fn run_locked(
     let md = match study {
         Study::RollingFig3 => rolling_fig3::run(),
         Study::Repose => repose::run(write),
+        Study::ReposeCohesion => repose_cohesion::run(),
         Study::Biaxial => biaxial::run(write),
         Study::Impacts => impacts::run(),
         Study::BiaxialShape => biaxial_shape::run(

@@ -24,11 +24,11 @@ use dem2d::run::{RunError, Simulation, Stop};
 use dem2d::scene::Case;
 use dem2d::scene::generate::ColumnSpec;
 
-const GATE_SPEED: f64 = 100.0;
+pub(super) const GATE_SPEED: f64 = 100.0;
 
 /// Runs a case until P's criterion holds or its duration ends; returns the world and the time
 /// at rest.
-fn run_to_rest(case: &Case) -> Result<(World, Option<f64>), RunError> {
+pub(super) fn run_to_rest(case: &Case) -> Result<(World, Option<f64>), RunError> {
     let mut w = case.build_world();
     let mut lines = CommandProgress::new(case.name.clone());
     let stop = Simulation::new(&mut w)
@@ -51,14 +51,17 @@ fn resistance(rolling: Option<RollingPart>) -> String {
     )
 }
 
-pub fn run(write: bool) -> Result<String, RunError> {
-    let column = ColumnSpec {
-        n: 300,
-        width: 20.0,
-        seed: 12,
-        friction: 0.5,
-    };
-    // Settle the column (gate fixed), then keep the bodies' positions.
+/// The study's column: 300 disks, 20 cm wide.
+pub(super) const COLUMN: ColumnSpec = ColumnSpec {
+    n: 300,
+    width: 20.0,
+    seed: 12,
+    friction: 0.5,
+};
+
+/// The column settled without rolling resistance (gate fixed) until at rest: its bodies, their
+/// positions rounded to 1e-6 cm (as a case file keeps them).
+pub(super) fn settled_column(column: &ColumnSpec) -> Result<Vec<BodyInit>, RunError> {
     let lattice = column.lattice_bodies();
     let settle =
         Case::from_json(&column.case_json("column", &lattice, 0.0, &[], &resistance(None)))
@@ -77,6 +80,12 @@ pub fn run(write: bool) -> Result<String, RunError> {
             ..lattice[k]
         })
         .collect();
+    Ok(settled)
+}
+
+pub fn run(write: bool) -> Result<String, RunError> {
+    let column = COLUMN;
+    let settled = settled_column(&column)?;
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/repose");
     if write {
         std::fs::create_dir_all(&dir).expect("cases/repose");
