@@ -645,3 +645,14 @@ mod tests {
         assert_eq!(v["s"], "NaN");
     }
 }
+
+pub fn string(v: &Value, path: &str) -> Result<String, FieldError> {
+    v.as_str()
+        .map(str::to_string)
+        .ok_or_else(|| FieldError::new(path, format!("must be a string, got {}", type_of(v))))
+}
+
+pub fn boolean(v: &Value, path: &str) -> Result<bool, FieldError> {
+    v.as_bool()
+        .ok_or_else(|| FieldError::new(path, format!("must be true or false, got {}", type_of(v))))
+}

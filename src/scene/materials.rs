@@ -9,7 +9,7 @@
 //! mixing rules give (every contact key but `model`, `normal_force`, `young` and `poisson`:
 //! E* and G* are always formed from the two materials' moduli). Every error names its field.
 
-use super::case::{layered, parse_contact};
+use super::contact::{layered, parse_contact};
 use super::fields::unknown_field;
 use super::fields::{FieldError, Obj, index, join, note_key, scale, suggest, type_of};
 use crate::contact_law::{ContactSpec, Given, MixError};

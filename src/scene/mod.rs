@@ -3,6 +3,8 @@
 
 pub mod body;
 pub mod case;
+mod cell;
+mod contact;
 pub mod drum_flow;
 pub mod fields;
 pub mod flow;
@@ -11,6 +13,7 @@ pub mod materials;
 pub mod ranges;
 pub mod servo_box;
 pub mod state;
+mod walls;
 
 pub use body::{parse_object, parse_pairs, parse_shape};
 pub use case::{Case, OutputSpec};
