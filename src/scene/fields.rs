@@ -598,6 +598,19 @@ impl<'a> Obj<'a> {
     }
 }
 
+/// A string field at `path`.
+pub fn string(v: &Value, path: &str) -> Result<String, FieldError> {
+    v.as_str()
+        .map(str::to_string)
+        .ok_or_else(|| FieldError::new(path, format!("must be a string, got {}", type_of(v))))
+}
+
+/// A boolean field at `path`.
+pub fn boolean(v: &Value, path: &str) -> Result<bool, FieldError> {
+    v.as_bool()
+        .ok_or_else(|| FieldError::new(path, format!("must be true or false, got {}", type_of(v))))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -644,15 +657,4 @@ mod tests {
         assert_eq!(e.message, "must be a finite number, got NaN");
         assert_eq!(v["s"], "NaN");
     }
-}
-
-pub fn string(v: &Value, path: &str) -> Result<String, FieldError> {
-    v.as_str()
-        .map(str::to_string)
-        .ok_or_else(|| FieldError::new(path, format!("must be a string, got {}", type_of(v))))
-}
-
-pub fn boolean(v: &Value, path: &str) -> Result<bool, FieldError> {
-    v.as_bool()
-        .ok_or_else(|| FieldError::new(path, format!("must be true or false, got {}", type_of(v))))
 }
