@@ -26,7 +26,7 @@
 //! `I/m = J_o/A − |c̄|²` about the centroid `c̄`. A member inside another contributes no arc;
 //! two identical members: the first given covers the later ones.
 
-use super::shape::Vec2;
+use super::pose::Vec2;
 use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::fmt;

@@ -2,7 +2,7 @@
 //! boundary). Its free side is the disk `|x − c| < R`; a body touches it where the body's point
 //! farthest from `c` reaches the circle.
 
-use super::shape::Vec2;
+use super::pose::Vec2;
 
 /// A circle of centre `center` and radius `radius` (> 0), solid outside.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -11,12 +11,16 @@ pub mod mass;
 pub mod overlap_area;
 pub mod pencil;
 pub mod polygon;
+pub mod pose;
 pub mod segment;
 pub mod shape;
 pub mod support;
+pub mod wall;
 
 pub use clump::{Clump, ClumpError};
 pub use drum::Drum;
 pub use polygon::{Polygon, PolygonError};
+pub use pose::{Pose, Vec2};
 pub use segment::{Segment, SegmentError};
-pub use shape::{Pose, Shape, ShapeError, Vec2, Wall};
+pub use shape::{Shape, ShapeError};
+pub use wall::Wall;

@@ -25,7 +25,7 @@
 //! - `J = (1/12) Σ (x_k y_{k+1} − x_{k+1} y_k)(v_k·v_k + v_k·v_{k+1} + v_{k+1}·v_{k+1})` about the
 //!   origin of the (centred) vertices, so `I/m = J/A`.
 
-use super::shape::Vec2;
+use super::pose::Vec2;
 use std::collections::HashMap;
 use std::fmt;
 use std::sync::{Mutex, OnceLock};

@@ -8,7 +8,8 @@
 //! - `τ(x) = (x − a)·t` is a point's place along the segment: `0` at a, `L` at b.
 //! - The reference point of a moving segment is `a`; it translates (it does not turn).
 
-use super::shape::{Vec2, Wall};
+use super::pose::Vec2;
+use super::wall::Wall;
 
 /// A finite line segment (see the module documentation).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -16,8 +16,8 @@ pub fn support_local(shape: &Shape, ux: f64, uy: f64) -> f64 {
         Shape::Circle { r } => r * ux.hypot(uy),
         Shape::Ellipse { a, b } => ((a * ux) * (a * ux) + (b * uy) * (b * uy)).sqrt(),
         Shape::Rectangle { w, h } => 0.5 * (w * ux.abs() + h * uy.abs()),
-        Shape::Polygon(p) => p.support(super::shape::Vec2::new(ux, uy)),
-        Shape::Clump(c) => c.support(super::shape::Vec2::new(ux, uy)),
+        Shape::Polygon(p) => p.support(super::pose::Vec2::new(ux, uy)),
+        Shape::Clump(c) => c.support(super::pose::Vec2::new(ux, uy)),
     }
 }
 
