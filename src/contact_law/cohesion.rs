@@ -38,7 +38,7 @@
 //! Cohesion between them and an ellipse or a polygon is refused by the case reader, naming the
 //! field.
 
-use super::ContactForce;
+use super::force::ContactForce;
 use super::keys::{Check, Given, Keys, ParamError};
 use super::mixing::MixError;
 use crate::geometry::Vec2;
@@ -147,7 +147,7 @@ impl CohesionPart {
 
 /// The cohesion part as a case gives it: none (c = 0), or the part. It keeps no history and
 /// replaces no other key.
-impl super::Part for Option<CohesionPart> {
+impl super::part::Part for Option<CohesionPart> {
     const KEYS: &[&str] = CohesionPart::KEYS;
 
     fn given(&self) -> Vec<(&'static str, Given)> {

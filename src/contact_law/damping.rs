@@ -107,7 +107,7 @@ impl DampingSpec {
     }
 }
 
-impl super::Part for DampingSpec {
+impl super::part::Part for DampingSpec {
     /// The keys this part reads.
     const KEYS: &[&str] = &[
         "eta_n",

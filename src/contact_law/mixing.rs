@@ -26,7 +26,6 @@
 //! pair must then be given ([`MixError`] names the key). A material paired with itself keeps its
 //! own parameters exactly (`a == b` gives `a`, bit for bit).
 
-use super::ContactSpec;
 use super::params::Scaled;
 
 /// Two materials' values of a key that no rule combines: the key.
@@ -72,27 +71,5 @@ pub(crate) fn harmonic_scaled(a: Scaled, b: Scaled, key: &'static str) -> Result
                 format!("one material gives `{key}` and the other `{key}_over_rho_g`"),
             ))
         }
-    }
-}
-
-/// The parameters of contacts between two materials: the law that governs them (`spec`) and
-/// the other side's material (`other`: Hertz–Mindlin forms E* and G* from both, T11, T19).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PairSpec {
-    pub spec: ContactSpec,
-    pub other: ContactSpec,
-}
-
-impl PairSpec {
-    /// A material with itself, or a law that governs every contact of a wall (`other` the
-    /// body's material).
-    pub fn new(spec: ContactSpec, other: ContactSpec) -> Self {
-        PairSpec { spec, other }
-    }
-
-    /// The law for a pair of density `rho` under |g| `g`.
-    #[inline]
-    pub fn resolve(&self, rho: f64, g: f64) -> super::Law {
-        self.spec.resolve(&self.other, rho, g)
     }
 }

@@ -189,7 +189,7 @@ impl NormalSpec {
     }
 }
 
-impl super::Part for NormalSpec {
+impl super::part::Part for NormalSpec {
     /// The keys this part reads.
     const KEYS: &[&str] = &[
         "model",

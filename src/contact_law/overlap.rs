@@ -12,7 +12,7 @@
 //!   equivalent overlap ([`EquivalentOverlap`]): between two flat-sided bodies the flat
 //!   equivalent `A/ℓ`, otherwise the lens of the pair's equal-area disks.
 
-use super::EquivalentOverlap;
+use super::kinematics::{AreaKinematics, EquivalentOverlap};
 use crate::geometry::Vec2;
 use crate::geometry::overlap_area::DiskLens;
 use crate::narrow_phase::{Contact, ContactState, OverlapArea};
@@ -100,9 +100,9 @@ impl SpringOn {
     /// area, `|∂A/∂x_j|`, the rate `dA/dt = −L v_n + couple · spin` for the relative normal
     /// velocity `vn` and spin `spin`, the couple and the equivalent overlap.
     #[inline(always)]
-    pub fn area_kinematics(&self, vn: f64, spin: f64) -> Option<super::AreaKinematics> {
+    pub fn area_kinematics(&self, vn: f64, spin: f64) -> Option<AreaKinematics> {
         match *self {
-            SpringOn::Area(a, equivalent) => Some(super::AreaKinematics {
+            SpringOn::Area(a, equivalent) => Some(AreaKinematics {
                 area: a.area,
                 length: a.length,
                 rate: -a.length * vn + a.couple * spin,

@@ -34,10 +34,14 @@ impl Scaled {
 
 impl Scaled {
     /// The key and value as a case file gives it: `abs` for an absolute value, `rel` per ρg.
-    pub fn given(&self, abs: &'static str, rel: &'static str) -> (&'static str, super::Given) {
+    pub fn given(
+        &self,
+        abs: &'static str,
+        rel: &'static str,
+    ) -> (&'static str, super::keys::Given) {
         match *self {
-            Scaled::Absolute(v) => (abs, super::Given::Number(v)),
-            Scaled::OverRhoG(v) => (rel, super::Given::Number(v)),
+            Scaled::Absolute(v) => (abs, super::keys::Given::Number(v)),
+            Scaled::OverRhoG(v) => (rel, super::keys::Given::Number(v)),
         }
     }
 }

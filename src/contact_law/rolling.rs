@@ -36,7 +36,7 @@
 //! The **rolling radius** `R_r` and the **rolling inertia** `I_r` come from the kinematics
 //! ([`RollingKinematics`]); see `dynamics::kinematics` for dem2d's choice for non-round bodies.
 
-use super::ContactForce;
+use super::force::ContactForce;
 use super::keys::{Check, Given, Keys, ParamError};
 use super::mixing::{MixError, harmonic};
 
@@ -283,7 +283,7 @@ impl RollingPart {
 }
 
 /// The rolling part as a case gives it: none (μ_r = 0), or the part.
-impl super::Part for Option<RollingPart> {
+impl super::part::Part for Option<RollingPart> {
     const KEYS: &[&str] = RollingPart::KEYS;
     const HISTORY: &[&str] = RollingPart::HISTORY;
 

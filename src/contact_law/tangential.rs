@@ -4,7 +4,7 @@
 //! per ρg, default `k_n`) and resolved for a pair ([`TangentialPart`]). Its history: the shear
 //! spring's elongation (one value).
 
-use super::ContactForce;
+use super::force::ContactForce;
 use super::keys::{Check, Given, Keys, ParamError};
 use super::mixing::{MixError, harmonic_scaled};
 use super::normal::{NormalSpec, NormalSpring, SpringSpec};
@@ -80,7 +80,7 @@ impl TangentialSpec {
     }
 }
 
-impl super::Part for TangentialSpec {
+impl super::part::Part for TangentialSpec {
     /// The keys this part reads.
     const KEYS: &[&str] = &["friction", "ks", "ks_over_rho_g"];
 

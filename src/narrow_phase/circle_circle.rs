@@ -4,7 +4,7 @@
 //! along the line of centres, so the chord definition gives the textbook contact exactly:
 //! normal along the line of centres, `δ = r_i + r_j − d`.
 
-use super::{Contact, ContactState, OverlapArea, Request, TOUCH_TOL};
+use super::record::{Contact, ContactState, OverlapArea, Request, TOUCH_TOL};
 use crate::geometry::overlap_area::ellipse_cap;
 use crate::geometry::{Pose, Vec2};
 

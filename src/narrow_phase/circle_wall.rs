@@ -1,6 +1,6 @@
 //! Wall–circle contact in closed form: the chord is where the wall line cuts the circle.
 
-use super::{Contact, ContactState, OverlapArea, Request, TOUCH_TOL};
+use super::record::{Contact, ContactState, OverlapArea, Request, TOUCH_TOL};
 use crate::geometry::overlap_area::ellipse_cap;
 use crate::geometry::{Pose, Wall};
 

@@ -5,7 +5,11 @@
 //! caller that wants one record for the whole pair (the dispatcher, [`super::contact_with`]),
 //! [`contact_clump`] gives the deepest member contact; [`member_contacts`] gives them all.
 
-use super::{Contact, PairCache, Request, Side, contact_with};
+use super::record::{Contact, Request, Side};
+
+/// The contact of two sides from an empty cache: the dispatcher
+/// ([`super::contact_with`], handed down by it), which each member pair goes through.
+pub(super) type Pair = for<'a, 'b, 'c> fn(Side<'a>, Side<'b>, Request<'c>) -> Option<Contact>;
 use crate::geometry::{Clump, Pose, Shape};
 
 /// Member `k` of a clump in pose `pose`, as a placed circle: its radius and its world pose
@@ -48,6 +52,7 @@ fn each_member_pair(
     i: Side,
     j: Side,
     request: &Request,
+    pair: Pair,
     mut f: impl FnMut(usize, usize, Option<Contact>),
 ) {
     for a in 0..members(i) {
@@ -56,11 +61,7 @@ fn each_member_pair(
             let (mut si, mut sj) = (unused, unused);
             let mi = resolve(i, a, &mut si);
             let mj = resolve(j, b, &mut sj);
-            f(
-                a,
-                b,
-                contact_with(mi, mj, &mut PairCache::default(), *request),
-            );
+            f(a, b, pair(mi, mj, *request));
         }
     }
 }
@@ -68,17 +69,22 @@ fn each_member_pair(
 /// Every member pair's contact `(member of i, member of j, contact)` (member 0 for a side that
 /// is not a clump; `None`: that pair is apart), in member order, normal from i to j, each from
 /// an empty cache.
-pub fn member_contacts(i: Side, j: Side, request: Request) -> Vec<(usize, usize, Option<Contact>)> {
+pub(super) fn member_contacts(
+    i: Side,
+    j: Side,
+    request: Request,
+    pair: Pair,
+) -> Vec<(usize, usize, Option<Contact>)> {
     let mut out = Vec::new();
-    each_member_pair(i, j, &request, |a, b, c| out.push((a, b, c)));
+    each_member_pair(i, j, &request, pair, |a, b, c| out.push((a, b, c)));
     out
 }
 
 /// The pair's deepest member contact (the first in member order among equals), or `None` when
 /// no member pair touches.
-pub fn contact_clump(i: Side, j: Side, request: &Request) -> Option<Contact> {
+pub(super) fn contact_clump(i: Side, j: Side, request: &Request, pair: Pair) -> Option<Contact> {
     let mut best: Option<Contact> = None;
-    each_member_pair(i, j, request, |_, _, c| {
+    each_member_pair(i, j, request, pair, |_, _, c| {
         if let Some(c) = c
             && best.is_none_or(|b| c.depth > b.depth)
         {

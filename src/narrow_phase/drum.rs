@@ -31,8 +31,9 @@
 //! the spring on the depth against a drum); a rectangle gets its flat overlap, as against a
 //! half-plane (see [`contact_drum_polygon`]).
 
+use super::local::pow2_floor;
+use super::record::{Contact, ContactState, OverlapArea, Request, TOUCH_TOL};
 use super::small::List;
-use super::{Contact, ContactState, OverlapArea, Request, TOUCH_TOL, pow2_floor};
 use crate::geometry::overlap_area::ellipse_cap_at_depth;
 use crate::geometry::{Drum, Pose, Shape, Vec2};
 
@@ -375,7 +376,7 @@ pub fn contact_drum_polygon(
             let ybar = energy / size;
             c.normal = pose.to_world_vector(-u);
             c.point = world(foot - u * ybar);
-            c.flat = Some(super::FlatOverlap {
+            c.flat = Some(super::record::FlatOverlap {
                 area: size * scale * scale,
                 centroid: world(foot),
             });

@@ -37,10 +37,10 @@
 //! possible). Anything else — a first contact, a deep or grazing one, no convergence — takes
 //! the pencil.
 
-use super::{
-    Contact, ContactState, LocalFrame, LocalOverlap, Request, TOUCH_TOL, deep_fallback,
-    deep_overlap, orient_symmetric, pow2_floor,
+use super::local::{
+    LocalFrame, LocalOverlap, deep_fallback, deep_overlap, orient_symmetric, pow2_floor,
 };
+use super::record::{Contact, ContactState, Request, TOUCH_TOL};
 use crate::geometry::Pose;
 use crate::geometry::conic::EllipseForm;
 use crate::geometry::cubic::{one_real_root, solve_cubic};
@@ -370,7 +370,7 @@ fn warm_crossings(
         sin: si,
         scale,
     };
-    let mid = super::midpoint(p, q);
+    let mid = super::local::midpoint(p, q);
     // (The half-chord, when asked for, from the length at hand rather than `hypot`: lengths here
     // are of order one.)
     let lean = Request {
@@ -639,7 +639,7 @@ fn conic_pair_inner(
         (4, _) => {
             let (p, q, n, dpt) = deep_fallback(&mut crossings, depth);
             if dpt > tol {
-                let mid = super::midpoint(p, q);
+                let mid = super::local::midpoint(p, q);
                 let mut c = frame.contact(ContactState::Deep, p, q, mid, n, dpt, request);
                 if request.area {
                     let placed = [placed_i, placed_j];

@@ -1,7 +1,8 @@
 //! Wall–ellipse contact: the wall line ∩ the conic, in the ellipse's own frame
 //! (`x²/a² + y²/b² = 1`), where both the depth and the chord have closed forms.
 
-use super::{Contact, ContactState, LocalFrame, LocalOverlap, Request, TOUCH_TOL, pow2_floor};
+use super::local::{LocalFrame, LocalOverlap, pow2_floor};
+use super::record::{Contact, ContactState, Request, TOUCH_TOL};
 use crate::geometry::overlap_area::ellipse_cap_at_depth;
 use crate::geometry::{Pose, Wall};
 

@@ -5,11 +5,9 @@
 //! chord (a clipped polygon, shoelace) plus the conic's segment beyond it (`½ab(Δφ − sin Δφ)`,
 //! [`ellipse_cap`]); for a chord on one face, the conic's segment at the face's depth.
 
+use super::local::{LocalFrame, LocalOverlap, deep_fallback, deep_overlap, orient, pow2_floor};
+use super::record::{Contact, ContactState, Request, TOUCH_TOL};
 use super::small::List;
-use super::{
-    Contact, ContactState, LocalFrame, LocalOverlap, Request, TOUCH_TOL, deep_fallback,
-    deep_overlap, orient, pow2_floor,
-};
 use crate::geometry::overlap_area::{ellipse_cap, ellipse_cap_at_depth, polygon_cap};
 use crate::geometry::polygon::vertex_support;
 use crate::geometry::{Pose, Shape, Vec2};
@@ -151,10 +149,10 @@ pub fn contact_polygon_conic(
             let (nrm, dpt) = orient(nrm, depth);
             if dpt <= TOUCH_TOL {
                 // Crossings within rounding of each other and of tangency.
-                let mid = super::midpoint(p, qv);
+                let mid = super::local::midpoint(p, qv);
                 return Some(frame.contact(ContactState::Touching, p, qv, mid, nrm, dpt, request));
             }
-            let mid = super::midpoint(p, qv);
+            let mid = super::local::midpoint(p, qv);
             let mut g = frame.contact(ContactState::Overlap, p, qv, mid, nrm, dpt, request);
             if area {
                 let caps = if cross[0].edge == cross[1].edge {
@@ -173,7 +171,7 @@ pub fn contact_polygon_conic(
         3.. => {
             let mut pts: List<[f64; 2]> = cross.iter().map(Crossing::point).collect();
             let (p, qv, nrm, dpt) = deep_fallback(&mut pts[..n], depth);
-            let mid = super::midpoint(p, qv);
+            let mid = super::local::midpoint(p, qv);
             let mut g = frame.contact(ContactState::Deep, p, qv, mid, nrm, dpt, request);
             if area {
                 let o = deep_overlap(
@@ -189,7 +187,7 @@ pub fn contact_polygon_conic(
                     },
                     |k, p, qq, u| {
                         if k == 0 {
-                            poly_cap(super::midpoint(p, qq), u)
+                            poly_cap(super::local::midpoint(p, qq), u)
                         } else {
                             conic_cap(p, [qq[0] - p[0], qq[1] - p[1]], u)
                         }

@@ -19,11 +19,9 @@
 //! `L_e u_e` over the overlap's edges on j (halved on shared edges, where the one-sided
 //! derivatives differ).
 
+use super::local::{LocalFrame, LocalOverlap, deep_fallback, orient, pow2_floor};
+use super::record::{Contact, ContactState, Request, TOUCH_TOL};
 use super::small::List;
-use super::{
-    Contact, ContactState, LocalFrame, LocalOverlap, Request, TOUCH_TOL, deep_fallback, orient,
-    pow2_floor,
-};
 use crate::geometry::overlap_area::polygon_area;
 use crate::geometry::{Pose, Shape, Vec2};
 
@@ -260,7 +258,7 @@ pub fn contact_polygon_polygon(
                 }
             };
             let (n, dpt) = orient(nrm, depth);
-            let mid = super::midpoint(a.point, b.point);
+            let mid = super::local::midpoint(a.point, b.point);
             let mut g = frame.contact(
                 ContactState::Overlap,
                 a.point,
@@ -288,7 +286,7 @@ pub fn contact_polygon_polygon(
                 pts.push(pts.first().copied().unwrap_or([0.5 * c.x, 0.5 * c.y]));
             }
             let (p, q, n, dpt) = deep_fallback(&mut pts, depth);
-            let mid = super::midpoint(p, q);
+            let mid = super::local::midpoint(p, q);
             let mut g = frame.contact(ContactState::Deep, p, q, mid, n, dpt, request);
             if area && nc >= 2 {
                 let m = pts
@@ -319,7 +317,7 @@ fn gradient(edges: &[Edge], c_j: [f64; 2], centre: [f64; 2]) -> LocalOverlap {
         };
         // L u with u the outward normal of a counter-clockwise edge: (e_y, −e_x).
         let lu = [w * (e.q[1] - e.p[1]), -w * (e.q[0] - e.p[0])];
-        let m = super::midpoint(e.p, e.q);
+        let m = super::local::midpoint(e.p, e.q);
         grad[0] += lu[0];
         grad[1] += lu[1];
         turn += (m[0] - c_j[0]) * lu[1] - (m[1] - c_j[1]) * lu[0];

@@ -1,8 +1,9 @@
 //! Wall–polygon contact (a rectangle as its four corners): the wall line ∩ the polygon's
 //! edges, in the polygon's frame.
 
+use super::local::{LocalFrame, LocalOverlap, pow2_floor};
+use super::record::{Contact, ContactState, Request, TOUCH_TOL};
 use super::small::List;
-use super::{Contact, ContactState, LocalFrame, LocalOverlap, Request, TOUCH_TOL, pow2_floor};
 use crate::geometry::overlap_area::polygon_area;
 use crate::geometry::{Pose, Shape, Vec2, Wall};
 
@@ -81,7 +82,7 @@ pub fn contact_wall_polygon(
         let p = [sx / m - lowest * nb.x, sy / m - lowest * nb.y];
         (ContactState::Touching, p, p)
     };
-    let mid = super::midpoint(p1, p2);
+    let mid = super::local::midpoint(p1, p2);
     let mut c = frame.contact(state, p1, p2, mid, normal_local, depth, request);
     c.normal = wall.normal;
     if flat {

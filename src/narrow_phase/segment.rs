@@ -47,8 +47,9 @@
 //!
 //! The segment is i (the giver): the normal points from it into the body.
 
+use super::local::{LocalFrame, pow2_floor};
 use super::polygon_wall;
-use super::{Contact, ContactState, LocalFrame, Request, TOUCH_TOL, pow2_floor};
+use super::record::{Contact, ContactState, Request, TOUCH_TOL};
 use super::{circle_wall, ellipse_wall};
 use crate::geometry::{Pose, Segment, Shape, Vec2, Wall};
 
@@ -183,7 +184,7 @@ fn circle_end(c: &mut Contact, r: f64, request: &Request) {
     let half = (depth * (2.0 * r - depth)).max(0.0).sqrt();
     c.half_chord = half;
     if request.area && c.state == ContactState::Overlap {
-        c.area = Some(super::OverlapArea {
+        c.area = Some(super::record::OverlapArea {
             area: crate::geometry::overlap_area::ellipse_cap_at_depth(r, r, [1.0, 0.0], depth),
             length: 2.0 * half,
             normal: c.normal,

@@ -572,7 +572,7 @@ fn run_contact(file: &str) -> Result<(), Failure> {
             // `members` (with `i_member`, `j_member`; 0 for a side that is not a clump).
             let mut v: serde_json::Value =
                 serde_json::from_str(&contact_json(c.as_ref())).expect("a record");
-            let members = dem2d::narrow_phase::clump::member_contacts(
+            let members = dem2d::narrow_phase::member_contacts(
                 i.into(),
                 j.into(),
                 dem2d::narrow_phase::Request::FULL,
