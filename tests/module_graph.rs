@@ -1,16 +1,23 @@
-//! No import circle between the library's top-level modules.
+//! No import circle between the library's top-level modules, and none new inside its folders.
 //!
 //! The graph has one node per top-level module of `src/lib.rs` (geometry, narrow_phase,
 //! contact_law, dynamics, run, scene, output, analysis, …) and an edge A → B wherever code in A
 //! names B by a path: `crate::B…`, `crate::{B…, …}` or a `super::` chain that climbs out of A to
 //! the crate's root. Comments (doc links included: they compile to nothing) and string literals
 //! are left out. The test fails on a cycle and names the files and lines of each of its edges.
-//! Within a top-level module files may name each other both ways (a world and its stepper); the
-//! layering the design keeps (`docs/src/developer.md`, "Module dependencies") is between
-//! modules. `src/bin` is a crate of its own, over the library only, and is not read.
+//! Inside a folder the same reading gives one graph per folder (its files, and `mod` for its
+//! `mod.rs`: `import_circles_inside_folders`): the circles there are counted and may not grow
+//! past today's, and no file of `narrow_phase` or `contact_law` names its folder's `mod.rs`
+//! (their records are files of their own). `src/bin` is a crate of its own, over the library
+//! only, and is not read.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
+
+/// The import circles inside the library's folders today (`import_circles_inside_folders`
+/// lists them: dynamics — the world, its stepper and their parts — and output's run reader with
+/// the walls' and cell's writers): a new one fails the test.
+const CIRCLES_INSIDE_FOLDERS: usize = 2;
 
 /// Where an edge was seen: `file:line`.
 type Graph = BTreeMap<String, BTreeMap<String, Vec<String>>>;
@@ -431,5 +438,315 @@ fn the_check_finds_a_planted_cycle() {
         "{}",
         describe(&g, &c)
     );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The paths that the code of one file, at module path `path`, names through `crate::` or a
+/// `super::` chain (resolved to a path from the crate's root: `crate::a::{b, c::d}` gives
+/// `[a, b]` and `[a, c, d]`, up to the group's heads), and through the name of one of its own
+/// child modules (`children`, as a `mod.rs` names its files: `cache::PairCache`).
+fn resolved_paths(code: &str, path: &[String], children: &[String]) -> Vec<(Vec<String>, usize)> {
+    let b: Vec<char> = code.chars().collect();
+    let mut found = Vec::new();
+    let mut inline: Vec<(String, usize)> = Vec::new();
+    let mut depth = 0usize;
+    let mut line = 1;
+    let mut i = 0;
+    let word_at = |i: usize, w: &str| {
+        let n = w.chars().count();
+        b.len() >= i + n
+            && b[i..i + n].iter().copied().eq(w.chars())
+            && (i == 0 || !is_ident(b[i - 1]))
+            && !b.get(i + n).is_some_and(|&c| is_ident(c))
+    };
+    let colons = |j: usize| b.get(j) == Some(&':') && b.get(j + 1) == Some(&':');
+    let skip_ws = |mut j: usize| {
+        while j < b.len() && b[j].is_whitespace() {
+            j += 1;
+        }
+        j
+    };
+    // The identifiers of a path from `j` on (`a::b::{…}` or `a::b`): the chain, and the group's
+    // heads if it ends in one.
+    let chain = |mut j: usize| {
+        let mut segs = Vec::new();
+        loop {
+            let s: String = b[j..].iter().take_while(|&&c| is_ident(c)).collect();
+            if s.is_empty() {
+                let heads = if b.get(j) == Some(&'{') {
+                    group_heads(&b, j)
+                } else {
+                    Vec::new()
+                };
+                return (segs, heads, j);
+            }
+            j += s.len();
+            segs.push(s);
+            if colons(j) {
+                j = skip_ws(j + 2);
+            } else {
+                return (segs, Vec::new(), j);
+            }
+        }
+    };
+    while i < b.len() {
+        let c = b[i];
+        if c == '\n' {
+            line += 1;
+        } else if c == '{' {
+            depth += 1;
+        } else if c == '}' {
+            depth = depth.saturating_sub(1);
+            if inline.last().is_some_and(|m| m.1 == depth) {
+                inline.pop();
+            }
+        } else if word_at(i, "mod") {
+            let j = skip_ws(i + 3);
+            let name: String = b[j..].iter().take_while(|&&c| is_ident(c)).collect();
+            let k = skip_ws(j + name.len());
+            if !name.is_empty() && b.get(k) == Some(&'{') {
+                inline.push((name, depth));
+            }
+        } else if inline.iter().any(|m| m.0 == "tests") {
+            // A file's unit tests may reach its folder's API: not an import of the code.
+        } else if (word_at(i, "crate") || word_at(i, "super")) && colons(i + 5) {
+            let mut here: Vec<String> = path.to_vec();
+            here.extend(inline.iter().map(|m| m.0.clone()));
+            let mut j = i;
+            loop {
+                if word_at(j, "crate") && colons(j + 5) {
+                    here.clear();
+                    j = skip_ws(j + 7);
+                } else if word_at(j, "super") && colons(j + 5) {
+                    here.pop();
+                    j = skip_ws(j + 7);
+                } else {
+                    break;
+                }
+            }
+            let (segs, heads, end) = chain(j);
+            let mut base = here;
+            base.extend(segs);
+            if heads.is_empty() {
+                found.push((base.clone(), line));
+            }
+            for h in heads {
+                let mut p = base.clone();
+                p.push(h);
+                found.push((p, line));
+            }
+            i = end.max(i + 1);
+            continue;
+        } else if inline.is_empty() && (i < 2 || b[i - 1] != ':') && is_ident(c) {
+            let s: String = b[i..].iter().take_while(|&&c| is_ident(c)).collect();
+            if (i == 0 || !is_ident(b[i - 1])) && colons(i + s.len()) && children.contains(&s) {
+                let mut p = path.to_vec();
+                p.push(s.clone());
+                found.push((p, line));
+            }
+            i += s.len().max(1);
+            continue;
+        }
+        i += 1;
+    }
+    found
+}
+
+/// One graph per folder of the crate rooted at `root_dir` (`src/bin` left out): its nodes the
+/// folder's files (`mod` for its `mod.rs`), an edge x → y where x's code names y (or, for
+/// `mod`, an item of the folder's `mod.rs`). Keyed by the folder's module path.
+fn folder_graphs(root_dir: &Path) -> BTreeMap<String, Graph> {
+    let mut files = Vec::new();
+    rust_files(root_dir, &mut files);
+    files.sort();
+    let children_of = |dir: &Path| -> Vec<String> {
+        let mut c: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .filter_map(|e| {
+                let p = e.unwrap().path();
+                let name = p.file_stem()?.to_string_lossy().into_owned();
+                (p.is_dir() || (p.extension().is_some_and(|x| x == "rs") && name != "mod"))
+                    .then_some(name)
+            })
+            .collect();
+        c.sort();
+        c
+    };
+    let mut graphs: BTreeMap<String, Graph> = BTreeMap::new();
+    for f in files {
+        let rel = f.strip_prefix(root_dir).unwrap();
+        if rel.components().count() < 2 || rel.starts_with("bin") {
+            continue; // the crate's root files; another crate
+        }
+        let mut path: Vec<String> = rel
+            .with_extension("")
+            .components()
+            .map(|c| c.as_os_str().to_string_lossy().into_owned())
+            .collect();
+        let is_mod = path.last().is_some_and(|l| l == "mod");
+        if is_mod {
+            path.pop();
+        }
+        let (folder, node) = if is_mod {
+            (path.clone(), "mod".to_string())
+        } else {
+            (
+                path[..path.len() - 1].to_vec(),
+                path.last().unwrap().clone(),
+            )
+        };
+        let folder_dir = root_dir.join(folder.join("/"));
+        let children = children_of(&folder_dir);
+        let own_children = if is_mod { children.clone() } else { Vec::new() };
+        let code = code_only(&std::fs::read_to_string(&f).unwrap());
+        let g = graphs.entry(folder.join("::")).or_default();
+        g.entry(node.clone()).or_default();
+        for (p, line) in resolved_paths(&code, &path, &own_children) {
+            if p.len() <= folder.len() || p[..folder.len()] != folder[..] {
+                continue;
+            }
+            let next = &p[folder.len()];
+            let target = if children.contains(next) {
+                next.clone()
+            } else {
+                "mod".to_string()
+            };
+            if target != node {
+                let at = format!("{}:{line}", rel.display());
+                g.entry(node.clone())
+                    .or_default()
+                    .entry(target)
+                    .or_default()
+                    .push(at);
+            }
+        }
+    }
+    graphs
+}
+
+/// Tarjan's bookkeeping: the next index, each node's (index, low link), the stack and its set.
+type Tarjan = (
+    usize,
+    BTreeMap<String, (usize, usize)>,
+    Vec<String>,
+    BTreeSet<String>,
+);
+
+/// The strongly connected components of more than one node (Tarjan's algorithm, iterative
+/// enough for a folder's few files).
+fn circles(g: &Graph) -> Vec<Vec<String>> {
+    fn strong(g: &Graph, v: &str, t: &mut Tarjan, out: &mut Vec<Vec<String>>) {
+        let k = t.0;
+        t.0 += 1;
+        t.1.insert(v.to_string(), (k, k));
+        t.2.push(v.to_string());
+        t.3.insert(v.to_string());
+        for w in g.get(v).into_iter().flat_map(|e| e.keys()) {
+            if !t.1.contains_key(w) {
+                strong(g, w, t, out);
+                let low = t.1[v].1.min(t.1[w].1);
+                t.1.get_mut(v).unwrap().1 = low;
+            } else if t.3.contains(w) {
+                let low = t.1[v].1.min(t.1[w].0);
+                t.1.get_mut(v).unwrap().1 = low;
+            }
+        }
+        if t.1[v].0 == t.1[v].1 {
+            let mut comp = Vec::new();
+            loop {
+                let w = t.2.pop().unwrap();
+                t.3.remove(&w);
+                let done = w == v;
+                comp.push(w);
+                if done {
+                    break;
+                }
+            }
+            if comp.len() > 1 {
+                comp.sort();
+                out.push(comp);
+            }
+        }
+    }
+    let mut t = (0, BTreeMap::new(), Vec::new(), BTreeSet::new());
+    let mut out = Vec::new();
+    for v in g.keys() {
+        if !t.1.contains_key(v) {
+            strong(g, v, &mut t, &mut out);
+        }
+    }
+    out
+}
+
+#[test]
+fn import_circles_inside_folders() {
+    let mut all = Vec::new();
+    for (folder, g) in folder_graphs(&root().join("src")) {
+        for c in circles(&g) {
+            let edges: Vec<String> = c
+                .iter()
+                .flat_map(|a| {
+                    g[a].iter()
+                        .filter(|(b, _)| c.contains(b))
+                        .map(move |(b, at)| format!("  {a} -> {b} ({})", at.join(", ")))
+                })
+                .collect();
+            println!("circle in {folder}: {}\n{}", c.join(", "), edges.join("\n"));
+            all.push(format!("{folder}: {}", c.join(", ")));
+        }
+    }
+    println!("{} circles inside folders", all.len());
+    // The records of the narrow phase and of the contact laws are files of their own: no file
+    // there names its folder's mod.rs.
+    for folder in ["narrow_phase", "contact_law"] {
+        let g = &folder_graphs(&root().join("src"))[folder];
+        let back: Vec<String> = g
+            .iter()
+            .filter(|(a, _)| *a != "mod")
+            .filter_map(|(a, e)| e.get("mod").map(|at| format!("{a} ({})", at.join(", "))))
+            .collect();
+        assert!(
+            back.is_empty(),
+            "{folder}: files that import its mod.rs: {back:?}"
+        );
+    }
+    assert!(all.len() <= CIRCLES_INSIDE_FOLDERS, "{all:#?}");
+}
+
+/// The folder reader on a small tree: a circle between two files through `super::`, a file that
+/// names its folder's `mod.rs`, a `mod.rs` that names a child by its bare name, a group import,
+/// and a unit-test module that does not count.
+#[test]
+fn the_folder_check_finds_a_planted_circle() {
+    let dir = std::env::temp_dir().join(format!("dem2d-folder-graph-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(dir.join("a")).unwrap();
+    let write = |p: &str, s: &str| std::fs::write(dir.join(p), s).unwrap();
+    write("lib.rs", "pub mod a;\n");
+    write(
+        "a/mod.rs",
+        "mod x;\nmod y;\nmod z;\npub struct Item;\nfn f() { x::go(); }\n",
+    );
+    write("a/x.rs", "use super::y::T;\npub fn go() {}\n");
+    write(
+        "a/y.rs",
+        "pub struct T;\nuse crate::a::{z::W, x::go};\n#[cfg(test)]\nmod tests {\n    use super::super::Item;\n}\n",
+    );
+    write("a/z.rs", "pub struct W;\n// super::Item in a comment\n");
+    let g = &folder_graphs(&dir)["a"];
+    let edges: Vec<(String, String)> = g
+        .iter()
+        .flat_map(|(a, e)| e.keys().map(move |b| (a.clone(), b.clone())))
+        .collect();
+    let want: Vec<(String, String)> = [("mod", "x"), ("x", "y"), ("y", "x"), ("y", "z")]
+        .iter()
+        .map(|(a, b)| (a.to_string(), b.to_string()))
+        .collect();
+    assert_eq!(edges, want);
+    assert_eq!(circles(g), vec![vec!["x".to_string(), "y".to_string()]]);
+    // z names its folder's mod.rs: an edge to `mod`.
+    write("a/z.rs", "pub struct W;\nuse super::Item;\n");
+    let g = &folder_graphs(&dir)["a"];
+    assert!(g["z"].contains_key("mod"), "{g:?}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

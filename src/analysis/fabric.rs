@@ -19,7 +19,7 @@
 //! Orientation order: `S = |⟨e^{2iφ}⟩|` over the non-circular bodies, φ the direction of a
 //! body's long axis (0 for random orientations, 1 all aligned), with the director `½ arg`.
 
-use super::Frame;
+use super::frame::Frame;
 use crate::geometry::Shape;
 use std::f64::consts::PI;
 

@@ -33,9 +33,9 @@
 //! what lies outside the range is not binned. (Bins along x in a cell periodic in y: a body
 //! across the horizontal seam is binned at its own x, not at its Lees–Edwards image's.)
 
-use super::FrameContact;
-use super::Window;
 use super::fabric::long_axis;
+use super::frame::FrameContact;
+use super::frame::Window;
 use super::packing::clipped_area;
 use crate::dynamics::cell::Cell;
 use crate::geometry::{Shape, Vec2};
@@ -195,7 +195,7 @@ fn body_areas(
     periodic: bool,
     mut f: impl FnMut(usize, f64, i64),
 ) {
-    let fb = super::FrameBody {
+    let fb = super::frame::FrameBody {
         shape: body.shape,
         position: body.position,
         angle: body.angle,

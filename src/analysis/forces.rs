@@ -4,8 +4,8 @@
 //! `sin φ = (σ₁ − σ₃)/(σ₁ + σ₃) ≈ ½(a_c + a_n + a_t)` ([`super::fabric`]; disks; non-circular
 //! bodies add a branch-length anisotropy, which this leaves out and shows as the difference).
 
-use super::Frame;
 use super::fabric::{Anisotropy, anisotropy};
+use super::frame::Frame;
 use super::stress::{love_weber, principal};
 
 /// A histogram of `f/⟨f⟩`: bins of equal width from 0 to the largest force.

@@ -10,7 +10,7 @@
 //! - A rectangle or a polygon: its outline clipped by the window (Sutherland–Hodgman), then the
 //!   shoelace.
 
-use super::{Frame, FrameBody, Window};
+use super::frame::{Frame, FrameBody, Window};
 use crate::geometry::{Shape, Vec2};
 
 fn cross(a: Vec2, b: Vec2) -> f64 {

@@ -22,7 +22,7 @@
 //! of the region the choice cancels (both take the same point); it matters for a body's contacts
 //! with walls and with bodies outside the region.
 
-use super::{Frame, Window};
+use super::frame::{Frame, Window};
 use crate::geometry::Vec2;
 
 /// A 2×2 tensor `[[xx, xy], [yx, yy]]` (dyn/cm²).

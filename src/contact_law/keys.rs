@@ -2,14 +2,6 @@
 //! (the core never sees JSON; the scene's reader implements it, names every field in its
 //! errors, and refuses a key no part reads).
 
-/// A key's value as a part gives it back for a case file ([`super::ContactSpec`]'s parts'
-/// `given`): what the case reader reads back to the same part.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Given {
-    Number(f64),
-    Text(&'static str),
-}
-
 /// A parameter error: the field's path and what is wrong with it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ParamError {
@@ -63,4 +55,5 @@ pub trait Keys {
     }
 }
 
+pub use super::params::Given;
 use super::params::Scaled;

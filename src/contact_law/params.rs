@@ -4,6 +4,13 @@
 //! them (`K_n/ρg` in cm): then they are multiplied by the pair's density ([`pair_density`]) and
 //! |g|, and in a scene of one density ρ cancels from every equation of motion.
 
+/// A key's value as a part gives it back for a case file ([`super::ContactSpec`]'s parts'
+/// `given`): what the case reader reads back to the same part.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Given {
+    Number(f64),
+    Text(&'static str),
+}
 /// The density a pair's parameters given per ρg are scaled by: the mean of the two bodies'
 /// (`rho_j` None: a body against a wall, the body's own).
 #[inline]
@@ -34,14 +41,10 @@ impl Scaled {
 
 impl Scaled {
     /// The key and value as a case file gives it: `abs` for an absolute value, `rel` per ρg.
-    pub fn given(
-        &self,
-        abs: &'static str,
-        rel: &'static str,
-    ) -> (&'static str, super::keys::Given) {
+    pub fn given(&self, abs: &'static str, rel: &'static str) -> (&'static str, Given) {
         match *self {
-            Scaled::Absolute(v) => (abs, super::keys::Given::Number(v)),
-            Scaled::OverRhoG(v) => (rel, super::keys::Given::Number(v)),
+            Scaled::Absolute(v) => (abs, Given::Number(v)),
+            Scaled::OverRhoG(v) => (rel, Given::Number(v)),
         }
     }
 }

@@ -93,7 +93,7 @@ impl Shape {
     /// Radius of the disk of the same area (the area law's equivalent lens).
     #[inline]
     pub fn equal_area_radius(&self) -> f64 {
-        (super::mass::area(self) / std::f64::consts::PI).sqrt()
+        (self.area() / std::f64::consts::PI).sqrt()
     }
 
     /// The largest radius of curvature of the boundary: circle `r`, ellipse `a²/b` (a ≥ b, at
@@ -115,7 +115,19 @@ impl Shape {
     /// distance from the centroid to the tangent line whose outward normal is `u`.
     #[inline]
     pub fn support(&self, u: Vec2) -> f64 {
-        super::support::support_local(self, u.x, u.y)
+        self.support_xy(u.x, u.y)
+    }
+
+    /// [`Shape::support`] for the direction `(ux, uy)` in the shape's own frame.
+    #[inline]
+    pub fn support_xy(&self, ux: f64, uy: f64) -> f64 {
+        match *self {
+            Shape::Circle { r } => r * ux.hypot(uy),
+            Shape::Ellipse { a, b } => ((a * ux) * (a * ux) + (b * uy) * (b * uy)).sqrt(),
+            Shape::Rectangle { w, h } => 0.5 * (w * ux.abs() + h * uy.abs()),
+            Shape::Polygon(p) => p.support(Vec2::new(ux, uy)),
+            Shape::Clump(c) => c.support(Vec2::new(ux, uy)),
+        }
     }
 
     /// Radius of curvature of the boundary where its outward unit normal is `u` (own frame),
@@ -195,13 +207,26 @@ impl Shape {
     /// Area (the mass per unit thickness and unit density).
     #[inline]
     pub fn area(&self) -> f64 {
-        super::mass::area(self)
+        use std::f64::consts::PI;
+        match *self {
+            Shape::Circle { r } => PI * r * r,
+            Shape::Ellipse { a, b } => PI * a * b,
+            Shape::Rectangle { w, h } => w * h,
+            Shape::Polygon(p) => p.area, // the shoelace formula (geometry::polygon)
+            Shape::Clump(c) => c.area,   // the union's, exactly (geometry::clump)
+        }
     }
 
     /// Moment of inertia about the centroid divided by mass (T2 in 2D).
     #[inline]
     pub fn inertia_per_mass(&self) -> f64 {
-        super::mass::inertia_per_mass(self)
+        match *self {
+            Shape::Circle { r } => 0.5 * r * r,
+            Shape::Ellipse { a, b } => 0.25 * (a * a + b * b),
+            Shape::Rectangle { w, h } => (w * w + h * h) / 12.0,
+            Shape::Polygon(p) => p.inertia_per_mass,
+            Shape::Clump(c) => c.inertia_per_mass,
+        }
     }
 
     /// The largest normal lever arm `|r × n|` a contact can have on this shape (the largest

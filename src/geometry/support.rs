@@ -12,13 +12,7 @@ use super::shape::Shape;
 /// polygon `max_k u·v_k` over its vertices.
 #[inline]
 pub fn support_local(shape: &Shape, ux: f64, uy: f64) -> f64 {
-    match *shape {
-        Shape::Circle { r } => r * ux.hypot(uy),
-        Shape::Ellipse { a, b } => ((a * ux) * (a * ux) + (b * uy) * (b * uy)).sqrt(),
-        Shape::Rectangle { w, h } => 0.5 * (w * ux.abs() + h * uy.abs()),
-        Shape::Polygon(p) => p.support(super::pose::Vec2::new(ux, uy)),
-        Shape::Clump(c) => c.support(super::pose::Vec2::new(ux, uy)),
-    }
+    shape.support_xy(ux, uy)
 }
 
 /// Centred support function for a direction `(ux, uy)` in a frame in which the shape's own x axis

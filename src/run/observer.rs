@@ -1,12 +1,10 @@
 //! What a [`super::Simulation`] tells the observers of a run: its plan at the start, each step
 //! after it is taken, and how the run ended.
 
+pub use super::outcome::ObserverError;
+use super::outcome::{RunError, Stop};
 use super::progress::RunProgress;
-use super::{RunError, Stop};
 use crate::dynamics::{StepReport, World};
-
-/// An observer's failure (a write that failed, naming its file): it ends the run.
-pub type ObserverError = Box<dyn std::error::Error + Send + Sync>;
 
 /// The steps a run is to take, as it starts.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,10 +1,10 @@
 //! The run driver: [`Simulation`].
 
 use super::observer::{End, Moment, Observer, Plan, StepInfo};
+use super::outcome::{RunError, Stop};
 use super::progress::RunProgress;
 use super::quiescence::Quiescence;
 use super::watch::{self, BlowupReport, BlowupWatch};
-use super::{RunError, Stop};
 use crate::dynamics::{StepReport, World};
 use std::sync::atomic::{AtomicI32, Ordering};
 use std::time::Instant;

@@ -23,11 +23,10 @@
 
 use super::body::{WallGeometry, parse_body_with, parse_wall_or_segment_with};
 use super::cell::parse_cell;
-use super::contact::{
-    check_cohesion_boundaries, check_contact_ranges, parse_contact, wall_overrides,
-};
+use super::contact::{parse_contact, wall_overrides};
 use super::fields::{FieldError, Obj, count, index, join, number, positive, scale, type_of, vec2};
 use super::fields::{boolean, string};
+use super::law_checks::{check_cohesion_boundaries, check_contact_ranges};
 use super::materials::{body_density, check_mixing, meeting, read_materials, read_pairs};
 use super::ranges::{Placed, check_extent, check_steps};
 use super::walls::{Turning, check_span, check_walls, wall_motion, wall_turning};

@@ -7,7 +7,11 @@ use std::cell::RefCell;
 use std::collections::BTreeSet;
 use std::fmt;
 
-use super::ranges::{MAX_MAGNITUDE, MIN_SCALE};
+/// Largest magnitude of any number read.
+pub const MAX_MAGNITUDE: f64 = 1e40;
+
+/// Smallest value of a scale (a size, density, time step, stiffness or modulus).
+pub const MIN_SCALE: f64 = 1e-40;
 
 /// An input error located at a field.
 #[derive(Clone, Debug, PartialEq)]

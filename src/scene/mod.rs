@@ -9,6 +9,7 @@ pub mod drum_flow;
 pub mod fields;
 pub mod flow;
 pub mod generate;
+mod law_checks;
 pub mod materials;
 pub mod ranges;
 pub mod servo_box;

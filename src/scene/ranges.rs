@@ -22,14 +22,11 @@
 //! | an input file | ≤ [`MAX_INPUT_BYTES`] (256 MiB) |
 
 use super::fields::FieldError;
+pub use super::fields::{MAX_MAGNITUDE, MIN_SCALE};
 use crate::contact_law::{ContactSpec, DampingSpec, LinearDamping, Scaled, ShearSpec, SpringSpec};
 use crate::geometry::{Shape, Vec2};
 use std::io::Read;
 
-/// Largest magnitude of any number read.
-pub const MAX_MAGNITUDE: f64 = 1e40;
-/// Smallest value of a scale (a size, density, time step, stiffness or modulus).
-pub const MIN_SCALE: f64 = 1e-40;
 /// Largest ratio of the largest to the smallest size in a scene (or a pair).
 pub const MAX_SIZE_RATIO: f64 = 1e6;
 /// Largest coordinate, in units of the smallest size.
