@@ -171,86 +171,13 @@ fn group_heads(b: &[char], mut i: usize) -> Vec<String> {
 }
 
 /// The top-level modules that the code of one file, at module path `path` (`["dynamics",
-/// "world"]` for src/dynamics/world.rs), names: each with the line it is named on.
+/// "world"]` for src/dynamics/world.rs), names: each with the line it is named on (the first
+/// segment of each path it names, its unit tests' included).
 fn named_modules(code: &str, path: &[String]) -> Vec<(String, usize)> {
-    let b: Vec<char> = code.chars().collect();
-    let mut found = Vec::new();
-    // Inline modules (`mod tests { … }`) deepen the path for `super::`.
-    let mut inline: Vec<(String, usize)> = Vec::new();
-    let mut depth = 0usize;
-    let mut line = 1;
-    let mut i = 0;
-    let word_at = |i: usize, w: &str| {
-        let n = w.chars().count();
-        b.len() >= i + n
-            && b[i..i + n].iter().copied().eq(w.chars())
-            && (i == 0 || !is_ident(b[i - 1]) || b[i - 1] == '$')
-            && !b.get(i + n).is_some_and(|&c| is_ident(c))
-    };
-    let skip_ws = |mut j: usize| {
-        while j < b.len() && b[j].is_whitespace() {
-            j += 1;
-        }
-        j
-    };
-    while i < b.len() {
-        let c = b[i];
-        if c == '\n' {
-            line += 1;
-        } else if c == '{' {
-            depth += 1;
-        } else if c == '}' {
-            depth = depth.saturating_sub(1);
-            if inline.last().is_some_and(|m| m.1 == depth) {
-                inline.pop();
-            }
-        } else if word_at(i, "mod") {
-            let j = skip_ws(i + 3);
-            let name: String = b[j..].iter().take_while(|&&c| is_ident(c)).collect();
-            let k = skip_ws(j + name.len());
-            if !name.is_empty() && b.get(k) == Some(&'{') {
-                inline.push((name, depth));
-            }
-        } else if word_at(i, "crate") || word_at(i, "super") {
-            // Climb: `crate::` to the root; each `super::` one level up.
-            let mut here: Vec<String> = path.to_vec();
-            here.extend(inline.iter().map(|m| m.0.clone()));
-            let mut j = i;
-            let mut at_root = false;
-            loop {
-                if word_at(j, "crate") && b.get(j + 5) == Some(&':') && b.get(j + 6) == Some(&':') {
-                    here.clear();
-                    at_root = true;
-                    j = skip_ws(j + 7);
-                } else if word_at(j, "super")
-                    && b.get(j + 5) == Some(&':')
-                    && b.get(j + 6) == Some(&':')
-                {
-                    here.pop();
-                    at_root = here.is_empty();
-                    j = skip_ws(j + 7);
-                } else {
-                    break;
-                }
-            }
-            if at_root {
-                if b.get(j) == Some(&'{') {
-                    for h in group_heads(&b, j) {
-                        found.push((h, line));
-                    }
-                } else {
-                    let s: String = b[j..].iter().take_while(|&&c| is_ident(c)).collect();
-                    if !s.is_empty() {
-                        found.push((s, line));
-                    }
-                }
-            }
-            i = j.max(i + 1);
-            continue;
-        }
-        i += 1;
-    }
-    found
+    resolved_paths(code, path, &[], false)
+        .into_iter()
+        .filter_map(|(p, line)| p.first().map(|h| (h.clone(), line)))
+        .collect()
 }
 
 /// The top-level modules that `src/lib.rs` declares.
@@ -444,8 +371,14 @@ fn the_check_finds_a_planted_cycle() {
 /// The paths that the code of one file, at module path `path`, names through `crate::` or a
 /// `super::` chain (resolved to a path from the crate's root: `crate::a::{b, c::d}` gives
 /// `[a, b]` and `[a, c, d]`, up to the group's heads), and through the name of one of its own
-/// child modules (`children`, as a `mod.rs` names its files: `cache::PairCache`).
-fn resolved_paths(code: &str, path: &[String], children: &[String]) -> Vec<(Vec<String>, usize)> {
+/// child modules (`children`, as a `mod.rs` names its files: `cache::PairCache`); with
+/// `skip_tests`, not in a `mod tests`.
+fn resolved_paths(
+    code: &str,
+    path: &[String],
+    children: &[String],
+    skip_tests: bool,
+) -> Vec<(Vec<String>, usize)> {
     let b: Vec<char> = code.chars().collect();
     let mut found = Vec::new();
     let mut inline: Vec<(String, usize)> = Vec::new();
@@ -456,7 +389,7 @@ fn resolved_paths(code: &str, path: &[String], children: &[String]) -> Vec<(Vec<
         let n = w.chars().count();
         b.len() >= i + n
             && b[i..i + n].iter().copied().eq(w.chars())
-            && (i == 0 || !is_ident(b[i - 1]))
+            && (i == 0 || !is_ident(b[i - 1]) || b[i - 1] == '$')
             && !b.get(i + n).is_some_and(|&c| is_ident(c))
     };
     let colons = |j: usize| b.get(j) == Some(&':') && b.get(j + 1) == Some(&':');
@@ -507,7 +440,7 @@ fn resolved_paths(code: &str, path: &[String], children: &[String]) -> Vec<(Vec<
             if !name.is_empty() && b.get(k) == Some(&'{') {
                 inline.push((name, depth));
             }
-        } else if inline.iter().any(|m| m.0 == "tests") {
+        } else if skip_tests && inline.iter().any(|m| m.0 == "tests") {
             // A file's unit tests may reach its folder's API: not an import of the code.
         } else if (word_at(i, "crate") || word_at(i, "super")) && colons(i + 5) {
             let mut here: Vec<String> = path.to_vec();
@@ -601,7 +534,7 @@ fn folder_graphs(root_dir: &Path) -> BTreeMap<String, Graph> {
         let code = code_only(&std::fs::read_to_string(&f).unwrap());
         let g = graphs.entry(folder.join("::")).or_default();
         g.entry(node.clone()).or_default();
-        for (p, line) in resolved_paths(&code, &path, &own_children) {
+        for (p, line) in resolved_paths(&code, &path, &own_children, true) {
             if p.len() <= folder.len() || p[..folder.len()] != folder[..] {
                 continue;
             }

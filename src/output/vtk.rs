@@ -612,11 +612,7 @@ pub fn base64(bytes: &[u8], out: &mut String) {
 
 impl Observer for VtkWriter {
     fn reads_extras(&self, moment: Moment) -> bool {
-        match moment {
-            Moment::Start(_) => true,
-            Moment::Step(info) => !info.blowup && info.step.is_multiple_of(self.every),
-            Moment::Finish(end) => end.finite && self.last_step != Some(end.step),
-        }
+        moment.writes_frame(self.every, self.last_step)
     }
 
     fn start(&mut self, world: &World, _: &Plan) -> Result<(), ObserverError> {

@@ -57,6 +57,19 @@ pub enum Moment<'m> {
     Finish(&'m End<'m>),
 }
 
+impl Moment<'_> {
+    /// Whether a writer of frames every `every` steps, whose last frame was labelled `last`,
+    /// writes one now: at the start, after every `every`-th step (not after a blow-up), and at
+    /// the end (a finite state, once per label).
+    pub fn writes_frame(&self, every: u64, last: Option<u64>) -> bool {
+        match self {
+            Moment::Start(_) => true,
+            Moment::Step(info) => !info.blowup && info.step.is_multiple_of(every),
+            Moment::Finish(end) => end.finite && last != Some(end.step),
+        }
+    }
+}
+
 /// An observer of a run (the writers of a run's files are in [`crate::output`]). It reads the
 /// world and never changes it: what an observer needs computed that the step does not keep —
 /// the contacts' extras ([`World::refresh_contact_extras`]: each contact's depth, stiffness
